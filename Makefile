@@ -1,0 +1,49 @@
+# make demo: set up everything, run the paper's examples, write their plots to out/.
+# make test: set up everything, run the whole suite (pytest, then the C++ tests through ctest).
+PYTHON ?= python3
+VENV   := .venv
+PY     := $(VENV)/bin/python
+BIN    := $(VENV)/bin
+OUT    := out
+JOBS   ?= 2
+SOURCES := $(shell git ls-files CMakeLists.txt pyproject.toml cmake cpp bindings python 2>/dev/null)
+
+.PHONY: demo test setup pytest ctest bench clean
+
+setup: $(VENV)/.installed
+
+$(VENV)/.system-ok: scripts/setup_system.sh
+	PYTHON=$(PYTHON) scripts/setup_system.sh
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install -q --upgrade pip
+	$(BIN)/pip install -q cmake ninja
+	touch $@
+
+$(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot]"
+	touch $@
+
+demo: setup
+	mkdir -p $(OUT)
+	cd $(OUT) && ../$(PY) ../examples/fig4_obstruction.py
+	cd $(OUT) && ../$(PY) ../examples/fig5_defocus.py
+	@echo "demo: plots written to $(OUT)/"
+
+test: setup
+	$(MAKE) pytest ctest
+
+pytest:
+	$(PY) -m pytest -q
+
+ctest:
+	$(BIN)/cmake -S . -B build/cpp -G Ninja -DLIDAR_OVERLAP_TESTS=ON -DLIDAR_OVERLAP_PYTHON=OFF \
+	  -DCMAKE_INSTALL_PREFIX=$(CURDIR)/build/cpp-install -DCMAKE_MAKE_PROGRAM=$(CURDIR)/$(BIN)/ninja
+	$(BIN)/cmake --build build/cpp -j $(JOBS)
+	$(BIN)/cmake --install build/cpp --component cpp
+	$(BIN)/ctest --test-dir build/cpp --output-on-failure -j $(JOBS)
+
+bench: setup
+	$(PY) benchmarks/bench_rt.py
+
+clean:
+	rm -rf build $(VENV) $(OUT)

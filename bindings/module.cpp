@@ -1,0 +1,16 @@
+// The lidar_overlap._core extension: one bind_<concept> function per header group.
+#include <pybind11/pybind11.h>
+
+#include "lidar_overlap/version.hpp"
+
+namespace py = pybind11;
+
+void bind_system(py::module_& m);
+void bind_overlap_rt(py::module_& m);
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "C++ core of lidar_overlap (SI units throughout).";
+  m.attr("__version__") = lidar_overlap::kVersion;
+  bind_system(m);
+  bind_overlap_rt(m);
+}

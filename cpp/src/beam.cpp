@@ -1,0 +1,43 @@
+#include "lidar_overlap/beam.hpp"
+
+#include <cmath>
+
+#include "lidar_overlap/checks.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+void GaussianBeam::validate() const {
+  checks::positive("beam.wavelength", wavelength);
+  checks::positive("beam.waist_radius", waist_radius);
+  if (divergence) checks::positive("beam.divergence", *divergence);
+  checks::finite("beam.offset", offset);
+  checks::finite("beam.tilt", tilt);
+}
+
+double GaussianBeam::half_angle_divergence() const {
+  return divergence ? *divergence : wavelength / (kPi * waist_radius);
+}
+
+double GaussianBeam::radius(double z) const {
+  const double theta = half_angle_divergence();
+  if (width_law == WidthLaw::linear) return waist_radius + theta * z;
+  return std::hypot(waist_radius, theta * z);
+}
+
+Vec2 GaussianBeam::center(double z) const { return offset + z * tilt; }
+
+double GaussianBeam::irradiance(Vec2 p, double z) const {
+  const double w = radius(z);
+  const Vec2 d = p - center(z);
+  return 2.0 / (kPi * w * w) * std::exp(-2.0 * dot(d, d) / (w * w));
+}
+
+bool GaussianBeam::on_axis() const {
+  return offset.x == 0.0 && offset.y == 0.0 && tilt.x == 0.0 && tilt.y == 0.0;
+}
+
+}  // namespace lidar_overlap

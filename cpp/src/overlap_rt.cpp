@@ -1,0 +1,123 @@
+#include "lidar_overlap/overlap_rt.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/quadrature.hpp"
+#include "lidar_overlap/receiver.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kMaxKinks = 64;
+
+// Radial coordinate by probability: a Gaussian of 1/e^2 radius w puts the fraction u of its power
+// inside r(u) = w sqrt(-ln(1 - u) / 2), so  int E(r) C(r) dA / P = int_0^1 C(r(u)) du  along any
+// direction, and the weight drops out of the integrand.
+double radius_at(double u, double w) { return w * std::sqrt(-0.5 * std::log1p(-u)); }
+double fraction_within(double r, double w) { return -std::expm1(-2.0 * r * r / (w * w)); }
+
+struct RangeResult {
+  double value, error;
+  std::size_t evaluations;
+  bool converged;
+};
+
+// int_0^1 C(center + r(u) dir) du: the mean coupling along one direction from the beam centre.
+RangeResult radial_mean(const Receiver& rx, Vec2 center, double w, Vec2 dir, double tolerance,
+                        std::size_t max_segments) {
+  double points[kMaxKinks + 2];
+  double radii[kMaxKinks];
+  const std::size_t nk = rx.kinks(center, dir, radii, kMaxKinks);
+  std::size_t n = 0;
+  points[n++] = 0.0;
+  for (std::size_t i = 0; i < nk; ++i) {
+    const double u = fraction_within(radii[i], w);
+    if (u > 0.0 && u < 1.0) points[n++] = u;
+  }
+  points[n++] = 1.0;
+  std::sort(points, points + n);
+  auto integrand = [&](double u) { return rx.coupling(center + radius_at(u, w) * dir); };
+  const QuadratureResult q = integrate(integrand, points, n, tolerance, max_segments);
+  return {q.value, q.error, q.evaluations, q.converged};
+}
+
+RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
+  const double z = rx.range();
+  const double w = system.beam.radius(z);
+  const Vec2 center = system.beam.center(z);
+  if (system.is_axisymmetric())
+    return radial_mean(rx, center, w, {1.0, 0.0}, opt.tolerance, opt.max_segments);
+
+  // Two-dimensional: mean over directions of the radial mean. When the detector offset is zero or
+  // lies along the beam centre's direction, the scene is mirror-symmetric about that line and half
+  // the directions suffice.
+  const Vec2 o = system.detector.offset;
+  const bool mirror = (o.x * center.y - o.y * center.x) == 0.0;
+  const double phi0 = (center.x != 0.0 || center.y != 0.0) ? std::atan2(center.y, center.x)
+                                                           : std::atan2(o.y, o.x);
+  const double span = mirror ? kPi : 2.0 * kPi;
+  std::size_t evaluations = 0;
+  bool converged = true;
+  double inner_error = 0.0;
+  auto mean_over_direction = [&](double phi) {
+    const double a = phi0 + phi;
+    const RangeResult r = radial_mean(rx, center, w, {std::cos(a), std::sin(a)},
+                                      0.25 * opt.tolerance, opt.max_segments);
+    evaluations += r.evaluations;
+    converged = converged && r.converged;
+    inner_error = std::max(inner_error, r.error);
+    return r.value / span;
+  };
+  const double breaks[5] = {0.0, 0.25 * span, 0.5 * span, 0.75 * span, span};
+  const QuadratureResult q =
+      integrate(mean_over_direction, breaks, 5, 0.75 * opt.tolerance, opt.max_segments);
+  return {q.value, q.error + inner_error, evaluations, converged && q.converged};
+}
+
+}  // namespace
+
+RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
+                     const RtOptions& options) {
+  system.validate();
+  checks::in_open_unit("tolerance", options.tolerance);
+  if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
+  if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
+
+  // Receivers are built (and ranges validated) before the parallel region: nothing throws inside it.
+  std::vector<Receiver> receivers;
+  receivers.reserve(ranges.size());
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    receivers.emplace_back(system, ranges[i]);  // validates ranges[i]
+
+  const std::size_t n = ranges.size();
+  RtOverlap out;
+  out.overlap.assign(n, 0.0);
+  out.error_estimate.assign(n, 0.0);
+  out.converged.assign(n, true);
+  out.axisymmetric = system.is_axisymmetric();
+  std::vector<RangeResult> results(n);
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (long i = 0; i < static_cast<long>(n); ++i) results[i] = overlap_at(system, receivers[i], options);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.overlap[i] = results[i].value;
+    out.error_estimate[i] = results[i].error;
+    out.converged[i] = results[i].converged;
+    out.evaluations += results[i].evaluations;
+  }
+  return out;
+}
+
+double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position) {
+  checks::finite("position", position);
+  return Receiver(system, z).coupling(position);
+}
+
+}  // namespace lidar_overlap

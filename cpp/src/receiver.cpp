@@ -1,0 +1,128 @@
+#include "lidar_overlap/receiver.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "lidar_overlap/checks.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// Roots t >= 0 of |alpha (origin + t dir) + beta| = rho (|dir| = 1): where a moving circle becomes
+// tangent to another, or a gate switches.
+std::size_t tangency_roots(double alpha, Vec2 beta, double rho, Vec2 origin, Vec2 dir, double* out,
+                           std::size_t capacity) {
+  if (alpha == 0.0 || capacity == 0) return 0;
+  const Vec2 q = alpha * origin + beta;
+  const double a = alpha * alpha;
+  const double half_b = alpha * dot(q, dir);
+  const double c = dot(q, q) - rho * rho;
+  const double disc = half_b * half_b - a * c;
+  if (disc < 0.0) return 0;
+  const double s = std::sqrt(disc);
+  // Stable quadratic roots: avoid subtracting nearly equal numbers.
+  const double k = -(half_b + std::copysign(s, half_b));
+  double roots[2];
+  std::size_t n = 0;
+  if (k != 0.0) {
+    roots[n++] = k / a;
+    roots[n++] = c / k;
+  } else {
+    roots[n++] = 0.0;
+  }
+  std::size_t written = 0;
+  for (std::size_t i = 0; i < n && written < capacity; ++i)
+    if (roots[i] > 0.0 && std::isfinite(roots[i])) out[written++] = roots[i];
+  return written;
+}
+}  // namespace
+
+double optimal_focus_range(double focal_length, double defocus) {
+  checks::positive("focal_length", focal_length);
+  checks::non_negative("defocus", defocus);
+  if (defocus == 0.0) return std::numeric_limits<double>::infinity();
+  return focal_length * (focal_length + defocus) / defocus;
+}
+
+Receiver::Receiver(const LidarSystem& system, double z) : z_(z) {
+  system.validate();
+  system.validate_range(z, "z");
+  const Telescope& t = system.telescope;
+  const Detector& det = system.detector;
+  aperture_radius_ = 0.5 * t.diameter;
+  focal_length_ = t.focal_length;
+  detector_distance_ = t.focal_length + det.defocus;
+  detector_offset_ = det.offset;
+  const double d = detector_distance_;
+
+  passing_[n_passing_++] = {0.0, {}, aperture_radius_};
+
+  // Detector: m A - P d/z lands within r_d of the detector centre.
+  const double m = 1.0 + d / z - d / t.focal_length;
+  if (m != 0.0)
+    passing_[n_passing_++] = {d / z / m, (1.0 / m) * det.offset, det.radius / std::abs(m)};
+  else
+    gates_[n_gates_++] = {-d / z, -1.0 * det.offset, det.radius};
+
+  // Fibre NA: ray slope after the lens, A (1/z - 1/f) - P/z, within tan(asin NA).
+  if (det.numerical_aperture) {
+    const double na = *det.numerical_aperture;
+    const double max_slope = na / std::sqrt(1.0 - na * na);
+    const double k = 1.0 / z - 1.0 / t.focal_length;
+    if (k != 0.0)
+      passing_[n_passing_++] = {1.0 / (z * k), {}, max_slope / std::abs(k)};
+    else
+      gates_[n_gates_++] = {-1.0 / z, {}, max_slope};
+  }
+
+  // Obstruction shadow on the aperture: A (1 - z_obs/z) + P z_obs/z inside r_obs.
+  if (t.obstruction_radius > 0.0) {
+    const double gap = z - t.obstruction_distance;
+    shadow_ = {-t.obstruction_distance / gap, {}, t.obstruction_radius * z / gap};
+    has_shadow_ = true;
+  }
+}
+
+double Receiver::coupling(Vec2 p) const {
+  for (std::size_t g = 0; g < n_gates_; ++g) {
+    const Vec2 q = gates_[g].scale * p + gates_[g].shift;
+    if (norm(q) > gates_[g].radius) return 0.0;
+  }
+  std::array<Disc, 4> discs;
+  for (std::size_t i = 0; i < n_passing_; ++i) discs[i] = passing_[i].at(p);
+  const double passing = intersection_area(discs.data(), n_passing_);
+  double blocked = 0.0;
+  if (has_shadow_ && passing > 0.0) {
+    discs[n_passing_] = shadow_.at(p);
+    blocked = intersection_area(discs.data(), n_passing_ + 1);
+  }
+  return std::max(0.0, passing - blocked) / (kPi * aperture_radius_ * aperture_radius_);
+}
+
+std::size_t Receiver::kinks(Vec2 origin, Vec2 dir, double* out, std::size_t capacity) const {
+  std::array<MovingDisc, 4> all;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < n_passing_; ++i) all[n++] = passing_[i];
+  if (has_shadow_) all[n++] = shadow_;
+  std::size_t written = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double alpha = all[i].scale - all[j].scale;
+      const Vec2 beta = all[i].shift - all[j].shift;
+      for (double rho : {all[i].radius + all[j].radius, std::abs(all[i].radius - all[j].radius)})
+        written += tangency_roots(alpha, beta, rho, origin, dir, out + written, capacity - written);
+    }
+  for (std::size_t g = 0; g < n_gates_; ++g)
+    written += tangency_roots(gates_[g].scale, gates_[g].shift, gates_[g].radius, origin, dir,
+                              out + written, capacity - written);
+  return written;
+}
+
+Vec2 Receiver::detector_hit(Vec2 p, Vec2 a) const {
+  const double d = detector_distance_;
+  return (1.0 + d / z_ - d / focal_length_) * a - (d / z_) * p;
+}
+
+}  // namespace lidar_overlap

@@ -1,0 +1,34 @@
+"""matplotlib helpers (optional dependency: ``pip install lidar-overlap[plot]``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _pyplot():
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as exc:  # pragma: no cover - exercised only without matplotlib
+        raise ImportError("plotting needs matplotlib: pip install 'lidar-overlap[plot]'") from exc
+    return plt
+
+
+def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
+    """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G) and
+    first-signal (G >= 1e-3) ranges. Returns the Axes."""
+    plt = _pyplot()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+    line, = ax.plot(result.ranges, result.overlap, label=label or result.method, **line_kwargs)
+    if mark_ranges:
+        for z, style in ((result.full_overlap_range(), "--"), (result.first_signal_range(), ":")):
+            if np.isfinite(z):
+                ax.axvline(z, color=line.get_color(), linestyle=style, linewidth=0.8, alpha=0.7)
+    ax.set_xscale("log")
+    ax.set_xlabel("range z (m)")
+    ax.set_ylabel("overlap G(z)")
+    ax.set_ylim(-0.02, 1.05)
+    ax.grid(True, which="both", alpha=0.3)
+    if label is not None:
+        ax.legend()
+    return ax

@@ -1,0 +1,156 @@
+"""The lidar system model: transmitted beam, receiving telescope, detector (SI units throughout).
+
+Each dataclass is immutable and validated on construction by the C++ core, so an invalid system
+cannot reach a computation. Use :func:`dataclasses.replace` to vary one parameter.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal, Optional, Tuple
+
+from . import _checks, _core
+
+Pair = Tuple[float, float]
+
+
+@dataclass(frozen=True)
+class GaussianBeam:
+    """Gaussian (TEM00-like) transmitted beam.
+
+    Parameters
+    ----------
+    wavelength : m.
+    waist_radius : m, 1/e² irradiance radius w0 at the transmitting plane z = 0.
+    divergence : rad, 1/e² far-field *half*-angle θ; ``None`` means diffraction-limited λ/(π w0).
+    offset : (x, y) in m, beam centroid at z = 0 relative to the telescope axis (biaxial systems).
+    tilt : (x, y) in rad, centroid angle relative to the telescope axis (misalignment, paper B3-B4).
+    width_law : ``"gaussian"``: w(z)² = w0² + (θz)²; ``"linear"``: w(z) = w0 + θz, the paper's marginal
+        ray of Appendix B, kept to reproduce its figures.
+    """
+
+    wavelength: float = 355e-9
+    waist_radius: float = 1e-3
+    divergence: Optional[float] = None
+    offset: Pair = (0.0, 0.0)
+    tilt: Pair = (0.0, 0.0)
+    width_law: Literal["gaussian", "linear"] = "gaussian"
+    _native: object = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        set_(self, "wavelength", _checks.real("beam.wavelength", self.wavelength))
+        set_(self, "waist_radius", _checks.real("beam.waist_radius", self.waist_radius))
+        set_(self, "divergence", _checks.optional_real("beam.divergence", self.divergence))
+        set_(self, "offset", _checks.pair("beam.offset", self.offset))
+        set_(self, "tilt", _checks.pair("beam.tilt", self.tilt))
+        _checks.choice("beam.width_law", self.width_law, ("gaussian", "linear"))
+        set_(self, "_native", _core.GaussianBeam(self.wavelength, self.waist_radius, self.divergence,
+                                                 self.offset, self.tilt, self.width_law))
+
+    @property
+    def half_angle_divergence(self) -> float:
+        """Far-field 1/e² half-angle θ (rad)."""
+        return self._native.half_angle_divergence()
+
+    def radius(self, z):
+        """1/e² irradiance radius w(z) (m) at range(s) z (m)."""
+        return self._native.radius(z)
+
+
+@dataclass(frozen=True)
+class Telescope:
+    """Receiving telescope: ideal thin lens at the aperture stop (z = 0).
+
+    Parameters
+    ----------
+    diameter : m, aperture stop diameter D.
+    focal_length : m, effective focal length f.
+    obstruction_radius : m, radius of the opaque central obstruction (secondary mirror), < D/2.
+    obstruction_distance : m, its distance in front of the aperture stop, towards the sky.
+    """
+
+    diameter: float = 0.15
+    focal_length: float = 1.0
+    obstruction_radius: float = 0.0
+    obstruction_distance: float = 0.0
+    _native: object = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        for name in ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"):
+            object.__setattr__(self, name, _checks.real(f"telescope.{name}", getattr(self, name)))
+        object.__setattr__(self, "_native", _core.Telescope(self.diameter, self.focal_length,
+                                                            self.obstruction_radius,
+                                                            self.obstruction_distance))
+
+
+@dataclass(frozen=True)
+class Detector:
+    """Detector (fibre core or field stop) in a plane f + defocus behind the lens.
+
+    Parameters
+    ----------
+    radius : m, detector radius r_d.
+    defocus : m, displacement of the detector plane behind the focal plane (negative: in front).
+    offset : (x, y) in m, detector centre in its plane.
+    numerical_aperture : accepted sin(angle) of a fibre; rays steeper than it are rejected.
+        ``None`` accepts every ray.
+    """
+
+    radius: float = 0.45e-3
+    defocus: float = 0.0
+    offset: Pair = (0.0, 0.0)
+    numerical_aperture: Optional[float] = None
+    _native: object = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        set_(self, "radius", _checks.real("detector.radius", self.radius))
+        set_(self, "defocus", _checks.real("detector.defocus", self.defocus))
+        set_(self, "offset", _checks.pair("detector.offset", self.offset))
+        set_(self, "numerical_aperture",
+             _checks.optional_real("detector.numerical_aperture", self.numerical_aperture))
+        set_(self, "_native", _core.Detector(self.radius, self.defocus, self.offset,
+                                             self.numerical_aperture))
+
+    @classmethod
+    def from_fov(cls, fov: float, focal_length: float, defocus: float = 0.0,
+                 offset: Pair = (0.0, 0.0), numerical_aperture: Optional[float] = None) -> "Detector":
+        """The detector that gives a full field of view ``fov`` (rad, full angle, as in the paper's
+        Table 1) behind a lens of ``focal_length`` (m): radius = fov · f / 2."""
+        native = _core.Detector.from_fov(_checks.real("fov", fov), _checks.real("focal_length", focal_length),
+                                         _checks.real("defocus", defocus), _checks.pair("offset", offset),
+                                         _checks.optional_real("numerical_aperture", numerical_aperture))
+        return cls(native.radius, defocus, offset, numerical_aperture)
+
+    def fov(self, focal_length: float) -> float:
+        """Full field of view (rad) behind a lens of ``focal_length`` (m)."""
+        return 2.0 * self.radius / focal_length
+
+
+@dataclass(frozen=True)
+class LidarSystem:
+    """A lidar: transmitted beam, receiving telescope and detector, validated together
+    (obstruction inside the aperture, detector plane behind the lens)."""
+
+    beam: GaussianBeam = field(default_factory=GaussianBeam)
+    telescope: Telescope = field(default_factory=Telescope)
+    detector: Detector = field(default_factory=Detector)
+    _native: object = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        for name, kind in (("beam", GaussianBeam), ("telescope", Telescope), ("detector", Detector)):
+            if not isinstance(getattr(self, name), kind):
+                raise ValueError(f"{name} = {getattr(self, name)!r} is invalid: expected a {kind.__name__}")
+        object.__setattr__(self, "_native", _core.LidarSystem(self.beam._native, self.telescope._native,
+                                                              self.detector._native))
+
+    @property
+    def is_axisymmetric(self) -> bool:
+        """True when beam and detector share the telescope axis (G is then a radial integral)."""
+        return self._native.is_axisymmetric()
+
+    @property
+    def fov(self) -> float:
+        """Full field of view (rad) of the receiver: 2 r_d / f."""
+        return self.detector.fov(self.telescope.focal_length)
