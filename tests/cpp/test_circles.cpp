@@ -1,0 +1,58 @@
+// Disc intersection areas against closed forms and an independent grid count.
+#include <random>
+#include <stdexcept>
+
+#include "check.hpp"
+#include "lidar_overlap/circles.hpp"
+
+using namespace lidar_overlap;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// Fraction of a fine grid over the bounding box of disc 0 inside every disc (independent of arcs).
+double grid_area(const Disc* d, std::size_t n, int cells) {
+  const double r = d[0].radius, x0 = d[0].center.x - r, y0 = d[0].center.y - r, h = 2.0 * r / cells;
+  long inside = 0;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      const Vec2 p{x0 + (i + 0.5) * h, y0 + (j + 0.5) * h};
+      bool in = true;
+      for (std::size_t k = 0; k < n && in; ++k) in = norm(p - d[k].center) <= d[k].radius;
+      inside += in;
+    }
+  return inside * h * h;
+}
+}  // namespace
+
+int main() {
+  // Two equal unit discs at distance 1: lens area 2 pi/3 - sqrt(3)/2.
+  const Disc a{{0, 0}, 1.0}, b{{1, 0}, 1.0};
+  test::near("lens of two unit discs at distance 1", lens_area(a, b), 2 * kPi / 3 - std::sqrt(3.0) / 2, 1e-14);
+  test::near("disjoint", lens_area(a, {{2.5, 0}, 1.0}), 0.0, 0.0);
+  test::near("contained", lens_area(a, {{0.2, 0.1}, 0.3}), kPi * 0.09, 1e-15);
+  Disc ab[2] = {a, b};
+  test::near("general routine on two discs", intersection_area(ab, 2), lens_area(a, b), 1e-14);
+  // Identical discs, and a disc containing the other two.
+  Disc same[3] = {a, a, {{0, 0}, 5.0}};
+  test::near("identical discs", intersection_area(same, 3), kPi, 1e-14);
+  // Three pairwise-overlapping discs with an empty common part.
+  Disc empty[3] = {{{0, 0}, 1.0}, {{1.8, 0}, 1.0}, {{0.9, 1.6}, 1.0}};
+  test::near("pairwise overlapping, no common point", intersection_area(empty, 3), 0.0, 0.0);
+
+  // Random triples and quadruples against a 1000x1000 grid count (area error ~ perimeter * h).
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.3, 1.5);
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t n = 3 + trial % 2;
+    Disc d[4];
+    for (std::size_t k = 0; k < n; ++k) d[k] = {{pos(rng), pos(rng)}, rad(rng)};
+    const int cells = 1000;
+    const double h = 2.0 * d[0].radius / cells;
+    const double tolerance = 4.0 * 2.0 * kPi * 1.5 * h * (double)n;  // boundary cells only
+    test::near("random discs vs grid, trial " + std::to_string(trial), intersection_area(d, n),
+               grid_area(d, n, cells), tolerance);
+  }
+  test::throws("too many discs", [] { Disc d[7]{}; intersection_area(d, 7); }, "n must be");
+  return test::report("test_circles");
+}
