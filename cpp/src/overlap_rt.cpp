@@ -15,7 +15,7 @@ namespace lidar_overlap {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kMaxKinks = 64;
+constexpr std::size_t kMaxKinks = 16;  // 4 moving discs: 12 tangency circles, 2 gates
 
 // Radial coordinate by probability: a Gaussian of 1/e^2 radius w puts the fraction u of its power
 // inside r(u) = w sqrt(-ln(1 - u) / 2), so  int E(r) C(r) dA / P = int_0^1 C(r(u)) du  along any
@@ -29,12 +29,34 @@ struct RangeResult {
   bool converged;
 };
 
+// Circles in the scatterer plane across which the coupling has a kink (Receiver::kink_circles).
+struct Kinks {
+  Disc circles[kMaxKinks];
+  std::size_t n = 0;
+  explicit Kinks(const Receiver& rx) : n(rx.kink_circles(circles, kMaxKinks)) {}
+};
+
+// Distances t > 0 at which the ray center + t dir (|dir| = 1) crosses a kink circle.
+std::size_t crossings(const Kinks& k, Vec2 center, Vec2 dir, double* out) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < k.n; ++i) {
+    const Vec2 q = center - k.circles[i].center;
+    const double half_b = dot(q, dir), c = dot(q, q) - k.circles[i].radius * k.circles[i].radius;
+    const double disc = half_b * half_b - c;
+    if (disc < 0.0) continue;
+    const double h = -(half_b + std::copysign(std::sqrt(disc), half_b));  // stable roots h and c/h
+    for (double t : {h, h != 0.0 ? c / h : 0.0})
+      if (t > 0.0 && std::isfinite(t)) out[n++] = t;
+  }
+  return n;
+}
+
 // int_0^1 C(center + r(u) dir) du: the mean coupling along one direction from the beam centre.
-RangeResult radial_mean(const Receiver& rx, Vec2 center, double w, Vec2 dir, double tolerance,
-                        std::size_t max_segments) {
-  double points[kMaxKinks + 2];
-  double radii[kMaxKinks];
-  const std::size_t nk = rx.kinks(center, dir, radii, kMaxKinks);
+RangeResult radial_mean(const Receiver& rx, const Kinks& kinks, Vec2 center, double w, Vec2 dir,
+                        double tolerance, std::size_t max_segments) {
+  double points[2 * kMaxKinks + 2];
+  double radii[2 * kMaxKinks];
+  const std::size_t nk = crossings(kinks, center, dir, radii);
   std::size_t n = 0;
   points[n++] = 0.0;
   for (std::size_t i = 0; i < nk; ++i) {
@@ -52,8 +74,9 @@ RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOp
   const double z = rx.range();
   const double w = system.beam.radius(z);
   const Vec2 center = system.beam.center(z);
+  const Kinks kinks(rx);
   if (system.is_axisymmetric())
-    return radial_mean(rx, center, w, {1.0, 0.0}, opt.tolerance, opt.max_segments);
+    return radial_mean(rx, kinks, center, w, {1.0, 0.0}, opt.tolerance, opt.max_segments);
 
   // Two-dimensional: mean over directions of the radial mean. When the detector offset is zero or
   // lies along the beam centre's direction, the scene is mirror-symmetric about that line and half
@@ -63,21 +86,40 @@ RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOp
   const double phi0 = (center.x != 0.0 || center.y != 0.0) ? std::atan2(center.y, center.x)
                                                            : std::atan2(o.y, o.x);
   const double span = mirror ? kPi : 2.0 * kPi;
+
+  // The radial mean is not smooth in direction where a ray from the beam centre grazes a kink
+  // circle: those tangent directions become breakpoints of the angular integral.
+  double breaks[2 * kMaxKinks + 5];
+  std::size_t nb = 0;
+  for (double f : {0.0, 0.5, 1.0}) breaks[nb++] = f * span;
+  for (std::size_t i = 0; i < kinks.n; ++i) {
+    const Vec2 q = kinks.circles[i].center - center;
+    const double d = norm(q), rho = kinks.circles[i].radius;
+    if (!(d > rho)) continue;
+    const double mid = std::atan2(q.y, q.x) - phi0, half = std::asin(rho / d);
+    for (double phi : {mid - half, mid + half}) {
+      phi = std::remainder(phi, 2.0 * kPi);  // (-pi, pi]
+      if (mirror) phi = std::abs(phi);      // the lower half mirrors the upper one
+      else if (phi < 0.0) phi += 2.0 * kPi;
+      if (phi > 0.0 && phi < span) breaks[nb++] = phi;
+    }
+  }
+  std::sort(breaks, breaks + nb);
+
   std::size_t evaluations = 0;
   bool converged = true;
   double inner_error = 0.0;
   auto mean_over_direction = [&](double phi) {
     const double a = phi0 + phi;
-    const RangeResult r = radial_mean(rx, center, w, {std::cos(a), std::sin(a)},
+    const RangeResult r = radial_mean(rx, kinks, center, w, {std::cos(a), std::sin(a)},
                                       0.25 * opt.tolerance, opt.max_segments);
     evaluations += r.evaluations;
     converged = converged && r.converged;
     inner_error = std::max(inner_error, r.error);
     return r.value / span;
   };
-  const double breaks[5] = {0.0, 0.25 * span, 0.5 * span, 0.75 * span, span};
   const QuadratureResult q =
-      integrate(mean_over_direction, breaks, 5, 0.75 * opt.tolerance, opt.max_segments);
+      integrate(mean_over_direction, breaks, nb, 0.75 * opt.tolerance, opt.max_segments);
   return {q.value, q.error + inner_error, evaluations, converged && q.converged};
 }
 

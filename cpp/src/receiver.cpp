@@ -10,33 +10,6 @@ namespace lidar_overlap {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-// Roots t >= 0 of |alpha (origin + t dir) + beta| = rho (|dir| = 1): where a moving circle becomes
-// tangent to another, or a gate switches.
-std::size_t tangency_roots(double alpha, Vec2 beta, double rho, Vec2 origin, Vec2 dir, double* out,
-                           std::size_t capacity) {
-  if (alpha == 0.0 || capacity == 0) return 0;
-  const Vec2 q = alpha * origin + beta;
-  const double a = alpha * alpha;
-  const double half_b = alpha * dot(q, dir);
-  const double c = dot(q, q) - rho * rho;
-  const double disc = half_b * half_b - a * c;
-  if (disc < 0.0) return 0;
-  const double s = std::sqrt(disc);
-  // Stable quadratic roots: avoid subtracting nearly equal numbers.
-  const double k = -(half_b + std::copysign(s, half_b));
-  double roots[2];
-  std::size_t n = 0;
-  if (k != 0.0) {
-    roots[n++] = k / a;
-    roots[n++] = c / k;
-  } else {
-    roots[n++] = 0.0;
-  }
-  std::size_t written = 0;
-  for (std::size_t i = 0; i < n && written < capacity; ++i)
-    if (roots[i] > 0.0 && std::isfinite(roots[i])) out[written++] = roots[i];
-  return written;
-}
 }  // namespace
 
 double optimal_focus_range(double focal_length, double defocus) {
@@ -101,22 +74,24 @@ double Receiver::coupling(Vec2 p) const {
   return std::max(0.0, passing - blocked) / (kPi * aperture_radius_ * aperture_radius_);
 }
 
-std::size_t Receiver::kinks(Vec2 origin, Vec2 dir, double* out, std::size_t capacity) const {
+std::size_t Receiver::kink_circles(Disc* out, std::size_t capacity) const {
   std::array<MovingDisc, 4> all;
   std::size_t n = 0;
   for (std::size_t i = 0; i < n_passing_; ++i) all[n++] = passing_[i];
   if (has_shadow_) all[n++] = shadow_;
   std::size_t written = 0;
+  // |alpha P + beta| = rho is a circle of centre -beta/alpha and radius rho/|alpha| in P.
+  auto add = [&](double alpha, Vec2 beta, double rho) {
+    if (alpha != 0.0 && written < capacity) out[written++] = {(-1.0 / alpha) * beta, rho / std::abs(alpha)};
+  };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       const double alpha = all[i].scale - all[j].scale;
       const Vec2 beta = all[i].shift - all[j].shift;
-      for (double rho : {all[i].radius + all[j].radius, std::abs(all[i].radius - all[j].radius)})
-        written += tangency_roots(alpha, beta, rho, origin, dir, out + written, capacity - written);
+      add(alpha, beta, all[i].radius + all[j].radius);
+      add(alpha, beta, std::abs(all[i].radius - all[j].radius));
     }
-  for (std::size_t g = 0; g < n_gates_; ++g)
-    written += tangency_roots(gates_[g].scale, gates_[g].shift, gates_[g].radius, origin, dir,
-                              out + written, capacity - written);
+  for (std::size_t g = 0; g < n_gates_; ++g) add(gates_[g].scale, gates_[g].shift, gates_[g].radius);
   return written;
 }
 

@@ -31,10 +31,9 @@ class Receiver {
   // unobstructed aperture that reaches the detector.
   double coupling(Vec2 p) const;
 
-  // Distances t >= 0 along the line p = origin + t dir (|dir| = 1) where coupling() has a kink
-  // (two boundary circles become tangent, or a degenerate constraint switches). Writes at most
-  // `capacity` values, unsorted; returns how many.
-  std::size_t kinks(Vec2 origin, Vec2 dir, double* out, std::size_t capacity) const;
+  // Circles in the scatterer plane on which coupling() has a kink: where two boundary circles in the
+  // aperture plane become tangent, or a degenerate constraint switches. Writes at most `capacity`.
+  std::size_t kink_circles(Disc* out, std::size_t capacity) const;
 
   // Where the ray from scatterer p through aperture point a meets the detector plane (m).
   Vec2 detector_hit(Vec2 p, Vec2 a) const;
