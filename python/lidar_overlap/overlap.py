@@ -15,6 +15,7 @@ import numpy as np
 from . import _checks, _core
 from .result import OverlapResult
 from .system import LidarSystem
+from .validity import warn_if_rt_invalid
 
 METHODS = ("rt",)
 
@@ -32,6 +33,10 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
         (radial for axisymmetric scenes, two-dimensional otherwise) until its error estimate is below it.
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
+
+    Warns (RuntimeWarning) when ray tracing is used outside its validity: a detector within a few
+    tens of Airy radii, or ranges so short that paraxial slopes err by more than 1 %
+    (see :mod:`lidar_overlap.validity`).
     """
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {system!r} is invalid: expected a LidarSystem")
@@ -40,6 +45,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     tolerance = _checks.unit_interval("tolerance", tolerance)
     threads = _checks.count("threads", threads, 0)
     max_segments = _checks.count("max_segments", max_segments, 1)
+    warn_if_rt_invalid(system, z)
     raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)
     converged = np.asarray(raw["converged"], dtype=bool)
     if not converged.all():
