@@ -6,7 +6,6 @@ module only checks types and shapes, which the core cannot see.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -62,8 +61,9 @@ def count(name: str, value: Any, minimum: int) -> int:
     return int(value)
 
 
-def unit_interval(name: str, value: Any) -> float:
+def unit_interval(name: str, value: Any, include_one: bool = False) -> float:
+    """A value in (0, 1), or (0, 1] with include_one."""
     v = real(name, value)
-    if not (0.0 < v < 1.0) or math.isnan(v):
-        raise ValueError(f"{name} = {v!r} is invalid: expected a value in (0, 1)")
+    if not (0.0 < v < 1.0 or (include_one and v == 1.0)):
+        raise ValueError(f"{name} = {v!r} is invalid: expected a value in (0, {'1]' if include_one else '1)'}")
     return v

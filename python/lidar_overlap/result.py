@@ -35,7 +35,7 @@ class OverlapResult:
         """First range (m) of the grid where G >= threshold · max G; NaN if G is zero everywhere.
 
         Relative to the maximum, so an obstructed system (max G = 1 - (r_obs/R)²) has one too."""
-        threshold = _checks.unit_interval("threshold", threshold) if threshold != 1.0 else 1.0
+        threshold = _checks.unit_interval("threshold", threshold, include_one=True)
         peak = float(np.max(self.overlap))
         if peak <= 0.0:
             return float("nan")
