@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
@@ -70,13 +71,51 @@ RangeResult radial_mean(const Receiver& rx, const Kinks& kinks, Vec2 center, dou
   return {q.value, q.error, q.evaluations, q.converged};
 }
 
+// exp(-x) I0(x) for x >= 0, without overflow.
+double scaled_bessel_i0(double x) {
+  if (x < 500.0) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
+  // Hankel's asymptotic series; at x >= 500 four terms are exact to double precision.
+  const double t = 1.0 / (8.0 * x);
+  return (1.0 + t * (1.0 + t * (9.0 / 2.0 + t * (225.0 / 6.0)))) / std::sqrt(2.0 * kPi * x);
+}
+
+// G when the coupling is rotationally symmetric about S but the beam is centred a distance nu from
+// it: the beam's power per unit radius around S is the Rice density of (nu, sigma = w/2), so
+// G = int C(S + rho e) Rice(rho) d rho, one dimension whatever the beam offset or tilt.
+RangeResult rice_mean(const Receiver& rx, const Kinks& kinks, Vec2 s, double nu, double w,
+                      double tolerance, std::size_t max_segments) {
+  const double sigma = 0.5 * w, var = sigma * sigma;
+  const Vec2 e{1.0, 0.0};
+  // Beyond 10 sigma from nu the density is below exp(-50) of its peak.
+  const double lo = std::max(0.0, nu - 10.0 * sigma), hi = nu + 10.0 * sigma;
+  double points[2 * kMaxKinks + 2];
+  double radii[2 * kMaxKinks];
+  const std::size_t nk = crossings(kinks, s, e, radii);
+  std::size_t n = 0;
+  points[n++] = lo;
+  for (std::size_t i = 0; i < nk; ++i)
+    if (radii[i] > lo && radii[i] < hi) points[n++] = radii[i];
+  points[n++] = hi;
+  std::sort(points, points + n);
+  auto integrand = [&](double rho) {
+    const double d = rho - nu;
+    const double density = rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
+    return density == 0.0 ? 0.0 : density * rx.coupling(s + rho * e);
+  };
+  const QuadratureResult q = integrate(integrand, points, n, tolerance, max_segments);
+  return {q.value, q.error, q.evaluations, q.converged};
+}
+
 RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
   const double z = rx.range();
   const double w = system.beam.radius(z);
   const Vec2 center = system.beam.center(z);
   const Kinks kinks(rx);
-  if (system.is_axisymmetric())
-    return radial_mean(rx, kinks, center, w, {1.0, 0.0}, opt.tolerance, opt.max_segments);
+  if (const std::optional<Vec2> s = rx.symmetry_center()) {
+    const double nu = norm(center - *s);
+    if (nu == 0.0) return radial_mean(rx, kinks, center, w, {1.0, 0.0}, opt.tolerance, opt.max_segments);
+    return rice_mean(rx, kinks, *s, nu, w, opt.tolerance, opt.max_segments);
+  }
 
   // Two-dimensional: mean over directions of the radial mean. When the detector offset is zero or
   // lies along the beam centre's direction, the scene is mirror-symmetric about that line and half

@@ -95,6 +95,26 @@ std::size_t Receiver::kink_circles(Disc* out, std::size_t capacity) const {
   return written;
 }
 
+std::optional<Vec2> Receiver::symmetry_center() const {
+  // A constraint |scale P + shift ...| is symmetric about S = -shift / scale; all must agree.
+  std::optional<Vec2> s;
+  bool ok = true;
+  auto agree = [&](double scale, Vec2 shift) {
+    if (scale == 0.0) {
+      ok = ok && shift.x == 0.0 && shift.y == 0.0;  // the aperture: fixed and centred
+      return;
+    }
+    const Vec2 c = (-1.0 / scale) * shift;
+    if (!s) s = c;
+    else ok = ok && norm(c - *s) <= 1e-12 * (norm(c) + aperture_radius_);
+  };
+  for (std::size_t i = 0; i < n_passing_; ++i) agree(passing_[i].scale, passing_[i].shift);
+  if (has_shadow_) agree(shadow_.scale, shadow_.shift);
+  for (std::size_t g = 0; g < n_gates_; ++g) agree(gates_[g].scale, gates_[g].shift);
+  if (!ok) return std::nullopt;
+  return s ? *s : Vec2{};
+}
+
 Vec2 Receiver::detector_hit(Vec2 p, Vec2 a) const {
   const double d = detector_distance_;
   return (1.0 + d / z_ - d / focal_length_) * a - (d / z_) * p;

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 
 #include "lidar_overlap/circles.hpp"
 #include "lidar_overlap/system.hpp"
@@ -34,6 +35,10 @@ class Receiver {
   // Circles in the scatterer plane on which coupling() has a kink: where two boundary circles in the
   // aperture plane become tangent, or a degenerate constraint switches. Writes at most `capacity`.
   std::size_t kink_circles(Disc* out, std::size_t capacity) const;
+
+  // A point S about which coupling() is rotationally symmetric (every boundary circle's centre is
+  // proportional to P - S), if there is one: then G needs only a radial integral around S.
+  std::optional<Vec2> symmetry_center() const;
 
   // Where the ray from scatterer p through aperture point a meets the detector plane (m).
   Vec2 detector_hit(Vec2 p, Vec2 a) const;
