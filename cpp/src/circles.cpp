@@ -12,12 +12,26 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 
-// Area of the circular segment of a disc of radius r cut by a chord at signed distance h from
-// its centre (h in [-r, r]): the part on the far side of the chord.
-double segment_area(double r, double h) {
-  const double c = std::clamp(h / r, -1.0, 1.0);
-  return r * r * std::acos(c) - h * std::sqrt(std::max(0.0, r * r - h * h));
+// x - sin x without cancellation for small x (the thin segments of nearly tangent circles, or of a
+// detector disc seen through a lens whose image is 10^7 times the aperture).
+double x_minus_sin(double x) {
+  if (std::abs(x) > 0.25) return x - std::sin(x);
+  const double x2 = x * x;
+  // Taylor series; the first omitted term is below 1e-17 of the sum for |x| <= 0.25.
+  return x * x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0 * (1.0 - x2 / 110.0))));
 }
+
+// Half-angle, seen from its own centre, of the arc of circle (r) inside a circle (r_other) whose centre
+// is d away (the circles cross). From the sagitta t = (r_other - d + r)(r_other + d - r) / (2 d), which
+// has no cancellation, instead of acos((d^2 + r^2 - r_other^2) / (2 d r)), which loses all digits when
+// the arc is short.
+double arc_half_angle(double r, double r_other, double d) {
+  const double t = (r_other - d + r) * (r_other + d - r) / (2.0 * d);
+  return 2.0 * std::asin(std::sqrt(std::clamp(t / (2.0 * r), 0.0, 1.0)));
+}
+
+// Area between a chord and the arc of half-angle `half` of a circle of radius r.
+double segment_area(double r, double half) { return 0.5 * r * r * x_minus_sin(2.0 * half); }
 
 // Angular intervals on a circle, kept as [start, end] with 0 <= start < end <= 2*pi relative to a
 // reference angle. At most one interval per constraint plus one split, so a small fixed array does.
@@ -50,10 +64,9 @@ double lens_area(const Disc& a, const Disc& b) {
   if (d >= a.radius + b.radius) return 0.0;
   const double rmin = std::min(a.radius, b.radius);
   if (d <= std::abs(a.radius - b.radius)) return kPi * rmin * rmin;
-  // Distance from each centre to the common chord; the lens is the two segments beyond it.
-  const double ha = (d * d + a.radius * a.radius - b.radius * b.radius) / (2.0 * d);
-  const double hb = d - ha;
-  return segment_area(a.radius, ha) + segment_area(b.radius, hb);
+  // The lens is the two segments cut off by the common chord (Eq. B19 rearranged).
+  return segment_area(a.radius, arc_half_angle(a.radius, b.radius, d)) +
+         segment_area(b.radius, arc_half_angle(b.radius, a.radius, d));
 }
 
 double intersection_area(const Disc* discs, std::size_t n) {
@@ -80,9 +93,12 @@ double intersection_area(const Disc* discs, std::size_t n) {
   if (k == 2) return lens_area(discs[keep[0]], discs[keep[1]]);
 
   // Boundary of the intersection: on each circle, the arcs inside every other disc. Green's theorem
-  // turns the area into a sum over those arcs. Coordinates are taken relative to the first disc to
-  // keep the terms small.
-  const Vec2 origin = discs[keep[0]].center;
+  // turns the area into a sum over those arcs, each giving its circular segment plus the triangle
+  // (origin, arc start, arc end). The origin is the centre of the smallest disc, the scale of the result.
+  std::size_t smallest = keep[0];
+  for (std::size_t a = 1; a < k; ++a)
+    if (discs[keep[a]].radius < discs[smallest].radius) smallest = keep[a];
+  const Vec2 origin = discs[smallest].center;
   double area = 0.0;
   for (std::size_t a = 0; a < k; ++a) {
     const Disc& di = discs[keep[a]];
@@ -97,9 +113,8 @@ double intersection_area(const Disc* discs, std::size_t n) {
       const Disc& dj = discs[keep[b]];
       const Vec2 v = dj.center - di.center;
       const double d = norm(v);
-      // Pairs here cross (no containment, no separation), so d > 0 and the cosine is in [-1, 1].
-      const double c = (d * d + di.radius * di.radius - dj.radius * dj.radius) / (2.0 * d * di.radius);
-      const double half = std::acos(std::clamp(c, -1.0, 1.0));
+      // Pairs here cross (no containment, no separation), so d > 0.
+      const double half = arc_half_angle(di.radius, dj.radius, d);
       const double mid = std::atan2(v.y, v.x);
       if (first) {  // measure angles from the start of the first arc: it becomes [0, 2 half]
         reference = mid - half;
@@ -114,9 +129,9 @@ double intersection_area(const Disc* discs, std::size_t n) {
     const Vec2 c = di.center - origin;
     for (std::size_t s = 0; s < set.n; ++s) {
       const double t1 = reference + set.lo[s], t2 = reference + set.hi[s];
-      area += 0.5 * (di.radius * di.radius * (t2 - t1) +
-                     di.radius * c.x * (std::sin(t2) - std::sin(t1)) -
-                     di.radius * c.y * (std::cos(t2) - std::cos(t1)));
+      const Vec2 p1 = c + di.radius * Vec2{std::cos(t1), std::sin(t1)};
+      const Vec2 p2 = c + di.radius * Vec2{std::cos(t2), std::sin(t2)};
+      area += segment_area(di.radius, 0.5 * (set.hi[s] - set.lo[s])) + 0.5 * (p1.x * p2.y - p2.x * p1.y);
     }
   }
   return std::max(area, 0.0);

@@ -1,4 +1,5 @@
 // Disc intersection areas against closed forms and an independent grid count.
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 
@@ -39,6 +40,30 @@ int main() {
   // Three pairwise-overlapping discs with an empty common part.
   Disc empty[3] = {{{0, 0}, 1.0}, {{1.8, 0}, 1.0}, {{0.9, 1.6}, 1.0}};
   test::near("pairwise overlapping, no common point", intersection_area(empty, 3), 0.0, 0.0);
+
+  // A small disc cut by huge ones (radius ratio 1e4, as a small aperture against a detector disc seen
+  // through the lens near focus). Reference: the textbook acos form of Eq. (B19) in long double; its
+  // cancellation leaves ~R^2 eps_ld / theta ~ 1e-15 m^2 absolute, so areas are compared to
+  // 1e-6 pi r^2 (3e-14). The same acos form in double errs by ~1e-12 and would fail.
+  auto lens_ld = [](long double r1, long double r2, long double d) {
+    const long double c1 = (d * d + r1 * r1 - r2 * r2) / (2 * d * r1), c2 = (d * d + r2 * r2 - r1 * r1) / (2 * d * r2);
+    return r1 * r1 * std::acos(c1) + r2 * r2 * std::acos(c2) -
+           0.5L * std::sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2));
+  };
+  const double r = 1e-4, big = 1.0, pi_r2 = kPi * r * r, area_tolerance = 1e-6 * pi_r2;
+  for (double frac : {0.3, -0.6, 0.99}) {
+    const Disc small{{0, 0}, r}, keep_right{{big + frac * r, 0}, big};  // keeps x > frac r, nearly
+    const double expected = static_cast<double>(lens_ld(r, big, big + frac * r));
+    test::near("small disc against huge disc, h/r=" + std::to_string(frac), lens_area(small, keep_right), expected,
+               area_tolerance);
+    // A second huge disc keeping x < 0.7 r: the two removed caps are disjoint, so
+    // area(small ∩ both) = lens(small, right) + lens(small, left) - pi r^2 (Green's-theorem path).
+    const Disc keep_left{{0.7 * r - big, 0}, big};
+    const double both = expected + static_cast<double>(lens_ld(r, big, big - 0.7 * r)) - pi_r2;
+    Disc three[3] = {small, keep_right, keep_left};
+    test::near("two huge discs cutting a small one, h/r=" + std::to_string(frac), intersection_area(three, 3),
+               std::max(both, 0.0), area_tolerance);
+  }
 
   // Random triples and quadruples against a 1000x1000 grid count (area error ~ perimeter * h).
   std::mt19937_64 rng(7);
