@@ -174,8 +174,10 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
   // Receivers are built (and ranges validated) before the parallel region: nothing throws inside it.
   std::vector<Receiver> receivers;
   receivers.reserve(ranges.size());
-  for (std::size_t i = 0; i < ranges.size(); ++i)
-    receivers.emplace_back(system, ranges[i]);  // validates ranges[i]
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+    receivers.emplace_back(system, ranges[i]);
+  }
 
   const std::size_t n = ranges.size();
   RtOverlap out;

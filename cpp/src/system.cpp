@@ -45,7 +45,7 @@ void LidarSystem::validate() const {
                      " m (the detector plane must lie behind the lens)");
 }
 
-void LidarSystem::validate_range(double z, const char* parameter) const {
+void LidarSystem::validate_range(double z, const std::string& parameter) const {
   checks::positive(parameter, z);
   if (telescope.obstruction_radius > 0.0 && !(z > telescope.obstruction_distance))
     checks::fail(parameter, z,

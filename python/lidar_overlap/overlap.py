@@ -45,8 +45,8 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     tolerance = _checks.unit_interval("tolerance", tolerance)
     threads = _checks.count("threads", threads, 0)
     max_segments = _checks.count("max_segments", max_segments, 1)
+    raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)  # validates the ranges
     warn_if_rt_invalid(system, z)
-    raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)
     converged = np.asarray(raw["converged"], dtype=bool)
     if not converged.all():
         worst = float(np.max(raw["error_estimate"][~converged]))

@@ -26,7 +26,8 @@ int main() {
                [&] { with([](LidarSystem& c) { c.detector.defocus = -1.0; }).validate(); }, "detector.defocus");
   test::throws("NA of 1", [&] { with([](LidarSystem& c) { c.detector.numerical_aperture = 1.0; }).validate(); },
                "detector.numerical_aperture");
-  test::throws("range zero", [&] { overlap_rt(s, {0.0}); }, "z");
+  test::throws("range zero", [&] { overlap_rt(s, {10.0, 0.0}); }, "ranges[1]");
+  test::throws("emitter range zero", [&] { emitter_coupling_rt(s, 0.0, {0, 0}); }, "z");
   LidarSystem obs = with([](LidarSystem& c) {
     c.telescope.obstruction_radius = 0.02;
     c.telescope.obstruction_distance = 0.7;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "lidar_overlap/beam.hpp"
 #include "lidar_overlap/vec2.hpp"
@@ -39,7 +40,7 @@ struct LidarSystem {
   // behind the lens).
   void validate() const;
   // Checks a range z (m): positive, finite, beyond the obstruction. `parameter` names it in errors.
-  void validate_range(double z, const char* parameter = "z") const;
+  void validate_range(double z, const std::string& parameter = "z") const;
   // True when beam, obstruction and detector share the telescope axis: G needs a radial integral only.
   bool is_axisymmetric() const;
 };
