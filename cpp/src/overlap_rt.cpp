@@ -16,25 +16,25 @@ namespace lidar_overlap {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr std::size_t kMaxKinks = 16;  // 4 moving discs: 12 tangency circles, 2 gates
-
-// Radial coordinate by probability: a Gaussian of 1/e^2 radius w puts the fraction u of its power
-// inside r(u) = w sqrt(-ln(1 - u) / 2), so  int E(r) C(r) dA / P = int_0^1 C(r(u)) du  along any
-// direction, and the weight drops out of the integrand.
-double radius_at(double u, double w) { return w * std::sqrt(-0.5 * std::log1p(-u)); }
-double fraction_within(double r, double w) { return -std::expm1(-2.0 * r * r / (w * w)); }
+constexpr std::size_t kMaxKinks = 16;  // 4 moving discs: 12 tangency circles; 2 gates
 
 struct RangeResult {
-  double value, error;
-  std::size_t evaluations;
-  bool converged;
+  double value = 0.0, error = 0.0;
+  std::size_t evaluations = 0;
+  bool converged = true;
+  void add(const RangeResult& o) {
+    value += o.value;
+    error += o.error;
+    evaluations += o.evaluations;
+    converged = converged && o.converged;
+  }
 };
 
-// Circles in the scatterer plane across which the coupling has a kink (Receiver::kink_circles).
+// Circles in the scatterer plane across which a term has a kink (CouplingTerm::kink_circles).
 struct Kinks {
   Disc circles[kMaxKinks];
   std::size_t n = 0;
-  explicit Kinks(const Receiver& rx) : n(rx.kink_circles(circles, kMaxKinks)) {}
+  explicit Kinks(const CouplingTerm& t) : n(t.kink_circles(circles, kMaxKinks)) {}
 };
 
 // Distances t > 0 at which the ray center + t dir (|dir| = 1) crosses a kink circle.
@@ -52,23 +52,18 @@ std::size_t crossings(const Kinks& k, Vec2 center, Vec2 dir, double* out) {
   return n;
 }
 
-// int_0^1 C(center + r(u) dir) du: the mean coupling along one direction from the beam centre.
-RangeResult radial_mean(const Receiver& rx, const Kinks& kinks, Vec2 center, double w, Vec2 dir,
-                        double tolerance, std::size_t max_segments) {
-  double points[2 * kMaxKinks + 2];
+// Sorted breakpoints: lo, the crossings inside (lo, hi), hi.
+std::size_t breakpoints(const Kinks& k, Vec2 center, Vec2 dir, double lo, double hi, double* points) {
   double radii[2 * kMaxKinks];
-  const std::size_t nk = crossings(kinks, center, dir, radii);
+  const std::size_t nk = crossings(k, center, dir, radii);
   std::size_t n = 0;
-  points[n++] = 0.0;
+  points[n++] = lo;
   for (std::size_t i = 0; i < nk; ++i) {
-    const double u = fraction_within(radii[i], w);
-    if (u > 0.0 && u < 1.0) points[n++] = u;
+    if (radii[i] > lo && radii[i] < hi) points[n++] = radii[i];
   }
-  points[n++] = 1.0;
+  points[n++] = hi;
   std::sort(points, points + n);
-  auto integrand = [&](double u) { return rx.coupling(center + radius_at(u, w) * dir); };
-  const QuadratureResult q = integrate(integrand, points, n, tolerance, max_segments);
-  return {q.value, q.error, q.evaluations, q.converged};
+  return n;
 }
 
 // exp(-x) I0(x) for x >= 0, without overflow.
@@ -79,56 +74,46 @@ double scaled_bessel_i0(double x) {
   return (1.0 + t * (1.0 + t * (9.0 / 2.0 + t * (225.0 / 6.0)))) / std::sqrt(2.0 * kPi * x);
 }
 
-// G when the coupling is rotationally symmetric about S but the beam is centred a distance nu from
-// it: the beam's power per unit radius around S is the Rice density of (nu, sigma = w/2), so
-// G = int C(S + rho e) Rice(rho) d rho, one dimension whatever the beam offset or tilt.
-RangeResult rice_mean(const Receiver& rx, const Kinks& kinks, Vec2 s, double nu, double w,
-                      double tolerance, std::size_t max_segments) {
-  const double sigma = 0.5 * w, var = sigma * sigma;
-  const Vec2 e{1.0, 0.0};
-  // Beyond 10 sigma from nu the density is below exp(-50) of its peak.
-  const double lo = std::max(0.0, nu - 10.0 * sigma), hi = nu + 10.0 * sigma;
+// int term(origin + rho dir) p(rho) d rho, with p the density of the distance from `origin` of a
+// point of the Gaussian beam (1/e^2 radius w, so sigma = w/2) centred `nu` away: the Rice density,
+// Rayleigh for nu = 0. For a term symmetric about `origin` this is its beam-weighted mean whatever
+// the beam offset; with nu = 0 and the origin at the beam centre it is the mean along `dir`.
+RangeResult radial_integral(const CouplingTerm& term, const Kinks& kinks, Vec2 origin, double nu, double w,
+                            Vec2 dir, double tolerance, std::size_t max_segments) {
+  const double var = 0.25 * w * w;
+  // Beyond 10 sigma = 5 w from nu the density is below exp(-50) of its peak.
+  const double lo = std::max(0.0, nu - 5.0 * w), hi = nu + 5.0 * w;
   double points[2 * kMaxKinks + 2];
-  double radii[2 * kMaxKinks];
-  const std::size_t nk = crossings(kinks, s, e, radii);
-  std::size_t n = 0;
-  points[n++] = lo;
-  for (std::size_t i = 0; i < nk; ++i)
-    if (radii[i] > lo && radii[i] < hi) points[n++] = radii[i];
-  points[n++] = hi;
-  std::sort(points, points + n);
+  const std::size_t n = breakpoints(kinks, origin, dir, lo, hi, points);
   auto integrand = [&](double rho) {
     const double d = rho - nu;
     const double density = rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
-    return density == 0.0 ? 0.0 : density * rx.coupling(s + rho * e);
+    return density == 0.0 ? 0.0 : density * term(origin + rho * dir);
   };
   const QuadratureResult q = integrate(integrand, points, n, tolerance, max_segments);
   return {q.value, q.error, q.evaluations, q.converged};
 }
 
-RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
-  const double z = rx.range();
-  const double w = system.beam.radius(z);
-  const Vec2 center = system.beam.center(z);
-  const Kinks kinks(rx);
-  if (const std::optional<Vec2> s = rx.symmetry_center()) {
-    const double nu = norm(center - *s);
-    if (nu == 0.0) return radial_mean(rx, kinks, center, w, {1.0, 0.0}, opt.tolerance, opt.max_segments);
-    return rice_mean(rx, kinks, *s, nu, w, opt.tolerance, opt.max_segments);
+// A term with no centre of symmetry: the mean over directions of the radial mean. When the term is
+// mirror-symmetric about the line through the beam centre and the origin (all disc shifts along it),
+// half the directions suffice.
+RangeResult planar_mean(const CouplingTerm& term, const Kinks& kinks, Vec2 center, double w,
+                        double tolerance, std::size_t max_segments) {
+  bool mirror = true;
+  for (std::size_t i = 0; i < term.n_discs; ++i) {
+    const Vec2 b = term.discs[i].shift;
+    mirror = mirror && (b.x * center.y - b.y * center.x) == 0.0;
   }
-
-  // Two-dimensional: mean over directions of the radial mean. When the detector offset is zero or
-  // lies along the beam centre's direction, the scene is mirror-symmetric about that line and half
-  // the directions suffice.
-  const Vec2 o = system.detector.offset;
-  const bool mirror = (o.x * center.y - o.y * center.x) == 0.0;
-  const double phi0 = (center.x != 0.0 || center.y != 0.0) ? std::atan2(center.y, center.x)
-                                                           : std::atan2(o.y, o.x);
+  for (std::size_t g = 0; g < term.n_gates; ++g) {
+    const Vec2 b = term.gates[g].shift;
+    mirror = mirror && (b.x * center.y - b.y * center.x) == 0.0;
+  }
+  const double phi0 = (center.x != 0.0 || center.y != 0.0) ? std::atan2(center.y, center.x) : 0.0;
   const double span = mirror ? kPi : 2.0 * kPi;
 
   // The radial mean is not smooth in direction where a ray from the beam centre grazes a kink
   // circle: those tangent directions become breakpoints of the angular integral.
-  double breaks[2 * kMaxKinks + 5];
+  double breaks[2 * kMaxKinks + 3];
   std::size_t nb = 0;
   for (double f : {0.0, 0.5, 1.0}) breaks[nb++] = f * span;
   for (std::size_t i = 0; i < kinks.n; ++i) {
@@ -145,21 +130,40 @@ RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOp
   }
   std::sort(breaks, breaks + nb);
 
-  std::size_t evaluations = 0;
-  bool converged = true;
+  RangeResult inner;
   double inner_error = 0.0;
   auto mean_over_direction = [&](double phi) {
     const double a = phi0 + phi;
-    const RangeResult r = radial_mean(rx, kinks, center, w, {std::cos(a), std::sin(a)},
-                                      0.25 * opt.tolerance, opt.max_segments);
-    evaluations += r.evaluations;
-    converged = converged && r.converged;
+    const RangeResult r = radial_integral(term, kinks, center, 0.0, w, {std::cos(a), std::sin(a)},
+                                          0.25 * tolerance, max_segments);
+    inner.evaluations += r.evaluations;
+    inner.converged = inner.converged && r.converged;
     inner_error = std::max(inner_error, r.error);
     return r.value / span;
   };
-  const QuadratureResult q =
-      integrate(mean_over_direction, breaks, nb, 0.75 * opt.tolerance, opt.max_segments);
-  return {q.value, q.error + inner_error, evaluations, converged && q.converged};
+  const QuadratureResult q = integrate(mean_over_direction, breaks, nb, 0.75 * tolerance, max_segments);
+  return {q.value, q.error + inner_error, inner.evaluations, inner.converged && q.converged};
+}
+
+RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
+  const double z = rx.range();
+  const double w = system.beam.radius(z);
+  const Vec2 center = system.beam.center(z);
+  CouplingTerm terms[2];
+  // 10 sigma = 5 w: the beam power beyond is below exp(-50).
+  const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);
+  const double tolerance = opt.tolerance / static_cast<double>(n_terms);
+  RangeResult total;
+  for (std::size_t t = 0; t < n_terms; ++t) {
+    const Kinks kinks(terms[t]);
+    const std::optional<Vec2> s = terms[t].symmetry_center();
+    if (s)
+      total.add(radial_integral(terms[t], kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
+                                opt.max_segments));
+    else
+      total.add(planar_mean(terms[t], kinks, center, w, tolerance, opt.max_segments));
+  }
+  return total;
 }
 
 }  // namespace

@@ -33,14 +33,15 @@ int main() {
   test::near("z_opt (Eq. 5)", zopt, 1.0 * 1.005 / 0.005, 1e-9);
   test::near("coupling at z_opt", emitter_coupling_rt(def, zopt, {0, 0}), 1.0, 1e-12);
 
-  // Off-axis beams: the engine integrates radially with the Rice density (symmetric coupling) or in
-  // two dimensions (obstruction with a detector offset). An independent Cartesian grid of scatterers
+  // Off-axis beams: the engine integrates radially with the Rice density where a coupling term has a
+  // centre of symmetry, in two dimensions otherwise (an NA cone with a detector offset). An independent Cartesian grid of scatterers
   // over +-4 w, weighted by the irradiance, must agree: the grid rule converges fast on this
   // integrand (measured ~1e-6 at 101 x 101), so 1e-5 at 401 x 401 leaves a wide margin.
-  struct Scene { Vec2 tilt, beam_offset, detector_offset; double r_obs; };
-  const Scene scenes[] = {{{0.3e-3, 0}, {0, 0}, {0, 0}, 0.0},           // Rice
-                          {{-0.1e-3, 0}, {0.05, 0}, {0, 0}, 0.02},      // Rice with obstruction
-                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02}};  // two-dimensional
+  struct Scene { Vec2 tilt, beam_offset, detector_offset; double r_obs, na; };
+  const Scene scenes[] = {{{0.3e-3, 0}, {0, 0}, {0, 0}, 0.0, 0.0},              // Rice
+                          {{-0.1e-3, 0}, {0.05, 0}, {0, 0}, 0.02, 0.0},         // Rice with obstruction
+                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02, 0.0},     // two Rice terms
+                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02, 0.05}};   // two-dimensional
   for (const Scene& sc : scenes) {
     LidarSystem g;
     g.beam.tilt = sc.tilt;
@@ -48,6 +49,7 @@ int main() {
     g.detector.offset = sc.detector_offset;
     g.telescope.obstruction_radius = sc.r_obs;
     g.telescope.obstruction_distance = sc.r_obs > 0 ? 0.7 : 0.0;
+    if (sc.na > 0) g.detector.numerical_aperture = sc.na;
     for (double zr : {60.0, 150.0, 400.0}) {
       const Receiver rx(g, zr);
       const double w = g.beam.radius(zr);

@@ -10,11 +10,10 @@
 // with the detector (B17-B21), which also holds when the shadow leaves the aperture's edge.
 #pragma once
 
-#include <array>
 #include <cstddef>
-#include <optional>
 
 #include "lidar_overlap/circles.hpp"
+#include "lidar_overlap/coupling_term.hpp"
 #include "lidar_overlap/system.hpp"
 
 namespace lidar_overlap {
@@ -32,13 +31,11 @@ class Receiver {
   // unobstructed aperture that reaches the detector.
   double coupling(Vec2 p) const;
 
-  // Circles in the scatterer plane on which coupling() has a kink: where two boundary circles in the
-  // aperture plane become tangent, or a degenerate constraint switches. Writes at most `capacity`.
-  std::size_t kink_circles(Disc* out, std::size_t capacity) const;
-
-  // A point S about which coupling() is rotationally symmetric (every boundary circle's centre is
-  // proportional to P - S), if there is one: then G needs only a radial integral around S.
-  std::optional<Vec2> symmetry_center() const;
+  // The terms whose sum is coupling() for every scatterer within `support` (m) of `center` (m):
+  // "passing" and, with an obstruction, "blocked" (negative weight). Where the shadow stays inside the
+  // aperture for all those scatterers, the blocked term leaves out the aperture disc, which can give
+  // it a centre of symmetry. Returns how many terms were written to `out` (1 or 2).
+  std::size_t terms(Vec2 center, double support, CouplingTerm* out) const;
 
   // Where the ray from scatterer p through aperture point a meets the detector plane (m).
   Vec2 detector_hit(Vec2 p, Vec2 a) const;
@@ -47,32 +44,14 @@ class Receiver {
   double aperture_radius() const { return aperture_radius_; }
 
  private:
-  // |scale P + shift - A| <= radius, a disc of aperture points that moves with the scatterer.
-  struct MovingDisc {
-    double scale;
-    Vec2 shift;
-    double radius;
-    Disc at(Vec2 p) const { return {scale * p + shift, radius}; }
-  };
-  // |scale P + shift| <= radius: a constraint that does not depend on A (a boundary circle that
-  // degenerated because its A-coefficient vanished, e.g. the detector exactly in focus for z).
-  struct Gate {
-    double scale;
-    Vec2 shift;
-    double radius;
-  };
-
   double z_;
   double aperture_radius_;
   double detector_distance_;  // d = f + defocus
   double focal_length_;
-  Vec2 detector_offset_;
-  std::array<MovingDisc, 3> passing_{};  // aperture, detector, NA
-  std::size_t n_passing_ = 0;
-  MovingDisc shadow_{};
+  CouplingTerm passing_;        // aperture ∩ detector ∩ NA
+  CouplingTerm blocked_;        // the same ∩ shadow, negative weight
   bool has_shadow_ = false;
-  std::array<Gate, 2> gates_{};
-  std::size_t n_gates_ = 0;
+  MovingDisc shadow_{};
 };
 
 }  // namespace lidar_overlap
