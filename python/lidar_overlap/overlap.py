@@ -30,7 +30,8 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     ranges : m, strictly increasing 1-D array; each > 0 and beyond the obstruction distance.
     method : ``"rt"``, paraxial ray tracing (paper Appendix B) with exact circle geometry.
     tolerance : absolute error allowed on G at each range, in (0, 1). The beam integral is adaptive
-        (radial for axisymmetric scenes, two-dimensional otherwise) until its error estimate is below it.
+        (radial with Rice weights about each coupling term's centre of symmetry, two-dimensional where
+        there is none) until its error estimate is below it.
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
 

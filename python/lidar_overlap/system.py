@@ -147,7 +147,7 @@ class LidarSystem:
 
     @property
     def is_axisymmetric(self) -> bool:
-        """True when beam and detector share the telescope axis (G is then a radial integral)."""
+        """True when beam and detector share the telescope axis."""
         return self._native.is_axisymmetric()
 
     @property

@@ -21,7 +21,7 @@ struct RtOverlap {
   std::vector<double> error_estimate;  // estimated absolute error of each G(z)
   std::vector<bool> converged;         // false where the tolerance was not reached
   std::size_t evaluations = 0;         // scatterer couplings computed, all ranges
-  bool axisymmetric = false;           // true: radial integral; false: two-dimensional
+  bool axisymmetric = false;           // beam and receiver share the telescope axis
 };
 
 // G at every range (m, each > 0 and beyond the obstruction). Thread-safe; results do not depend on

@@ -41,7 +41,7 @@ struct LidarSystem {
   void validate() const;
   // Checks a range z (m): positive, finite, beyond the obstruction. `parameter` names it in errors.
   void validate_range(double z, const std::string& parameter = "z") const;
-  // True when beam, obstruction and detector share the telescope axis: G needs a radial integral only.
+  // True when beam, obstruction and detector share the telescope axis.
   bool is_axisymmetric() const;
 };
 
