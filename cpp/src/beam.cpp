@@ -3,12 +3,9 @@
 #include <cmath>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/constants.hpp"
 
 namespace lidar_overlap {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 void GaussianBeam::validate() const {
   checks::positive("beam.wavelength", wavelength);

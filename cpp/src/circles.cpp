@@ -5,11 +5,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "lidar_overlap/constants.hpp"
+
 namespace lidar_overlap {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 
 // x - sin x without cancellation for small x (the thin segments of nearly tangent circles, or of a

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/receiver.hpp"
 
@@ -15,7 +16,6 @@ namespace lidar_overlap {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::size_t kMaxKinks = 16;  // 4 moving discs: 12 tangency circles; 2 gates
 
 struct RangeResult {

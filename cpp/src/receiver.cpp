@@ -5,13 +5,9 @@
 #include <limits>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/constants.hpp"
 
 namespace lidar_overlap {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 double optimal_focus_range(double focal_length, double defocus) {
   checks::positive("focal_length", focal_length);

@@ -4,6 +4,7 @@
 #include "lidar_overlap/beam.hpp"
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/circles.hpp"
+#include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/coupling_term.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
 #include "lidar_overlap/quadrature.hpp"
