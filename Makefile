@@ -6,7 +6,7 @@ PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 OUT    := out
 JOBS   ?= 2
-SOURCES := $(shell git ls-files CMakeLists.txt pyproject.toml cmake cpp bindings python 2>/dev/null)
+SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
 .PHONY: demo test setup pytest ctest bench clean
 
