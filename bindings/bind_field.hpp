@@ -1,0 +1,12 @@
+// Conversions between NumPy complex arrays and lidar_overlap::Field, shared by the binding files.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "lidar_overlap/field.hpp"
+
+using ComplexArray = pybind11::array_t<std::complex<double>, pybind11::array::c_style | pybind11::array::forcecast>;
+
+lidar_overlap::Field field_from_array(const ComplexArray& values, double spacing, double wavelength);
+ComplexArray array_from_field(const lidar_overlap::Field& f);

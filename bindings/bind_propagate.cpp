@@ -1,0 +1,59 @@
+// Propagation: the GIL is released around the FFT work; the report comes back as a dict.
+#include <pybind11/stl.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "bind_field.hpp"
+#include "lidar_overlap/propagate.hpp"
+
+namespace py = pybind11;
+using namespace lidar_overlap;
+
+namespace {
+PropagationMethod method_from(const std::string& name) {
+  if (name == "auto") return PropagationMethod::automatic;
+  if (name == "angular_spectrum") return PropagationMethod::angular_spectrum;
+  if (name == "fresnel") return PropagationMethod::fresnel;
+  if (name == "fraunhofer") return PropagationMethod::fraunhofer;
+  throw std::invalid_argument("method = '" + name +
+                              "' is invalid: expected 'auto', 'angular_spectrum', 'fresnel' or 'fraunhofer'");
+}
+
+const char* method_name(PropagationMethod m) {
+  switch (m) {
+    case PropagationMethod::angular_spectrum: return "angular_spectrum";
+    case PropagationMethod::fresnel: return "fresnel";
+    case PropagationMethod::fraunhofer: return "fraunhofer";
+    default: return "auto";
+  }
+}
+}  // namespace
+
+void bind_propagate(py::module_& m) {
+  m.def(
+      "propagate",
+      [](const ComplexArray& values, double spacing, double wavelength, double distance, const std::string& method,
+         double output_spacing) {
+        const Field in = field_from_array(values, spacing, wavelength);
+        const PropagationMethod pm = method_from(method);
+        Propagated p;
+        {
+          py::gil_scoped_release release;
+          p = propagate(in, distance, pm, output_spacing);
+        }
+        const PropagationReport& r = p.report;
+        py::dict report;
+        report["method"] = method_name(r.method);
+        report["critical_distance"] = r.critical_distance;
+        report["band_limit_loss"] = r.band_limit_loss;
+        report["input_edge_power"] = r.input_edge_power;
+        report["output_edge_power"] = r.output_edge_power;
+        report["chirp_phase_step"] = r.chirp_phase_step;
+        report["fresnel_phase_error"] = r.fresnel_phase_error;
+        report["fraunhofer_phase"] = r.fraunhofer_phase;
+        return py::make_tuple(array_from_field(p.field), p.field.spacing, report);
+      },
+      py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"), py::arg("method"),
+      py::arg("output_spacing"));
+}

@@ -1,0 +1,53 @@
+// FFTW plans made once per shape and reused (plan/execute). Planning is serialised behind one mutex,
+// FFTW's threads are initialised once, and execution on other buffers of the same shape uses FFTW's
+// thread-safe new-array interface, so plans may be shared by concurrent calls.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <new>
+#include <vector>
+
+namespace lidar_overlap {
+
+using Complex = std::complex<double>;
+
+// Allocator returning FFTW-aligned memory, so every buffer can use the SIMD plans.
+template <class T>
+struct FftwAllocator {
+  using value_type = T;
+  FftwAllocator() = default;
+  template <class U>
+  FftwAllocator(const FftwAllocator<U>&) {}
+  T* allocate(std::size_t n);
+  void deallocate(T* p, std::size_t) noexcept;
+  template <class U>
+  bool operator==(const FftwAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const FftwAllocator<U>&) const { return false; }
+};
+void* fftw_aligned_alloc(std::size_t bytes);
+void fftw_aligned_free(void* p) noexcept;
+template <class T>
+T* FftwAllocator<T>::allocate(std::size_t n) {
+  void* p = fftw_aligned_alloc(n * sizeof(T));
+  if (!p) throw std::bad_alloc();
+  return static_cast<T*>(p);
+}
+template <class T>
+void FftwAllocator<T>::deallocate(T* p, std::size_t) noexcept { fftw_aligned_free(p); }
+
+using ComplexBuffer = std::vector<Complex, FftwAllocator<Complex>>;
+
+enum class FftDirection { forward, backward };  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
+
+// In-place 2-D transform of an n x n row-major array.
+void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction);
+
+// In-place 1-D transforms of `rows` contiguous rows of `length` each.
+void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction);
+
+// Number of threads FFTW plans use (all cores unless set; set before the first plan).
+void set_fft_threads(int threads);
+
+}  // namespace lidar_overlap

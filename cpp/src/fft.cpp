@@ -1,0 +1,80 @@
+#include "lidar_overlap/fft.hpp"
+
+#include <fftw3.h>
+#include <omp.h>
+
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <tuple>
+
+namespace lidar_overlap {
+
+void* fftw_aligned_alloc(std::size_t bytes) { return fftw_malloc(bytes); }
+void fftw_aligned_free(void* p) noexcept { fftw_free(p); }
+
+namespace {
+
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+int& fft_threads() {
+  static int threads = 0;
+  return threads;
+}
+
+// (rank-1 rows or 0 for 2-D, rows, length, sign) -> plan. Plans live for the whole process.
+using PlanKey = std::tuple<std::size_t, std::size_t, int>;
+
+fftw_plan get_plan(const PlanKey& key, bool two_d) {
+  static std::map<std::pair<bool, PlanKey>, fftw_plan> plans;
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  auto it = plans.find({two_d, key});
+  if (it != plans.end()) return it->second;
+  static bool threads_ready = false;
+  if (!threads_ready) {
+    if (fftw_init_threads() == 0) throw std::runtime_error("FFTW threads could not be initialised");
+    threads_ready = true;
+  }
+  fftw_plan_with_nthreads(fft_threads() > 0 ? fft_threads() : omp_get_max_threads());
+  const auto [rows, length, sign] = key;
+  // Plan on a scratch buffer (FFTW_MEASURE overwrites it); execution uses the caller's buffers.
+  ComplexBuffer scratch(rows * length);
+  auto* p = reinterpret_cast<fftw_complex*>(scratch.data());
+  fftw_plan plan;
+  if (two_d) {
+    plan = fftw_plan_dft_2d(static_cast<int>(rows), static_cast<int>(length), p, p, sign, FFTW_MEASURE);
+  } else {
+    const int n = static_cast<int>(length);
+    plan = fftw_plan_many_dft(1, &n, static_cast<int>(rows), p, nullptr, 1, n, p, nullptr, 1, n, sign,
+                              FFTW_MEASURE);
+  }
+  if (!plan) throw std::runtime_error("FFTW could not make a plan");
+  plans[{two_d, key}] = plan;
+  return plan;
+}
+
+int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD : FFTW_BACKWARD; }
+
+}  // namespace
+
+void set_fft_threads(int threads) {
+  std::lock_guard<std::mutex> lock(planner_mutex());
+  fft_threads() = threads;
+}
+
+void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction) {
+  if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");
+  auto* p = reinterpret_cast<fftw_complex*>(data.data());
+  fftw_execute_dft(get_plan({n, n, sign_of(direction)}, true), p, p);
+}
+
+void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
+  if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
+  auto* p = reinterpret_cast<fftw_complex*>(data.data());
+  fftw_execute_dft(get_plan({rows, length, sign_of(direction)}, false), p, p);
+}
+
+}  // namespace lidar_overlap

@@ -1,0 +1,163 @@
+"""Sampled optical fields and their free-space propagation (paper Appendix A; SI units).
+
+A :class:`Field` is an (n, n) complex array U on a square grid centred so that index n//2 is x = 0;
+|U|² is the irradiance in W/m². :func:`propagate` moves it by a distance with the angular spectrum
+(A1), Fresnel (A5) or Fraunhofer (A7) integral, computed with FFTW in C++, and warns
+(:class:`SamplingWarning`) when the result is outside the chosen method's validity.
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Optional, Tuple
+
+import numpy as np
+
+from . import _checks, _core
+
+PROPAGATION_METHODS = ("auto", "angular_spectrum", "fresnel", "fraunhofer")
+
+#: Power fraction allowed in the outer n/16 of a window before the field counts as clipped or wrapped.
+EDGE_POWER_LIMIT = 1e-6
+#: Power fraction the band-limited angular-spectrum transfer function may remove.
+BAND_LIMIT_LOSS_LIMIT = 1e-6
+#: Phase (rad) allowed for the terms the Fresnel (A3) and Fraunhofer (A6) approximations neglect.
+APPROXIMATION_PHASE_LIMIT = 0.1
+
+
+class SamplingWarning(RuntimeWarning):
+    """A propagation was computed outside its method's validity (aliasing, clipping, or an
+    approximation used beyond its region). The message gives the reason and the fix."""
+
+
+class Field:
+    """Complex scalar field on an (n, n) grid.
+
+    Parameters
+    ----------
+    values : (n, n) complex array, n even >= 8; row index is y, column index is x; |values|² in W/m².
+    spacing : m, grid spacing.
+    wavelength : m.
+    """
+
+    def __init__(self, values, spacing: float, wavelength: float) -> None:
+        arr = np.array(values, dtype=np.complex128, copy=True)
+        if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] < 8 or arr.shape[0] % 2:
+            raise ValueError(f"values has shape {arr.shape}: expected a square (n, n) array with n even >= 8")
+        if not np.all(np.isfinite(arr)):
+            raise ValueError("values contains NaN or infinity: expected finite complex numbers")
+        self.values = arr
+        self.spacing = _positive("spacing", spacing)
+        self.wavelength = _positive("wavelength", wavelength)
+
+    @classmethod
+    def gaussian(cls, wavelength: float, waist_radius: float, n: int, spacing: float,
+                 center: Tuple[float, float] = (0.0, 0.0), power: float = 1.0) -> "Field":
+        """TEM00 beam at its waist (flat phase): 1/e² irradiance radius ``waist_radius`` (m), total
+        ``power`` (W), centred at ``center`` (m)."""
+        n = _checks.count("n", n, 8)
+        values = _core.gaussian_field(_checks.real("wavelength", wavelength), _checks.real("waist_radius", waist_radius),
+                                      n, _checks.real("spacing", spacing), _checks.pair("center", center),
+                                      _checks.real("power", power))
+        return cls(values, spacing, wavelength)
+
+    @property
+    def n(self) -> int:
+        return self.values.shape[0]
+
+    @property
+    def x(self) -> np.ndarray:
+        """Sample x coordinates (m); index n//2 is 0."""
+        return (np.arange(self.n) - self.n // 2) * self.spacing
+
+    @property
+    def y(self) -> np.ndarray:
+        """Sample y coordinates (m); index n//2 is 0."""
+        return self.x
+
+    @property
+    def intensity(self) -> np.ndarray:
+        """Irradiance |U|² (W/m²)."""
+        return np.abs(self.values) ** 2
+
+    def _moments(self):
+        return _core.field_moments(self.values, self.spacing, self.wavelength)
+
+    @property
+    def power(self) -> float:
+        """Total power Σ|U|² spacing² (W)."""
+        return self._moments()[0]
+
+    def centroid(self) -> Tuple[float, float]:
+        """Irradiance-weighted centre (x, y) in m."""
+        return tuple(self._moments()[1])
+
+    def beam_radius(self) -> float:
+        """Second-moment radius about the centroid, sqrt(2 (σx² + σy²)) (m): the 1/e² radius w of a
+        TEM00 beam (D4σ/2)."""
+        return self._moments()[2]
+
+    def __repr__(self) -> str:
+        return f"Field(n={self.n}, spacing={self.spacing:.4g} m, wavelength={self.wavelength:.4g} m)"
+
+
+def _positive(name: str, value) -> float:
+    v = _checks.real(name, value)
+    if not (v > 0 and np.isfinite(v)):
+        raise ValueError(f"{name} = {v!r} is invalid: expected a finite value > 0")
+    return v
+
+
+def propagate(field: Field, distance: float, method: str = "auto",
+              output_spacing: Optional[float] = None) -> Field:
+    """Propagate ``field`` over ``distance`` (m) in free space.
+
+    method : ``"angular_spectrum"`` (A1: exact transfer function, band-limited; output on the input
+        grid), ``"fresnel"`` (A5: single FFT with output spacing λz/(n dx), or a scaled chirp-z
+        transform when ``output_spacing`` is given), ``"fraunhofer"`` (A7: far field, same grids), or
+        ``"auto"``: angular spectrum up to the critical distance n dx²/λ, Fresnel beyond it (and
+        whenever another ``output_spacing`` is asked for).
+    output_spacing : m, the output grid spacing for Fresnel and Fraunhofer; ``None`` for the natural one.
+
+    Warns :class:`SamplingWarning` with the reason and the fix when the field is clipped by or wraps
+    around the window, the angular-spectrum band limit removes power, the Fresnel input chirp is
+    undersampled, or the Fresnel (A3) or Fraunhofer (A6) approximation is used outside its region.
+    """
+    if not isinstance(field, Field):
+        raise ValueError(f"field = {field!r} is invalid: expected a Field")
+    _checks.choice("method", method, PROPAGATION_METHODS)
+    distance = _checks.real("distance", distance)
+    spacing_out = 0.0 if output_spacing is None else _positive("output_spacing", output_spacing)
+    values, spacing, report = _core.propagate(field.values, field.spacing, field.wavelength, distance, method,
+                                              spacing_out)
+    _warn_outside_validity(report, distance)
+    return Field(values, spacing, field.wavelength)
+
+
+def _warn_outside_validity(r: dict, distance: float) -> None:
+    used = r["method"]
+    problems = []
+    if r["input_edge_power"] > EDGE_POWER_LIMIT:
+        problems.append(f"the input field reaches the window edge ({r['input_edge_power']:.2g} of its power in the "
+                        "outer n/16): enlarge the grid (n) so that the field is not clipped")
+    if r["output_edge_power"] > EDGE_POWER_LIMIT:
+        fix = ("enlarge the grid (n), or use method='fresnel', whose output grid grows with distance"
+               if used == "angular_spectrum" else
+               "use a finer input spacing or a larger output_spacing so that the output window holds the field")
+        problems.append(f"the propagated field reaches the window edge ({r['output_edge_power']:.2g} of its power in "
+                        f"the outer n/16) and wraps around: {fix}")
+    if used == "angular_spectrum" and r["band_limit_loss"] > BAND_LIMIT_LOSS_LIMIT:
+        problems.append(f"the band-limited transfer function removes {r['band_limit_loss']:.2g} of the power: "
+                        f"{abs(distance):.4g} m is too far for this grid (critical distance "
+                        f"{r['critical_distance']:.4g} m); use method='fresnel'")
+    if used == "fresnel" and r["chirp_phase_step"] > np.pi:
+        problems.append(f"the Fresnel input chirp is undersampled (phase step {r['chirp_phase_step']:.3g} rad > π at "
+                        "the field's edge): the distance is too short for this grid; use method='angular_spectrum'")
+    if used == "fresnel" and r["fresnel_phase_error"] > APPROXIMATION_PHASE_LIMIT:
+        problems.append(f"the Fresnel approximation (A3) neglects up to {r['fresnel_phase_error']:.3g} rad of phase "
+                        "at this distance: use method='angular_spectrum'")
+    if used == "fraunhofer" and r["fraunhofer_phase"] > APPROXIMATION_PHASE_LIMIT:
+        problems.append(f"Fraunhofer in the near field: the neglected input phase π a²/(λz) is "
+                        f"{r['fraunhofer_phase']:.3g} rad (A6); use method='fresnel'")
+    for p in problems:
+        warnings.warn(f"propagate({used}, {distance:.4g} m): {p}", SamplingWarning, stacklevel=3)
