@@ -1,6 +1,12 @@
 #include "lidar_overlap/propagate.hpp"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cmath>
+#include <list>
+#include <mutex>
+#include <tuple>
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
@@ -25,127 +31,228 @@ double frequency(std::size_t i, std::size_t n, double dx) {
   return static_cast<double>(k) / (static_cast<double>(n) * dx);
 }
 
-// A1 with the transfer function exp(i k z sqrt(1 - lambda^2 f^2)), zero for evanescent waves and beyond
-// the band limit 1 / (lambda sqrt((2 df z)^2 + 1)) where its phase would alias on the frequency grid.
-Propagated angular_spectrum(const Field& in, double z) {
-  const std::size_t n = in.n;
-  const double dx = in.spacing, lambda = in.wavelength, k = 2.0 * kPi / lambda;
-  const double df = 1.0 / (n * dx);
-  const double f_limit = 1.0 / (lambda * std::sqrt(std::pow(2.0 * df * z, 2) + 1.0));
-  ComplexBuffer u = in.values;
-  fft2d(u, n, FftDirection::forward);
-  double total = 0.0, removed = 0.0;
-  const Complex carrier = unit_phasor(k * z);
-#pragma omp parallel for reduction(+ : total, removed)
-  for (long iy = 0; iy < static_cast<long>(n); ++iy) {
-    const double fy = frequency(iy, n, dx);
-    for (std::size_t ix = 0; ix < n; ++ix) {
-      const double fx = frequency(ix, n, dx);
-      Complex& v = u[iy * n + ix];
-      const double p = std::norm(v);
-      total += p;
-      const double s = lambda * lambda * (fx * fx + fy * fy);
-      if (s >= 1.0 || std::abs(fx) > f_limit || std::abs(fy) > f_limit) {
-        removed += p;
-        v = 0.0;
-        continue;
-      }
-      // k z (sqrt(1 - s) - 1) without cancellation; the carrier exp(i k z) is applied separately.
-      v *= carrier * unit_phasor(-k * z * s / (1.0 + std::sqrt(1.0 - s))) / static_cast<double>(n * n);
-    }
+// Per-axis chirp exp(i k x^2 / 2z) on a centred grid, times (-1)^i when `centring` (the sign that
+// turns an FFT into a centred DFT for even n).
+std::vector<Complex> axis_chirp(std::size_t n, double dx, double k, double z, bool centring) {
+  std::vector<Complex> c(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = (static_cast<double>(i) - 0.5 * n) * dx;
+    c[i] = unit_phasor(0.5 * k * x * x / z) * ((centring && i % 2) ? -1.0 : 1.0);
   }
-  fft2d(u, n, FftDirection::backward);
-  Propagated out{Field{std::move(u), n, dx, lambda}, {}};
-  out.report.method = PropagationMethod::angular_spectrum;
-  out.report.band_limit_loss = total > 0.0 ? removed / total : 0.0;
-  return out;
+  return c;
 }
 
-// A5 (with_input_chirp) or A7: U2(x) = exp(ikz)/(i lambda z) exp(ik x^2/2z) dx^2 DFT[U1 exp(ik xi^2/2z)],
-// output spacing dx2; the single-FFT case is the scaled DFT with alpha = 1/n.
-Propagated fresnel_family(const Field& in, double z, double dx2, bool with_input_chirp) {
-  const std::size_t n = in.n;
-  const double dx = in.spacing, lambda = in.wavelength, k = 2.0 * kPi / lambda;
-  ComplexBuffer u = in.values;
-  if (with_input_chirp) {
-#pragma omp parallel for
-    for (long iy = 0; iy < static_cast<long>(n); ++iy)
-      for (std::size_t ix = 0; ix < n; ++ix) {
-        const double x = in.coordinate(ix), y = in.coordinate(iy);
-        u[iy * n + ix] *= unit_phasor(0.5 * k * (x * x + y * y) / z);
-      }
-  }
-  const double alpha = dx * dx2 / (lambda * z);
-  ComplexBuffer v;
-  if (std::abs(alpha * n - 1.0) < 1e-12) {
-    // Centred DFT by FFT: modulate by (-1)^(ix + iy) before and after (n even).
-    for (std::size_t iy = 0; iy < n; ++iy)
-      for (std::size_t ix = 0; ix < n; ++ix)
-        if ((ix + iy) % 2) u[iy * n + ix] = -u[iy * n + ix];
-    fft2d(u, n, FftDirection::forward);
-    for (std::size_t iy = 0; iy < n; ++iy)
-      for (std::size_t ix = 0; ix < n; ++ix)
-        if ((ix + iy) % 2) u[iy * n + ix] = -u[iy * n + ix];
-    v = std::move(u);
-  } else {
-    v = scaled_dft2d(u, n, n, alpha);
-  }
-  Field out{std::move(v), n, dx2, lambda};
-  const Complex front = unit_phasor(k * z) * Complex(0.0, -1.0) * (dx * dx / (lambda * z));
-#pragma omp parallel for
-  for (long iy = 0; iy < static_cast<long>(n); ++iy)
-    for (std::size_t ix = 0; ix < n; ++ix) {
-      const double x = out.coordinate(ix), y = out.coordinate(iy);
-      out.values[iy * n + ix] *= front * unit_phasor(0.5 * k * (x * x + y * y) / z);
+// What the validity checks need of a field, gathered in a pass that has other work to do: total
+// power, power in the outer n/16 of the window, and the power per radius (one sample wide) about the
+// optical axis, from which the field's extent follows.
+struct Extent {
+  double total = 0.0, border = 0.0;
+  std::vector<double> radial;
+  explicit Extent(std::size_t n) : radial(n + 2, 0.0) {}
+  double edge_fraction() const { return total > 0.0 ? border / total : 0.0; }
+  // Radius (m) holding `fraction` of the power, for samples of spacing dx.
+  double radius(double fraction, double dx) const {
+    double inside = 0.0;
+    for (std::size_t b = 0; b < radial.size(); ++b) {
+      inside += radial[b];
+      if (inside >= fraction * total) return (b + 1) * dx;
     }
-  Propagated result{std::move(out), {}};
-  result.report.method = with_input_chirp ? PropagationMethod::fresnel : PropagationMethod::fraunhofer;
-  return result;
+    return radial.size() * dx;
+  }
+};
+
+// u[iy, ix] *= scale * a[iy] * a[ix], and the Extent of the result.
+Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a, Complex scale) {
+  Extent e(n);
+  const std::size_t border = std::max<std::size_t>(1, n / 16);
+  const double half = 0.5 * static_cast<double>(n);
+  std::vector<Extent> per_thread(static_cast<std::size_t>(omp_get_max_threads()), Extent(n));
+#pragma omp parallel
+  {
+    Extent& mine = per_thread[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for
+    for (long iy = 0; iy < static_cast<long>(n); ++iy) {
+      const Complex row = scale * a[iy];
+      const bool edge_row = static_cast<std::size_t>(iy) < border || static_cast<std::size_t>(iy) >= n - border;
+      const double y = iy - half;
+      for (std::size_t ix = 0; ix < n; ++ix) {
+        Complex& v = u[iy * n + ix];
+        v *= row * a[ix];
+        const double p = std::norm(v);
+        const double x = ix - half;
+        mine.total += p;
+        if (edge_row || ix < border || ix >= n - border) mine.border += p;
+        mine.radial[std::min(n + 1, static_cast<std::size_t>(std::sqrt(x * x + y * y)))] += p;
+      }
+    }
+  }
+  for (const Extent& t : per_thread) {
+    e.total += t.total;
+    e.border += t.border;
+    for (std::size_t b = 0; b < e.radial.size(); ++b) e.radial[b] += t.radial[b];
+  }
+  return e;
+}
+
+// Power in the outer n/16 of the window (the border only is read).
+double border_power(const ComplexBuffer& u, std::size_t n) {
+  const std::size_t border = std::max<std::size_t>(1, n / 16);
+  double sum = 0.0;
+  auto add = [&](std::size_t iy, std::size_t from, std::size_t to) {
+    for (std::size_t ix = from; ix < to; ++ix) sum += std::norm(u[iy * n + ix]);
+  };
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    if (iy < border || iy >= n - border) {
+      add(iy, 0, n);
+    } else {
+      add(iy, 0, border);
+      add(iy, n - border, n);
+    }
+  }
+  return sum;
 }
 
 }  // namespace
 
-Propagated propagate(const Field& in, double distance, PropagationMethod method, double output_spacing) {
-  in.validate();
+PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelength, double distance,
+                                 PropagationMethod method, double output_spacing)
+    : n_(n), spacing_(spacing), wavelength_(wavelength), distance_(distance), output_spacing_(output_spacing) {
+  if (n < 8 || n % 2 != 0) checks::fail("field.n", static_cast<double>(n), "an even grid size >= 8");
+  checks::positive("field.spacing", spacing);
+  checks::positive("field.wavelength", wavelength);
   checks::finite("distance", distance);
   checks::non_negative("output_spacing", output_spacing);
-  const double critical = in.n * in.spacing * in.spacing / in.wavelength;
+  critical_distance_ = n * spacing * spacing / wavelength;
   if (method == PropagationMethod::automatic) {
-    const bool natural_as = output_spacing == 0.0 || output_spacing == in.spacing;
-    method = (natural_as && std::abs(distance) <= critical) ? PropagationMethod::angular_spectrum
-                                                            : PropagationMethod::fresnel;
+    const bool natural_as = output_spacing == 0.0 || output_spacing == spacing;
+    method = (natural_as && std::abs(distance) <= critical_distance_) ? PropagationMethod::angular_spectrum
+                                                                      : PropagationMethod::fresnel;
   }
-  if (method != PropagationMethod::angular_spectrum && !(distance > 0.0))
+  if (distance == 0.0) method = PropagationMethod::angular_spectrum;  // the identity
+  method_ = method;
+  const double k = 2.0 * kPi / wavelength, z = distance;
+
+  if (method == PropagationMethod::angular_spectrum) {
+    if (output_spacing != 0.0 && output_spacing != spacing)
+      checks::fail("output_spacing", output_spacing,
+                   "0 or the input spacing for the angular spectrum method (its output grid is the input grid)");
+    output_spacing_ = spacing;
+    // A1: exp(i k z sqrt(1 - lambda^2 f^2)), zero for evanescent waves and beyond the band limit
+    // 1 / (lambda sqrt((2 df z)^2 + 1)) where its phase would alias on the frequency grid. The FFT
+    // normalisation 1/n^2 is folded in.
+    const double df = 1.0 / (n * spacing);
+    const double f_limit = 1.0 / (wavelength * std::sqrt(std::pow(2.0 * df * z, 2) + 1.0));
+    const Complex carrier = unit_phasor(k * z) / static_cast<double>(n * n);
+    transfer_.assign(n * n, Complex{});
+#pragma omp parallel for
+    for (long iy = 0; iy < static_cast<long>(n); ++iy) {
+      const double fy = frequency(iy, n, spacing);
+      for (std::size_t ix = 0; ix < n; ++ix) {
+        const double fx = frequency(ix, n, spacing);
+        const double s = wavelength * wavelength * (fx * fx + fy * fy);
+        if (s >= 1.0 || std::abs(fx) > f_limit || std::abs(fy) > f_limit) continue;
+        // k z (sqrt(1 - s) - 1) without cancellation.
+        transfer_[iy * n + ix] = carrier * unit_phasor(-k * z * s / (1.0 + std::sqrt(1.0 - s)));
+      }
+    }
+    return;
+  }
+
+  if (!(distance > 0.0))
     checks::fail("distance", distance, "a distance > 0 for Fresnel and Fraunhofer propagation");
-  if (method == PropagationMethod::angular_spectrum && output_spacing != 0.0 && output_spacing != in.spacing)
-    checks::fail("output_spacing", output_spacing,
-                 "0 or the input spacing for the angular spectrum method (its output grid is the input grid)");
+  const double natural = wavelength * z / (n * spacing);
+  if (output_spacing_ == 0.0) output_spacing_ = natural;
+  single_fft_ = std::abs(output_spacing_ / natural - 1.0) < 1e-12;
+  // A5 / A7: U2(x) = exp(ikz)/(i lambda z) exp(ik x^2/2z) dx^2 DFT[U1 (exp(ik xi^2/2z) for A5)].
+  if (method == PropagationMethod::fresnel) chirp_in_ = axis_chirp(n, spacing, k, z, single_fft_);
+  else if (single_fft_) chirp_in_ = axis_chirp(n, spacing, 0.0, z, true);  // the centring sign only
+  chirp_out_ = axis_chirp(n, output_spacing_, k, z, single_fft_);
+  front_ = unit_phasor(k * z) * Complex(0.0, -1.0) * (spacing * spacing / (wavelength * z));
+}
 
+std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, double spacing, double wavelength,
+                                                              double distance, PropagationMethod method,
+                                                              double output_spacing) {
+  using Key = std::tuple<std::size_t, double, double, double, int, double>;
+  static std::mutex mutex;
+  static std::list<std::pair<Key, std::shared_ptr<const PropagationPlan>>> recent;  // most recent first
+  constexpr std::size_t kCapacity = 16;
+  const Key key{n, spacing, wavelength, distance, static_cast<int>(method), output_spacing};
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = recent.begin(); it != recent.end(); ++it)
+      if (it->first == key) {
+        recent.splice(recent.begin(), recent, it);
+        return recent.front().second;
+      }
+  }
+  auto plan = std::make_shared<const PropagationPlan>(n, spacing, wavelength, distance, method, output_spacing);
+  std::lock_guard<std::mutex> lock(mutex);
+  recent.emplace_front(key, plan);
+  if (recent.size() > kCapacity) recent.pop_back();
+  return plan;
+}
+
+Propagated PropagationPlan::execute(const Field& in) const {
+  in.validate();
+  if (in.n != n_ || in.spacing != spacing_ || in.wavelength != wavelength_)
+    checks::fail("field.n", static_cast<double>(in.n), "the grid, spacing and wavelength the plan was made for");
   Propagated out;
-  if (distance == 0.0) {
-    out = {in, {}};
-    out.report.method = PropagationMethod::angular_spectrum;
-  } else if (method == PropagationMethod::angular_spectrum) {
-    out = angular_spectrum(in, distance);
-  } else {
-    const double natural = in.wavelength * distance / (in.n * in.spacing);
-    out = fresnel_family(in, distance, output_spacing > 0.0 ? output_spacing : natural,
-                         method == PropagationMethod::fresnel);
+  PropagationReport& r = out.report;
+  r.method = method_;
+  r.critical_distance = critical_distance_;
+  ComplexBuffer u = in.values;
+
+  if (method_ == PropagationMethod::angular_spectrum) {
+    // Totals come from the spectrum (Parseval), so only the window borders are read in space.
+    const double input_border = border_power(u, n_);
+    double input_total = 0.0, output_total = 0.0, removed = 0.0;
+    if (distance_ != 0.0) {
+      fft2d(u, n_, FftDirection::forward);
+#pragma omp parallel for reduction(+ : input_total, output_total, removed)
+      for (long i = 0; i < static_cast<long>(n_ * n_); ++i) {
+        const double p = std::norm(u[i]);
+        input_total += p;
+        if (transfer_[i] == Complex{}) removed += p;
+        u[i] *= transfer_[i];
+        output_total += std::norm(u[i]);
+      }
+      fft2d(u, n_, FftDirection::backward);
+      const double nn = static_cast<double>(n_ * n_);
+      input_total /= nn;        // sum |u|^2 = sum |U|^2 / n^2 (unnormalised FFT)
+      output_total *= nn;       // the inverse FFT multiplies power by n^2
+    } else {
+      for (const Complex& v : u) input_total += std::norm(v);
+      output_total = input_total;
+    }
+    r.band_limit_loss = input_total > 0.0 ? removed / (input_total * n_ * n_) : 0.0;
+    r.input_edge_power = input_total > 0.0 ? input_border / input_total : 0.0;
+    r.output_edge_power = output_total > 0.0 ? border_power(u, n_) / output_total : 0.0;
+    out.field = Field{std::move(u), n_, spacing_, wavelength_};
+    return out;
   }
 
-  PropagationReport& r = out.report;
-  r.critical_distance = critical;
-  r.input_edge_power = in.edge_power_fraction();
-  r.output_edge_power = out.field.edge_power_fraction();
-  if (r.method != PropagationMethod::angular_spectrum) {
-    const double a_in = in.support_radius(kSupportFraction);
-    const double a_out = out.field.support_radius(kSupportFraction);
-    const double k = 2.0 * kPi / in.wavelength;
-    r.chirp_phase_step = r.method == PropagationMethod::fresnel ? k * a_in * in.spacing / distance : 0.0;
-    r.fresnel_phase_error = kPi / (4.0 * in.wavelength) * std::pow(a_in + a_out, 4) / std::pow(distance, 3);
-    r.fraunhofer_phase = kPi * a_in * a_in / (in.wavelength * distance);
-  }
+  const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
+  const Extent before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
+  if (single_fft_) fft2d(u, n_, FftDirection::forward);
+  else u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
+  const Extent after = apply_separable(u, n_, chirp_out_, front_);
+  out.field = Field{std::move(u), n_, output_spacing_, wavelength_};
+  r.input_edge_power = before.edge_fraction();
+  r.output_edge_power = after.edge_fraction();
+  // Extents about the optical axis, where A3 and A6 measure them.
+  const double a_in = before.radius(kSupportFraction, spacing_);
+  const double a_out = after.radius(kSupportFraction, output_spacing_);
+  const double k = 2.0 * kPi / wavelength_;
+  r.chirp_phase_step = method_ == PropagationMethod::fresnel ? k * a_in * spacing_ / distance_ : 0.0;
+  r.fresnel_phase_error = kPi / (4.0 * wavelength_) * std::pow(a_in + a_out, 4) / std::pow(distance_, 3);
+  r.fraunhofer_phase = kPi * a_in * a_in / (wavelength_ * distance_);
   return out;
+}
+
+Propagated propagate(const Field& in, double distance, PropagationMethod method, double output_spacing) {
+  in.validate();
+  return PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing)->execute(in);
 }
 
 }  // namespace lidar_overlap

@@ -4,6 +4,9 @@
 // an aliased, clipped or out-of-region result from a good one.
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include "lidar_overlap/field.hpp"
 
 namespace lidar_overlap {
@@ -26,9 +29,41 @@ struct Propagated {
   PropagationReport report;
 };
 
-// Propagates `in` over `distance` (m; > 0 for Fresnel and Fraunhofer, any sign for AS). `output_spacing`
-// (m) of 0 means the method's natural one: the input spacing for AS, lambda z / (n dx) otherwise.
-// automatic: AS when distance <= critical distance and no other output spacing is asked for, else Fresnel.
+// Everything about a propagation that does not depend on the field's values: the method chosen, the
+// transfer function (angular spectrum) or the separable chirps (Fresnel, Fraunhofer). Made once per
+// geometry and executed on any number of fields; execute() is thread-safe.
+class PropagationPlan {
+ public:
+  // n samples of `spacing` (m) at `wavelength` (m) over `distance` (m; > 0 for Fresnel and Fraunhofer,
+  // any sign for AS). `output_spacing` (m) of 0 means the method's natural one: the input spacing for
+  // AS, lambda z / (n dx) otherwise. automatic: AS when distance <= the critical distance n dx^2 / lambda
+  // and no other output spacing is asked for, else Fresnel.
+  PropagationPlan(std::size_t n, double spacing, double wavelength, double distance,
+                  PropagationMethod method = PropagationMethod::automatic, double output_spacing = 0.0);
+
+  // A plan for these parameters from a small process-wide cache (made on first use).
+  static std::shared_ptr<const PropagationPlan> cached(std::size_t n, double spacing, double wavelength,
+                                                       double distance, PropagationMethod method,
+                                                       double output_spacing);
+
+  Propagated execute(const Field& in) const;
+
+  PropagationMethod method() const { return method_; }
+  double output_spacing() const { return output_spacing_; }
+  double critical_distance() const { return critical_distance_; }
+
+ private:
+  std::size_t n_;
+  double spacing_, wavelength_, distance_, output_spacing_, critical_distance_;
+  PropagationMethod method_;
+  ComplexBuffer transfer_;              // AS: n x n, zero outside the band limit
+  std::vector<Complex> chirp_in_;       // Fresnel: exp(i k x^2 / 2z) per axis, centring sign folded in
+  std::vector<Complex> chirp_out_;      // exp(i k x^2 / 2z) per axis on the output grid, sign folded in
+  Complex front_{1.0, 0.0};             // exp(ikz) / (i lambda z) dx^2
+  bool single_fft_ = false;             // Fresnel/Fraunhofer at the natural spacing: one FFT
+};
+
+// One-shot propagation through a cached plan; see PropagationPlan for the arguments.
 Propagated propagate(const Field& in, double distance, PropagationMethod method = PropagationMethod::automatic,
                      double output_spacing = 0.0);
 
