@@ -49,6 +49,7 @@ void bind_propagate(py::module_& m) {
         report["band_limit_loss"] = r.band_limit_loss;
         report["input_edge_power"] = r.input_edge_power;
         report["output_edge_power"] = r.output_edge_power;
+        report["scaled_output"] = r.scaled_output;
         report["chirp_phase_step"] = r.chirp_phase_step;
         report["fresnel_phase_error"] = r.fresnel_phase_error;
         report["fraunhofer_phase"] = r.fraunhofer_phase;

@@ -240,6 +240,7 @@ Propagated PropagationPlan::execute(const Field& in) const {
   out.field = Field{std::move(u), n_, output_spacing_, wavelength_};
   r.input_edge_power = before.edge_fraction();
   r.output_edge_power = after.edge_fraction();
+  r.scaled_output = !single_fft_;
   // Extents about the optical axis, where A3 and A6 measure them.
   const double a_in = before.radius(kSupportFraction, spacing_);
   const double a_out = after.radius(kSupportFraction, output_spacing_);

@@ -140,12 +140,18 @@ def _warn_outside_validity(r: dict, distance: float) -> None:
     if r["input_edge_power"] > EDGE_POWER_LIMIT:
         problems.append(f"the input field reaches the window edge ({r['input_edge_power']:.2g} of its power in the "
                         "outer n/16): enlarge the grid (n) so that the field is not clipped")
-    if r["output_edge_power"] > EDGE_POWER_LIMIT:
-        fix = ("enlarge the grid (n), or use method='fresnel', whose output grid grows with distance"
-               if used == "angular_spectrum" else
-               "use a finer input spacing or a larger output_spacing so that the output window holds the field")
-        problems.append(f"the propagated field reaches the window edge ({r['output_edge_power']:.2g} of its power in "
-                        f"the outer n/16) and wraps around: {fix}")
+    # A scaled (chirp-z) output is a window chosen by the caller: what lies outside it is not computed,
+    # nothing wraps around, so it is not a sampling problem.
+    if r["output_edge_power"] > EDGE_POWER_LIMIT and not r["scaled_output"]:
+        if used == "angular_spectrum":
+            problems.append(f"the propagated field reaches the window edge ({r['output_edge_power']:.2g} of its power "
+                            "in the outer n/16) and wraps around: enlarge the grid (n), or use method='fresnel', "
+                            "whose output grid grows with distance")
+        else:
+            problems.append(f"{r['output_edge_power']:.2g} of the power lands in the outer n/16 of the output window "
+                            "λz/dx, which holds the input's spatial frequencies up to its Nyquist limit: the input "
+                            "is undersampled there and that power is aliased (hard edges do this); sample the input "
+                            "more finely, soften its edges, or choose output_spacing")
     if used == "angular_spectrum" and r["band_limit_loss"] > BAND_LIMIT_LOSS_LIMIT:
         problems.append(f"the band-limited transfer function removes {r['band_limit_loss']:.2g} of the power: "
                         f"{abs(distance):.4g} m is too far for this grid (critical distance "

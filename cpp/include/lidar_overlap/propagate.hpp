@@ -18,7 +18,8 @@ struct PropagationReport {
   double critical_distance = 0.0;    // m, n dx^2 / lambda: AS below it, single-FFT Fresnel above
   double band_limit_loss = 0.0;      // AS: fraction of power outside the band-limited transfer function
   double input_edge_power = 0.0;     // fraction of the input power in the outer n/16 of the window
-  double output_edge_power = 0.0;    // the same for the output (wrap-around, aliasing)
+  double output_edge_power = 0.0;    // the same for the output (wrap-around, aliasing; clipping if scaled)
+  bool scaled_output = false;        // Fresnel/Fraunhofer by chirp-z to a chosen spacing (no wrap-around)
   double chirp_phase_step = 0.0;     // rad, Fresnel: phase step of the input chirp at the field's edge (<= pi)
   double fresnel_phase_error = 0.0;  // rad, Fresnel: (pi / (4 lambda)) rho^4 / z^3 over the fields (A3)
   double fraunhofer_phase = 0.0;     // rad, Fraunhofer: neglected input phase pi a^2 / (lambda z) (A6)

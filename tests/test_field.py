@@ -1,0 +1,200 @@
+"""Field: construction, centred coordinates, power, centroid and second-moment radius against closed forms.
+
+Checked against:
+- the coordinate convention x_j = y_j = (j - n//2) * spacing (index n//2 is 0), row index = y, column = x;
+- intensity = |values|^2 and power = sum(intensity) * spacing^2 for arbitrary values;
+- the TEM00 irradiance at its waist, I(r) = 2 P / (pi w0^2) exp(-2 r^2 / w0^2), with flat phase: its integral
+  is P, its centroid is its centre and its second-moment radius sqrt(2 (sigma_x^2 + sigma_y^2)) is w0;
+- an elliptical Gaussian (radius sqrt((wx^2 + wy^2) / 2)) and two unequal spots (power-weighted centroid);
+- bad arguments raise ValueError naming the parameter.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import lidar_overlap as lo
+
+EPS = np.finfo(float).eps
+# Coordinates are integers times the spacing: exact, or off by a few ulps of the half-window if the library
+# forms them as j*spacing - (n/2)*spacing.
+COORD_ATOL_ULPS = 4 * EPS
+# Sums of n^2 <= 65536 products, rounded in any order: well below 1e-13 relative.
+ROUNDING_RTOL = 1e-13
+# Riemann sum of a sampled Gaussian with w0/spacing >= 8: by Poisson summation its error is
+# ~2 exp(-pi^2 (w0/spacing)^2 / 2) < 1e-100; the window (>= +-4 w0) cuts off erfc(4 sqrt 2) ~ 1e-15 of the
+# power; what is left is the rounding of ~6e4 terms.
+GAUSS_POWER_RTOL = 1e-12
+# Pointwise TEM00 profile (analytic amplitude sqrt(2P / (pi w0^2))): rounding of exp and sqrt only, or at most
+# the ~1e-15 truncated power if the library normalises the sampled sum instead.
+GAUSS_PROFILE_RTOL = 1e-12
+# Second moments: same Poisson and truncation arguments (the tail beyond 4 w0 carries ~1e-13 of the second
+# moment); the brief's target for a grid spanning +-4 w0 with >= 8 samples per w0.
+RADIUS_RTOL = 1e-9
+# First moments of coordinates up to 8 w0 summed over 65536 samples: the rounding bound n^2 eps * 8 w0 is
+# ~1e-10 w0 (pairwise summation does far better); the sampling error is again ~exp(-100).
+CENTROID_ATOL_W0 = 1e-10
+
+NOT_POSITIVE = [0.0, -1e-3, math.nan, math.inf, -math.inf]
+
+# (n, spacing / w0): window half-widths 4 w0 (8 samples per w0, the minimum quoted), 6.4 w0 and 4.17 w0.
+GRIDS = [(64, 1 / 8), (256, 1 / 20), (100, 1 / 12)]
+
+
+def tem00(x, y, w0, power, center=(0.0, 0.0)):
+    """Irradiance of a TEM00 beam at its waist (W/m^2)."""
+    r2 = (x[None, :] - center[0]) ** 2 + (y[:, None] - center[1]) ** 2
+    return 2.0 * power / (math.pi * w0 ** 2) * np.exp(-2.0 * r2 / w0 ** 2)
+
+
+# --- construction and attributes ---------------------------------------------------------------------
+
+def test_attributes_of_arbitrary_values():
+    rng = np.random.default_rng(1)
+    values = rng.normal(size=(16, 16)) + 1j * rng.normal(size=(16, 16))
+    f = lo.Field(values, 2.5e-5, 1064e-9)
+    assert f.n == 16
+    assert f.spacing == 2.5e-5 and f.wavelength == 1064e-9
+    assert f.values.shape == (16, 16) and f.values.dtype == np.complex128
+    np.testing.assert_array_equal(f.values, values)
+    np.testing.assert_allclose(f.intensity, np.abs(values) ** 2, rtol=ROUNDING_RTOL)
+    expected = float(np.sum(np.abs(values) ** 2)) * 2.5e-5 ** 2
+    assert f.power == pytest.approx(expected, rel=ROUNDING_RTOL)
+
+
+def test_real_values_become_complex():
+    f = lo.Field(np.ones((8, 8)), 1e-3, 355e-9)
+    assert f.values.dtype == np.complex128
+    np.testing.assert_array_equal(f.values, np.ones((8, 8)))
+    assert f.power == pytest.approx(64 * 1e-6, rel=ROUNDING_RTOL)
+
+
+@pytest.mark.parametrize("n", [8, 64, 256, 1000])
+def test_coordinates_are_centred(n):
+    spacing = 3.7e-5
+    f = lo.Field(np.zeros((n, n), complex), spacing, 532e-9)
+    expected = (np.arange(n) - n // 2) * spacing
+    atol = COORD_ATOL_ULPS * n * spacing
+    assert f.x.shape == (n,) and f.y.shape == (n,)
+    np.testing.assert_allclose(f.x, expected, rtol=0, atol=atol)
+    np.testing.assert_allclose(f.y, expected, rtol=0, atol=atol)
+    assert f.x[n // 2] == 0.0 and f.y[n // 2] == 0.0
+
+
+def test_row_index_is_y():
+    n, dx, w0 = 64, 1e-4, 5e-4
+    center = (3 * dx, -5 * dx)                    # on grid points: the peak is one sample
+    f = lo.Field.gaussian(1064e-9, w0, n, dx, center=center)
+    row, col = np.unravel_index(np.argmax(f.intensity), f.values.shape)
+    assert (row, col) == (n // 2 - 5, n // 2 + 3)
+    assert f.centroid() == pytest.approx(center, abs=CENTROID_ATOL_W0 * w0)
+
+
+# --- TEM00 closed forms --------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("n, step", GRIDS)
+@pytest.mark.parametrize("power", [1.0, 2.5e-3, 7.0])
+def test_gaussian_profile_and_power(n, step, power):
+    w0 = 5e-3
+    f = lo.Field.gaussian(355e-9, w0, n, step * w0, power=power)
+    assert f.n == n and f.spacing == step * w0 and f.wavelength == 355e-9
+    assert f.power == pytest.approx(power, rel=GAUSS_POWER_RTOL)
+    expected = tem00(f.x, f.y, w0, power)
+    significant = expected > 1e-20 * expected.max()
+    np.testing.assert_allclose(f.intensity[significant], expected[significant], rtol=GAUSS_PROFILE_RTOL)
+    phase = np.angle(f.values[significant])
+    assert np.ptp(phase) <= 1e-12, "the waist field must have a flat phase"
+
+
+@pytest.mark.parametrize("n, step", GRIDS)
+@pytest.mark.parametrize("wavelength", [355e-9, 1064e-9])
+def test_gaussian_beam_radius_is_waist(n, step, wavelength):
+    w0 = 5e-3
+    f = lo.Field.gaussian(wavelength, w0, n, step * w0)
+    assert f.beam_radius() == pytest.approx(w0, rel=RADIUS_RTOL)
+    assert f.centroid() == pytest.approx((0.0, 0.0), abs=CENTROID_ATOL_W0 * w0)
+
+
+@pytest.mark.parametrize("center_w0", [(2.3, -1.7), (-0.37, 0.81), (0.0, 3.9)])
+def test_offset_gaussian_centroid_and_radius(center_w0):
+    # 16 samples per w0, window +-8 w0: the offset beam is still >= 4 w0 from every edge.
+    n, w0 = 256, 1e-3
+    center = (center_w0[0] * w0, center_w0[1] * w0)
+    f = lo.Field.gaussian(532e-9, w0, n, w0 / 16, center=center, power=0.3)
+    cx, cy = f.centroid()
+    assert cx == pytest.approx(center[0], abs=CENTROID_ATOL_W0 * w0)
+    assert cy == pytest.approx(center[1], abs=CENTROID_ATOL_W0 * w0)
+    assert f.beam_radius() == pytest.approx(w0, rel=RADIUS_RTOL)
+    assert f.power == pytest.approx(0.3, rel=GAUSS_POWER_RTOL)
+    expected = tem00(f.x, f.y, w0, 0.3, center)
+    significant = expected > 1e-20 * expected.max()
+    np.testing.assert_allclose(f.intensity[significant], expected[significant], rtol=GAUSS_PROFILE_RTOL)
+
+
+def test_elliptical_beam_radius_is_second_moment():
+    # |U|^2 = exp(-2x^2/wx^2 - 2y^2/wy^2): sigma_x^2 = wx^2/4, so sqrt(2 (sigma_x^2 + sigma_y^2)) =
+    # sqrt((wx^2 + wy^2) / 2). A radius taken from one axis or from the peak would fail.
+    # 12 samples per wx, half-window 3.2 mm = 4.6 wy: sampling and truncation errors as for the TEM00 grids.
+    n, dx, wx, wy = 256, 2.5e-5, 0.3e-3, 0.7e-3
+    x = (np.arange(n) - n // 2) * dx
+    values = np.exp(-x[None, :] ** 2 / wx ** 2 - x[:, None] ** 2 / wy ** 2)
+    f = lo.Field(values, dx, 1064e-9)
+    assert f.beam_radius() == pytest.approx(math.sqrt((wx ** 2 + wy ** 2) / 2), rel=RADIUS_RTOL)
+
+
+def test_centroid_of_two_unequal_spots():
+    # Two separated Gaussian spots of powers 1 and 3: the centroid is the power-weighted mean of the centres.
+    n, w0 = 256, 1e-3
+    a = lo.Field.gaussian(1064e-9, w0, n, w0 / 16, center=(-2 * w0, 1 * w0), power=1.0)
+    b = lo.Field.gaussian(1064e-9, w0, n, w0 / 16, center=(2 * w0, -1 * w0), power=3.0)
+    # Field with the summed irradiance (amplitude sqrt(I_a + I_b)), so the spots add without interference.
+    f = lo.Field(np.sqrt(a.intensity + b.intensity), a.spacing, a.wavelength)
+    cx, cy = f.centroid()
+    assert cx == pytest.approx((-2 * w0 + 3 * 2 * w0) / 4, abs=CENTROID_ATOL_W0 * w0)
+    assert cy == pytest.approx((1 * w0 + 3 * -1 * w0) / 4, abs=CENTROID_ATOL_W0 * w0)
+    assert f.power == pytest.approx(4.0, rel=GAUSS_POWER_RTOL)
+
+
+# --- bad input ---------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("shape", [(8, 10), (10, 8), (64,), (9, 9), (6, 6), (2, 8, 8), (0, 0)])
+def test_field_bad_shape(shape):
+    with pytest.raises(ValueError, match="values"):
+        lo.Field(np.ones(shape, complex), 1e-4, 355e-9)
+
+
+@pytest.mark.parametrize("value", NOT_POSITIVE)
+@pytest.mark.parametrize("name", ["spacing", "wavelength"])
+def test_field_bad_sizes(name, value):
+    args = dict(spacing=1e-4, wavelength=355e-9)
+    args[name] = value
+    with pytest.raises(ValueError, match=name):
+        lo.Field(np.ones((8, 8), complex), args["spacing"], args["wavelength"])
+
+
+@pytest.mark.parametrize("value", NOT_POSITIVE)
+@pytest.mark.parametrize("name", ["wavelength", "waist_radius", "spacing"])
+def test_gaussian_bad_sizes(name, value):
+    args = dict(wavelength=355e-9, waist_radius=1e-3, n=64, spacing=1e-4)
+    args[name] = value
+    with pytest.raises(ValueError, match=name):
+        lo.Field.gaussian(**args)
+
+
+@pytest.mark.parametrize("value", [7, 6, 0, -8])
+def test_gaussian_bad_n(value):
+    with pytest.raises(ValueError, match=r"\bn\b"):
+        lo.Field.gaussian(355e-9, 1e-3, value, 1e-4)
+
+
+@pytest.mark.parametrize("value", [-1.0, math.nan, math.inf])
+def test_gaussian_bad_power(value):
+    with pytest.raises(ValueError, match="power"):
+        lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4, power=value)
+
+
+@pytest.mark.parametrize("value", [(math.nan, 0.0), (0.0, math.inf)])
+def test_gaussian_bad_center(value):
+    with pytest.raises(ValueError, match="center"):
+        lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4, center=value)
