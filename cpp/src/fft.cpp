@@ -25,8 +25,17 @@ int& fft_threads() {
   return threads;
 }
 
-// (rank-1 rows or 0 for 2-D, rows, length, sign) -> plan. Plans live for the whole process.
-using PlanKey = std::tuple<std::size_t, std::size_t, int>;
+// (rows, length, sign, threads) -> plan. Plans live for the whole process.
+using PlanKey = std::tuple<std::size_t, std::size_t, int, int>;
+
+// Below this many points a transform is too small to gain from threads, and inside a parallel region
+// (several transforms at once) threads would only oversubscribe the cores.
+constexpr std::size_t kThreadedPoints = std::size_t{1} << 18;
+
+int threads_for(std::size_t points) {
+  if (points < kThreadedPoints || omp_in_parallel()) return 1;
+  return fft_threads() > 0 ? fft_threads() : omp_get_max_threads();
+}
 
 fftw_plan get_plan(const PlanKey& key, bool two_d) {
   static std::map<std::pair<bool, PlanKey>, fftw_plan> plans;
@@ -38,8 +47,8 @@ fftw_plan get_plan(const PlanKey& key, bool two_d) {
     if (fftw_init_threads() == 0) throw std::runtime_error("FFTW threads could not be initialised");
     threads_ready = true;
   }
-  fftw_plan_with_nthreads(fft_threads() > 0 ? fft_threads() : omp_get_max_threads());
-  const auto [rows, length, sign] = key;
+  const auto [rows, length, sign, threads] = key;
+  fftw_plan_with_nthreads(threads);
   // Plan on a scratch buffer (FFTW_MEASURE overwrites it); execution uses the caller's buffers.
   ComplexBuffer scratch(rows * length);
   auto* p = reinterpret_cast<fftw_complex*>(scratch.data());
@@ -68,13 +77,13 @@ void set_fft_threads(int threads) {
 void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction) {
   if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({n, n, sign_of(direction)}, true), p, p);
+  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n)}, true), p, p);
 }
 
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
   if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({rows, length, sign_of(direction)}, false), p, p);
+  fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length)}, false), p, p);
 }
 
 }  // namespace lidar_overlap

@@ -16,6 +16,10 @@ namespace lidar_overlap {
 
 namespace {
 
+// Grids from this side up are worth splitting across threads (smaller ones lose more to start-up and
+// to other processes than they gain).
+constexpr std::size_t kParallelSide = 512;
+
 // Fraction of power that decides a field's extent for the validity checks.
 constexpr double kSupportFraction = 1.0 - 1e-6;
 
@@ -66,30 +70,33 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
   Extent e(n);
   const std::size_t border = std::max<std::size_t>(1, n / 16);
   const double half = 0.5 * static_cast<double>(n);
-  std::vector<Extent> per_thread(static_cast<std::size_t>(omp_get_max_threads()), Extent(n));
-#pragma omp parallel
+#pragma omp parallel if (n >= kParallelSide)
   {
-    Extent& mine = per_thread[static_cast<std::size_t>(omp_get_thread_num())];
+    Extent mine(n);  // per thread, merged once: shared accumulators would bounce between caches
 #pragma omp for
     for (long iy = 0; iy < static_cast<long>(n); ++iy) {
       const Complex row = scale * a[iy];
       const bool edge_row = static_cast<std::size_t>(iy) < border || static_cast<std::size_t>(iy) >= n - border;
       const double y = iy - half;
+      double total = 0.0, edge = 0.0;
       for (std::size_t ix = 0; ix < n; ++ix) {
         Complex& v = u[iy * n + ix];
         v *= row * a[ix];
         const double p = std::norm(v);
         const double x = ix - half;
-        mine.total += p;
-        if (edge_row || ix < border || ix >= n - border) mine.border += p;
+        total += p;
+        if (edge_row || ix < border || ix >= n - border) edge += p;
         mine.radial[std::min(n + 1, static_cast<std::size_t>(std::sqrt(x * x + y * y)))] += p;
       }
+      mine.total += total;
+      mine.border += edge;
     }
-  }
-  for (const Extent& t : per_thread) {
-    e.total += t.total;
-    e.border += t.border;
-    for (std::size_t b = 0; b < e.radial.size(); ++b) e.radial[b] += t.radial[b];
+#pragma omp critical
+    {
+      e.total += mine.total;
+      e.border += mine.border;
+      for (std::size_t b = 0; b < e.radial.size(); ++b) e.radial[b] += mine.radial[b];
+    }
   }
   return e;
 }
@@ -144,7 +151,7 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
     const double f_limit = 1.0 / (wavelength * std::sqrt(std::pow(2.0 * df * z, 2) + 1.0));
     const Complex carrier = unit_phasor(k * z) / static_cast<double>(n * n);
     transfer_.assign(n * n, Complex{});
-#pragma omp parallel for
+#pragma omp parallel for if (n >= kParallelSide)
     for (long iy = 0; iy < static_cast<long>(n); ++iy) {
       const double fy = frequency(iy, n, spacing);
       for (std::size_t ix = 0; ix < n; ++ix) {
@@ -209,7 +216,7 @@ Propagated PropagationPlan::execute(const Field& in) const {
     double input_total = 0.0, output_total = 0.0, removed = 0.0;
     if (distance_ != 0.0) {
       fft2d(u, n_, FftDirection::forward);
-#pragma omp parallel for reduction(+ : input_total, output_total, removed)
+#pragma omp parallel for reduction(+ : input_total, output_total, removed) if (n_ >= kParallelSide)
       for (long i = 0; i < static_cast<long>(n_ * n_); ++i) {
         const double p = std::norm(u[i]);
         input_total += p;
