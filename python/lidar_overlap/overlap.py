@@ -16,24 +16,32 @@ from . import _checks, _core
 from .result import OverlapResult
 from .system import LidarSystem
 from .validity import warn_if_rt_invalid
+from .fields import EDGE_POWER_LIMIT, SamplingWarning
 
-METHODS = ("rt",)
+METHODS = ("rt", "fo")
 
 
 def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: str = "rt", *,
-            tolerance: float = 1e-4, threads: int = 0, max_segments: int = 4000) -> OverlapResult:
+            tolerance: float = 1e-4, threads: int = 0, max_segments: int = 4000,
+            beam_grid: int = 256, beam_window: float = 10.0, max_spectrum_grid: int = 4096) -> OverlapResult:
     """Overlap function of ``system`` at each range.
 
     Parameters
     ----------
     system : the lidar.
     ranges : m, strictly increasing 1-D array; each > 0 and beyond the obstruction distance.
-    method : ``"rt"``, paraxial ray tracing (paper Appendix B) with exact circle geometry.
+    method : ``"rt"``, paraxial ray tracing (paper Appendix B) with exact circle geometry; ``"fo"``,
+        Fourier optics (Appendix C): the transmitted TEM00 field propagated to each range, imaged through
+        the receiver's pupil with diffraction (see ``docs/fo_overlap.md``).
     tolerance : absolute error allowed on G at each range, in (0, 1). The beam integral is adaptive
         (radial with Rice weights about each coupling term's centre of symmetry, two-dimensional where
         there is none) until its error estimate is below it.
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
+    beam_grid, beam_window : FO only: samples per side of the transmitted field and its window in waist
+        radii (256 and 10: ±5 w0).
+    max_spectrum_grid : FO only: cap on the zero-padded beam spectrum, which grows with the defocus blur
+        at short range; a range that needs more raises ValueError (use "rt" there).
 
     Warns (RuntimeWarning) when ray tracing is used outside its validity: a detector within a few
     tens of Airy radii, or ranges so short that paraxial slopes err by more than 1 %
@@ -46,6 +54,10 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     tolerance = _checks.unit_interval("tolerance", tolerance)
     threads = _checks.count("threads", threads, 0)
     max_segments = _checks.count("max_segments", max_segments, 1)
+    if method == "fo":
+        return _overlap_fo(system, z, _checks.count("beam_grid", beam_grid, 16),
+                           _checks.real("beam_window", beam_window),
+                           _checks.count("max_spectrum_grid", max_spectrum_grid, 16), threads)
     raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)  # validates the ranges
     warn_if_rt_invalid(system, z)
     converged = np.asarray(raw["converged"], dtype=bool)
@@ -58,14 +70,30 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
                          error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
 
 
+def _overlap_fo(system: LidarSystem, z: np.ndarray, beam_grid: int, beam_window: float,
+                max_spectrum_grid: int, threads: int) -> OverlapResult:
+    raw = _core.overlap_fo(system._native, z, beam_grid, beam_window, max_spectrum_grid, threads)
+    for zi, report in zip(z, raw["beam_reports"]):
+        worst = max(report["output_edge_power"], report["input_edge_power"], report["band_limit_loss"])
+        if worst > EDGE_POWER_LIMIT:
+            warnings.warn(f"overlap(fo): the transmitted field at {zi:.4g} m loses {worst:.2g} of its power to the "
+                          "window edge or the band limit; enlarge beam_window or beam_grid", SamplingWarning,
+                          stacklevel=3)
+    return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
+                         error_estimate=np.full(z.size, np.nan), system=system, tolerance=float("nan"))
+
+
 def emitter_coupling(system: LidarSystem, z: float, position: Sequence[float] = (0.0, 0.0),
                      method: str = "rt") -> float:
     """Coupling of one point scatterer at transverse ``position`` (x, y in m) and range ``z`` (m):
-    power reaching the detector over the power it sends into the full, unobstructed aperture."""
+    power reaching the detector over the power it sends into the full, unobstructed aperture.
+    ``method="rt"``: geometric (a uniform circle of confusion); ``"fo"``: with diffraction (for an in-focus
+    point, the Airy encircled energy within the detector)."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {system!r} is invalid: expected a LidarSystem")
     _checks.choice("method", method, METHODS)
-    return _core.emitter_coupling_rt(system._native, _checks.real("z", z), _checks.pair("position", position))
+    couple = _core.emitter_coupling_fo if method == "fo" else _core.emitter_coupling_rt
+    return couple(system._native, _checks.real("z", z), _checks.pair("position", position))
 
 
 def optimal_focus_range(focal_length: float, defocus: float) -> float:

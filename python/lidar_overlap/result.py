@@ -18,8 +18,8 @@ class OverlapResult:
     ----------
     ranges : m, the ranges asked for.
     overlap : G at each range (dimensionless, 0..1).
-    method : the model that computed it (``"rt"``).
-    error_estimate : estimated absolute error of each G value.
+    method : the model that computed it (``"rt"`` or ``"fo"``).
+    error_estimate : estimated absolute error of each G value (NaN where the method gives none).
     system : the lidar it describes.
     tolerance : the absolute tolerance that was asked for.
     """

@@ -8,6 +8,8 @@
 #include "lidar_overlap/coupling_term.hpp"
 #include "lidar_overlap/fft.hpp"
 #include "lidar_overlap/field.hpp"
+#include "lidar_overlap/otf.hpp"
+#include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
 #include "lidar_overlap/propagate.hpp"
 #include "lidar_overlap/quadrature.hpp"

@@ -1,0 +1,50 @@
+// Fourier-optics overlap: the GIL is released around the compute only.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <vector>
+
+#include "lidar_overlap/overlap_fo.hpp"
+
+namespace py = pybind11;
+using namespace lidar_overlap;
+
+void bind_overlap_fo(py::module_& m) {
+  m.def(
+      "overlap_fo",
+      [](const LidarSystem& system, const std::vector<double>& ranges, std::size_t beam_grid, double beam_window,
+         std::size_t max_spectrum_grid, int threads) {
+        FoOverlap r;
+        {
+          py::gil_scoped_release release;
+          r = overlap_fo(system, ranges, FoOptions{beam_grid, beam_window, max_spectrum_grid, threads});
+        }
+        py::list reports;
+        for (const PropagationReport& p : r.beam_reports) {
+          py::dict d;
+          d["band_limit_loss"] = p.band_limit_loss;
+          d["input_edge_power"] = p.input_edge_power;
+          d["output_edge_power"] = p.output_edge_power;
+          d["chirp_phase_step"] = p.chirp_phase_step;
+          d["fresnel_phase_error"] = p.fresnel_phase_error;
+          reports.append(d);
+        }
+        py::dict out;
+        out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
+        out["spectrum_grid"] = r.spectrum_grid;
+        out["beam_reports"] = reports;
+        return out;
+      },
+      py::arg("system"), py::arg("ranges"), py::arg("beam_grid"), py::arg("beam_window"),
+      py::arg("max_spectrum_grid"), py::arg("threads"));
+
+  m.def(
+      "emitter_coupling_fo",
+      [](const LidarSystem& system, double z, std::array<double, 2> position) {
+        py::gil_scoped_release release;
+        return emitter_coupling_fo(system, z, {position[0], position[1]});
+      },
+      py::arg("system"), py::arg("z"), py::arg("position"));
+}

@@ -1,0 +1,59 @@
+// Fourier-optics overlap function G(z) (paper Appendix C). The transmitted field is propagated to each
+// range (C1-C2) with lidar_overlap/propagate.hpp; every scatterer images through the receiver's pupil
+// (aperture, obstruction shadow, lens, defocus, NA cone) onto the detector plane (C3-C6). Scatterers are
+// mutually incoherent and the receiver is shift-invariant (the image of P is the image of the on-axis
+// point moved to -P d/z), so G is the irradiance-weighted mean of (PSF (x) detector disc), computed as
+// one sum over spatial frequencies: G = sum OTF(q) disc^(q) E^*(q d/z) phase / (pi R^2 E(0)).
+// Shift invariance neglects the move of the obstruction's shadow (-P z_obs/(z - z_obs)) and of the NA
+// cone (P/(z k)) across the pupil with the scatterer: both are far below the pupil scale for lidar beams.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "lidar_overlap/otf.hpp"
+#include "lidar_overlap/propagate.hpp"
+#include "lidar_overlap/system.hpp"
+
+namespace lidar_overlap {
+
+struct FoOptions {
+  std::size_t beam_grid = 256;          // samples per side of the transmitted field
+  double beam_window = 10.0;            // its window, in waist radii (10: +-5 w0)
+  std::size_t max_spectrum_grid = 4096; // cap on the zero-padded beam spectrum (near-range defocus)
+  int threads = 0;                      // OpenMP threads across ranges; 0: all cores
+};
+
+struct FoOverlap {
+  std::vector<double> overlap;                    // G(z)
+  std::vector<PropagationReport> beam_reports;    // the transmitted field's propagation to each range
+  std::vector<std::size_t> spectrum_grid;         // padded spectrum size used at each range
+};
+
+// The receiver of the Fourier-optics path at range z (m).
+class FoReceiver {
+ public:
+  FoReceiver(const LidarSystem& system, double z);
+  // Coupling (as emitter_coupling_rt) of a point scatterer whose image centre lies `offset` (m) from
+  // the detector centre: (2 pi / pi R^2) int OTF disc^ J0(2 pi q offset) q dq.
+  double point_coupling(double offset) const;
+  // OTF (m^2) at spatial frequency q (1/m) in the detector plane.
+  double otf(double q) const { return annular_otf(pupil_, wavelength_ * d_ * q); }
+  double detector_distance() const { return d_; }
+  double cutoff() const { return 2.0 * pupil_.outer / (wavelength_ * d_); }  // 1/m, OTF = 0 beyond
+  double blur_radius() const;  // m, geometric radius of the point image on the detector plane
+  double aperture_area() const { return area_; }
+
+ private:
+  AnnularPupil pupil_{};
+  double wavelength_, d_, r_d_, area_;
+};
+
+// Throws std::invalid_argument when the beam is not a coherent TEM00 (set divergence other than
+// lambda / (pi w0), or the linear width law), or when a range needs more than max_spectrum_grid.
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options = {});
+
+double emitter_coupling_fo(const LidarSystem& system, double z, Vec2 position);
+
+}  // namespace lidar_overlap
