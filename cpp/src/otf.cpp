@@ -18,7 +18,8 @@ struct Rule {
 };
 
 const Rule& gauss_legendre(std::size_t n) {
-  static std::array<Rule, 12> rules;  // n = 8 * 2^k, k = 0..11
+  // Sizes 8 * 2^k only: each rule costs O(m^2) to make, so few sizes are kept.
+  static std::array<Rule, 12> rules;
   static std::array<std::once_flag, 12> made;
   std::size_t k = 0;
   while ((std::size_t{8} << k) < n && k + 1 < rules.size()) ++k;
@@ -54,8 +55,10 @@ const Rule& gauss_legendre(std::size_t n) {
 // x = c + r cos(phi). Smooth in phi, so Gauss-Legendre converges fast once it resolves the oscillation.
 double arc_part(double r, double c, double beta, double phi_lo, double phi_hi) {
   if (!(phi_hi > phi_lo)) return 0.0;
-  const double oscillations = std::abs(beta) * r * (phi_hi - phi_lo) / kPi;
-  const Rule& rule = gauss_legendre(static_cast<std::size_t>(16.0 + 2.0 * oscillations));
+  // The phase beta r cos(phi) sweeps at most beta r (phi_hi - phi_lo) radians; half a node per radian
+  // plus a margin (then rounded up to the next rule size) leaves G unchanged to 1e-10 against two.
+  const double sweep = std::abs(beta) * r * (phi_hi - phi_lo);
+  const Rule& rule = gauss_legendre(static_cast<std::size_t>(24.0 + 0.5 * sweep));
   const double mid = 0.5 * (phi_hi + phi_lo), half = 0.5 * (phi_hi - phi_lo);
   double sum = 0.0;
   for (std::size_t i = 0; i < rule.x.size(); ++i) {
