@@ -14,12 +14,6 @@ namespace lidar_overlap {
 
 namespace {
 
-std::size_t next_power_of_two(std::size_t v) {
-  std::size_t p = 1;
-  while (p < v) p <<= 1;
-  return p;
-}
-
 void require_coherent_tem00(const GaussianBeam& beam) {
   const double diffraction = beam.wavelength / (kPi * beam.waist_radius);
   if (beam.divergence && std::abs(*beam.divergence / diffraction - 1.0) > 1e-9)

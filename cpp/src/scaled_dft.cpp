@@ -12,12 +12,6 @@ namespace {
 // Work from this size up is split across threads.
 constexpr std::size_t kParallelPoints = std::size_t{1} << 18;
 
-std::size_t next_power_of_two(std::size_t v) {
-  std::size_t p = 1;
-  while (p < v) p <<= 1;
-  return p;
-}
-
 // exp(i pi alpha k^2) with the phase reduced before the exponential (k^2 alpha can be large).
 Complex chirp(double alpha, double k) {
   const double phase = std::remainder(alpha * k * k, 2.0) * kPi;

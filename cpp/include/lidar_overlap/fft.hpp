@@ -47,6 +47,13 @@ void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction);
 // In-place 1-D transforms of `rows` contiguous rows of `length` each.
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction);
 
+// Smallest power of two >= v: the sizes FFTW transforms fastest.
+inline std::size_t next_power_of_two(std::size_t v) {
+  std::size_t p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
 // Number of threads FFTW plans use (all cores unless set; set before the first plan).
 void set_fft_threads(int threads);
 
