@@ -35,12 +35,12 @@ void bind_propagate(py::module_& m) {
       "propagate",
       [](const ComplexArray& values, double spacing, double wavelength, double distance, const std::string& method,
          double output_spacing) {
-        const Field in = field_from_array(values, spacing, wavelength);
+        Field in = field_from_array(values, spacing, wavelength);  // a fresh copy: propagated in place
         const PropagationMethod pm = method_from(method);
         Propagated p;
         {
           py::gil_scoped_release release;
-          p = propagate(in, distance, pm, output_spacing);
+          p = propagate(std::move(in), distance, pm, output_spacing);
         }
         const PropagationReport& r = p.report;
         py::dict report;

@@ -30,7 +30,7 @@ using PlanKey = std::tuple<std::size_t, std::size_t, int, int>;
 
 // Below this many points a transform is too small to gain from threads, and inside a parallel region
 // (several transforms at once) threads would only oversubscribe the cores.
-constexpr std::size_t kThreadedPoints = std::size_t{1} << 18;
+constexpr std::size_t kThreadedPoints = std::size_t{1} << 20;
 
 int threads_for(std::size_t points) {
   if (points < kThreadedPoints || omp_in_parallel()) return 1;

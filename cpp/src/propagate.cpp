@@ -18,7 +18,7 @@ namespace {
 
 // Grids from this side up are worth splitting across threads (smaller ones lose more to start-up and
 // to other processes than they gain).
-constexpr std::size_t kParallelSide = 512;
+constexpr std::size_t kParallelSide = 1024;
 
 // Fraction of power that decides a field's extent for the validity checks.
 constexpr double kSupportFraction = 1.0 - 1e-6;
@@ -47,21 +47,23 @@ std::vector<Complex> axis_chirp(std::size_t n, double dx, double k, double z, bo
 }
 
 // What the validity checks need of a field, gathered in a pass that has other work to do: total
-// power, power in the outer n/16 of the window, and the power per radius (one sample wide) about the
-// optical axis, from which the field's extent follows.
+// power, power in the outer n/16 of the window, and the power per squared radius about the optical
+// axis (bins of n/8 samples^2: no square root per sample, and a quarter sample of radius at r = n/4).
 struct Extent {
   double total = 0.0, border = 0.0;
+  std::size_t n;
   std::vector<double> radial;
-  explicit Extent(std::size_t n) : radial(n + 2, 0.0) {}
+  explicit Extent(std::size_t n_) : n(n_), radial(4 * n_ + 2, 0.0) {}
+  std::size_t bin(double r2) const { return std::min(radial.size() - 1, static_cast<std::size_t>(r2 * 8.0 / n)); }
   double edge_fraction() const { return total > 0.0 ? border / total : 0.0; }
   // Radius (m) holding `fraction` of the power, for samples of spacing dx.
   double radius(double fraction, double dx) const {
     double inside = 0.0;
     for (std::size_t b = 0; b < radial.size(); ++b) {
       inside += radial[b];
-      if (inside >= fraction * total) return (b + 1) * dx;
+      if (inside >= fraction * total) return dx * std::sqrt((b + 1) * n / 8.0);
     }
-    return radial.size() * dx;
+    return dx * std::sqrt(radial.size() * n / 8.0);
   }
 };
 
@@ -77,7 +79,7 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
     for (long iy = 0; iy < static_cast<long>(n); ++iy) {
       const Complex row = scale * a[iy];
       const bool edge_row = static_cast<std::size_t>(iy) < border || static_cast<std::size_t>(iy) >= n - border;
-      const double y = iy - half;
+      const double y2 = (iy - half) * (iy - half);
       double total = 0.0, edge = 0.0;
       for (std::size_t ix = 0; ix < n; ++ix) {
         Complex& v = u[iy * n + ix];
@@ -85,11 +87,11 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
         const double p = std::norm(v);
         const double x = ix - half;
         total += p;
-        if (edge_row || ix < border || ix >= n - border) edge += p;
-        mine.radial[std::min(n + 1, static_cast<std::size_t>(std::sqrt(x * x + y * y)))] += p;
+        if (ix < border || ix >= n - border) edge += p;
+        mine.radial[mine.bin(x * x + y2)] += p;
       }
       mine.total += total;
-      mine.border += edge;
+      mine.border += edge_row ? total : edge;
     }
 #pragma omp critical
     {
@@ -200,7 +202,7 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
   return plan;
 }
 
-Propagated PropagationPlan::execute(const Field& in) const {
+Propagated PropagationPlan::execute(Field in) const {
   in.validate();
   if (in.n != n_ || in.spacing != spacing_ || in.wavelength != wavelength_)
     checks::fail("field.n", static_cast<double>(in.n), "the grid, spacing and wavelength the plan was made for");
@@ -208,7 +210,7 @@ Propagated PropagationPlan::execute(const Field& in) const {
   PropagationReport& r = out.report;
   r.method = method_;
   r.critical_distance = critical_distance_;
-  ComplexBuffer u = in.values;
+  ComplexBuffer& u = in.values;  // the field is ours: transform it in place
 
   if (method_ == PropagationMethod::angular_spectrum) {
     // Totals come from the spectrum (Parseval), so only the window borders are read in space.
@@ -258,9 +260,10 @@ Propagated PropagationPlan::execute(const Field& in) const {
   return out;
 }
 
-Propagated propagate(const Field& in, double distance, PropagationMethod method, double output_spacing) {
+Propagated propagate(Field in, double distance, PropagationMethod method, double output_spacing) {
   in.validate();
-  return PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing)->execute(in);
+  const auto plan = PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing);
+  return plan->execute(std::move(in));
 }
 
 }  // namespace lidar_overlap

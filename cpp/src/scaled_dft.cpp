@@ -10,7 +10,7 @@ namespace lidar_overlap {
 namespace {
 
 // Work from this size up is split across threads.
-constexpr std::size_t kParallelPoints = std::size_t{1} << 18;
+constexpr std::size_t kParallelPoints = std::size_t{1} << 20;
 
 // exp(i pi alpha k^2) with the phase reduced before the exponential (k^2 alpha can be large).
 Complex chirp(double alpha, double k) {

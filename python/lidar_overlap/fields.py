@@ -51,6 +51,13 @@ class Field:
         self.wavelength = _positive("wavelength", wavelength)
 
     @classmethod
+    def _from_core(cls, values: np.ndarray, spacing: float, wavelength: float) -> "Field":
+        """Wrap an array the core has just made (checked there), without another copy."""
+        field = cls.__new__(cls)
+        field.values, field.spacing, field.wavelength = values, float(spacing), float(wavelength)
+        return field
+
+    @classmethod
     def gaussian(cls, wavelength: float, waist_radius: float, n: int, spacing: float,
                  center: Tuple[float, float] = (0.0, 0.0), power: float = 1.0) -> "Field":
         """TEM00 beam at its waist (flat phase): 1/e² irradiance radius ``waist_radius`` (m), total
@@ -59,7 +66,7 @@ class Field:
         values = _core.gaussian_field(_checks.real("wavelength", wavelength), _checks.real("waist_radius", waist_radius),
                                       n, _checks.real("spacing", spacing), _checks.pair("center", center),
                                       _checks.real("power", power))
-        return cls(values, spacing, wavelength)
+        return cls._from_core(values, spacing, wavelength)
 
     @property
     def n(self) -> int:
@@ -131,7 +138,7 @@ def propagate(field: Field, distance: float, method: str = "auto",
     values, spacing, report = _core.propagate(field.values, field.spacing, field.wavelength, distance, method,
                                               spacing_out)
     _warn_outside_validity(report, distance)
-    return Field(values, spacing, field.wavelength)
+    return Field._from_core(values, spacing, field.wavelength)
 
 
 def _warn_outside_validity(r: dict, distance: float) -> None:

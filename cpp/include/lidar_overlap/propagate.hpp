@@ -47,7 +47,8 @@ class PropagationPlan {
                                                        double distance, PropagationMethod method,
                                                        double output_spacing);
 
-  Propagated execute(const Field& in) const;
+  // Works in place on `in` (pass an rvalue to avoid a copy of the field).
+  Propagated execute(Field in) const;
 
   PropagationMethod method() const { return method_; }
   double output_spacing() const { return output_spacing_; }
@@ -64,8 +65,9 @@ class PropagationPlan {
   bool single_fft_ = false;             // Fresnel/Fraunhofer at the natural spacing: one FFT
 };
 
-// One-shot propagation through a cached plan; see PropagationPlan for the arguments.
-Propagated propagate(const Field& in, double distance, PropagationMethod method = PropagationMethod::automatic,
+// One-shot propagation through a cached plan; see PropagationPlan for the arguments. The field is
+// copied; pass an rvalue to let the propagation reuse its memory.
+Propagated propagate(Field in, double distance, PropagationMethod method = PropagationMethod::automatic,
                      double output_spacing = 0.0);
 
 }  // namespace lidar_overlap
