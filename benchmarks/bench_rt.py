@@ -22,7 +22,6 @@ import dataclasses
 import json
 import os
 import platform
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -30,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 import lidar_overlap as lo
+from _common import best_time, load_average, source_commit
 
 RANGES = np.geomspace(5.0, 1000.0, 200)          # m
 CASES = {   # beam offset (m) and tilt (rad) at z = 0, detector offset (m) in its plane, obstruction (m)
@@ -133,15 +133,6 @@ def baseline_overlap(system, ranges, n=N_EMITTERS, half_width=GRID_HALF_WIDTH):
 
 
 # ---------------------------------------------------------------------------------------------
-def best_time(fn, repeats):
-    """Best wall time (s) of `repeats` calls after one warm-up call; returns (time, last result)."""
-    result = fn()
-    best = float("inf")
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        result = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, result
 
 
 def make_system(offset, tilt, detector_offset=(0.0, 0.0), obstruction=0.0):
@@ -188,18 +179,10 @@ def run_case(name, offset, tilt, detector_offset, obstruction):
     }
 
 
-def source_commit():
-    """Commit of the source tree beside this script (the installed build may be older), or None."""
-    try:
-        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=Path(__file__).resolve().parent,
-                             capture_output=True, text=True, timeout=10)
-    except (OSError, subprocess.SubprocessError):
-        return None
-    return out.stdout.strip() or None
 
 
 def main():
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    load = load_average()
     print(f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
           f"load average {load:.2f}")
     print(f"{RANGES.size} ranges {RANGES[0]:g}-{RANGES[-1]:g} m; baseline grid {N_EMITTERS}x{N_EMITTERS} "

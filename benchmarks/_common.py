@@ -1,0 +1,34 @@
+"""Helpers shared by the benchmark scripts: warm best-of timings and run metadata."""
+
+import os
+import subprocess
+import time
+from pathlib import Path
+
+
+def best_time(fn, repeats, setup=None):
+    """Best wall time (s) of `repeats` calls after one untimed call; `setup()` (untimed) makes the
+    argument of each call. Returns (time, last result)."""
+    result = fn(setup()) if setup else fn()
+    best = float("inf")
+    for _ in range(repeats):
+        arg = setup() if setup else None
+        t0 = time.perf_counter()
+        result = fn(arg) if setup else fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, result
+
+
+def source_commit():
+    """Commit of the source tree beside this script (the installed build may be older), or None."""
+    try:
+        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=Path(__file__).resolve().parent,
+                             capture_output=True, text=True, timeout=10)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return out.stdout.strip() or None
+
+
+def load_average():
+    """1-minute load average (NaN where the platform has none)."""
+    return os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
