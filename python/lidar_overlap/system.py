@@ -57,6 +57,10 @@ class GaussianBeam:
         """1/e² irradiance radius w(z) (m) at range(s) z (m)."""
         return self._native.radius(z)
 
+    def center(self, z: float) -> Tuple[float, float]:
+        """Beam centroid (x, y) in m at range z (m): offset + tilt·z (paraxial)."""
+        return (self.offset[0] + self.tilt[0] * z, self.offset[1] + self.tilt[1] * z)
+
 
 @dataclass(frozen=True)
 class Telescope:

@@ -1,0 +1,119 @@
+"""FO overlap curve: lidar_overlap's Fourier-space formulation against Appendix C as written.
+
+One process, the paper's Table 1 lidar (355 nm, TEM00 w0 = 1 mm, f = 1 m, D = 150 mm, FFOV 0.9 mrad):
+- lo: `lo.overlap(system, ranges, method="fo")` for 200 ranges (5-1000 m and 30-1000 m), threads = 0
+  and 1, best of 3 warm runs (the first call also makes the FFTW plans; its time is reported apart).
+- direct: Appendix C one emitter at a time (C3-C6) at a few ranges: for each of 7 x 7 Gauss-Hermite
+  scatterers of the Gaussian beam, the aperture field exp(i psi |A|^2) exp(-i k A.P/z) (spherical wave,
+  lens C4 and the propagation phase to the detector plane combined into psi; sampled at 4 points per
+  radian of its steepest phase), propagated to the detector plane by lo.propagate (Fraunhofer form,
+  chirp-z to 1 um samples over the detector), |U|^2 summed over the detector disc. Its time per range
+  is extrapolated to the 200-range curve, and its G is compared with lo's.
+Prints a table and writes results/bench_fo_overlap.json. Run: python benchmarks/bench_fo_overlap.py
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import lidar_overlap as lo
+from _common import best_time, load_average, source_commit
+
+CURVES = {"5-1000 m": np.geomspace(5.0, 1000.0, 200), "30-1000 m": np.geomspace(30.0, 1000.0, 200)}
+DIRECT_RANGES = (300.0, 1000.0)
+EMITTER_NODES = 7           # Gauss-Hermite nodes per axis over the beam (11 gave the same G to 1e-6)
+DETECTOR_SAMPLE = 1e-6      # m, detector-plane spacing (Airy radius 2.9 um)
+REPEATS = 3
+
+
+def direct_overlap(system, z):
+    """Appendix C, one emitter at a time (see the module docstring). Returns (G, emitters)."""
+    beam, tel, det = system.beam, system.telescope, system.detector
+    lam, f, radius = beam.wavelength, tel.focal_length, 0.5 * tel.diameter
+    d, k = f + det.defocus, 2 * np.pi / beam.wavelength
+    psi = np.pi / lam * (1 / z - 1 / f + 1 / d)
+    w = beam.radius(z)
+    # Pupil: the steepest phase gradient is 2 psi R + k |P|/z (|P| <= 3 w); 4 samples per pi of it.
+    slope = abs(psi) * 2 * radius + k * 3.0 * w / z
+    n_pupil = int(2 ** np.ceil(np.log2(max(64.0, 2 * radius * slope * 4 / np.pi))))
+    da = 2 * radius / (n_pupil - 4)
+    a = (np.arange(n_pupil) - n_pupil // 2) * da
+    ax, ay = np.meshgrid(a, a)
+    r = np.hypot(ax, ay)
+    aperture = np.clip((radius - r) / da + 0.5, 0.0, 1.0)          # anti-aliased edge
+    # The chirp-z output has the pupil's n samples of DETECTOR_SAMPLE: it must hold the detector disc.
+    x = (np.arange(n_pupil) - n_pupil // 2) * DETECTOR_SAMPLE
+    if x[-1] < det.radius + abs(det.offset[0]) or x[-1] < det.radius + abs(det.offset[1]):
+        n_pupil = int(2 ** np.ceil(np.log2(2.2 * (det.radius + max(map(abs, det.offset))) / DETECTOR_SAMPLE)))
+        da = 2 * radius / (n_pupil - 4)
+        a = (np.arange(n_pupil) - n_pupil // 2) * da
+        ax, ay = np.meshgrid(a, a)
+        r = np.hypot(ax, ay)
+        aperture = np.clip((radius - r) / da + 0.5, 0.0, 1.0)
+        x = (np.arange(n_pupil) - n_pupil // 2) * DETECTOR_SAMPLE
+    on_detector = np.hypot(*np.meshgrid(x - det.offset[0], x - det.offset[1])) <= det.radius
+    nodes, weights = np.polynomial.hermite_e.hermegauss(EMITTER_NODES)   # for exp(-t^2/2)
+    sigma = w / 2
+    g = 0.0
+    for i, ti in enumerate(nodes):
+        for j, tj in enumerate(nodes):
+            px, py = sigma * ti + beam.center(z)[0], sigma * tj + beam.center(z)[1]
+            field = aperture * np.exp(1j * (psi * r**2 - k * (ax * px + ay * py) / z))
+            with warnings.catch_warnings():   # the near-field phase is in psi on purpose
+                warnings.simplefilter("ignore", lo.SamplingWarning)
+                image = lo.propagate(lo.Field(field, da, lam), d, method="fraunhofer", output_spacing=DETECTOR_SAMPLE)
+            coupling = np.sum(image.intensity[on_detector]) * DETECTOR_SAMPLE**2 / (np.pi * radius**2)
+            g += weights[i] * weights[j] * coupling
+    return g / np.sum(weights) ** 2, EMITTER_NODES**2
+
+
+def main():
+    system = lo.paper_table1()
+    print(f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
+          f"load {load_average():.2f} | commit {source_commit()}")
+    rows = {}
+    for name, z in CURVES.items():
+        t0 = time.perf_counter()
+        lo.overlap(system, z, method="fo")
+        cold = time.perf_counter() - t0
+        t_all, res = best_time(lambda: lo.overlap(system, z, method="fo", threads=0), REPEATS)
+        t_one, _ = best_time(lambda: lo.overlap(system, z, method="fo", threads=1), REPEATS)
+        rows[name] = {"ranges": len(z), "first_call_s": cold, "threads0_s": t_all, "threads1_s": t_one}
+        print(f"lo FO curve {name}: {t_all:.3f} s (threads=0), {t_one:.3f} s (threads=1), first call {cold:.3f} s")
+
+    direct = []
+    for z in DIRECT_RANGES:
+        t0 = time.perf_counter()
+        g_direct, emitters = direct_overlap(system, z)
+        dt = time.perf_counter() - t0
+        g_lo = lo.overlap(system, np.array([z]), method="fo").overlap[0]
+        direct.append({"z_m": z, "seconds": dt, "emitters": emitters, "G_direct": g_direct, "G_lo": g_lo})
+        print(f"direct Appendix C at {z:g} m: {dt:.2f} s for {emitters} emitters, G = {g_direct:.6f} "
+              f"(lo {g_lo:.6f}, difference {g_direct - g_lo:+.1e})")
+    per_range = np.mean([d["seconds"] for d in direct])
+    for name, row in rows.items():
+        row["direct_extrapolated_s"] = per_range * row["ranges"]
+        row["speedup"] = row["direct_extrapolated_s"] / row["threads0_s"]
+        print(f"{name}: direct, extrapolated from {len(direct)} ranges: {row['direct_extrapolated_s']:.0f} s; "
+              f"lo is {row['speedup']:.0f}x faster (target: lo <= 1 s for 200 ranges; "
+              f"{'met' if row['threads0_s'] <= 1.0 else 'NOT met'})")
+
+    out = Path(__file__).resolve().parent / "results" / "bench_fo_overlap.json"
+    out.parent.mkdir(exist_ok=True)
+    out.write_text(json.dumps({"meta": {"measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+                                        "lidar_overlap": lo.__version__, "commit": source_commit(),
+                                        "machine": platform.machine(), "cores": os.cpu_count(),
+                                        "load_average_1min": load_average()},
+                               "curves": rows, "direct": direct}, indent=2))
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
