@@ -20,10 +20,6 @@ std::mutex& planner_mutex() {
   return m;
 }
 
-int& fft_threads() {
-  static int threads = 0;
-  return threads;
-}
 
 // (rows, length, sign, threads) -> plan. Plans live for the whole process.
 using PlanKey = std::tuple<std::size_t, std::size_t, int, int>;
@@ -34,7 +30,7 @@ constexpr std::size_t kThreadedPoints = std::size_t{1} << 20;
 
 int threads_for(std::size_t points) {
   if (points < kThreadedPoints || omp_in_parallel()) return 1;
-  return fft_threads() > 0 ? fft_threads() : omp_get_max_threads();
+  return omp_get_max_threads();
 }
 
 fftw_plan get_plan(const PlanKey& key, bool two_d) {
@@ -68,11 +64,6 @@ fftw_plan get_plan(const PlanKey& key, bool two_d) {
 int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD : FFTW_BACKWARD; }
 
 }  // namespace
-
-void set_fft_threads(int threads) {
-  std::lock_guard<std::mutex> lock(planner_mutex());
-  fft_threads() = threads;
-}
 
 void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction) {
   if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");

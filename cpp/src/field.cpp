@@ -1,8 +1,6 @@
 #include "lidar_overlap/field.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
@@ -45,38 +43,6 @@ double Field::beam_radius() const {
       s2 += e * (dx * dx + dy * dy);
     }
   return sum > 0.0 ? std::sqrt(2.0 * s2 / sum) : 0.0;
-}
-
-double Field::support_radius(double fraction) const {
-  // Radial histogram about the centroid in bins of one sample: O(n^2), exact to one spacing.
-  const Vec2 c = centroid();
-  std::vector<double> bins(2 * n + 2, 0.0);
-  double total = 0.0;
-  for (std::size_t iy = 0; iy < n; ++iy)
-    for (std::size_t ix = 0; ix < n; ++ix) {
-      const double e = std::norm(values[iy * n + ix]);
-      const double r = std::hypot(coordinate(ix) - c.x, coordinate(iy) - c.y) / spacing;
-      bins[std::min(bins.size() - 1, static_cast<std::size_t>(r))] += e;
-      total += e;
-    }
-  double inside = 0.0;
-  for (std::size_t b = 0; b < bins.size(); ++b) {
-    inside += bins[b];
-    if (inside >= fraction * total) return (b + 1) * spacing;
-  }
-  return bins.size() * spacing;
-}
-
-double Field::edge_power_fraction() const {
-  const std::size_t border = std::max<std::size_t>(1, n / 16);
-  double edge = 0.0, total = 0.0;
-  for (std::size_t iy = 0; iy < n; ++iy)
-    for (std::size_t ix = 0; ix < n; ++ix) {
-      const double e = std::norm(values[iy * n + ix]);
-      total += e;
-      if (ix < border || iy < border || ix >= n - border || iy >= n - border) edge += e;
-    }
-  return total > 0.0 ? edge / total : 0.0;
 }
 
 Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, double spacing, Vec2 center,

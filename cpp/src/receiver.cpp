@@ -22,9 +22,7 @@ Receiver::Receiver(const LidarSystem& system, double z) : z_(z) {
   const Telescope& t = system.telescope;
   const Detector& det = system.detector;
   aperture_radius_ = 0.5 * t.diameter;
-  focal_length_ = t.focal_length;
-  detector_distance_ = t.focal_length + det.defocus;
-  const double d = detector_distance_;
+  const double d = t.focal_length + det.defocus;
   passing_.weight = 1.0 / (kPi * aperture_radius_ * aperture_radius_);
 
   passing_.add(MovingDisc{0.0, {}, aperture_radius_});  // first: terms() may drop it
@@ -74,11 +72,6 @@ std::size_t Receiver::terms(Vec2 center, double support, CouplingTerm* out) cons
     --out[1].n_discs;
   }
   return 2;
-}
-
-Vec2 Receiver::detector_hit(Vec2 p, Vec2 a) const {
-  const double d = detector_distance_;
-  return (1.0 + d / z_ - d / focal_length_) * a - (d / z_) * p;
 }
 
 }  // namespace lidar_overlap

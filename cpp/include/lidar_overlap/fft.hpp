@@ -54,7 +54,4 @@ inline std::size_t next_power_of_two(std::size_t v) {
   return p;
 }
 
-// Number of threads FFTW plans use (all cores unless set; set before the first plan).
-void set_fft_threads(int threads);
-
 }  // namespace lidar_overlap

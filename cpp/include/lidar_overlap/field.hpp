@@ -23,10 +23,6 @@ struct Field {
   double power() const;                      // W
   Vec2 centroid() const;                     // m, irradiance-weighted centre
   double beam_radius() const;                // m, sqrt(2 (var_x + var_y)) about the centroid (D4sigma/2)
-  // Radius (m) about the centroid that holds the fraction `fraction` of the power.
-  double support_radius(double fraction) const;
-  // Fraction of the power in the outer n/16 samples of the window on any side.
-  double edge_power_fraction() const;
 
   // TEM00 beam at its waist, flat phase, total power `power` (W), centred at `center` (m).
   static Field gaussian(double wavelength, double waist_radius, std::size_t n, double spacing,

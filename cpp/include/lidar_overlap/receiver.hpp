@@ -37,17 +37,12 @@ class Receiver {
   // it a centre of symmetry. Returns how many terms were written to `out` (1 or 2).
   std::size_t terms(Vec2 center, double support, CouplingTerm* out) const;
 
-  // Where the ray from scatterer p through aperture point a meets the detector plane (m).
-  Vec2 detector_hit(Vec2 p, Vec2 a) const;
-
   double range() const { return z_; }
   double aperture_radius() const { return aperture_radius_; }
 
  private:
   double z_;
   double aperture_radius_;
-  double detector_distance_;  // d = f + defocus
-  double focal_length_;
   CouplingTerm passing_;        // aperture ∩ detector ∩ NA
   CouplingTerm blocked_;        // the same ∩ shadow, negative weight
   bool has_shadow_ = false;
