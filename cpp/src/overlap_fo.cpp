@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
@@ -22,7 +23,8 @@ void require_coherent_tem00(const GaussianBeam& beam) {
                      " rad for Fourier optics, which propagates the coherent TEM00 field; a beam with M^2 > 1 "
                      "needs method 'rt'");
   if (beam.width_law != WidthLaw::gaussian)
-    checks::fail("beam.width_law", 1.0, "'gaussian' for Fourier optics (the linear law is the paper's RT model)");
+    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
+                                "(the linear law is the paper's RT marginal-ray model)");
 }
 
 }  // namespace
