@@ -15,8 +15,8 @@ import numpy as np
 from . import _checks, _core
 from .result import OverlapResult
 from .system import LidarSystem
-from .validity import warn_if_rt_invalid
 from .fields import EDGE_POWER_LIMIT, SamplingWarning
+from .validity import warn_if_rt_invalid
 
 METHODS = ("rt", "fo")
 
@@ -33,11 +33,11 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     method : ``"rt"``, paraxial ray tracing (paper Appendix B) with exact circle geometry; ``"fo"``,
         Fourier optics (Appendix C): the transmitted TEM00 field propagated to each range, imaged through
         the receiver's pupil with diffraction (see ``docs/fo_overlap.md``).
-    tolerance : absolute error allowed on G at each range, in (0, 1). The beam integral is adaptive
+    tolerance : RT only: absolute error allowed on G at each range, in (0, 1). The beam integral is adaptive
         (radial with Rice weights about each coupling term's centre of symmetry, two-dimensional where
         there is none) until its error estimate is below it.
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
-    max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
+    max_segments : RT only: cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
     beam_grid, beam_window : FO only: samples per side of the transmitted field and its window in waist
         radii (256 and 10: ±5 w0).
     max_spectrum_grid : FO only: cap on the zero-padded beam spectrum, which grows with the defocus blur
