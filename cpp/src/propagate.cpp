@@ -267,7 +267,6 @@ Propagated PropagationPlan::execute(Field in) const {
 }
 
 Propagated propagate(Field in, double distance, PropagationMethod method, double output_spacing) {
-  in.validate();
   const auto plan = PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing);
   return plan->execute(std::move(in));
 }

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import math
+
 import numpy as np
 
 
@@ -16,6 +18,14 @@ def real(name: str, value: Any) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise ValueError(f"{name} = {value!r} is invalid: expected a real number")
     return float(value)
+
+
+def positive(name: str, value: Any) -> float:
+    """A finite real number > 0."""
+    v = real(name, value)
+    if not (v > 0 and math.isfinite(v)):
+        raise ValueError(f"{name} = {v!r} is invalid: expected a finite value > 0")
+    return v
 
 
 def optional_real(name: str, value: Any) -> float | None:

@@ -47,8 +47,8 @@ class Field:
         if not np.all(np.isfinite(arr)):
             raise ValueError("values contains NaN or infinity: expected finite complex numbers")
         self.values = arr
-        self.spacing = _positive("spacing", spacing)
-        self.wavelength = _positive("wavelength", wavelength)
+        self.spacing = _checks.positive("spacing", spacing)
+        self.wavelength = _checks.positive("wavelength", wavelength)
 
     @classmethod
     def _from_core(cls, values: np.ndarray, spacing: float, wavelength: float) -> "Field":
@@ -108,13 +108,6 @@ class Field:
         return f"Field(n={self.n}, spacing={self.spacing:.4g} m, wavelength={self.wavelength:.4g} m)"
 
 
-def _positive(name: str, value) -> float:
-    v = _checks.real(name, value)
-    if not (v > 0 and np.isfinite(v)):
-        raise ValueError(f"{name} = {v!r} is invalid: expected a finite value > 0")
-    return v
-
-
 def propagate(field: Field, distance: float, method: str = "auto",
               output_spacing: Optional[float] = None) -> Field:
     """Propagate ``field`` over ``distance`` (m) in free space.
@@ -134,7 +127,7 @@ def propagate(field: Field, distance: float, method: str = "auto",
         raise ValueError(f"field = {field!r} is invalid: expected a Field")
     _checks.choice("method", method, PROPAGATION_METHODS)
     distance = _checks.real("distance", distance)
-    spacing_out = 0.0 if output_spacing is None else _positive("output_spacing", output_spacing)
+    spacing_out = 0.0 if output_spacing is None else _checks.positive("output_spacing", output_spacing)
     values, spacing, report = _core.propagate(field.values, field.spacing, field.wavelength, distance, method,
                                               spacing_out)
     _warn_outside_validity(report, distance)

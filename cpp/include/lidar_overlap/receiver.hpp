@@ -38,7 +38,6 @@ class Receiver {
   std::size_t terms(Vec2 center, double support, CouplingTerm* out) const;
 
   double range() const { return z_; }
-  double aperture_radius() const { return aperture_radius_; }
 
  private:
   double z_;
