@@ -15,7 +15,7 @@ struct AnnularPupil {
 };
 
 // OTF at a pupil shift v = lambda d |q| (m): the overlap of the pupil with itself shifted by v,
-// weighted by exp(2 i psi x v) across it, computed exactly on arcs (Gauss-Legendre in angle).
+// weighted by exp(2 i psi x v) across it, computed exactly on its boundary arcs (Jacobi-Anger series, closed form per arc).
 double annular_otf(const AnnularPupil& pupil, double shift);
 
 // Fourier transform of the indicator of a disc of radius r at spatial frequency q (1/m): r J1(2 pi q r) / q.
