@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bind_field.hpp"
+#include "lidar_overlap/grid_choice.hpp"
 #include "lidar_overlap/propagate.hpp"
 
 namespace py = pybind11;
@@ -33,13 +34,21 @@ const char* method_name(PropagationMethod m) {
 void bind_propagate(py::module_& m) {
   m.def(
       "propagate",
+      // grid_size: 0 keeps the field's grid, -1 lets choose_grid pick it, n > 0 zero-pads to n.
       [](const ComplexArray& values, double spacing, double wavelength, double distance, const std::string& method,
-         double output_spacing) {
+         double output_spacing, long grid_size) {
         Field in = field_from_array(values, spacing, wavelength);  // a fresh copy: propagated in place
-        const PropagationMethod pm = method_from(method);
+        PropagationMethod pm = method_from(method);
         Propagated p;
         {
           py::gil_scoped_release release;
+          if (grid_size == -1) {
+            const GridChoice g = choose_grid(in, distance, pm);
+            pm = g.method;
+            if (g.n != in.n) in = zero_pad(in, g.n);
+          } else if (grid_size > 0 && static_cast<std::size_t>(grid_size) != in.n) {
+            in = zero_pad(in, static_cast<std::size_t>(grid_size));
+          }
           p = propagate(std::move(in), distance, pm, output_spacing);
         }
         const PropagationReport& r = p.report;
@@ -56,7 +65,7 @@ void bind_propagate(py::module_& m) {
         return py::make_tuple(array_from_field(p.field), p.field.spacing, report);
       },
       py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"), py::arg("method"),
-      py::arg("output_spacing"));
+      py::arg("output_spacing"), py::arg("grid_size"));
 
   // The reference a propagation is timed against: the same copies in and out, a forward and a backward
   // FFT on the same cached plans, nothing else (unnormalised: the result is n^2 times the input).

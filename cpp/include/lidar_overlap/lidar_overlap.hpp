@@ -12,6 +12,7 @@
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
 #include "lidar_overlap/propagate.hpp"
+#include "lidar_overlap/grid_choice.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/receiver.hpp"
 #include "lidar_overlap/scaled_dft.hpp"
