@@ -229,7 +229,7 @@ def run_size(n, peer_variants):
         rounds = {"reference": lambda: _core.fft2d_roundtrip(field.values)}
         for m, z in CASES.items():
             rounds[m] = lambda m=m, z=z: lo.propagate(field, z, method=m)
-            rounds[m + "_native"] = lambda m=m, z=z: _core.propagate(field.values, spacing, WAVELENGTH, z, m, 0.0)
+            rounds[m + "_native"] = lambda m=m, z=z: _core.propagate(field.values, spacing, WAVELENGTH, z, m, 0.0, 0)
         warm = interleaved_best(rounds, REPEATS_LO[n])
         new_z = {m: min(timed_once(lambda m=m, k=k: lo.propagate(field, z * (1.0 + 1e-6 * k), method=m))[0]
                         for k in range(1, NEW_DISTANCES + 1))

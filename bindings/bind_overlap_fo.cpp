@@ -6,10 +6,31 @@
 #include <array>
 #include <vector>
 
+#include "bind_field.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;
+
+namespace {
+py::dict to_dict(const FoOverlap& r) {
+  py::list reports;
+  for (const PropagationReport& p : r.beam_reports) {
+    py::dict d;
+    d["band_limit_loss"] = p.band_limit_loss;
+    d["input_edge_power"] = p.input_edge_power;
+    d["output_edge_power"] = p.output_edge_power;
+    d["chirp_phase_step"] = p.chirp_phase_step;
+    d["fresnel_phase_error"] = p.fresnel_phase_error;
+    reports.append(d);
+  }
+  py::dict out;
+  out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
+  out["spectrum_grid"] = r.spectrum_grid;
+  out["beam_reports"] = reports;
+  return out;
+}
+}  // namespace
 
 void bind_overlap_fo(py::module_& m) {
   m.def(
@@ -21,23 +42,28 @@ void bind_overlap_fo(py::module_& m) {
           py::gil_scoped_release release;
           r = overlap_fo(system, ranges, FoOptions{beam_grid, beam_window, max_spectrum_grid, threads});
         }
-        py::list reports;
-        for (const PropagationReport& p : r.beam_reports) {
-          py::dict d;
-          d["band_limit_loss"] = p.band_limit_loss;
-          d["input_edge_power"] = p.input_edge_power;
-          d["output_edge_power"] = p.output_edge_power;
-          d["chirp_phase_step"] = p.chirp_phase_step;
-          d["fresnel_phase_error"] = p.fresnel_phase_error;
-          reports.append(d);
-        }
-        py::dict out;
-        out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
-        out["spectrum_grid"] = r.spectrum_grid;
-        out["beam_reports"] = reports;
-        return out;
+        return to_dict(r);
       },
       py::arg("system"), py::arg("ranges"), py::arg("beam_grid"), py::arg("beam_window"),
+      py::arg("max_spectrum_grid"), py::arg("threads"));
+
+  // Any transmitted field (flat-top, annular, vortex, ...): the field's own grid replaces beam_grid.
+  m.def(
+      "overlap_fo_field",
+      [](const LidarSystem& system, const std::vector<double>& ranges, const ComplexArray& values, double spacing,
+         double wavelength, std::size_t max_spectrum_grid, int threads) {
+        const Field transmitted = field_from_array(values, spacing, wavelength);
+        FoOverlap r;
+        {
+          py::gil_scoped_release release;
+          FoOptions options;
+          options.max_spectrum_grid = max_spectrum_grid;
+          options.threads = threads;
+          r = overlap_fo(system, ranges, transmitted, options);
+        }
+        return to_dict(r);
+      },
+      py::arg("system"), py::arg("ranges"), py::arg("values"), py::arg("spacing"), py::arg("wavelength"),
       py::arg("max_spectrum_grid"), py::arg("threads"));
 
   m.def(

@@ -251,8 +251,9 @@ def test_direct_per_emitter_propagation(z):
 
 
 def test_invalid_input():
-    with pytest.raises(ValueError, match="beam.divergence"):
-        lo.overlap(lo.paper_table1(divergence=2e-4), [500.0], method="fo")
+    # Below the diffraction limit (M^2 < 1) no beam exists.
+    with pytest.raises(ValueError, match="beam.divergence.*M\\^2 >= 1"):
+        lo.overlap(lo.paper_table1(divergence=0.9 * LAM / (np.pi * W0)), [500.0], method="fo")
     with pytest.raises(ValueError, match="beam.width_law"):
         lo.overlap(lo.paper_table1(width_law="linear"), [500.0], method="fo")
     with pytest.raises(ValueError, match=r"ranges\[0\].*'rt'"):

@@ -3,31 +3,17 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
+#include "lidar_overlap/grid_choice.hpp"
 #include "lidar_overlap/quadrature.hpp"
 
 namespace lidar_overlap {
-
-namespace {
-
-void require_coherent_tem00(const GaussianBeam& beam) {
-  const double diffraction = beam.wavelength / (kPi * beam.waist_radius);
-  if (beam.divergence && std::abs(*beam.divergence / diffraction - 1.0) > 1e-9)
-    checks::fail("beam.divergence", *beam.divergence,
-                 "None or lambda / (pi w0) = " + std::to_string(diffraction) +
-                     " rad for Fourier optics, which propagates the coherent TEM00 field; a beam with M^2 > 1 "
-                     "needs method 'rt'");
-  if (beam.width_law != WidthLaw::gaussian)
-    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
-                                "(the linear law is the paper's RT marginal-ray model)");
-}
-
-}  // namespace
 
 FoReceiver::FoReceiver(const LidarSystem& system, double z) {
   system.validate();
@@ -141,37 +127,36 @@ double overlap_at(const LidarSystem& system, const FoReceiver& rx, const Field& 
 
 }  // namespace
 
-FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
-  system.validate();
-  require_coherent_tem00(system.beam);
-  if (options.beam_grid < 16 || options.beam_grid % 2)
-    checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
-  checks::positive("beam_window", options.beam_window);
+namespace {
+
+// How the beam reaches the ranges: its samples per side, its grid spacing at each range, a bound on its
+// radius there (all but 1e-7 of the power inside), and the field itself (made inside the parallel loop).
+struct BeamAtRanges {
+  std::size_t n = 0;
+  std::vector<double> spacing, radius_bound;
+  std::function<Propagated(std::size_t)> at;
+};
+
+FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
+                              const BeamAtRanges& beam_at, const FoOptions& options) {
   if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
-
-  const GaussianBeam& beam = system.beam;
-  const std::size_t nb = options.beam_grid, n_ranges = ranges.size();
-  const Field transmitted =
-      Field::gaussian(beam.wavelength, beam.waist_radius, nb, options.beam_window * beam.waist_radius / nb);
-
-  // Everything that can fail is settled before the parallel loop: ranges, receivers, grid sizes.
+  const std::size_t n_ranges = ranges.size();
+  // Everything that can fail is settled before the parallel loop: receivers and grid sizes.
   std::vector<FoReceiver> receivers;
-  std::vector<std::shared_ptr<const PropagationPlan>> plans;
   FoOverlap out;
   for (std::size_t i = 0; i < n_ranges; ++i) {
     const double z = ranges[i];
-    system.validate_range(z, "ranges[" + std::to_string(i) + "]");
     receivers.emplace_back(system, z);
     const FoReceiver& rx = receivers.back();
-    plans.push_back(PropagationPlan::cached(nb, transmitted.spacing, beam.wavelength, z,
-                                            PropagationMethod::automatic, 0.0));
     // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
-    // must exceed the reach of the point image plus that of the beam image and the detector.
-    const double to_image = rx.detector_distance() / z, dx = plans.back()->output_spacing();
-    const double reach = rx.blur_radius() + 20.0 / rx.cutoff() + norm(system.detector.offset + to_image * beam.center(z)) +
-                         system.detector.radius + 6.0 * beam.radius(z) * to_image;
+    // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
+    // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
+    const double to_image = rx.detector_distance() / z, dx = beam_at.spacing[i];
+    const double reach = rx.blur_radius() + 20.0 / rx.cutoff() +
+                         norm(system.detector.offset + to_image * system.beam.center(z)) + system.detector.radius +
+                         2.0 * beam_at.radius_bound[i] * to_image;
     const std::size_t np = next_power_of_two(
-        std::max<std::size_t>(nb, static_cast<std::size_t>(std::ceil(1.1 * reach / (dx * to_image)))));
+        std::max<std::size_t>(beam_at.n, static_cast<std::size_t>(std::ceil(1.1 * reach / (dx * to_image)))));
     if (np > options.max_spectrum_grid)
       checks::fail("ranges[" + std::to_string(i) + "]", z,
                    "a range where the point image (radius " + std::to_string(rx.blur_radius()) +
@@ -187,11 +172,75 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   // Ranges in parallel; the work inside each runs on one thread (nested regions stay inactive).
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long i = 0; i < static_cast<long>(n_ranges); ++i) {
-    Propagated at_z = plans[i]->execute(transmitted);  // C1-C2, in the beam's own frame
+    Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
     out.overlap[i] = overlap_at(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;
   }
   return out;
+}
+
+void validate_ranges(const LidarSystem& system, const std::vector<double>& ranges) {
+  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+}
+
+}  // namespace
+
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
+  system.validate();
+  const GaussianBeam& beam = system.beam;
+  if (beam.width_law != WidthLaw::gaussian)
+    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
+                                "(the linear law is the paper's RT marginal-ray model)");
+  if (options.beam_grid < 16 || options.beam_grid % 2)
+    checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
+  checks::positive("beam_window", options.beam_window);
+  validate_ranges(system, ranges);
+  const std::size_t nb = options.beam_grid;
+  const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
+  if (!beam.divergence || std::abs(*beam.divergence / theta_d - 1.0) <= 1e-9)
+    return overlap_fo(system, ranges,
+                      Field::gaussian(beam.wavelength, beam.waist_radius, nb, options.beam_window * beam.waist_radius / nb),
+                      options);
+  if (*beam.divergence < theta_d)
+    checks::fail("beam.divergence", *beam.divergence,
+                 "at least the diffraction limit lambda / (pi w0) = " + std::to_string(theta_d) + " rad (M^2 >= 1)");
+  // M^2 > 1: a Gaussian Schell-model beam. Its coherent modes add incoherently to a Gaussian irradiance of
+  // radius w(z)^2 = w0^2 + (theta z)^2 at every range, and the overlap needs only the irradiance.
+  BeamAtRanges b;
+  b.n = nb;
+  for (double z : ranges) {
+    const double w = beam.radius(z);
+    b.spacing.push_back(options.beam_window * w / nb);
+    b.radius_bound.push_back(std::sqrt(std::log(1e7) / 2.0) * w);
+  }
+  b.at = [&](std::size_t i) {
+    const double w = beam.radius(ranges[i]);
+    return Propagated{Field::gaussian(beam.wavelength, w, nb, options.beam_window * w / nb), {}};
+  };
+  return overlap_over_ranges(system, ranges, b, options);
+}
+
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const Field& transmitted,
+                     const FoOptions& options) {
+  system.validate();
+  transmitted.validate();
+  if (transmitted.wavelength != system.beam.wavelength)
+    checks::fail("transmitted.wavelength", transmitted.wavelength,
+                 "the system's beam wavelength " + std::to_string(system.beam.wavelength) + " m");
+  validate_ranges(system, ranges);
+  // Radii holding all but 1e-7 of the power, in space and angle: r0 + z theta bounds the beam at z.
+  const GridChoice extent = choose_grid(transmitted, 0.0, PropagationMethod::automatic);
+  BeamAtRanges b;
+  b.n = transmitted.n;
+  std::vector<std::shared_ptr<const PropagationPlan>> plans;
+  for (double z : ranges) {
+    plans.push_back(PropagationPlan::cached(b.n, transmitted.spacing, transmitted.wavelength, z,
+                                            PropagationMethod::automatic, 0.0));
+    b.spacing.push_back(plans.back()->output_spacing());
+    b.radius_bound.push_back(extent.input_radius + z * extent.angular_radius);
+  }
+  b.at = [&](std::size_t i) { return plans[i]->execute(transmitted); };
+  return overlap_over_ranges(system, ranges, b, options);
 }
 
 double emitter_coupling_fo(const LidarSystem& system, double z, Vec2 position) {

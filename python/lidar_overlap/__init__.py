@@ -1,7 +1,10 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
 from ._core import __version__
+from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
+from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
+from .flat_top import FlatTopBeam
 from .overlap import emitter_coupling, optimal_focus_range, overlap
 from .presets import paper_table1
 from .result import OverlapResult
@@ -9,8 +12,13 @@ from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 __all__ = [
     "__version__",
+    "annular_field",
+    "laguerre_gauss_field",
+    "super_gaussian_field",
     "Detector",
     "Field",
+    "FieldBeam",
+    "FlatTopBeam",
     "GaussianBeam",
     "LidarSystem",
     "OverlapResult",

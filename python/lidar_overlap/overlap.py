@@ -14,6 +14,7 @@ import numpy as np
 
 from . import _checks, _core
 from .result import OverlapResult
+from .field_beam import FieldBeam
 from .system import LidarSystem
 from .fields import EDGE_POWER_LIMIT, SamplingWarning
 from .validity import warn_if_rt_invalid
@@ -23,7 +24,8 @@ METHODS = ("rt", "fo")
 
 def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: str = "rt", *,
             tolerance: float = 1e-4, threads: int = 0, max_segments: int = 4000,
-            beam_grid: int = 256, beam_window: float = 10.0, max_spectrum_grid: int = 4096) -> OverlapResult:
+            beam_grid: int | None = None, beam_window: float | None = None,
+            max_spectrum_grid: int = 4096) -> OverlapResult:
     """Overlap function of ``system`` at each range.
 
     Parameters
@@ -31,15 +33,17 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     system : the lidar.
     ranges : m, strictly increasing 1-D array; each > 0 and beyond the obstruction distance.
     method : ``"rt"``, paraxial ray tracing (paper Appendix B) with exact circle geometry; ``"fo"``,
-        Fourier optics (Appendix C): the transmitted TEM00 field propagated to each range, imaged through
-        the receiver's pupil with diffraction (see ``docs/fo_overlap.md``).
+        Fourier optics (Appendix C): the transmitted field propagated to each range, imaged through the
+        receiver's pupil with diffraction (see ``docs/fo_overlap.md``). A :class:`FieldBeam` or
+        :class:`FlatTopBeam` needs ``"fo"``; a Gaussian beam with M² > 1 is taken in FO as a Gaussian
+        Schell-model beam (Gaussian irradiance of radius w(z) at every range).
     tolerance : RT only: absolute error allowed on G at each range, in (0, 1). The beam integral is adaptive
         (radial with Rice weights about each coupling term's centre of symmetry, two-dimensional where
         there is none) until its error estimate is below it.
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
     max_segments : RT only: cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
-    beam_grid, beam_window : FO only: samples per side of the transmitted field and its window in waist
-        radii (256 and 10: ±5 w0).
+    beam_grid, beam_window : FO with a Gaussian beam only: samples per side of the transmitted field and
+        its window in waist radii (default 256 and 10: ±5 w0). A FieldBeam brings its own grid.
     max_spectrum_grid : FO only: cap on the zero-padded beam spectrum, which grows with the defocus blur
         at short range; a range that needs more raises ValueError (use "rt" there).
 
@@ -54,10 +58,23 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     tolerance = _checks.unit_interval("tolerance", tolerance)
     threads = _checks.count("threads", threads, 0)
     max_segments = _checks.count("max_segments", max_segments, 1)
+    max_spectrum_grid = _checks.count("max_spectrum_grid", max_spectrum_grid, 16)
+    field_beam = isinstance(system.beam, FieldBeam)
+    if field_beam and method == "rt":
+        raise ValueError(f"method = 'rt' is invalid for a {type(system.beam).__name__}: ray tracing models Gaussian "
+                         "beams only; use method='fo'")
+    if field_beam and (beam_grid is not None or beam_window is not None):
+        raise ValueError("beam_grid and beam_window apply to Gaussian beams only: a FieldBeam is propagated on its "
+                         "own grid")
+    if method == "fo" and field_beam:
+        f = system.beam.field
+        raw = _core.overlap_fo_field(system._native, z, f.values, f.spacing, f.wavelength, max_spectrum_grid, threads)
+        return _fo_result(system, z, raw, "enlarge the field's grid (zero-pad it)")
     if method == "fo":
-        return _overlap_fo(system, z, _checks.count("beam_grid", beam_grid, 16),
-                           _checks.real("beam_window", beam_window),
-                           _checks.count("max_spectrum_grid", max_spectrum_grid, 16), threads)
+        raw = _core.overlap_fo(system._native, z, _checks.count("beam_grid", 256 if beam_grid is None else beam_grid, 16),
+                               _checks.real("beam_window", 10.0 if beam_window is None else beam_window),
+                               max_spectrum_grid, threads)
+        return _fo_result(system, z, raw, "enlarge beam_window or beam_grid")
     raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)  # validates the ranges
     warn_if_rt_invalid(system, z)
     converged = np.asarray(raw["converged"], dtype=bool)
@@ -70,14 +87,12 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
                          error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
 
 
-def _overlap_fo(system: LidarSystem, z: np.ndarray, beam_grid: int, beam_window: float,
-                max_spectrum_grid: int, threads: int) -> OverlapResult:
-    raw = _core.overlap_fo(system._native, z, beam_grid, beam_window, max_spectrum_grid, threads)
+def _fo_result(system: LidarSystem, z: np.ndarray, raw: dict, fix: str) -> OverlapResult:
     for zi, report in zip(z, raw["beam_reports"]):
         worst = max(report["output_edge_power"], report["input_edge_power"], report["band_limit_loss"])
         if worst > EDGE_POWER_LIMIT:
             warnings.warn(f"overlap(fo): the transmitted field at {zi:.4g} m loses {worst:.2g} of its power to the "
-                          "window edge or the band limit; enlarge beam_window or beam_grid", SamplingWarning,
+                          f"window edge or the band limit; {fix}", SamplingWarning,
                           stacklevel=3)
     return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
                          error_estimate=np.full(z.size, np.nan), system=system, tolerance=float("nan"))

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from typing import Literal, Optional, Tuple
 
 from . import _checks, _core
+from .field_beam import FieldBeam
 
 Pair = Tuple[float, float]
 
@@ -135,17 +136,19 @@ class Detector:
 @dataclass(frozen=True)
 class LidarSystem:
     """A lidar: transmitted beam, receiving telescope and detector, validated together
-    (obstruction inside the aperture, detector plane behind the lens)."""
+    (obstruction inside the aperture, detector plane behind the lens). The beam is a
+    :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier optics)."""
 
-    beam: GaussianBeam = field(default_factory=GaussianBeam)
+    beam: GaussianBeam | FieldBeam = field(default_factory=GaussianBeam)
     telescope: Telescope = field(default_factory=Telescope)
     detector: Detector = field(default_factory=Detector)
     _native: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        for name, kind in (("beam", GaussianBeam), ("telescope", Telescope), ("detector", Detector)):
-            if not isinstance(getattr(self, name), kind):
-                raise ValueError(f"{name} = {getattr(self, name)!r} is invalid: expected a {kind.__name__}")
+        for name, kinds in (("beam", (GaussianBeam, FieldBeam)), ("telescope", (Telescope,)), ("detector", (Detector,))):
+            if not isinstance(getattr(self, name), kinds):
+                expected = " or ".join(k.__name__ for k in kinds)
+                raise ValueError(f"{name} = {getattr(self, name)!r} is invalid: expected a {expected}")
         object.__setattr__(self, "_native", _core.LidarSystem(self.beam._native, self.telescope._native,
                                                               self.detector._native))
 

@@ -13,6 +13,7 @@
 #include "lidar_overlap/overlap_rt.hpp"
 #include "lidar_overlap/propagate.hpp"
 #include "lidar_overlap/grid_choice.hpp"
+#include "lidar_overlap/flat_top.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/receiver.hpp"
 #include "lidar_overlap/scaled_dft.hpp"

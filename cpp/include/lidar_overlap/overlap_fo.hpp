@@ -19,7 +19,7 @@
 namespace lidar_overlap {
 
 struct FoOptions {
-  std::size_t beam_grid = 256;          // samples per side of the transmitted field
+  std::size_t beam_grid = 256;          // samples per side of the TEM00 field (Gaussian beams only)
   double beam_window = 10.0;            // its window, in waist radii (10: +-5 w0)
   std::size_t max_spectrum_grid = 4096; // cap on the zero-padded beam spectrum (near-range defocus)
   int threads = 0;                      // OpenMP threads across ranges; 0: all cores
@@ -50,9 +50,17 @@ class FoReceiver {
   double wavelength_, d_, r_d_, area_;
 };
 
-// Throws std::invalid_argument when the beam is not a coherent TEM00 (set divergence other than
-// lambda / (pi w0), or the linear width law), or when a range needs more than max_spectrum_grid.
+// A diffraction-limited Gaussian beam is sampled (beam_grid, beam_window) and propagated to each range.
+// A divergence above lambda / (pi w0) (M^2 > 1) is taken as a Gaussian Schell-model beam, whose
+// irradiance is Gaussian with w(z)^2 = w0^2 + (theta z)^2 at every range: that irradiance is sampled
+// directly (the receiver keeps full diffraction). Throws std::invalid_argument for the linear width
+// law, a divergence below the diffraction limit, or a range that needs more than max_spectrum_grid.
 FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options = {});
+
+// The same for any transmitted field at z = 0 (flat-top, annular, vortex, ...), centred on the beam axis;
+// system.beam gives its pointing (offset, tilt) only. The field must have the system's wavelength.
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const Field& transmitted,
+                     const FoOptions& options = {});
 
 double emitter_coupling_fo(const LidarSystem& system, double z, Vec2 position);
 
