@@ -27,7 +27,9 @@ demo: setup
 	mkdir -p $(OUT)
 	cd $(OUT) && ../$(PY) ../examples/fig4_obstruction.py
 	cd $(OUT) && ../$(PY) ../examples/fig5_defocus.py
+	cd $(OUT) && ../$(PY) ../examples/fig6_flat_top.py
 	cd $(OUT) && ../$(PY) ../examples/fig7_gaussian_rt_fo.py
+	cd $(OUT) && ../$(PY) ../examples/fig7_beam_shapes.py
 	cd $(OUT) && ../$(PY) ../examples/fig8_fo_accuracy.py
 	cd $(OUT) && ../$(PY) ../examples/rt_vs_fo_diffraction.py
 	@echo "demo: plots written to $(OUT)/"

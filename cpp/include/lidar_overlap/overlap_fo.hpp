@@ -43,6 +43,9 @@ class FoReceiver {
   double detector_distance() const { return d_; }
   double cutoff() const { return 2.0 * pupil_.outer / (wavelength_ * d_); }  // 1/m, OTF = 0 beyond
   double blur_radius() const;  // m, geometric radius of the point image on the detector plane
+  // Period (m, detector plane) of a lattice of point images whose diffraction tails put at most
+  // `max_error` on the detector in total: the Parseval sum's aliases form such a lattice.
+  double tail_period(double max_error) const;
   double aperture_area() const { return area_; }
 
  private:
