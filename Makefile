@@ -20,7 +20,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot]"
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io]"
 	touch $@
 
 demo: setup

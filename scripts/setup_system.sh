@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the build needs from Debian's packages when it is missing: a C++ compiler,
-# pkg-config, FFTW3 (double precision, with its threads library) and Python's venv module.
+# pkg-config, FFTW3 (double precision, with its threads library), Python's venv module, and an
+# off-screen OpenGL (Mesa's EGL, or OSMesa) for the 3D scenes rendered without a display.
 # Without root or apt-get it prints the exact command to run instead and fails.
 set -euo pipefail
 PYTHON=${PYTHON:-python3}
@@ -8,8 +9,11 @@ PYTHON=${PYTHON:-python3}
 missing=()
 command -v g++ >/dev/null 2>&1 || missing+=(g++)
 command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
-if ! pkg-config --exists fftw3 2>/dev/null || ! ls /usr/lib/*/libfftw3_threads.so /usr/lib/libfftw3_threads.so \
-      /usr/local/lib/libfftw3_threads.so >/dev/null 2>&1; then
+fftw_threads=no
+for f in /usr/lib/*/libfftw3_threads.so /usr/lib/libfftw3_threads.so /usr/local/lib/libfftw3_threads.so; do
+  [ -e "$f" ] && fftw_threads=yes
+done
+if ! pkg-config --exists fftw3 2>/dev/null || [ "$fftw_threads" = no ]; then
   missing+=(libfftw3-dev)
 fi
 if ! "$PYTHON" -c "import venv, ensurepip" >/dev/null 2>&1; then
@@ -18,6 +22,12 @@ if ! "$PYTHON" -c "import venv, ensurepip" >/dev/null 2>&1; then
 fi
 if ! "$PYTHON" -c "import sysconfig, os, sys; sys.exit(not os.path.exists(os.path.join(sysconfig.get_paths()['include'], 'Python.h')))"; then
   missing+=(python3-dev)
+fi
+
+# VTK opens libGL/libEGL/libOSMesa at run time: off-screen it needs Mesa's EGL or OSMesa.
+libs=$(ldconfig -p 2>/dev/null || true)
+if ! { grep -q "libEGL_mesa.so.0" <<<"$libs" && grep -q "libEGL.so.1" <<<"$libs"; } && ! grep -q "libOSMesa.so" <<<"$libs"; then
+  missing+=(libosmesa6)
 fi
 
 [ ${#missing[@]} -eq 0 ] && exit 0
