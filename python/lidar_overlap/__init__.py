@@ -8,6 +8,7 @@ from .flat_top import FlatTopBeam
 from .overlap import emitter_coupling, optimal_focus_range, overlap
 from .presets import paper_table1
 from .result import OverlapResult
+from .scene import save_scene, scene
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 __all__ = [
@@ -29,4 +30,6 @@ __all__ = [
     "overlap",
     "paper_table1",
     "propagate",
+    "save_scene",
+    "scene",
 ]

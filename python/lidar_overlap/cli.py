@@ -1,0 +1,198 @@
+"""Command line: ``lidar-overlap run SCENARIO.toml`` and ``lidar-overlap demo`` (see :mod:`.scenario`).
+
+Exit codes: 0 success, 2 bad argument or scenario (one-line message on stderr), 1 a file cannot be written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import inspect
+import sys
+import time
+import warnings
+from pathlib import Path
+from typing import List, Optional
+
+from ._core import __version__
+from .scenario import METHODS, Scenario, ScenarioError, load_scenario, table1_scenarios
+
+PROG = "lidar-overlap"
+
+
+class _UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line instead of usage + message
+        raise _UsageError(f"{message} (see {self.prog} --help)")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file.")
+    parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo}")
+    run = sub.add_parser("run", help="compute one scenario (TOML) and write its files",
+                         description="Compute a scenario and write <name>.csv, <name>.nc, <name>_overlap.png and "
+                                     "<name>_scene.png, as its [output] section asks.")
+    run.add_argument("scenario", help="scenario file (TOML), e.g. examples/scenarios/table1.toml")
+    demo = sub.add_parser("demo", help="the paper's Table 1 lidar, with r_obs = 20 mm and with 5 mm defocus",
+                          description="Compute the paper's Table 1 scenario and its obstruction (20 mm) and defocus "
+                                      "(5 mm) variants, built in, and write their files.")
+    for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/")):
+        p.add_argument("--out", type=Path, help=f"output directory (default: {default})")
+        p.add_argument("--method", choices=METHODS,
+                       help="override [run] method; auto: fo for a non-Gaussian beam, else rt")
+        p.add_argument("--quiet", action="store_true", help="no progress bar")
+    return parser
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    """Run the command line; returns the exit code."""
+    try:
+        args = _parser().parse_args(argv)
+    except SystemExit as exc:  # --help, --version
+        return exc.code if isinstance(exc.code, int) else 0
+    except _UsageError as exc:
+        return _fail(str(exc), 2)
+    try:
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            if args.command == "run":
+                scenario = load_scenario(args.scenario)
+                _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
+            else:
+                out = args.out or Path("lidar-overlap-demo")
+                results = [_run_one(s, out, args.method, args.quiet) for s in table1_scenarios()]
+                combined = _note(_plot_file(results, out / "table1_variants_overlap.png", "Table 1 and its variants"))
+                print(f"demo: {len(results)} scenarios written to {out}"
+                      + (f"; compared in {combined}" if combined else ""))
+    except ScenarioError as exc:
+        return _fail(str(exc), 2)
+    except OSError as exc:
+        return _fail(f"cannot write {exc.filename or 'output'}: {exc.strerror or exc}", 1)
+    except KeyboardInterrupt:
+        return _fail("interrupted", 130)
+    return 0
+
+
+def _run_one(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
+    method = scenario.resolved_method(method)
+    n = scenario.ranges.size
+    slow = n > 50 or scenario.model(method) == "fo"
+    show, close = _progress(scenario.name, n) if slow and not quiet else (None, None)
+    start = time.perf_counter()
+    try:
+        result = scenario.compute(method, callback=show)
+    finally:
+        if close is not None:
+            close()
+    elapsed = time.perf_counter() - start
+    out.mkdir(parents=True, exist_ok=True)
+    stem, attrs = out / scenario.name, {"scenario": scenario.name, "description": scenario.description}
+    files, want = [], scenario.outputs
+    if want.get("csv"):
+        result.to_csv(f"{stem}.csv", attrs)
+        files.append(f"{stem}.csv")
+    if want.get("netcdf"):
+        try:
+            result.to_netcdf(f"{stem}.nc", {"title": f"Lidar overlap function G(z): {scenario.name}", **attrs})
+            files.append(f"{stem}.nc")
+        except ImportError as exc:
+            _note((None, f"{stem}.nc not written: {exc}"))
+    if want.get("plot"):
+        files.append(_note(_plot_file([(scenario, result)], Path(f"{stem}_overlap.png"), scenario.description)))
+    if want.get("scene"):
+        files.append(_note(_scene_file(scenario, result, Path(f"{stem}_scene.png"))))
+    _summary(scenario, result, elapsed, [f for f in files if f])
+    return scenario, result
+
+
+def _summary(scenario: Scenario, result, elapsed: float, files: List[str]) -> None:
+    def at(z: float, rule: str) -> str:
+        return f"{z:.4g} m ({rule})" if z == z else f"none ({rule} nowhere on the grid)"
+
+    tolerance = "" if result.tolerance != result.tolerance else f" (tolerance {result.tolerance:g})"
+    z = result.ranges
+    print(f"{scenario.name}: {scenario.description}" if scenario.description else scenario.name)
+    print(f"  method        {result.method}{tolerance}")
+    print(f"  ranges        {z.size} from {z[0]:.4g} m to {z[-1]:.4g} m; max G = {result.overlap.max():.4g}")
+    print(f"  full overlap  {at(result.full_overlap_range(), 'G >= 0.99 max G')}")
+    print(f"  first signal  {at(result.first_signal_range(), 'G >= 1e-3')}")
+    print(f"  time          {elapsed:.3g} s")
+    print(f"  files         {', '.join(files) if files else 'none'}")
+
+
+def _plot_file(runs, path: Path, title: str):
+    """Plot G(z) of each (scenario, result) with its full-overlap and first-signal ranges; returns
+    (path, None) or (None, note)."""
+    try:
+        from matplotlib.figure import Figure
+    except ImportError:
+        return None, f"{path} not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'"
+    fig = Figure(figsize=(7.0, 4.4), constrained_layout=True)
+    ax = fig.add_subplot()
+    for scenario, result in runs:
+        label = f"{scenario.name} ({result.method})" if len(runs) > 1 else result.method
+        result.plot(ax=ax, label=label)
+        color = ax.lines[-1].get_color()
+        for z, style, what in ((result.full_overlap_range(), "--", "full overlap"),
+                               (result.first_signal_range(), ":", "first signal")):
+            if z == z:
+                ax.plot([], [], style, color=color, lw=0.8, label=f"{what}: {z:.4g} m")
+    ax.legend(fontsize=8, loc="lower right")
+    ax.set_title(title, fontsize=9)
+    fig.savefig(path, dpi=120)
+    return str(path), None
+
+
+def _scene_file(scenario: Scenario, result, path: Path):
+    """3-D scene through ``lidar_overlap.scene.save_scene`` when it and pyvista are installed."""
+    try:
+        save = importlib.import_module("lidar_overlap.scene").save_scene
+        importlib.import_module("pyvista")
+    except (ImportError, AttributeError):
+        return None, (f"{path} not written: the 3-D scene needs lidar_overlap.scene and pyvista: "
+                      "pip install 'lidar-overlap[viz]'")
+    params = inspect.signature(save).parameters
+    any_keyword = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values())
+    extra = {"result": result} if "result" in params or any_keyword else (
+        {"ranges": result.ranges} if "ranges" in params else {})
+    try:
+        save(scenario.system, str(path), **extra)
+    except Exception as exc:  # an optional picture must not lose the computed results
+        return None, f"{path} not written: {type(exc).__name__}: {exc}"
+    return (str(path), None) if path.exists() else (None, f"{path} not written by save_scene")
+
+
+def _progress(label: str, total: int):
+    """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its closer."""
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        def show(done):
+            print(f"\r{label}: {done}/{total} ranges", end="", file=sys.stderr, flush=True)
+        return show, lambda: print(file=sys.stderr)
+    bar = tqdm(total=total, desc=label, unit="range", file=sys.stderr, leave=False)
+    return lambda done: bar.update(done - bar.n), bar.close
+
+
+def _note(written_and_note):
+    path, note = written_and_note
+    if note:
+        print(f"note: {note}", file=sys.stderr)
+    return path
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def _fail(message: str, code: int) -> int:
+    print(f"{PROG}: error: {message}", file=sys.stderr)
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

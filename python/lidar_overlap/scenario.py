@@ -1,0 +1,296 @@
+"""Scenario files: a lidar system, the ranges and the outputs of one computation, in TOML (SI units).
+
+A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``, ``[telescope]``,
+``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
+``examples/scenarios/table1.toml``. Every error names the file, the section and the key, and says what is
+valid. ``method = "auto"`` in ``[run]`` means Fourier optics (``"fo"``) for a beam that is not Gaussian
+(``flat_top``), ray tracing (``"rt"``) otherwise.
+"""
+
+from __future__ import annotations
+
+import copy
+import importlib
+import math
+import os
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Dict, Optional
+
+import numpy as np
+
+from .field_beam import FieldBeam
+from .flat_top import FlatTopBeam
+from .result import OverlapResult
+from .system import Detector, GaussianBeam, LidarSystem, Telescope
+
+_overlap = importlib.import_module(".overlap", __package__)  # the module (the package exports the function)
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+METHODS = ("rt", "fo", "auto")
+OUTPUTS = ("csv", "netcdf", "plot", "scene")
+_NUMBER, _INT, _STR, _BOOL, _PAIR = "a real number", "an integer", "a string", "true or false", "pair"
+_SCHEMA: Dict[str, Dict[str, str]] = {
+    "gaussian": {"wavelength": _NUMBER, "waist_radius": _NUMBER, "divergence": _NUMBER, "offset": _PAIR,
+                 "tilt": _PAIR, "width_law": _STR, "type": _STR},
+    "flat_top": {"wavelength": _NUMBER, "waist_radius": _NUMBER, "angular_diameter": _NUMBER, "offset": _PAIR,
+                 "tilt": _PAIR, "grid": _INT, "samples_per_waist": _NUMBER, "edge_width": _NUMBER,
+                 "max_iterations": _INT, "tolerance": _NUMBER, "max_error": _NUMBER, "power": _NUMBER,
+                 "type": _STR},
+    "telescope": {"diameter": _NUMBER, "focal_length": _NUMBER, "obstruction_radius": _NUMBER,
+                  "obstruction_distance": _NUMBER},
+    "detector": {"fov": _NUMBER, "radius": _NUMBER, "defocus": _NUMBER, "offset": _PAIR,
+                 "numerical_aperture": _NUMBER},
+    "ranges": {"start": _NUMBER, "stop": _NUMBER, "count": _INT, "spacing": _STR, "values": "values"},
+    "run": {"method": _STR, "tolerance": _NUMBER, "threads": _INT, "max_segments": _INT, "beam_grid": _INT,
+            "beam_window": _NUMBER, "max_spectrum_grid": _INT},
+    "output": {name: _BOOL for name in OUTPUTS},
+}
+_TOP = {"name": _STR, "description": _STR, "beam": "table", "telescope": "table", "detector": "table",
+        "ranges": "table", "run": "table", "output": "table"}
+_REQUIRED = {"gaussian": ("wavelength", "waist_radius"), "flat_top": ("wavelength", "waist_radius", "angular_diameter"),
+             "telescope": ("diameter", "focal_length")}
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot be used; the message names the file, section and key."""
+
+
+@dataclass(eq=False)
+class Scenario:
+    """One computation: ``lo.overlap(system, ranges, method, **options)`` and the files to write.
+
+    ``method`` is ``"rt"``, ``"fo"`` or ``"auto"``; ``options`` the other ``[run]`` keys (keyword arguments
+    of :func:`lidar_overlap.overlap`); ``outputs`` maps csv/netcdf/plot/scene to booleans."""
+
+    name: str
+    description: str
+    system: LidarSystem
+    ranges: np.ndarray
+    method: str = "auto"
+    options: Dict[str, Any] = field(default_factory=dict)
+    outputs: Dict[str, bool] = field(default_factory=lambda: dict.fromkeys(OUTPUTS, True))
+    source: str = "<scenario>"
+
+    def resolved_method(self, method: Optional[str] = None) -> str:
+        """``method`` (default: the scenario's) for ``lo.overlap``; ``"auto"`` becomes ``"fo"`` for a
+        non-Gaussian beam and ``"rt"`` otherwise (unless the library knows ``"auto"``)."""
+        method = _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
+        if method == "auto" and "auto" not in getattr(_overlap, "METHODS", ()):
+            return self.model(method)
+        return method
+
+    def model(self, method: Optional[str] = None) -> str:
+        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) stands for."""
+        method = method or self.method
+        return method if method != "auto" else ("fo" if isinstance(self.system.beam, FieldBeam) else "rt")
+
+    def compute(self, method: Optional[str] = None, chunk: Optional[int] = None,
+                callback: Optional[Callable[[int], None]] = None) -> OverlapResult:
+        """``lo.overlap`` over the ranges in chunks (ranges are independent: the same result as one call),
+        calling ``callback(number_done)`` after each; library errors become :class:`ScenarioError`."""
+        method = self.resolved_method(method)
+        z = self.ranges
+        if chunk is None:
+            threads = self.options.get("threads") or os.cpu_count() or 1
+            fo = self.model(method) == "fo"
+            chunk = max(threads, math.ceil(z.size / 100)) if fo else max(50, math.ceil(z.size / 20))
+        parts = []
+        for start in range(0, z.size, chunk):
+            try:
+                parts.append(_overlap.overlap(self.system, z[start:start + chunk], method=method, **self.options))
+            except ValueError as exc:
+                message = re.sub(r"^ranges\[(\d+)\]", lambda m: f"ranges[{int(m.group(1)) + start}]", str(exc))
+                section = "ranges" if message.startswith("ranges") else "run"
+                raise ScenarioError(_prefixed(self.source, section, message)) from None
+            if callback is not None:
+                callback(min(start + chunk, z.size))
+        first = parts[0]
+        return OverlapResult(ranges=z.copy(), overlap=np.concatenate([p.overlap for p in parts]), method=first.method,
+                             error_estimate=np.concatenate([p.error_estimate for p in parts]), system=self.system,
+                             tolerance=first.tolerance)
+
+
+def load_scenario(path) -> Scenario:
+    """Read a scenario TOML file; raises :class:`ScenarioError` (a ValueError) naming the bad key."""
+    path = Path(path)
+    source = path.name
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as exc:
+        raise ScenarioError(f"{path}: cannot read the scenario: {exc.strerror or exc}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{source}: invalid TOML: {exc}") from None
+    data.setdefault("name", path.stem)
+    return scenario_from_dict(data, source)
+
+
+def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scenario:
+    """Build a :class:`Scenario` from the parsed TOML tables (same checks as :func:`load_scenario`)."""
+    _keys(source, None, data, _TOP)
+    for section in ("beam", "telescope", "detector", "ranges"):
+        if section not in data:
+            raise ScenarioError(f"{source}: missing section [{section}] (required: [beam], [telescope], "
+                                "[detector], [ranges]; optional: [run], [output])")
+    _require(f"{source}:", data, ("name",))
+    name = data["name"]
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.+-]*", name):
+        raise ScenarioError(f"{source}: name = {name!r} is invalid: expected letters, digits and _ . + - "
+                            "(it names the output files)")
+    telescope = _telescope(source, data["telescope"])
+    system = _build(source, None, LidarSystem, beam=_beam(source, data["beam"]), telescope=telescope,
+                    detector=_detector(source, data["detector"], telescope))
+    run = dict(_keys(source, "run", data.get("run", {}), _SCHEMA["run"]))
+    method = _choice(f"{source}: [run]", "method", run.pop("method", "auto"), METHODS)
+    outputs = dict.fromkeys(OUTPUTS, True)
+    outputs.update(_keys(source, "output", data.get("output", {}), _SCHEMA["output"]))
+    scenario = Scenario(name=name, description=data.get("description", ""), system=system,
+                        ranges=_ranges(source, data["ranges"]), method=method, options=run, outputs=outputs,
+                        source=source)
+    if isinstance(system.beam, FieldBeam) and method == "rt":
+        raise ScenarioError(f"{source}: [run] method = 'rt' is invalid for a {data['beam'].get('type')} beam: "
+                            "ray tracing models Gaussian beams only; expected 'fo' or 'auto'")
+    return scenario
+
+
+# ----------------------------------------------------------------------------------------------- sections
+def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
+    kind = table.get("type", "gaussian") if isinstance(table, dict) else "gaussian"
+    _choice(f"{source}: [beam]", "type", kind, ("gaussian", "flat_top"))
+    values = dict(_keys(source, "beam", table, _SCHEMA[kind], _REQUIRED[kind]))
+    values.pop("type", None)
+    for key in ("offset", "tilt"):
+        if key in values:
+            values[key] = tuple(values[key])
+    if kind == "gaussian":
+        return _build(source, "beam", GaussianBeam, **values)
+    args = [values.pop(key) for key in _REQUIRED["flat_top"]]
+    return _build(source, "beam", FlatTopBeam, *args, **values)
+
+
+def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
+    return _build(source, "telescope", Telescope,
+                  **_keys(source, "telescope", table, _SCHEMA["telescope"], _REQUIRED["telescope"]))
+
+
+def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detector:
+    values = dict(_keys(source, "detector", table, _SCHEMA["detector"]))
+    if ("fov" in values) == ("radius" in values):
+        which = "both" if "fov" in values else "neither"
+        raise ScenarioError(f"{source}: [detector] fov and radius: {which} given: expected exactly one "
+                            "(fov: full field of view in rad, radius: detector radius in m)")
+    if "offset" in values:
+        values["offset"] = tuple(values["offset"])
+    if "fov" in values:
+        return _build(source, "detector", Detector.from_fov, values.pop("fov"), telescope.focal_length, **values)
+    return _build(source, "detector", Detector, **values)
+
+
+def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
+    t, where = _keys(source, "ranges", table, _SCHEMA["ranges"]), f"{source}: [ranges]"
+    if "values" in t:
+        z = np.asarray(t["values"], dtype=float)
+        if len(t) > 1 or z.size == 0 or not np.all(np.isfinite(z) & (z > 0)) or np.any(np.diff(z) <= 0):
+            raise ScenarioError(f"{where} values = {t['values']!r} is invalid: expected a non-empty, strictly "
+                                "increasing list of finite ranges > 0 (m), and no start, stop, count")
+        return z
+    _require(where, t, ("start", "stop", "count"), " (or values = [...])")
+    start, stop, count = t["start"], t["stop"], t["count"]
+    for key, ok, rule in (("start", 0 < start < math.inf, "a finite value > 0"),
+                          ("stop", start < stop < math.inf, f"a finite value > start = {start!r}"),
+                          ("count", count >= 2, "an integer >= 2")):
+        if not ok:
+            raise ScenarioError(f"{where} {key} = {t[key]!r} is invalid: expected {rule}")
+    spacing = _choice(where, "spacing", t.get("spacing", "linear"), ("linear", "log"))
+    return (np.geomspace if spacing == "log" else np.linspace)(float(start), float(stop), count)
+
+
+# ------------------------------------------------------------------------------------------------ helpers
+def _keys(source: str, section: Optional[str], table: Any, schema: Dict[str, str], required=()) -> Dict[str, Any]:
+    """Check a table against ``schema`` (key -> expected kind): unknown keys, missing keys and types."""
+    where = f"{source}: [{section}]" if section else f"{source}:"
+    if not isinstance(table, dict):
+        raise ScenarioError(f"{where} is {table!r}: expected a table of keys ({', '.join(schema)})")
+    for key, value in table.items():
+        if key not in schema:
+            raise ScenarioError(f"{where} unknown key {key!r} (valid: {', '.join(schema)})")
+        kind = schema[key]
+        if kind == _PAIR:
+            ok = isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value)
+            kind = "an (x, y) pair of two numbers, e.g. [0.0, 0.0]"
+        elif kind == "values":
+            ok = isinstance(value, list) and all(_is_number(v) for v in value)
+            kind = "a list of numbers (m)"
+        elif kind == "table":
+            ok = isinstance(value, dict)
+            kind = f"a table [{key}]"
+        else:
+            ok = {_NUMBER: _is_number, _INT: lambda v: isinstance(v, int) and not isinstance(v, bool),
+                  _STR: lambda v: isinstance(v, str), _BOOL: lambda v: isinstance(v, bool)}[kind](value)
+        if not ok:
+            raise ScenarioError(f"{where} {key} = {value!r} is invalid: expected {kind}")
+    _require(where, table, required)
+    return table
+
+
+def _require(where: str, table: Dict[str, Any], required, alternative: str = "") -> None:
+    for key in required:
+        if key not in table:
+            raise ScenarioError(f"{where} missing key {key!r} (required: {', '.join(required)}{alternative})")
+
+
+def _choice(where: str, key: str, value: Any, valid) -> Any:
+    if value not in valid:
+        raise ScenarioError(f"{where} {key} = {value!r} is invalid: expected one of {', '.join(map(repr, valid))}")
+    return value
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _prefixed(source: str, section: Optional[str], message: str) -> str:
+    match = re.match(r"(beam|telescope|detector)\.(\w+)", message)
+    if match:
+        return f"{source}: [{match.group(1)}] {match.group(2)}{message[match.end():]}"
+    return f"{source}: [{section}] {message}" if section else f"{source}: {message}"
+
+
+def _build(source: str, section: Optional[str], factory, *args, **kwargs):
+    try:
+        return factory(*args, **kwargs)
+    except ValueError as exc:
+        raise ScenarioError(_prefixed(source, section, str(exc))) from None
+
+
+# ------------------------------------------------------------------------------------------------- built-in
+TABLE1: Dict[str, Any] = {
+    "name": "table1",
+    "description": "Mono-axial lidar of the paper's Table 1: f = 1 m, D = 150 mm, FFOV 0.9 mrad, w0 = 1 mm, 355 nm",
+    "beam": {"type": "gaussian", "wavelength": 355e-9, "waist_radius": 1e-3, "offset": [0.0, 0.0],
+             "tilt": [0.0, 0.0]},
+    "telescope": {"diameter": 0.15, "focal_length": 1.0, "obstruction_radius": 0.0, "obstruction_distance": 0.7},
+    "detector": {"fov": 0.9e-3, "defocus": 0.0, "offset": [0.0, 0.0]},
+    "ranges": {"start": 5.0, "stop": 1000.0, "count": 200, "spacing": "log"},
+    "run": {"method": "rt", "tolerance": 1e-4},
+    "output": {"csv": True, "netcdf": True, "plot": True, "scene": True},
+}
+
+
+def table1_scenarios() -> list:
+    """The paper's Table 1 scenario (as ``examples/scenarios/table1.toml``) and its variants with a central
+    obstruction r_obs = 20 mm and a detector defocus of 5 mm."""
+    obstructed, defocused = copy.deepcopy(TABLE1), copy.deepcopy(TABLE1)
+    obstructed.update(name="table1_obstruction_20mm",
+                      description="Table 1 with a central obstruction r_obs = 20 mm, 0.7 m before the aperture")
+    obstructed["telescope"]["obstruction_radius"] = 0.02
+    defocused.update(name="table1_defocus_5mm", description="Table 1 with the detector 5 mm behind the focal plane")
+    defocused["detector"]["defocus"] = 5e-3
+    return [scenario_from_dict(copy.deepcopy(d), f"<built-in {d['name']}>") for d in (TABLE1, obstructed, defocused)]

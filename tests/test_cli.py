@@ -1,0 +1,209 @@
+"""The command line: `run` on the bundled Table 1 scenario writes CSV, NetCDF and plot with the numbers of
+lo.overlap to the last digit, --method overrides the file, bad scenarios exit with code 2 and a one-line
+message naming the key, `demo` writes the three Table 1 variants, and the module runs as a script."""
+
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lidar_overlap as lo
+from lidar_overlap.cli import main
+from lidar_overlap.scenario import load_scenario, table1_scenarios
+
+SCENARIOS = Path(__file__).resolve().parents[1] / "examples" / "scenarios"
+TABLE1 = SCENARIOS / "table1.toml"
+
+
+@pytest.fixture(autouse=True)
+def no_scene(monkeypatch):
+    """The 3-D scene (pyvista) is slow to render; its own tests cover it. Here: as if not installed."""
+    monkeypatch.setitem(sys.modules, "lidar_overlap.scene", None)
+
+
+def _csv_only(text):
+    for key in ("netcdf", "plot", "scene"):
+        text = text.replace(f"{key} = true", f"{key} = false")
+    return text
+
+
+def _read_columns(path):
+    rows = [line for line in Path(path).read_text().splitlines() if line and not line.startswith("#")]
+    assert rows[0] == "range_m,overlap,error_estimate"
+    return np.array([[float(v) for v in row.split(",")] for row in rows[1:]])
+
+
+def test_run_table1_writes_the_files_with_exact_numbers(tmp_path, capsys):
+    assert main(["run", str(TABLE1), "--out", str(tmp_path), "--quiet"]) == 0
+    out, err = capsys.readouterr()
+    for suffix in (".csv", ".nc", "_overlap.png"):
+        assert (tmp_path / f"table1{suffix}").stat().st_size > 0, suffix
+        assert f"table1{suffix}" in out
+    assert "full overlap" in out and "first signal" in out and "method        rt" in out
+    assert "pyvista" in err and "table1_scene.png not written" in err  # the note says what to install
+    expected = lo.overlap(lo.paper_table1(), np.geomspace(5.0, 1000.0, 200), method="rt", tolerance=1e-4)
+    data = _read_columns(tmp_path / "table1.csv")
+    assert np.array_equal(data[:, 0], expected.ranges)
+    assert np.array_equal(data[:, 1], expected.overlap)
+    assert np.array_equal(data[:, 2], expected.error_estimate)
+    read = lo.OverlapResult.from_netcdf(tmp_path / "table1.nc")
+    assert np.array_equal(read.overlap, expected.overlap) and read.system == lo.paper_table1()
+    assert f"{expected.full_overlap_range():.4g} m" in out
+
+
+def test_bundled_file_is_the_built_in_scenario():
+    from_file, built_in = load_scenario(TABLE1), table1_scenarios()[0]
+    assert from_file.system == built_in.system == lo.paper_table1()
+    assert np.array_equal(from_file.ranges, built_in.ranges)
+    for key in ("name", "description", "method", "options", "outputs"):
+        assert getattr(from_file, key) == getattr(built_in, key), key
+
+
+def test_biaxial_flat_top_scenario_loads():
+    scenario = load_scenario(SCENARIOS / "biaxial_flat_top.toml")
+    assert isinstance(scenario.system.beam, lo.FlatTopBeam) and scenario.system.beam.offset == (0.1, 0.0)
+    assert scenario.resolved_method() == "fo" and scenario.ranges.size == 60
+
+
+def test_method_override(tmp_path, capsys):
+    text = TABLE1.read_text().replace("count = 200", "count = 8").replace("start = 5.0", "start = 20.0")
+    (tmp_path / "small.toml").write_text(_csv_only(text))
+    assert main(["run", str(tmp_path / "small.toml"), "--out", str(tmp_path), "--method", "fo"]) == 0
+    out = capsys.readouterr().out
+    assert "method        fo" in out
+    read = lo.OverlapResult.from_csv(tmp_path / "table1.csv")
+    expected = lo.overlap(lo.paper_table1(), np.geomspace(20.0, 1000.0, 8), method="fo")
+    assert read.method == "fo" and np.array_equal(read.overlap, expected.overlap)
+    assert not (tmp_path / "table1.nc").exists() and not (tmp_path / "table1_overlap.png").exists()
+    assert main(["run", str(tmp_path / "small.toml"), "--out", str(tmp_path), "--method", "auto", "--quiet"]) == 0
+    assert lo.OverlapResult.from_csv(tmp_path / "table1.csv").method == "rt"  # auto: Gaussian beam -> rt
+
+
+@pytest.mark.parametrize("change, words", [
+    (("waist_radius = 1e-3", "waist = 1e-3"), ["[beam]", "unknown key 'waist'", "valid: wavelength, waist_radius"]),
+    (("[output]", "[outputs]"), ["unknown key 'outputs'", "valid: name, description"]),
+    (("wavelength = 355e-9", 'wavelength = "355 nm"'), ["[beam] wavelength = '355 nm'", "expected a real number"]),
+    (("count = 200", "count = 12.5"), ["[ranges] count = 12.5", "expected an integer"]),
+    (("[telescope]", "[telescope_]"), ["unknown key 'telescope_'"]),
+    (("diameter = 0.15", ""), ["[telescope] missing key 'diameter'"]),
+    (("fov = 0.9e-3", "fov = -1"), ["table1.toml: [detector] fov = -1 is invalid: expected a finite value > 0"]),
+    (("waist_radius = 1e-3", "waist_radius = -1e-3"), ["[beam] waist_radius = -0.001 is invalid", "> 0"]),
+    (("obstruction_radius = 0.0", "obstruction_radius = 0.1"), ["[telescope] obstruction_radius", "aperture"]),
+    (("fov = 0.9e-3", "fov = 0.9e-3\nradius = 0.45e-3"), ["[detector] fov and radius: both given",
+                                                          "expected exactly one"]),
+    (("fov = 0.9e-3", ""), ["[detector] fov and radius: neither given"]),
+    (('method = "rt"', 'method = "ray"'), ["[run] method = 'ray' is invalid", "'rt', 'fo', 'auto'"]),
+    (('spacing = "log"', 'spacing = "logarithmic"'), ["[ranges] spacing = 'logarithmic'", "'linear', 'log'"]),
+    (("start = 5.0", "start = 0.5"), None),  # valid: no obstruction
+])
+def test_scenario_errors_exit_2_naming_the_key(tmp_path, capsys, change, words):
+    text = TABLE1.read_text()
+    assert change[0] in text
+    path = tmp_path / "table1.toml"
+    path.write_text(_csv_only(text.replace(change[0], change[1], 1).replace("count = 200", "count = 20")))
+    code = main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"])
+    out, err = capsys.readouterr()
+    if words is None:
+        assert code == 0, err
+        return
+    assert code == 2
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+    assert err.startswith("lidar-overlap: error: ")
+    for word in words:
+        assert word in err, (word, err)
+    assert not (tmp_path / "out").exists()
+
+
+def test_ranges_inside_the_obstruction_distance(tmp_path, capsys):
+    text = TABLE1.read_text().replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
+    (tmp_path / "s.toml").write_text(text.replace("start = 5.0", "start = 0.5").replace("count = 200", "count = 120"))
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "s.toml: [ranges] ranges[0] = 0.5" in err and "obstruction distance" in err
+
+
+def test_missing_section_bad_toml_and_bad_arguments(tmp_path, capsys):
+    text = TABLE1.read_text()
+    cut = text[:text.index("[ranges]")] + text[text.index("[run]"):]
+    (tmp_path / "a.toml").write_text(cut)
+    (tmp_path / "b.toml").write_text("name = 'twice'\n" + text)
+    cases = [(["run", str(tmp_path / "a.toml")], "missing section [ranges]"),
+             (["run", str(tmp_path / "b.toml")], "b.toml: invalid TOML"),
+             (["run", str(tmp_path / "none.toml")], "none.toml: cannot read the scenario"),
+             (["run", str(TABLE1), "--method", "exact"], "argument --method: invalid choice: 'exact'"),
+             (["run"], "required: scenario"), (["simulate"], "invalid choice: 'simulate'"), ([], "required")]
+    for argv, words in cases:
+        assert main(argv) == 2, argv
+        err = capsys.readouterr().err
+        assert words in err and len(err.strip().splitlines()) == 1, (argv, err)
+
+
+def test_version_and_help(capsys):
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"lidar-overlap {lo.__version__}"
+    assert main(["run", "--help"]) == 0
+    assert "--method" in capsys.readouterr().out
+
+
+def test_progress_on_long_runs(tmp_path, capsys, monkeypatch):
+    (tmp_path / "s.toml").write_text(_csv_only(TABLE1.read_text()))
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path)]) == 0
+    assert "table1" in capsys.readouterr().err  # tqdm bar or counter on stderr
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 0
+    assert capsys.readouterr().err == ""
+    monkeypatch.setitem(sys.modules, "tqdm", None)  # without tqdm: a counter
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path)]) == 0
+    assert "table1: 200/200 ranges" in capsys.readouterr().err
+
+
+def test_without_xarray_the_csv_is_still_written(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "xarray", None)
+    text = TABLE1.read_text().replace("plot = true", "plot = false").replace("count = 200", "count = 20")
+    (tmp_path / "s.toml").write_text(text)
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "table1.csv").exists() and not (tmp_path / "table1.nc").exists()
+    assert "pip install 'lidar-overlap[io]'" in capsys.readouterr().err
+
+
+def test_scene_is_written_through_the_scene_module(tmp_path, capsys, monkeypatch):
+    calls = []
+
+    def save_scene(system, filename, **kwargs):
+        calls.append((system, kwargs))
+        Path(filename).write_bytes(b"png")
+
+    monkeypatch.setitem(sys.modules, "lidar_overlap.scene", types.SimpleNamespace(save_scene=save_scene))
+    text = TABLE1.read_text().replace("netcdf = true", "netcdf = false").replace("plot = true", "plot = false")
+    (tmp_path / "s.toml").write_text(text)
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 0
+    assert (tmp_path / "table1_scene.png").exists() and "table1_scene.png" in capsys.readouterr().out
+    assert calls[0][0] == lo.paper_table1() and calls[0][1]["result"].ranges.size == 200
+
+
+def test_demo_writes_the_three_table1_variants(tmp_path, capsys):
+    assert main(["demo", "--out", str(tmp_path), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    for name in ("table1", "table1_obstruction_20mm", "table1_defocus_5mm"):
+        for suffix in (".csv", ".nc", "_overlap.png"):
+            assert (tmp_path / f"{name}{suffix}").stat().st_size > 0, (name, suffix)
+    assert (tmp_path / "table1_variants_overlap.png").exists()
+    obstructed = lo.OverlapResult.from_csv(tmp_path / "table1_obstruction_20mm.csv")
+    assert obstructed.system == lo.paper_table1(obstruction_radius=0.02)
+    assert obstructed.overlap[-1] == pytest.approx(1 - (0.02 / 0.075) ** 2, abs=1e-3)
+    defocused = lo.OverlapResult.from_csv(tmp_path / "table1_defocus_5mm.csv")
+    assert defocused.full_overlap_range() < lo.OverlapResult.from_csv(tmp_path / "table1.csv").full_overlap_range()
+    assert out.count("full overlap") == 3 and f"written to {tmp_path}" in out
+
+
+def test_subprocess(tmp_path):
+    (tmp_path / "s.toml").write_text(_csv_only(TABLE1.read_text()).replace("count = 200", "count = 10"))
+    done = subprocess.run([sys.executable, "-m", "lidar_overlap.cli", "run", str(tmp_path / "s.toml"),
+                           "--out", str(tmp_path / "out")], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "full overlap" in done.stdout and (tmp_path / "out" / "table1.csv").exists()
+    bad = subprocess.run([sys.executable, "-m", "lidar_overlap.cli", "run", str(tmp_path / "none.toml")],
+                         capture_output=True, text=True, timeout=120)
+    assert bad.returncode == 2 and "Traceback" not in bad.stderr and "cannot read" in bad.stderr
