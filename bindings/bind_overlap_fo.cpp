@@ -8,6 +8,7 @@
 
 #include "bind_field.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
+#include "lidar_overlap/overlap_fo_radial.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;
@@ -65,6 +66,21 @@ void bind_overlap_fo(py::module_& m) {
       },
       py::arg("system"), py::arg("ranges"), py::arg("values"), py::arg("spacing"), py::arg("wavelength"),
       py::arg("max_spectrum_grid"), py::arg("threads"));
+
+  m.def(
+      "overlap_fo_radial",
+      [](const LidarSystem& system, const std::vector<double>& ranges, double periods_per_panel, int threads) {
+        RadialFoOverlap r;
+        {
+          py::gil_scoped_release release;
+          r = overlap_fo_radial(system, ranges, RadialFoOptions{periods_per_panel, threads});
+        }
+        py::dict out;
+        out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
+        out["evaluations"] = r.evaluations;
+        return out;
+      },
+      py::arg("system"), py::arg("ranges"), py::arg("periods_per_panel"), py::arg("threads"));
 
   m.def(
       "emitter_coupling_fo",

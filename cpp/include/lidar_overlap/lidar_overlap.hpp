@@ -20,6 +20,7 @@
 #include "lidar_overlap/grid_choice.hpp"
 #include "lidar_overlap/otf.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
+#include "lidar_overlap/overlap_fo_radial.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
 #include "lidar_overlap/propagate.hpp"
 #include "lidar_overlap/quadrature.hpp"

@@ -47,6 +47,7 @@ class FoReceiver {
   // `max_error` on the detector in total: the Parseval sum's aliases form such a lattice.
   double tail_period(double max_error) const;
   double aperture_area() const { return area_; }
+  const AnnularPupil& pupil() const { return pupil_; }
 
  private:
   AnnularPupil pupil_{};

@@ -116,4 +116,35 @@ QuadratureResult integrate(F&& f, const double* points, std::size_t n, double to
   return r;
 }
 
+// Gauss-Legendre rule with N nodes on [-1, 1] (Newton on P_N), made once per N.
+struct GaussLegendreRule {
+  std::vector<double> x, w;
+};
+template <std::size_t N>
+const GaussLegendreRule& gauss_legendre() {
+  static const GaussLegendreRule rule = [] {
+    GaussLegendreRule r{std::vector<double>(N), std::vector<double>(N)};
+    for (std::size_t i = 0; i < (N + 1) / 2; ++i) {
+      double x = std::cos(3.141592653589793 * (i + 0.75) / (N + 0.5)), dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = x;
+        for (std::size_t j = 2; j <= N; ++j) {
+          const double p2 = ((2.0 * j - 1.0) * x * p1 - (j - 1.0) * p0) / j;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = N * (x * p1 - p0) / (x * x - 1.0);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::abs(dx) < 1e-16) break;
+      }
+      r.x[i] = -x;
+      r.x[N - 1 - i] = x;
+      r.w[i] = r.w[N - 1 - i] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+    return r;
+  }();
+  return rule;
+}
+
 }  // namespace lidar_overlap

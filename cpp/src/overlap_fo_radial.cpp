@@ -1,0 +1,85 @@
+#include "lidar_overlap/overlap_fo_radial.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/constants.hpp"
+#include "lidar_overlap/overlap_fo.hpp"
+#include "lidar_overlap/quadrature.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+
+// One range: the integral of the header, panel by panel.
+double radial_overlap_at(const LidarSystem& system, double z, double periods_per_panel, std::size_t& evaluations) {
+  const FoReceiver rx(system, z);
+  const double q_cut = rx.cutoff();
+  if (q_cut == 0.0) return 0.0;
+  const double w_image = system.beam.radius(z) * rx.detector_distance() / z;
+  // exp(-pi^2 w_i^2 q^2 / 2) < 1e-16 beyond q = sqrt(2 ln 1e16) / (pi w_i).
+  const double q_end = std::min(q_cut, std::sqrt(2.0 * std::log(1e16)) / (kPi * w_image));
+  // Fastest oscillation: disc^ (period 1/r_d) times the OTF (1/blur); the OTF's own scale is q_cut.
+  const double frequency = system.detector.radius + rx.blur_radius() + 4.0 / q_cut;
+  const std::size_t panels = 1 + static_cast<std::size_t>(q_end * frequency / periods_per_panel);
+  // The annular OTF has kinks where one shifted disc leaves the other: shifts R -+ r_obs and 2 r_obs.
+  std::vector<double> edges;
+  for (std::size_t i = 0; i <= panels; ++i) edges.push_back(q_end * static_cast<double>(i) / panels);
+  const double to_q = 1.0 / (system.beam.wavelength * rx.detector_distance());
+  const AnnularPupil& p = rx.pupil();
+  for (double v : {p.outer - p.inner, p.outer + p.inner, 2.0 * p.inner})
+    if (p.inner > 0.0 && v * to_q > 0.0 && v * to_q < q_end) edges.push_back(v * to_q);
+  std::sort(edges.begin(), edges.end());
+
+  const GaussLegendreRule& rule = gauss_legendre<24>();
+  const double r_d = system.detector.radius, g2 = 0.5 * kPi * kPi * w_image * w_image;
+  double sum = 0.0;
+  for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
+    const double mid = 0.5 * (edges[k + 1] + edges[k]), half = 0.5 * (edges[k + 1] - edges[k]);
+    if (!(half > 0.0)) continue;
+    double panel = 0.0;
+    for (std::size_t i = 0; i < rule.x.size(); ++i) {
+      const double q = mid + half * rule.x[i];
+      panel += rule.w[i] * rx.otf(q) * disc_transform(r_d, q) * std::exp(-g2 * q * q) * q;
+    }
+    sum += half * panel;
+    evaluations += rule.x.size();
+  }
+  return 2.0 * kPi * sum / rx.aperture_area();
+}
+
+}  // namespace
+
+RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<double>& ranges,
+                                  const RadialFoOptions& options) {
+  system.validate();
+  const GaussianBeam& beam = system.beam;
+  if (!system.is_axisymmetric())
+    throw std::invalid_argument("system is not axisymmetric (beam offset or tilt, or detector offset): the radial "
+                                "Fourier-optics path needs beam and detector on the telescope axis; use the 2-D path");
+  if (beam.width_law != WidthLaw::gaussian)
+    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian'");
+  const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
+  if (beam.divergence && *beam.divergence < theta_d * (1.0 - 1e-9))
+    checks::fail("beam.divergence", *beam.divergence,
+                 "at least the diffraction limit lambda / (pi w0) = " + std::to_string(theta_d) + " rad (M^2 >= 1)");
+  checks::positive("periods_per_panel", options.periods_per_panel);
+  if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
+  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+
+  RadialFoOverlap out;
+  out.overlap.assign(ranges.size(), 0.0);
+  out.evaluations.assign(ranges.size(), 0);
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (long i = 0; i < static_cast<long>(ranges.size()); ++i)
+    out.overlap[i] = radial_overlap_at(system, ranges[i], options.periods_per_panel, out.evaluations[i]);
+  return out;
+}
+
+}  // namespace lidar_overlap
