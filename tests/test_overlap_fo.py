@@ -257,7 +257,7 @@ def test_invalid_input():
     with pytest.raises(ValueError, match="beam.width_law"):
         lo.overlap(lo.paper_table1(width_law="linear"), [500.0], method="fo")
     with pytest.raises(ValueError, match=r"ranges\[0\].*'rt'"):
-        lo.overlap(lo.paper_table1(), [5.0, 500.0], method="fo", max_spectrum_grid=256)
+        lo.overlap(lo.paper_table1(), [5.0, 500.0], method="fo", fo_path="2d", max_spectrum_grid=256)
     # The diffraction-limited divergence given explicitly is the default, not an error.
     explicit = lo.overlap(lo.paper_table1(divergence=LAM / (np.pi * W0)), [500.0], method="fo").overlap
     assert abs(explicit[0] - lo.overlap(lo.paper_table1(), [500.0], method="fo").overlap[0]) < SAME_ATOL

@@ -166,7 +166,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
                          2.0 * beam_at.radius_bound[i] * to_image;
     // The aliases also sit in the far diffraction tails of each other's point images: their period must
     // keep those below 1e-6 of G (measured: 4e-7 against a direct quadrature).
-    const double period = std::max(1.1 * reach, rx.tail_period(1e-6));
+    const double period = 1.1 * reach + rx.tail_period(1e-6);
     const std::size_t np = next_power_of_two(
         std::max<std::size_t>(beam_at.n, static_cast<std::size_t>(std::ceil(period / (dx * to_image)))));
     if (np > options.max_spectrum_grid)

@@ -1,6 +1,7 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
 from ._core import __version__
+from .auto import explain
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
@@ -26,6 +27,7 @@ __all__ = [
     "SamplingWarning",
     "Telescope",
     "emitter_coupling",
+    "explain",
     "optimal_focus_range",
     "overlap",
     "paper_table1",

@@ -14,16 +14,18 @@ import numpy as np
 
 from . import _checks, _core
 from .result import OverlapResult
+from .auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY, decide
 from .field_beam import FieldBeam
 from .system import LidarSystem
 from .fields import EDGE_POWER_LIMIT, SamplingWarning
 from .validity import warn_if_rt_invalid
 
-METHODS = ("rt", "fo")
+METHODS = ("rt", "fo", "auto")
+FO_PATHS = ("auto", "radial", "2d")
 
 
 def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: str = "rt", *,
-            tolerance: float = 1e-4, threads: int = 0, max_segments: int = 4000,
+            tolerance: float = 1e-4, threads: int = 0, max_segments: int = 4000, fo_path: str = "auto",
             beam_grid: int | None = None, beam_window: float | None = None,
             max_spectrum_grid: int = 4096) -> OverlapResult:
     """Overlap function of ``system`` at each range.
@@ -36,10 +38,14 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
         Fourier optics (Appendix C): the transmitted field propagated to each range, imaged through the
         receiver's pupil with diffraction (see ``docs/fo_overlap.md``). A :class:`FieldBeam` or
         :class:`FlatTopBeam` needs ``"fo"``; a Gaussian beam with M² > 1 is taken in FO as a Gaussian
-        Schell-model beam (Gaussian irradiance of radius w(z) at every range).
-    tolerance : RT only: absolute error allowed on G at each range, in (0, 1). The beam integral is adaptive
-        (radial with Rice weights about each coupling term's centre of symmetry, two-dimensional where
-        there is none) until its error estimate is below it.
+        Schell-model beam (Gaussian irradiance of radius w(z) at every range). ``"auto"``: the cheapest
+        model whose error stays within ``tolerance`` (see :mod:`lidar_overlap.auto` and :func:`explain`).
+    tolerance : absolute error allowed on G at each range, in (0, 1). RT: the adaptive beam integral (radial
+        with Rice weights about each coupling term's centre of symmetry, two-dimensional where there is
+        none) stops when its error estimate is below it. auto: the model error plus the numerical error.
+    fo_path : FO with a Gaussian beam: ``"radial"`` (axisymmetric scenes only: one integral per range, no
+        grids, exact to ~1e-9), ``"2d"`` (the sampled beam propagated on a grid, ~1e-6), or ``"auto"``
+        (radial whenever the scene allows it).
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
     max_segments : RT only: cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
     beam_grid, beam_window : FO with a Gaussian beam only: samples per side of the transmitted field and
@@ -59,7 +65,10 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     threads = _checks.count("threads", threads, 0)
     max_segments = _checks.count("max_segments", max_segments, 1)
     max_spectrum_grid = _checks.count("max_spectrum_grid", max_spectrum_grid, 16)
+    _checks.choice("fo_path", fo_path, FO_PATHS)
     field_beam = isinstance(system.beam, FieldBeam)
+    if method == "auto":
+        return _overlap_auto(system, z, tolerance, threads, max_segments)
     if field_beam and method == "rt":
         raise ValueError(f"method = 'rt' is invalid for a {type(system.beam).__name__}: ray tracing models Gaussian "
                          "beams only; use method='fo'")
@@ -70,6 +79,14 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
         f = system.beam.field
         raw = _core.overlap_fo_field(system._native, z, f.values, f.spacing, f.wavelength, max_spectrum_grid, threads)
         return _fo_result(system, z, raw, "enlarge the field's grid (zero-pad it)")
+    radial_possible = system.is_axisymmetric and system.beam.width_law == "gaussian"
+    if method == "fo" and (fo_path == "radial" or (fo_path == "auto" and radial_possible)):
+        if beam_grid is not None or beam_window is not None:
+            raise ValueError("beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'")
+        raw = _core.overlap_fo_radial(system._native, z, 8.0, threads)  # axisymmetry checked in the core
+        return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
+                             error_estimate=np.full(z.size, FO_RADIAL_ACCURACY), system=system,
+                             tolerance=float("nan"))
     if method == "fo":
         raw = _core.overlap_fo(system._native, z, _checks.count("beam_grid", 256 if beam_grid is None else beam_grid, 16),
                                _checks.real("beam_window", 10.0 if beam_window is None else beam_window),
@@ -87,6 +104,20 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
                          error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
 
 
+def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads: int,
+                  max_segments: int) -> OverlapResult:
+    decision = decide(system, z, tolerance)
+    if decision.method == "rt":
+        res = overlap(system, z, "rt", tolerance=decision.rt_quadrature_tolerance, threads=threads,
+                      max_segments=max_segments)
+        error = res.error_estimate + decision.rt_model_error
+    else:
+        res = overlap(system, z, "fo", threads=threads, fo_path=decision.fo_path)
+        error = np.full(z.size, FO_RADIAL_ACCURACY if decision.fo_path == "radial" else FO_2D_ACCURACY)
+    return OverlapResult(ranges=z, overlap=res.overlap, method=res.method, error_estimate=error, system=system,
+                         tolerance=tolerance)
+
+
 def _fo_result(system: LidarSystem, z: np.ndarray, raw: dict, fix: str) -> OverlapResult:
     for zi, report in zip(z, raw["beam_reports"]):
         worst = max(report["output_edge_power"], report["input_edge_power"], report["band_limit_loss"])
@@ -95,7 +126,7 @@ def _fo_result(system: LidarSystem, z: np.ndarray, raw: dict, fix: str) -> Overl
                           f"window edge or the band limit; {fix}", SamplingWarning,
                           stacklevel=3)
     return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
-                         error_estimate=np.full(z.size, np.nan), system=system, tolerance=float("nan"))
+                         error_estimate=np.full(z.size, FO_2D_ACCURACY), system=system, tolerance=float("nan"))
 
 
 def emitter_coupling(system: LidarSystem, z: float, position: Sequence[float] = (0.0, 0.0),

@@ -21,6 +21,7 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
+from .auto import decide
 from .field_beam import FieldBeam
 from .flat_top import FlatTopBeam
 from .result import OverlapResult
@@ -79,17 +80,16 @@ class Scenario:
     source: str = "<scenario>"
 
     def resolved_method(self, method: Optional[str] = None) -> str:
-        """``method`` (default: the scenario's) for ``lo.overlap``; ``"auto"`` becomes ``"fo"`` for a
-        non-Gaussian beam and ``"rt"`` otherwise (unless the library knows ``"auto"``)."""
-        method = _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
-        if method == "auto" and "auto" not in getattr(_overlap, "METHODS", ()):
-            return self.model(method)
-        return method
+        """``method`` (default: the scenario's) for ``lo.overlap``, checked."""
+        return _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
 
     def model(self, method: Optional[str] = None) -> str:
-        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) stands for."""
-        method = method or self.method
-        return method if method != "auto" else ("fo" if isinstance(self.system.beam, FieldBeam) else "rt")
+        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) stands for; for ``"auto"``
+        the one :func:`lidar_overlap.auto.decide` picks for these ranges and tolerance."""
+        method = self.resolved_method(method)
+        if method != "auto":
+            return method
+        return decide(self.system, self.ranges, self.options.get("tolerance", 1e-4)).method
 
     def compute(self, method: Optional[str] = None, chunk: Optional[int] = None,
                 callback: Optional[Callable[[int], None]] = None) -> OverlapResult:
@@ -101,6 +101,8 @@ class Scenario:
             threads = self.options.get("threads") or os.cpu_count() or 1
             fo = self.model(method) == "fo"
             chunk = max(threads, math.ceil(z.size / 100)) if fo else max(50, math.ceil(z.size / 20))
+        if method == "auto":
+            chunk = z.size  # one decision for the whole curve
         parts = []
         for start in range(0, z.size, chunk):
             try:
