@@ -3,6 +3,7 @@
 from ._core import __version__
 from .auto import explain
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
+from .detector_image import DetectorImage, detector_image
 from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
 from .flat_top import FlatTopBeam
@@ -18,6 +19,7 @@ __all__ = [
     "laguerre_gauss_field",
     "super_gaussian_field",
     "Detector",
+    "DetectorImage",
     "Field",
     "FieldBeam",
     "FlatTopBeam",
@@ -26,6 +28,7 @@ __all__ = [
     "OverlapResult",
     "SamplingWarning",
     "Telescope",
+    "detector_image",
     "emitter_coupling",
     "explain",
     "optimal_focus_range",

@@ -32,3 +32,24 @@ def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
     if label is not None:
         ax.legend()
     return ax
+
+
+def plot_detector_image(system, z, ax=None, n=192):
+    """Draw the geometric detector-plane image at range ``z`` (m) (:func:`detector_image`) with the detector
+    disc outlined and the fraction it collects in the title. Returns the Axes."""
+    from .detector_image import detector_image
+
+    plt = _pyplot()
+    img = detector_image(system, z, n)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(4.8, 4.2), constrained_layout=True)
+    mm = 1e3
+    extent = (img.u[-1] * mm, img.u[0] * mm, img.v[-1] * mm, img.v[0] * mm)
+    ax.imshow(img.image[::-1, ::-1], extent=extent, origin="lower", cmap="inferno")
+    phi = np.linspace(0, 2 * np.pi, 200)
+    ax.plot((img.detector_offset[0] + img.detector_radius * np.cos(phi)) * mm,
+            (img.detector_offset[1] + img.detector_radius * np.sin(phi)) * mm, color="cyan", linewidth=1)
+    ax.set_xlabel("detector plane x (mm)")
+    ax.set_ylabel("detector plane y (mm)")
+    ax.set_title(f"z = {z:g} m: {img.fraction:.3f} of the image on the detector")
+    return ax

@@ -9,7 +9,6 @@ functions, so the rest of the package works without it.
 
 from __future__ import annotations
 
-import math
 import os
 import pathlib
 import sys
@@ -17,6 +16,7 @@ import sys
 import numpy as np
 
 from . import _checks
+from .detector_image import _blur, _fov, _irradiance, _window
 from .field_beam import FieldBeam
 from .fields import propagate
 from .overlap import overlap
@@ -31,7 +31,6 @@ VIEW, ZOOM = (0.5, 1.0, -1.2), 1.4    # default camera: direction from the focal
 BAR = dict(vertical=True, position_y=0.25, width=0.06, height=0.5, title_font_size=14, label_font_size=12,
            fmt="%.3g", n_labels=5)
 _MISSING = "lidar_overlap.scene needs PyVista: pip install 'lidar-overlap[viz]' (or pip install pyvista)"
-_erf = np.vectorize(math.erf, otypes=[float])
 
 
 def _pyvista():
@@ -83,62 +82,6 @@ def _beam_profile(system, zmax):
     w = np.array([f.beam_radius() for f in fields])
     log_peak = np.log([f.intensity.max() / beam.field.power for f in fields])
     return lambda z: np.interp(z, zs, w), lambda z: np.exp(np.interp(z, zs, log_peak))
-
-
-def _irradiance(system, z, x, y, field=None):
-    """Beam irradiance (W/m², P = 1 W) at range z on the grid x (columns) by y (rows), m: a Gaussian
-    averaged over each pixel (exact, with erf); a field beam's ``field`` (propagated to z) interpolated
-    bilinearly."""
-    c = system.beam.center(z)
-    if not isinstance(system.beam, FieldBeam):
-        w, h = float(system.beam.radius(np.array([z]))[0]), x[1] - x[0]
-        px, py = ((_erf(math.sqrt(2) * (u - cu + h / 2) / w) - _erf(math.sqrt(2) * (u - cu - h / 2) / w)) / (2 * h)
-                  for u, cu in ((x, c[0]), (y, c[1])))
-        return np.outer(py, px)
-    return _bilinear(y - c[1], field.y) @ (field.intensity / system.beam.field.power) @ _bilinear(x - c[0], field.x).T
-
-
-def _bilinear(dst, src):
-    """Matrix (dst.size, src.size) of linear interpolation from the ascending grid src; zero outside."""
-    i = np.clip(np.searchsorted(src, dst) - 1, 0, src.size - 2)
-    t = (dst - src[i]) / (src[i + 1] - src[i])
-    inside = (t >= 0) & (t <= 1)
-    m = np.zeros((dst.size, src.size))
-    rows = np.arange(dst.size)
-    m[rows, i] = (1 - t) * inside
-    m[rows, i + 1] = t * inside
-    return m
-
-
-def _blur(image, h, outer, inner):
-    """``image`` convolved (FFT, zero-padded) with a uniform annulus inner..outer (m), pixel h (m)."""
-    n = image.shape[0]
-    u = (np.arange(n * 4) - n * 2 + 0.5) * h / 4        # 4 x 4 sub-pixels per pixel
-    r = np.hypot(*np.meshgrid(u, u))
-    kernel = ((r < outer) & (r >= inner)).reshape(n, 4, n, 4).mean(axis=(1, 3))
-    if kernel.sum() == 0:                                # blur below one pixel: a point
-        kernel[n // 2, n // 2] = 1.0
-    kernel /= kernel.sum()
-    p = 2 * n
-    out = np.fft.irfft2(np.fft.rfft2(image, (p, p)) * np.fft.rfft2(kernel, (p, p)), (p, p))
-    return np.clip(out[n // 2: n // 2 + n, n // 2: n // 2 + n], 0.0, None)
-
-
-def _fov(system, z):
-    """Line of sight (nz, 2) and radius (m) of the receiver's full field of view at ranges z: the scatterers
-    that send some light to the detector. A ray from P through aperture point A lands at A m − P d/z
-    (d = f + defocus, m = 1 + d/z − d/f), so P is seen when |P + o_d z/d| < (R|m| + r_d) z/d."""
-    tel, det = system.telescope, system.detector
-    d, f = tel.focal_length + det.defocus, tel.focal_length
-    center = -np.outer(z, det.offset) / d
-    return center, 0.5 * tel.diameter * np.abs(1.0 + z * (1.0 / d - 1.0 / f)) + det.radius * z / d
-
-
-def _window(discs):
-    """Centre (2,) and half-width (m) of a square holding every (centre, radius) disc, with 10 % margin."""
-    lo_ = np.min([np.asarray(c) - r for c, r in discs], axis=0)
-    hi_ = np.max([np.asarray(c) + r for c, r in discs], axis=0)
-    return 0.5 * (lo_ + hi_), 0.55 * float(np.max(hi_ - lo_))
 
 
 def _planes(pv, plotter, meshes, system, planes, result, scale, width):
