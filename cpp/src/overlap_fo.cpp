@@ -11,6 +11,7 @@
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/grid_choice.hpp"
+#include "overlap_fo_detail.hpp"
 #include "lidar_overlap/quadrature.hpp"
 
 namespace lidar_overlap {
@@ -63,10 +64,9 @@ double FoReceiver::point_coupling(double offset) const {
   return integrate(integrand, points.data(), points.size(), 1e-10 * area_, 100000).value / area_;
 }
 
-namespace {
+namespace detail {
 
-// One range: Parseval's sum over the beam irradiance spectrum (see the header).
-double overlap_at(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
   const GaussianBeam& beam = system.beam;
   const std::size_t nb = at_z.n;
   const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
@@ -134,7 +134,31 @@ double overlap_at(const LidarSystem& system, const FoReceiver& rx, const Field& 
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
 }
 
-}  // namespace
+std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
+                          double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
+                          double tail_error) {
+  // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
+  // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
+  // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
+  const double to_image = rx.detector_distance() / z;
+  const double reach = rx.blur_radius() + 20.0 / rx.cutoff() +
+                       norm(system.detector.offset + to_image * system.beam.center(z)) + system.detector.radius +
+                       2.0 * radius_bound * to_image;
+  // The aliases also sit in the far diffraction tails of each other's point images: their period must
+  // keep those below tail_error of G (1e-6: 4e-7 measured against a direct quadrature).
+  const double period = 1.1 * reach + rx.tail_period(tail_error);
+  const std::size_t np =
+      next_power_of_two(std::max<std::size_t>(n, static_cast<std::size_t>(std::ceil(period / (spacing * to_image)))));
+  if (np > max_grid)
+    checks::fail("ranges[" + std::to_string(range_index) + "]", z,
+                 "a range where the point image (radius " + std::to_string(rx.blur_radius()) +
+                     " m on the detector plane) needs a beam spectrum grid of at most max_spectrum_grid = " +
+                     std::to_string(max_grid) + " (here " + std::to_string(np) +
+                     "); this is the geometric regime, where method 'rt' is accurate");
+  return np;
+}
+
+}  // namespace detail
 
 namespace {
 
@@ -157,24 +181,8 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
     const double z = ranges[i];
     receivers.emplace_back(system, z);
     const FoReceiver& rx = receivers.back();
-    // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
-    // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
-    // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
-    const double to_image = rx.detector_distance() / z, dx = beam_at.spacing[i];
-    const double reach = rx.blur_radius() + 20.0 / rx.cutoff() +
-                         norm(system.detector.offset + to_image * system.beam.center(z)) + system.detector.radius +
-                         2.0 * beam_at.radius_bound[i] * to_image;
-    // The aliases also sit in the far diffraction tails of each other's point images: their period must
-    // keep those below 1e-6 of G (measured: 4e-7 against a direct quadrature).
-    const double period = 1.1 * reach + rx.tail_period(1e-6);
-    const std::size_t np = next_power_of_two(
-        std::max<std::size_t>(beam_at.n, static_cast<std::size_t>(std::ceil(period / (dx * to_image)))));
-    if (np > options.max_spectrum_grid)
-      checks::fail("ranges[" + std::to_string(i) + "]", z,
-                   "a range where the point image (radius " + std::to_string(rx.blur_radius()) +
-                       " m on the detector plane) needs a beam spectrum grid of at most max_spectrum_grid = " +
-                       std::to_string(options.max_spectrum_grid) + " (here " + std::to_string(np) +
-                       "); this is the geometric regime, where method 'rt' is accurate");
+    const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
+                                                 options.max_spectrum_grid, i);
     out.spectrum_grid.push_back(np);
   }
 
@@ -185,7 +193,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long i = 0; i < static_cast<long>(n_ranges); ++i) {
     Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
-    out.overlap[i] = overlap_at(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
+    out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;
   }
   return out;

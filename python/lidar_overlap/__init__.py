@@ -12,6 +12,7 @@ from .presets import paper_table1
 from .result import OverlapResult
 from .scene import save_scene, scene
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
+from .turbulence import Turbulence, TurbulentOverlapResult
 
 __all__ = [
     "__version__",
@@ -28,6 +29,8 @@ __all__ = [
     "OverlapResult",
     "SamplingWarning",
     "Telescope",
+    "Turbulence",
+    "TurbulentOverlapResult",
     "detector_image",
     "emitter_coupling",
     "explain",

@@ -27,7 +27,8 @@ FO_PATHS = ("auto", "radial", "2d")
 def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: str = "rt", *,
             tolerance: float = 1e-4, threads: int = 0, max_segments: int = 4000, fo_path: str = "auto",
             beam_grid: int | None = None, beam_window: float | None = None,
-            max_spectrum_grid: int = 4096) -> OverlapResult:
+            max_spectrum_grid: int = 4096, turbulence=None, realizations: int = 20, seed: int = 0,
+            screens: int = 10) -> OverlapResult:
     """Overlap function of ``system`` at each range.
 
     Parameters
@@ -53,6 +54,13 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     max_spectrum_grid : FO only: cap on the zero-padded beam spectrum, which grows with the defocus blur
         at short range; a range that needs more raises ValueError (use "rt" there).
 
+    turbulence : a :class:`Turbulence` along the path, or ``None``. The result is then a
+        :class:`TurbulentOverlapResult`: the mean over ``realizations`` draws of the atmosphere
+        (reproducible with ``seed``), with ``std`` and a 5–95 % band; ``error_estimate`` is the standard
+        error of the mean. FO carries the beam through ``screens`` phase screens (``beam_grid`` samples,
+        default 256, over ``beam_window`` long-term radii, default 8); RT displaces the short-term beam
+        by the random wander. Zero turbulence gives the turbulence-free result exactly.
+
     Warns (RuntimeWarning) when ray tracing is used outside its validity: a detector within a few
     tens of Airy radii, or ranges so short that paraxial slopes err by more than 1 %
     (see :mod:`lidar_overlap.validity`).
@@ -67,6 +75,10 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     max_spectrum_grid = _checks.count("max_spectrum_grid", max_spectrum_grid, 16)
     _checks.choice("fo_path", fo_path, FO_PATHS)
     field_beam = isinstance(system.beam, FieldBeam)
+    if turbulence is not None:
+        return _overlap_turbulent(system, z, method, turbulence, _checks.count("realizations", realizations, 1),
+                                  _checks.count("seed", seed, 0), _checks.count("screens", screens, 1), tolerance,
+                                  beam_grid, beam_window, threads)
     if method == "auto":
         return _overlap_auto(system, z, tolerance, threads, max_segments)
     if field_beam and method == "rt":
@@ -102,6 +114,29 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
                       RuntimeWarning, stacklevel=2)
     return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
                          error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
+
+
+def _overlap_turbulent(system, z, method, turbulence, realizations, seed, screens, tolerance, beam_grid,
+                       beam_window, threads):
+    from .turbulence import Turbulence, TurbulentOverlapResult, overlap_fo_turbulent, overlap_rt_turbulent
+
+    if not isinstance(turbulence, Turbulence):
+        raise ValueError(f"turbulence = {turbulence!r} is invalid: expected a lidar_overlap.Turbulence or None")
+    if isinstance(system.beam, FieldBeam):
+        raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
+    if method == "auto":
+        method = decide(system, z, tolerance).method
+    if turbulence.rytov_variance(system.beam.wavelength, float(z[-1])) == 0.0:   # no turbulence at all
+        plain = overlap(system, z, method, tolerance=tolerance, threads=threads)
+        samples = np.tile(plain.overlap, (realizations, 1))
+        return TurbulentOverlapResult(ranges=z, overlap=plain.overlap, method=method, error_estimate=np.zeros(z.size),
+                                      system=system, tolerance=plain.tolerance, realizations=samples,
+                                      std=np.zeros(z.size), low=plain.overlap.copy(), high=plain.overlap.copy())
+    if method == "rt":
+        return overlap_rt_turbulent(system, z, turbulence, realizations, seed, tolerance)
+    return overlap_fo_turbulent(system, z, turbulence, realizations, seed, screens,
+                                _checks.count("beam_grid", 256 if beam_grid is None else beam_grid, 32),
+                                _checks.real("beam_window", 8.0 if beam_window is None else beam_window), threads)
 
 
 def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads: int,

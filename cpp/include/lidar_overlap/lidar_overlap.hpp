@@ -22,6 +22,7 @@
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/overlap_fo_radial.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
+#include "lidar_overlap/overlap_turbulent.hpp"
 #include "lidar_overlap/phase_screen.hpp"
 #include "lidar_overlap/propagate.hpp"
 #include "lidar_overlap/quadrature.hpp"

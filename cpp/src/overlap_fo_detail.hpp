@@ -1,0 +1,25 @@
+// Internal pieces of the 2-D Fourier-optics overlap shared by the paths that make the beam irradiance
+// their own way (overlap_fo.cpp: propagated or Schell-model beams; overlap_turbulent.cpp: beams through
+// phase screens). Not installed.
+#pragma once
+
+#include <cstddef>
+
+#include "lidar_overlap/field.hpp"
+#include "lidar_overlap/overlap_fo.hpp"
+
+namespace lidar_overlap::detail {
+
+// G at range z (m) from the beam field at_z in the beam's own frame (centred on system.beam.center(z)):
+// Parseval's sum over its irradiance spectrum zero-padded to np x np (see overlap_fo.hpp).
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z,
+                               std::size_t np);
+
+// The padded spectrum size for a beam of grid `spacing` (m) and n samples whose power (all but 1e-7) lies
+// within `radius_bound` (m), the aliases' diffraction tails kept below `tail_error` of G; throws naming
+// ranges[range_index] above max_grid.
+std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
+                          double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
+                          double tail_error = 1e-6);
+
+}  // namespace lidar_overlap::detail

@@ -1,0 +1,151 @@
+"""Atmospheric turbulence along the lidar's line of sight (paper Section 3, step 2; SI units).
+
+``Turbulence`` describes Cn² along the path (a constant, the Hufnagel–Valley 5/7 model, or any function of
+height) and gives the weak-fluctuation quantities of a path: Fried parameter, Rytov variance, isoplanatic
+angle, and the beam wander and long-term spread of a collimated Gaussian beam (after Andrews & Phillips,
+"Laser Beam Propagation through Random Media", 2nd ed.; see ``cpp/include/lidar_overlap/turbulence.hpp``).
+
+``lo.overlap(system, ranges, method, turbulence=..., realizations=K, seed=...)`` returns a
+:class:`TurbulentOverlapResult`: the mean overlap over K realisations of the atmosphere and its spread.
+- FO: the beam is carried through phase screens (modified von Kármán, FFT with subharmonics) by
+  split-step Fresnel propagation, one realisation per draw of the screens (C++, in parallel).
+- RT: each realisation is the short-term beam (radius W_ST) displaced by a random wander drawn from a
+  Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it, the
+  long-term beam W_LT; the mean overlap is then that of the long-term beam (G is linear in the irradiance).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Callable, Optional, Union
+
+import numpy as np
+
+from . import _checks, _core
+from .result import OverlapResult
+
+#: Percentiles of the spread band reported per range.
+BAND = (5.0, 95.0)
+
+
+class Turbulence:
+    """Cn² along the path and the path geometry.
+
+    Parameters
+    ----------
+    cn2 : m^-2/3: a constant, ``"hv57"`` (Hufnagel–Valley 5/7: r0 = 5 cm and θ0 = 7 µrad at 0.5 µm from the
+        ground to space), or a function of the height above ground (m).
+    elevation : rad, angle of the line of sight above the horizon, in (0, π/2]; range z is at height
+        altitude + z sin(elevation).
+    altitude : m, the lidar's height above ground.
+    outer_scale, inner_scale : m, L0 and l0 of the phase screens (inf and 0: Kolmogorov).
+    hv_ground, hv_wind : the Hufnagel–Valley ground term A (m^-2/3) and rms wind (m/s) for ``"hv57"``.
+    """
+
+    def __init__(self, cn2: Union[float, str, Callable[[float], float]] = "hv57", *, elevation: float = math.pi / 2,
+                 altitude: float = 0.0, outer_scale: float = math.inf, inner_scale: float = 0.0,
+                 hv_ground: float = 1.7e-14, hv_wind: float = 21.0) -> None:
+        if isinstance(cn2, str):
+            _checks.choice("cn2", cn2, ("hv57",))
+            native = _core.Cn2Profile.hufnagel_valley(_checks.real("hv_ground", hv_ground), _checks.real("hv_wind", hv_wind))
+        elif callable(cn2):
+            native = _core.Cn2Profile.custom(lambda h: float(cn2(h)))
+        else:
+            native = _core.Cn2Profile.constant(_checks.real("cn2", cn2))
+        native.elevation = _checks.real("elevation", elevation)
+        native.altitude = _checks.real("altitude", altitude)
+        native.outer_scale = float(outer_scale)
+        native.inner_scale = _checks.real("inner_scale", inner_scale)
+        native.validate()
+        self.cn2, self._native = cn2, native
+
+    def cn2_at_range(self, z: float) -> float:
+        """Cn² (m^-2/3) at range z (m)."""
+        return self._native.cn2_at_range(z)
+
+    def fried_parameter(self, wavelength: float, path_length: float, wave: str = "spherical") -> float:
+        """r0 (m) over [0, path_length]: ``"spherical"`` (a point source at the lidar) or ``"plane"``."""
+        _checks.choice("wave", wave, ("spherical", "plane"))
+        f = self._native.fried_parameter_spherical if wave == "spherical" else self._native.fried_parameter_plane
+        return f(wavelength, path_length)
+
+    def rytov_variance(self, wavelength: float, path_length: float) -> float:
+        """Plane-wave Rytov variance σ_R² (weak fluctuations below ~1)."""
+        return self._native.rytov_variance(wavelength, path_length)
+
+    def isoplanatic_angle(self, wavelength: float, path_length: float) -> float:
+        """θ0 (rad) seen from the lidar."""
+        return self._native.isoplanatic_angle(wavelength, path_length)
+
+    def beam_wander_variance(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+        """<r_c²> (m²) of a collimated Gaussian beam's centroid at path_length."""
+        return self._native.beam_wander_variance(waist_radius, wavelength, path_length)
+
+    def long_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+        """W_LT (m): the 1/e² radius of the beam averaged over time (spread and wander)."""
+        return self._native.long_term_radius(waist_radius, wavelength, path_length)
+
+    def short_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+        """W_ST (m): the instantaneous beam's radius about its wandering centre, sqrt(W_LT² − <r_c²>)."""
+        return self._native.short_term_radius(waist_radius, wavelength, path_length)
+
+    def __repr__(self) -> str:
+        return f"Turbulence(cn2={self.cn2!r}, elevation={self._native.elevation:.4g} rad)"
+
+
+@dataclass(frozen=True)
+class TurbulentOverlapResult(OverlapResult):
+    """An :class:`OverlapResult` whose ``overlap`` is the mean over ``realizations`` (K × N array, one
+    row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``, ``high``."""
+
+    realizations: Optional[np.ndarray] = None
+    std: Optional[np.ndarray] = None
+    low: Optional[np.ndarray] = None
+    high: Optional[np.ndarray] = None
+
+
+def _statistics(system, z, samples, method, tolerance) -> TurbulentOverlapResult:
+    low, high = np.percentile(samples, BAND, axis=0)
+    k = samples.shape[0]
+    std = samples.std(axis=0, ddof=1) if k > 1 else np.zeros(z.size)
+    return TurbulentOverlapResult(ranges=z, overlap=samples.mean(axis=0), method=method,
+                                  error_estimate=std / math.sqrt(k), system=system, tolerance=tolerance,
+                                  realizations=samples, std=std, low=low, high=high)
+
+
+def _beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
+    """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is ``center``."""
+    w0 = beam.waist_radius
+    divergence = math.sqrt(max(radius**2 - w0**2, 0.0)) / z
+    offset = (beam.offset[0] + beam.tilt[0] * z + center[0], beam.offset[1] + beam.tilt[1] * z + center[1])
+    return dataclasses.replace(beam, divergence=max(divergence, beam.half_angle_divergence), offset=offset,
+                               tilt=(0.0, 0.0))
+
+
+def overlap_rt_turbulent(system, z: np.ndarray, turbulence: Turbulence, realizations: int, seed: int,
+                         tolerance: float) -> TurbulentOverlapResult:
+    """RT through turbulence (see the module docstring); one RT call per range and realisation."""
+    from .overlap import overlap
+
+    beam, lam = system.beam, system.beam.wavelength
+    rng = np.random.default_rng(seed)
+    samples = np.empty((realizations, z.size))
+    for i, zi in enumerate(z):
+        st = turbulence.short_term_radius(beam.waist_radius, lam, zi)
+        lt = turbulence.long_term_radius(beam.waist_radius, lam, zi)
+        sigma = 0.5 * math.sqrt(max(lt**2 - st**2, 0.0))   # per axis: W_LT^2 / 4 = W_ST^2 / 4 + sigma^2
+        for k in range(realizations):
+            shift = rng.normal(0.0, sigma, 2)
+            s = dataclasses.replace(system, beam=_beam_for(beam, zi, st, shift))
+            samples[k, i] = overlap(s, [zi], "rt", tolerance=tolerance).overlap[0]
+    return _statistics(system, z, samples, "rt", tolerance)
+
+
+def overlap_fo_turbulent(system, z: np.ndarray, turbulence: Turbulence, realizations: int, seed: int,
+                         screens: int, beam_grid: int, beam_window: float, threads: int) -> TurbulentOverlapResult:
+    """FO through phase screens (see the module docstring)."""
+    raw = _core.overlap_fo_turbulent(system._native, z, turbulence._native, realizations, screens, seed,
+                                     beam_grid, beam_window, threads)
+    return _statistics(system, z, np.asarray(raw["overlap"]), "fo", float("nan"))
