@@ -51,6 +51,9 @@ ctest:
 bench: setup
 	$(PY) benchmarks/bench_rt.py
 	$(PY) benchmarks/bench_fo.py
+	$(PY) benchmarks/bench_fo_overlap.py
+	$(PY) benchmarks/bench_flat_top.py
+	$(PY) benchmarks/speed_accuracy.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)
