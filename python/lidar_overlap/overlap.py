@@ -141,10 +141,15 @@ def _overlap_turbulent(system, z, method, turbulence, realizations, seed, screen
 
 def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads: int,
                   max_segments: int) -> OverlapResult:
-    decision = decide(system, z, tolerance)
+    decision = decide(system, z, tolerance, threads)
     if decision.method == "rt":
-        res = overlap(system, z, "rt", tolerance=decision.rt_quadrature_tolerance, threads=threads,
-                      max_segments=max_segments)
+        raw = decision.rt_raw   # the RT curve the estimate was made from
+        if max_segments != 4000 or not np.all(raw["converged"]):
+            raw = _core.overlap_rt(system._native, z, decision.rt_quadrature_tolerance, threads, max_segments)
+        warn_if_rt_invalid(system, z)
+        res = OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
+                            error_estimate=np.asarray(raw["error_estimate"]), system=system,
+                            tolerance=decision.rt_quadrature_tolerance)
         error = res.error_estimate + decision.rt_model_error
     else:
         res = overlap(system, z, "fo", threads=threads, fo_path=decision.fo_path)
