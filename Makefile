@@ -55,6 +55,7 @@ bench: setup
 	$(PY) benchmarks/bench_fo_overlap.py
 	$(PY) benchmarks/bench_flat_top.py
 	$(PY) benchmarks/speed_accuracy.py
+	$(PY) benchmarks/bench_phase_screen.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)
