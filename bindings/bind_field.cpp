@@ -3,6 +3,7 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -25,6 +26,12 @@ Field field_from_array(const ComplexArray& values, double spacing, double wavele
 ComplexArray array_from_field(const Field& f) {
   ComplexArray out({f.n, f.n});
   std::memcpy(out.mutable_data(), f.values.data(), f.n * f.n * sizeof(Complex));
+  return out;
+}
+
+py::array_t<double> square_array(const std::vector<double>& values, std::size_t n) {
+  py::array_t<double> out({n, n});
+  std::copy(values.begin(), values.end(), out.mutable_data());
   return out;
 }
 

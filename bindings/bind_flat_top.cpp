@@ -10,14 +10,6 @@
 namespace py = pybind11;
 using namespace lidar_overlap;
 
-namespace {
-py::array_t<double> square(const std::vector<double>& v, std::size_t n) {
-  py::array_t<double> a({n, n});
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
-}  // namespace
-
 void bind_flat_top(py::module_& m) {
   m.def(
       "design_flat_top",
@@ -33,9 +25,9 @@ void bind_flat_top(py::module_& m) {
         py::dict out;
         out["field"] = array_from_field(d.transmitted);
         out["spacing"] = d.transmitted.spacing;
-        out["phase"] = square(d.phase, n);
-        out["target"] = square(d.target, n);
-        out["far_field"] = square(d.far_field, n);
+        out["phase"] = square_array(d.phase, n);
+        out["target"] = square_array(d.target, n);
+        out["far_field"] = square_array(d.far_field, n);
         out["angular_spacing"] = d.angular_spacing;
         out["edge_width_target"] = d.edge_width_target;
         out["history"] = py::array_t<double>(d.history.size(), d.history.data());

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "bind_field.hpp"
 #include "lidar_overlap/overlap_turbulent.hpp"
 #include "lidar_overlap/phase_screen.hpp"
 #include "lidar_overlap/turbulence.hpp"
@@ -45,9 +46,7 @@ void bind_turbulence(py::module_& m) {
           py::gil_scoped_release release;
           s = PhaseScreenGenerator(n, spacing, r0, outer_scale, inner_scale).generate(seed, index);
         }
-        py::array_t<double> a({n, n});
-        std::copy(s.begin(), s.end(), a.mutable_data());
-        return a;
+        return square_array(s, n);
       },
       py::arg("n"), py::arg("spacing"), py::arg("r0"), py::arg("outer_scale"), py::arg("inner_scale"), py::arg("seed"),
       py::arg("index"));

@@ -93,14 +93,15 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
   d.angular_spacing = dtheta;
   d.edge_width_target = edge;
   d.transmitted = Field::gaussian(wavelength, waist_radius, n, dx, {}, o.power);
-  std::vector<double> amplitude(n * n), target(n * n);
+  std::vector<double> amplitude(n * n), target(n * n), far_angle(n * n);  // far_angle: rad, FFT order
   for (std::size_t i = 0; i < n * n; ++i) amplitude[i] = d.transmitted.values[i].real();  // real at the waist
   // Fermi-Dirac edge: 10-90 % over 2 ln 9 s.
   const double s = edge / (2.0 * std::log(9.0));
   double target_sum = 0.0, field_sum = 0.0;
   for (std::size_t iy = 0; iy < n; ++iy)
     for (std::size_t ix = 0; ix < n; ++ix) {
-      const double theta = std::hypot(angle_of(ix, n, dx, wavelength), angle_of(iy, n, dx, wavelength));
+      const double theta = far_angle[iy * n + ix] =
+          std::hypot(angle_of(ix, n, dx, wavelength), angle_of(iy, n, dx, wavelength));
       target[iy * n + ix] = 1.0 / (1.0 + std::exp((theta - half) / s));
       target_sum += target[iy * n + ix];
     }
@@ -171,16 +172,14 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
   d.target = centred(t, n);
 
   double inside = 0.0, total = 0.0, sum = 0.0, sum2 = 0.0, lo = INFINITY, hi = 0.0, count = 0.0;
-  for (std::size_t iy = 0; iy < n; ++iy)
-    for (std::size_t ix = 0; ix < n; ++ix) {
-      const std::size_t i = iy * n + ix;
-      total += j[i];
-      if (std::hypot(angle_of(ix, n, dx, wavelength), angle_of(iy, n, dx, wavelength)) <= half) inside += j[i];
-      if (target[i] >= 0.9) {
-        sum += j[i], sum2 += j[i] * j[i], count += 1.0;
-        lo = std::min(lo, j[i]), hi = std::max(hi, j[i]);
-      }
+  for (std::size_t i = 0; i < n * n; ++i) {
+    total += j[i];
+    if (far_angle[i] <= half) inside += j[i];
+    if (target[i] >= 0.9) {
+      sum += j[i], sum2 += j[i] * j[i], count += 1.0;
+      lo = std::min(lo, j[i]), hi = std::max(hi, j[i]);
     }
+  }
   const double mean = sum / count;
   d.efficiency = inside / total;
   d.uniformity_rms = std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean;

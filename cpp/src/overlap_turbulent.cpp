@@ -103,7 +103,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   // with the beam), the receivers and spectrum grids per range.
   std::vector<std::unique_ptr<PhaseScreenGenerator>> generators(placements.size());
   std::vector<std::unique_ptr<ScaledStep>> steps;
-  std::vector<double> plane_spacing;
+  std::vector<double> range_spacing(ranges.size());
   std::vector<FoReceiver> receivers;
   std::vector<std::size_t> grids(ranges.size());
   double z_prev = 0.0, dx_prev = spacing_at(0.0);
@@ -113,16 +113,9 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     if (p.screen >= 0)
       generators[p.screen] = std::make_unique<PhaseScreenGenerator>(n, dx, placements[p.screen].r0, atmosphere.outer_scale,
                                                                     atmosphere.inner_scale);
-    if (p.range >= 0) plane_spacing.push_back(dx);
+    if (p.range >= 0) range_spacing[p.range] = dx;
     z_prev = p.z;
     dx_prev = dx;
-  }
-  // plane_spacing follows the sorted planes; map it back to the ranges' order.
-  std::vector<double> range_spacing(ranges.size());
-  {
-    std::size_t r = 0;
-    for (const Plane& p : planes)
-      if (p.range >= 0) range_spacing[p.range] = plane_spacing[r++];
   }
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     receivers.emplace_back(system, ranges[i]);

@@ -27,7 +27,7 @@ from typing import List, Optional
 
 import numpy as np
 
-from . import _core
+from . import _checks, _core
 from .field_beam import FieldBeam
 from .validity import rt_diffraction_error
 
@@ -71,10 +71,15 @@ def rt_model_error(system, ranges: np.ndarray, g: np.ndarray, threads: int = 0) 
     return RT_ESTIMATE_SAFETY * float(np.max(rt_diffraction_error(system) * g + edge))
 
 
+def radial_fo_applies(system) -> bool:
+    """True when the radial FO path models the scene: a Gaussian beam on the axis of an axisymmetric lidar."""
+    return (not isinstance(system.beam, FieldBeam) and system.is_axisymmetric
+            and system.beam.width_law == "gaussian")
+
+
 def decide(system, ranges: np.ndarray, tolerance: float, threads: int = 0) -> Decision:
     """The model ``overlap(..., method="auto", tolerance=...)`` uses for this scene."""
-    radial_ok = (not isinstance(system.beam, FieldBeam) and system.is_axisymmetric
-                 and system.beam.width_law == "gaussian")
+    radial_ok = radial_fo_applies(system)
     fo_path = "radial" if radial_ok else "2d"
     fo_accuracy = FO_RADIAL_ACCURACY if radial_ok else FO_2D_ACCURACY
     if isinstance(system.beam, FieldBeam):
@@ -102,7 +107,6 @@ def decide(system, ranges: np.ndarray, tolerance: float, threads: int = 0) -> De
 def explain(system, ranges, tolerance: float = 1e-3) -> Decision:
     """Print and return the decision ``lo.overlap(system, ranges, method="auto", tolerance=tolerance)``
     makes, with the estimates behind it."""
-    from . import _checks
     z = _checks.ranges("ranges", ranges)
     decision = decide(system, z, _checks.unit_interval("tolerance", tolerance))
     print(decision)

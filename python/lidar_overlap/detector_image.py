@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _checks
 from .field_beam import FieldBeam
 from .fields import propagate
 
@@ -32,7 +33,6 @@ class DetectorImage:
 
     @property
     def fraction(self) -> float:
-        h = self.u[1] - self.u[0]
         r = np.hypot(*np.meshgrid(self.u - self.detector_offset[0], self.v - self.detector_offset[1]))
         return float(self.image[r <= self.detector_radius].sum() / self.image.sum())
 
@@ -40,7 +40,6 @@ class DetectorImage:
 def detector_image(system, z: float, n: int = 192) -> DetectorImage:
     """Geometric detector-plane image at range ``z`` (m) on an n × n grid holding the beam image (2.5 w)
     spread by its circle of confusion and the detector disc."""
-    from . import _checks
     z = _checks.positive("z", z)
     n = _checks.count("n", n, 16)
     tel, det = system.telescope, system.detector

@@ -14,7 +14,7 @@ import numpy as np
 
 from . import _checks, _core
 from .result import OverlapResult
-from .auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY, decide
+from .auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY, decide, radial_fo_applies
 from .field_beam import FieldBeam
 from .system import LidarSystem
 from .fields import EDGE_POWER_LIMIT, SamplingWarning
@@ -91,8 +91,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
         f = system.beam.field
         raw = _core.overlap_fo_field(system._native, z, f.values, f.spacing, f.wavelength, max_spectrum_grid, threads)
         return _fo_result(system, z, raw, "enlarge the field's grid (zero-pad it)")
-    radial_possible = system.is_axisymmetric and system.beam.width_law == "gaussian"
-    if method == "fo" and (fo_path == "radial" or (fo_path == "auto" and radial_possible)):
+    if method == "fo" and (fo_path == "radial" or (fo_path == "auto" and radial_fo_applies(system))):
         if beam_grid is not None or beam_window is not None:
             raise ValueError("beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'")
         raw = _core.overlap_fo_radial(system._native, z, 8.0, threads)  # axisymmetry checked in the core
@@ -105,13 +104,18 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
                                max_spectrum_grid, threads)
         return _fo_result(system, z, raw, "enlarge beam_window or beam_grid")
     raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)  # validates the ranges
-    warn_if_rt_invalid(system, z)
+    return _rt_result(system, z, raw, tolerance)
+
+
+def _rt_result(system: LidarSystem, z: np.ndarray, raw: dict, tolerance: float) -> OverlapResult:
+    """The RT result from the core's output, with the validity and convergence warnings."""
+    warn_if_rt_invalid(system, z, stacklevel=4)
     converged = np.asarray(raw["converged"], dtype=bool)
     if not converged.all():
         worst = float(np.max(raw["error_estimate"][~converged]))
         warnings.warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {z.size} "
                       f"ranges (largest error estimate {worst:.3g}); raise max_segments or loosen tolerance",
-                      RuntimeWarning, stacklevel=2)
+                      RuntimeWarning, stacklevel=3)
     return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
                          error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
 
@@ -146,10 +150,7 @@ def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads:
         raw = decision.rt_raw   # the RT curve the estimate was made from
         if max_segments != 4000 or not np.all(raw["converged"]):
             raw = _core.overlap_rt(system._native, z, decision.rt_quadrature_tolerance, threads, max_segments)
-        warn_if_rt_invalid(system, z)
-        res = OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
-                            error_estimate=np.asarray(raw["error_estimate"]), system=system,
-                            tolerance=decision.rt_quadrature_tolerance)
+        res = _rt_result(system, z, raw, decision.rt_quadrature_tolerance)
         error = res.error_estimate + decision.rt_model_error
     else:
         res = overlap(system, z, "fo", threads=threads, fo_path=decision.fo_path)

@@ -119,7 +119,8 @@ def _beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
     """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is ``center``."""
     w0 = beam.waist_radius
     divergence = math.sqrt(max(radius**2 - w0**2, 0.0)) / z
-    offset = (beam.offset[0] + beam.tilt[0] * z + center[0], beam.offset[1] + beam.tilt[1] * z + center[1])
+    axis = beam.center(z)
+    offset = (axis[0] + center[0], axis[1] + center[1])
     return dataclasses.replace(beam, divergence=max(divergence, beam.half_angle_divergence), offset=offset,
                                tilt=(0.0, 0.0))
 
