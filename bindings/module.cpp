@@ -12,6 +12,7 @@ void bind_propagate(py::module_& m);
 void bind_overlap_fo(py::module_& m);
 void bind_flat_top(py::module_& m);
 void bind_turbulence(py::module_& m);
+void bind_aberrations(py::module_& m);
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "C++ core of lidar_overlap (SI units throughout).";
@@ -23,4 +24,5 @@ PYBIND11_MODULE(_core, m) {
   bind_overlap_fo(m);
   bind_flat_top(m);
   bind_turbulence(m);
+  bind_aberrations(m);
 }

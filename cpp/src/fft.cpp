@@ -21,8 +21,8 @@ std::mutex& planner_mutex() {
 }
 
 
-// (rows, length, sign, threads) -> plan. Plans live for the whole process.
-using PlanKey = std::tuple<std::size_t, std::size_t, int, int>;
+// (rows, length, sign, threads, FFTW planner flag) -> plan. Plans live for the whole process.
+using PlanKey = std::tuple<std::size_t, std::size_t, int, int, unsigned>;
 
 // Below this many points a transform is too small to gain from threads, and inside a parallel region
 // (several transforms at once) threads would only oversubscribe the cores.
@@ -43,18 +43,17 @@ fftw_plan get_plan(const PlanKey& key, bool two_d) {
     if (fftw_init_threads() == 0) throw std::runtime_error("FFTW threads could not be initialised");
     threads_ready = true;
   }
-  const auto [rows, length, sign, threads] = key;
+  const auto [rows, length, sign, threads, flag] = key;
   fftw_plan_with_nthreads(threads);
   // Plan on a scratch buffer (FFTW_MEASURE overwrites it); execution uses the caller's buffers.
   ComplexBuffer scratch(rows * length);
   auto* p = reinterpret_cast<fftw_complex*>(scratch.data());
   fftw_plan plan;
   if (two_d) {
-    plan = fftw_plan_dft_2d(static_cast<int>(rows), static_cast<int>(length), p, p, sign, FFTW_MEASURE);
+    plan = fftw_plan_dft_2d(static_cast<int>(rows), static_cast<int>(length), p, p, sign, flag);
   } else {
     const int n = static_cast<int>(length);
-    plan = fftw_plan_many_dft(1, &n, static_cast<int>(rows), p, nullptr, 1, n, p, nullptr, 1, n, sign,
-                              FFTW_MEASURE);
+    plan = fftw_plan_many_dft(1, &n, static_cast<int>(rows), p, nullptr, 1, n, p, nullptr, 1, n, sign, flag);
   }
   if (!plan) throw std::runtime_error("FFTW could not make a plan");
   plans[{two_d, key}] = plan;
@@ -65,16 +64,18 @@ int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD :
 
 }  // namespace
 
-void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction) {
+void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning planning) {
   if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n)}, true), p, p);
+  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n),
+                                  planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE},
+                                 true), p, p);
 }
 
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
   if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length)}, false), p, p);
+  fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length), FFTW_MEASURE}, false), p, p);
 }
 
 }  // namespace lidar_overlap

@@ -14,18 +14,16 @@
 
 namespace lidar_overlap {
 
-namespace {
-
-// One range: the integral of the header, panel by panel.
-double radial_overlap_at(const LidarSystem& system, double z, double periods_per_panel, std::size_t& evaluations) {
+double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel, std::size_t* evaluations) {
   const FoReceiver rx(system, z);
   const double q_cut = rx.cutoff();
   if (q_cut == 0.0) return 0.0;
-  const double w_image = system.beam.radius(z) * rx.detector_distance() / z;
+  const double to_image = rx.detector_distance() / z, w_image = system.beam.radius(z) * to_image;
+  const double offset = norm((-to_image) * system.beam.center(z) - system.detector.offset);
   // exp(-pi^2 w_i^2 q^2 / 2) < 1e-16 beyond q = sqrt(2 ln 1e16) / (pi w_i).
   const double q_end = std::min(q_cut, std::sqrt(2.0 * std::log(1e16)) / (kPi * w_image));
   // Fastest oscillation: disc^ (period 1/r_d) times the OTF (1/blur); the OTF's own scale is q_cut.
-  const double frequency = system.detector.radius + rx.blur_radius() + 4.0 / q_cut;
+  const double frequency = system.detector.radius + rx.blur_radius() + offset + 4.0 / q_cut;
   const std::size_t panels = 1 + static_cast<std::size_t>(q_end * frequency / periods_per_panel);
   // The annular OTF has kinks where one shifted disc leaves the other: shifts R -+ r_obs and 2 r_obs.
   std::vector<double> edges;
@@ -45,23 +43,19 @@ double radial_overlap_at(const LidarSystem& system, double z, double periods_per
     double panel = 0.0;
     for (std::size_t i = 0; i < rule.x.size(); ++i) {
       const double q = mid + half * rule.x[i];
-      panel += rule.w[i] * rx.otf(q) * disc_transform(r_d, q) * std::exp(-g2 * q * q) * q;
+      const double shift = offset > 0.0 ? std::cyl_bessel_j(0.0, 2.0 * kPi * q * offset) : 1.0;
+      panel += rule.w[i] * rx.otf(q) * disc_transform(r_d, q) * std::exp(-g2 * q * q) * shift * q;
     }
     sum += half * panel;
-    evaluations += rule.x.size();
+    if (evaluations) *evaluations += rule.x.size();
   }
   return 2.0 * kPi * sum / rx.aperture_area();
 }
-
-}  // namespace
 
 RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<double>& ranges,
                                   const RadialFoOptions& options) {
   system.validate();
   const GaussianBeam& beam = system.beam;
-  if (!system.is_axisymmetric())
-    throw std::invalid_argument("system is not axisymmetric (beam offset or tilt, or detector offset): the radial "
-                                "Fourier-optics path needs beam and detector on the telescope axis; use the 2-D path");
   if (beam.width_law != WidthLaw::gaussian)
     throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian'");
   const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
@@ -78,7 +72,7 @@ RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<d
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long i = 0; i < static_cast<long>(ranges.size()); ++i)
-    out.overlap[i] = radial_overlap_at(system, ranges[i], options.periods_per_panel, out.evaluations[i]);
+    out.overlap[i] = gaussian_image_overlap(system, ranges[i], options.periods_per_panel, &out.evaluations[i]);
   return out;
 }
 

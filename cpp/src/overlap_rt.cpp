@@ -11,6 +11,7 @@
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/receiver.hpp"
+#include "lidar_overlap/special_functions.hpp"
 
 namespace lidar_overlap {
 
@@ -64,14 +65,6 @@ std::size_t breakpoints(const Kinks& k, Vec2 center, Vec2 dir, double lo, double
   points[n++] = hi;
   std::sort(points, points + n);
   return n;
-}
-
-// exp(-x) I0(x) for x >= 0, without overflow.
-double scaled_bessel_i0(double x) {
-  if (x < 500.0) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
-  // Hankel's asymptotic series; at x >= 500 four terms are exact to double precision.
-  const double t = 1.0 / (8.0 * x);
-  return (1.0 + t * (1.0 + t * (9.0 / 2.0 + t * (225.0 / 6.0)))) / std::sqrt(2.0 * kPi * x);
 }
 
 // int term(origin + rho dir) p(rho) d rho, with p the density of the distance from `origin` of a

@@ -1,6 +1,7 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
 from ._core import __version__
+from .aberrations import Aberrations, noll_index, seidel_to_zernike, zernike, zernike_to_seidel
 from .auto import explain
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -8,6 +9,7 @@ from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
 from .flat_top import FlatTopBeam
 from .overlap import emitter_coupling, optimal_focus_range, overlap
+from .overlap_aberrated import point_image
 from .presets import paper_table1
 from .result import OverlapResult
 from .scene import save_scene, scene
@@ -16,8 +18,14 @@ from .turbulence import Turbulence, TurbulentOverlapResult
 
 __all__ = [
     "__version__",
+    "Aberrations",
     "annular_field",
     "laguerre_gauss_field",
+    "noll_index",
+    "point_image",
+    "seidel_to_zernike",
+    "zernike",
+    "zernike_to_seidel",
     "super_gaussian_field",
     "Detector",
     "DetectorImage",

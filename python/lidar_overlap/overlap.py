@@ -16,6 +16,7 @@ from . import _checks, _core
 from .result import OverlapResult
 from .auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY, decide, radial_fo_applies
 from .field_beam import FieldBeam
+from .overlap_aberrated import overlap_aberrated
 from .system import LidarSystem
 from .fields import EDGE_POWER_LIMIT, SamplingWarning
 from .validity import warn_if_rt_invalid
@@ -51,8 +52,12 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     max_segments : RT only: cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
     beam_grid, beam_window : FO with a Gaussian beam only: samples per side of the transmitted field and
         its window in waist radii (default 256 and 10: ±5 w0). A FieldBeam brings its own grid.
-    max_spectrum_grid : FO only: cap on the zero-padded beam spectrum, which grows with the defocus blur
-        at short range; a range that needs more raises ValueError (use "rt" there).
+    max_spectrum_grid : FO only: cap on the zero-padded beam spectrum (or, with aberrations, on the pupil
+        transform), which grows with the defocus blur at short range; a range that needs more raises
+        ValueError (use "rt" there).
+
+    With ``system.telescope.aberrations`` set, both methods model them (see
+    :mod:`lidar_overlap.overlap_aberrated`); field-dependent Seidel terms need ``"rt"``.
 
     turbulence : a :class:`Turbulence` along the path, or ``None``. The result is then a
         :class:`TurbulentOverlapResult`: the mean over ``realizations`` draws of the atmosphere
@@ -75,6 +80,11 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     max_spectrum_grid = _checks.count("max_spectrum_grid", max_spectrum_grid, 16)
     _checks.choice("fo_path", fo_path, FO_PATHS)
     field_beam = isinstance(system.beam, FieldBeam)
+    if system.aberrated:
+        if turbulence is not None:
+            raise ValueError("turbulence with receiver aberrations is not modelled yet: set telescope.aberrations "
+                             "to None or turbulence to None")
+        return overlap_aberrated(system, z, method, tolerance, threads, max_spectrum_grid)
     if turbulence is not None:
         return _overlap_turbulent(system, z, method, turbulence, _checks.count("realizations", realizations, 1),
                                   _checks.count("seed", seed, 0), _checks.count("screens", screens, 1), tolerance,
@@ -179,8 +189,15 @@ def emitter_coupling(system: LidarSystem, z: float, position: Sequence[float] = 
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {system!r} is invalid: expected a LidarSystem")
     _checks.choice("method", method, METHODS)
+    z, position = _checks.real("z", z), _checks.pair("position", position)
+    if system.aberrated:
+        if method == "fo":
+            raise ValueError("emitter_coupling(method='fo') with aberrations is not modelled: use method='rt' "
+                             "(rays displaced by the wavefront slope) or lo.point_image for the image itself")
+        return _core.emitter_coupling_rt_aberrated(system._native, system.telescope.aberrations._native, z,
+                                                   position, 96, 256)
     couple = _core.emitter_coupling_fo if method == "fo" else _core.emitter_coupling_rt
-    return couple(system._native, _checks.real("z", z), _checks.pair("position", position))
+    return couple(system._native, z, position)
 
 
 def optimal_focus_range(focal_length: float, defocus: float) -> float:

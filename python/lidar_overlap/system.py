@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from typing import Literal, Optional, Tuple
 
 from . import _checks, _core
+from .aberrations import Aberrations
 from .field_beam import FieldBeam
 
 Pair = Tuple[float, float]
@@ -73,15 +74,20 @@ class Telescope:
     focal_length : m, effective focal length f.
     obstruction_radius : m, radius of the opaque central obstruction (secondary mirror), < D/2.
     obstruction_distance : m, its distance in front of the aperture stop, towards the sky.
+    aberrations : :class:`Aberrations` of the receiver (Zernike and Seidel terms), or ``None`` (ideal lens).
     """
 
     diameter: float = 0.15
     focal_length: float = 1.0
     obstruction_radius: float = 0.0
     obstruction_distance: float = 0.0
+    aberrations: Optional[Aberrations] = None
     _native: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        if self.aberrations is not None and not isinstance(self.aberrations, Aberrations):
+            raise ValueError(f"telescope.aberrations = {self.aberrations!r} is invalid: expected an Aberrations "
+                             "or None")
         for name in ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"):
             object.__setattr__(self, name, _checks.real(f"telescope.{name}", getattr(self, name)))
         object.__setattr__(self, "_native", _core.Telescope(self.diameter, self.focal_length,
@@ -151,6 +157,12 @@ class LidarSystem:
                 raise ValueError(f"{name} = {getattr(self, name)!r} is invalid: expected a {expected}")
         object.__setattr__(self, "_native", _core.LidarSystem(self.beam._native, self.telescope._native,
                                                               self.detector._native))
+
+    @property
+    def aberrated(self) -> bool:
+        """True when the telescope carries aberrations with at least one term set."""
+        a = self.telescope.aberrations
+        return a is not None and not a.none
 
     @property
     def is_axisymmetric(self) -> bool:

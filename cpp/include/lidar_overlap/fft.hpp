@@ -41,8 +41,12 @@ using ComplexBuffer = std::vector<Complex, FftwAllocator<Complex>>;
 
 enum class FftDirection { forward, backward };  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
 
+// How hard FFTW plans: `measure` times candidate algorithms once per shape (worth it for shapes used many
+// times); `estimate` plans at once, for large shapes that change from call to call.
+enum class FftPlanning { measure, estimate };
+
 // In-place 2-D transform of an n x n row-major array.
-void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction);
+void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning planning = FftPlanning::measure);
 
 // In-place 1-D transforms of `rows` contiguous rows of `length` each.
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction);

@@ -9,6 +9,7 @@
 // find_package(LidarOverlap CONFIG) (examples/cpp).
 #pragma once
 
+#include "lidar_overlap/aberrations.hpp"
 #include "lidar_overlap/beam.hpp"
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/circles.hpp"
@@ -20,15 +21,19 @@
 #include "lidar_overlap/grid_choice.hpp"
 #include "lidar_overlap/otf.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
+#include "lidar_overlap/overlap_fo_aberrated.hpp"
 #include "lidar_overlap/overlap_fo_radial.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
+#include "lidar_overlap/overlap_rt_aberrated.hpp"
 #include "lidar_overlap/overlap_turbulent.hpp"
 #include "lidar_overlap/phase_screen.hpp"
 #include "lidar_overlap/propagate.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/receiver.hpp"
 #include "lidar_overlap/scaled_dft.hpp"
+#include "lidar_overlap/special_functions.hpp"
 #include "lidar_overlap/system.hpp"
 #include "lidar_overlap/turbulence.hpp"
 #include "lidar_overlap/vec2.hpp"
 #include "lidar_overlap/version.hpp"
+#include "lidar_overlap/zernike.hpp"

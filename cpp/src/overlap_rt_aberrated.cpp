@@ -1,0 +1,236 @@
+#include "lidar_overlap/overlap_rt_aberrated.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/constants.hpp"
+#include "lidar_overlap/quadrature.hpp"
+#include "lidar_overlap/special_functions.hpp"
+#include "lidar_overlap/zernike.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+
+// The ray fan through the pupil, with the field-independent wavefront slope of every ray computed once.
+class RayFan {
+ public:
+  RayFan(const LidarSystem& system, const Aberrations& aberrations, const RtAberratedOptions& options)
+      : system_(system), ab_(aberrations), rings_(options.rings), per_ring_(options.ring_rays) {
+    radius_ = 0.5 * system.telescope.diameter;
+    Aberrations fixed = aberrations;  // the part that is the same for every scatterer
+    fixed.w131 = fixed.w222 = fixed.w220 = fixed.w311 = 0.0;
+    for (std::size_t i = 0; i < rings_; ++i) {
+      const double rho = std::sqrt((i + 0.5) / rings_);  // midpoints in rho^2: equal areas
+      for (std::size_t k = 0; k < per_ring_; ++k) {
+        const double theta = 2.0 * kPi * k / per_ring_;
+        const Vec2 p{rho * std::cos(theta), rho * std::sin(theta)};
+        pupil_.push_back(p);
+        slope_.push_back((1.0 / radius_) * fixed.gradient(p));
+      }
+    }
+  }
+
+  // Fraction of the scatterer's rays into the full aperture that reach the detector.
+  double coupling(double z, Vec2 position) const {
+    const Telescope& t = system_.telescope;
+    const Detector& det = system_.detector;
+    const double d = t.focal_length + det.defocus, k = 1.0 / z - 1.0 / t.focal_length;
+    const double max_slope = det.numerical_aperture
+                                 ? *det.numerical_aperture / std::sqrt(1.0 - *det.numerical_aperture * *det.numerical_aperture)
+                                 : 0.0;
+    const Vec2 field = (1.0 / z) * position, h = ab_.field_dependent() ? (1.0 / ab_.field_radius) * field : Vec2{};
+    const double h2 = dot(h, h), s_obs = t.obstruction_distance / z;
+    std::vector<double> margin(per_ring_);
+    double total = 0.0;
+    for (std::size_t i = 0; i < rings_; ++i) {
+      for (std::size_t j = 0; j < per_ring_; ++j) {
+        const std::size_t r = i * per_ring_ + j;
+        const Vec2 a = radius_ * pupil_[r];
+        Vec2 slope = k * a - (1.0 / z) * position + slope_[r];
+        if (ab_.field_dependent()) {  // Seidel field terms, gradient in the normalised pupil (aberrations.cpp)
+          const Vec2 p = pupil_[r];
+          const double hp = dot(h, p), r2 = dot(p, p);
+          slope = slope + (1.0 / radius_) * ((2.0 * ab_.w131 * hp + 2.0 * ab_.w220 * h2) * p +
+                                             (ab_.w131 * r2 + 2.0 * ab_.w222 * hp + ab_.w311 * h2) * h);
+        }
+        double m = det.radius - norm(a + d * slope - det.offset);
+        if (t.obstruction_radius > 0.0) m = std::min(m, norm(a + s_obs * (position - a)) - t.obstruction_radius);
+        if (det.numerical_aperture) m = std::min(m, max_slope - norm(slope));
+        margin[j] = m;
+      }
+      // Share of the ring with margin > 0, the sign changes placed by linear interpolation (periodic ring).
+      double inside = 0.0;
+      for (std::size_t j = 0; j < per_ring_; ++j) {
+        const double m0 = margin[j], m1 = margin[(j + 1) % per_ring_];
+        if (m0 > 0.0 && m1 > 0.0) inside += 1.0;
+        else if (m0 > 0.0 || m1 > 0.0) inside += std::max(m0, m1) / std::abs(m1 - m0);
+      }
+      total += inside;
+    }
+    return total / static_cast<double>(rings_ * per_ring_);
+  }
+
+ private:
+  const LidarSystem& system_;
+  const Aberrations& ab_;
+  std::size_t rings_, per_ring_;
+  double radius_ = 0.0;
+  std::vector<Vec2> pupil_, slope_;
+};
+
+// K(s): the share of a Gaussian image (1/e^2 radius w) centred s from the detector centre that falls on the
+// detector (radius r_d), the Rice distribution's integral over [0, r_d]; tabulated at w/64 up to r_d + 6 w
+// (beyond, below 1e-31) and interpolated by cubic Lagrange polynomials (error ~1e-9).
+class ImageOnDetector {
+ public:
+  ImageOnDetector(double w, double r_d) : h_(w / 64.0), s_max_(r_d + 6.0 * w) {
+    const double var = 0.25 * w * w;
+    const std::size_t n = 4 + static_cast<std::size_t>(std::ceil(s_max_ / h_));
+    table_.resize(n + 1);
+    for (std::size_t i = 0; i <= n; ++i) {
+      const double nu = std::abs((static_cast<double>(i) - 1.0) * h_);  // one node before 0: K is even
+      auto density = [&](double rho) {
+        const double d = rho - nu;
+        return rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
+      };
+      const double lo = std::max(0.0, std::min(r_d, nu - 6.0 * w)), hi = std::min(r_d, nu + 6.0 * w);
+      const double points[2] = {lo, hi};
+      table_[i] = hi > lo ? integrate(density, points, 2, 1e-13, 2000).value : 0.0;
+    }
+  }
+  double operator()(double s) const {
+    if (s >= s_max_) return 0.0;
+    const double pos = s / h_ + 1.0;
+    const std::size_t j = std::max<std::size_t>(1, static_cast<std::size_t>(pos));
+    const double t = pos - j, *p = &table_[j - 1];
+    const double a = t + 1.0, b = t - 1.0, c = t - 2.0;
+    return (-t * b * c * p[0] + 3.0 * a * b * c * p[1] - 3.0 * a * t * c * p[2] + a * t * b * p[3]) * (1.0 / 6.0);
+  }
+
+ private:
+  double h_, s_max_;
+  std::vector<double> table_;
+};
+
+// When every ray's displacement on the detector plane, D(a) = a (1 + d/z - d/f) + d grad_a W(a), is the same for
+// every scatterer (Zernike terms and W040 only, no NA cone, obstruction in the aperture plane), G needs no rays:
+//   G = (1 / pi R^2) int_pupil K(|D(a) + s|) da,
+// with s the beam image's centre relative to the detector. K is smooth on the scale of the beam image w_i, so
+// a polar rule with nodes every w_i / 8 of D's sweep converges fast.
+// Returns G and, as its error estimate, its change when every other angle is dropped.
+std::pair<double, double> pupil_dual_overlap(const LidarSystem& system, const Aberrations& ab, double z) {
+  const Telescope& t = system.telescope;
+  const double d = t.focal_length + system.detector.defocus, to_image = d / z, radius = 0.5 * t.diameter;
+  const double w = system.beam.radius(z) * to_image, inner = t.obstruction_radius;
+  const Vec2 s = (-to_image) * system.beam.center(z) - system.detector.offset;
+  const double scale = 1.0 + d / z - d / t.focal_length;
+  const double sweep = std::abs(scale) * radius + d * ab.max_gradient() / radius;  // m, largest |D|
+  const ImageOnDetector k_of(w, system.detector.radius);
+  const std::size_t angles = std::clamp<std::size_t>(static_cast<std::size_t>(16.0 * kPi * sweep / w), 64, 1 << 14);
+  const std::size_t panels = std::clamp<std::size_t>(static_cast<std::size_t>(sweep / w), 4, 1 << 11);
+  const GaussLegendreRule& rule = gauss_legendre<8>();
+  double sum = 0.0, coarse = 0.0;
+  for (std::size_t pnl = 0; pnl < panels; ++pnl) {
+    const double lo = inner + (radius - inner) * pnl / panels, hi = inner + (radius - inner) * (pnl + 1) / panels;
+    for (std::size_t i = 0; i < rule.x.size(); ++i) {
+      const double rho = 0.5 * (lo + hi) + 0.5 * (hi - lo) * rule.x[i];
+      double ring = 0.0, even = 0.0;
+      for (std::size_t k = 0; k < angles; ++k) {
+        const double theta = 2.0 * kPi * k / angles;
+        const Vec2 a{rho * std::cos(theta), rho * std::sin(theta)};
+        const double value = k_of(norm(scale * a + (d / radius) * ab.gradient((1.0 / radius) * a) + s));
+        ring += value;
+        if (k % 2 == 0) even += value;
+      }
+      const double weight = 0.5 * (hi - lo) * rule.w[i] * rho * (2.0 * kPi / angles);
+      sum += weight * ring;
+      coarse += 2.0 * weight * even;
+    }
+  }
+  const double area = kPi * radius * radius;
+  return {sum / area, std::abs(sum - coarse) / area};
+}
+
+bool rotationally_symmetric(const LidarSystem& system, const Aberrations& ab) {
+  if (!system.is_axisymmetric()) return false;
+  for (std::size_t i = 0; i < ab.zernike.size(); ++i)
+    if (ab.zernike[i] != 0.0 && noll_index(static_cast<int>(i + 1)).m != 0) return false;
+  return true;  // Seidel terms turn with the field direction: the coupling depends on |P| only
+}
+
+void validate(const LidarSystem& system, const Aberrations& aberrations, const RtAberratedOptions& o) {
+  system.validate();
+  aberrations.validate();
+  if (o.rings < 4) checks::fail("rings", static_cast<double>(o.rings), "at least 4");
+  if (o.ring_rays < 8) checks::fail("ring_rays", static_cast<double>(o.ring_rays), "at least 8");
+  if (o.directions < 4) checks::fail("directions", static_cast<double>(o.directions), "at least 4");
+  checks::in_open_unit("tolerance", o.tolerance);
+  if (o.threads < 0) checks::fail("threads", o.threads, "0 (all cores) or a count >= 1");
+  if (o.max_segments < 1) checks::fail("max_segments", 0.0, "at least 1");
+}
+
+}  // namespace
+
+RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
+                                        const std::vector<double>& ranges, const RtAberratedOptions& options) {
+  validate(system, aberrations, options);
+  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+  const RayFan fan(system, aberrations, options);
+  RtAberratedOverlap out;
+  out.rotationally_symmetric = rotationally_symmetric(system, aberrations);
+  const std::size_t n = ranges.size();
+  out.overlap.assign(n, 0.0);
+  out.error_estimate.assign(n, 0.0);
+  out.converged.assign(n, true);
+  std::vector<char> converged(n, 1);
+  const std::size_t directions = out.rotationally_symmetric ? 1 : options.directions;
+  const Telescope& t = system.telescope;
+  const bool dual = !aberrations.field_dependent() && !system.detector.numerical_aperture &&
+                    (t.obstruction_radius == 0.0 || t.obstruction_distance == 0.0);
+  out.pupil_form = dual;
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (long i = 0; i < static_cast<long>(n); ++i) {
+    if (dual) {
+      std::tie(out.overlap[i], out.error_estimate[i]) = pupil_dual_overlap(system, aberrations, ranges[i]);
+      continue;
+    }
+    const double z = ranges[i], w = system.beam.radius(z), var = 0.25 * w * w;
+    const Vec2 c = system.beam.center(z);
+    double value = 0.0, error = 0.0;
+    for (std::size_t j = 0; j < directions; ++j) {  // trapezoid rule over directions: spectral for periodic data
+      const double alpha = 2.0 * kPi * j / directions;
+      const Vec2 dir{std::cos(alpha), std::sin(alpha)};
+      // Rayleigh density of the distance from the beam centre (sigma = w/2), cut at 5 w (exp(-50)).
+      auto integrand = [&](double r) {
+        return r / var * std::exp(-0.5 * r * r / var) * fan.coupling(z, c + r * dir);
+      };
+      const double points[2] = {0.0, 5.0 * w};
+      const QuadratureResult q = integrate(integrand, points, 2, options.tolerance, options.max_segments);
+      value += q.value / directions;
+      error += q.error / directions;
+      if (!q.converged) converged[i] = 0;
+    }
+    out.overlap[i] = value;
+    out.error_estimate[i] = error;
+  }
+  for (std::size_t i = 0; i < n; ++i) out.converged[i] = converged[i] != 0;
+  return out;
+}
+
+double emitter_coupling_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations, double z,
+                                     Vec2 position, const RtAberratedOptions& options) {
+  validate(system, aberrations, options);
+  system.validate_range(z, "z");
+  checks::finite("position", position);
+  return RayFan(system, aberrations, options).coupling(z, position);
+}
+
+}  // namespace lidar_overlap
