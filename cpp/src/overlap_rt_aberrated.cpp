@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -11,7 +12,7 @@
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/quadrature.hpp"
-#include "lidar_overlap/special_functions.hpp"
+#include "aberrated_pupil_integral.hpp"
 #include "lidar_overlap/zernike.hpp"
 
 namespace lidar_overlap {
@@ -85,79 +86,6 @@ class RayFan {
   std::vector<Vec2> pupil_, slope_;
 };
 
-// K(s): the share of a Gaussian image (1/e^2 radius w) centred s from the detector centre that falls on the
-// detector (radius r_d), the Rice distribution's integral over [0, r_d]; tabulated at w/64 up to r_d + 6 w
-// (beyond, below 1e-31) and interpolated by cubic Lagrange polynomials (error ~1e-9).
-class ImageOnDetector {
- public:
-  ImageOnDetector(double w, double r_d) : h_(w / 64.0), s_max_(r_d + 6.0 * w) {
-    const double var = 0.25 * w * w;
-    const std::size_t n = 4 + static_cast<std::size_t>(std::ceil(s_max_ / h_));
-    table_.resize(n + 1);
-    for (std::size_t i = 0; i <= n; ++i) {
-      const double nu = std::abs((static_cast<double>(i) - 1.0) * h_);  // one node before 0: K is even
-      auto density = [&](double rho) {
-        const double d = rho - nu;
-        return rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
-      };
-      const double lo = std::max(0.0, std::min(r_d, nu - 6.0 * w)), hi = std::min(r_d, nu + 6.0 * w);
-      const double points[2] = {lo, hi};
-      table_[i] = hi > lo ? integrate(density, points, 2, 1e-13, 2000).value : 0.0;
-    }
-  }
-  double operator()(double s) const {
-    if (s >= s_max_) return 0.0;
-    const double pos = s / h_ + 1.0;
-    const std::size_t j = std::max<std::size_t>(1, static_cast<std::size_t>(pos));
-    const double t = pos - j, *p = &table_[j - 1];
-    const double a = t + 1.0, b = t - 1.0, c = t - 2.0;
-    return (-t * b * c * p[0] + 3.0 * a * b * c * p[1] - 3.0 * a * t * c * p[2] + a * t * b * p[3]) * (1.0 / 6.0);
-  }
-
- private:
-  double h_, s_max_;
-  std::vector<double> table_;
-};
-
-// When every ray's displacement on the detector plane, D(a) = a (1 + d/z - d/f) + d grad_a W(a), is the same for
-// every scatterer (Zernike terms and W040 only, no NA cone, obstruction in the aperture plane), G needs no rays:
-//   G = (1 / pi R^2) int_pupil K(|D(a) + s|) da,
-// with s the beam image's centre relative to the detector. K is smooth on the scale of the beam image w_i, so
-// a polar rule with nodes every w_i / 8 of D's sweep converges fast.
-// Returns G and, as its error estimate, its change when every other angle is dropped.
-std::pair<double, double> pupil_dual_overlap(const LidarSystem& system, const Aberrations& ab, double z) {
-  const Telescope& t = system.telescope;
-  const double d = t.focal_length + system.detector.defocus, to_image = d / z, radius = 0.5 * t.diameter;
-  const double w = system.beam.radius(z) * to_image, inner = t.obstruction_radius;
-  const Vec2 s = (-to_image) * system.beam.center(z) - system.detector.offset;
-  const double scale = 1.0 + d / z - d / t.focal_length;
-  const double sweep = std::abs(scale) * radius + d * ab.max_gradient() / radius;  // m, largest |D|
-  const ImageOnDetector k_of(w, system.detector.radius);
-  const std::size_t angles = std::clamp<std::size_t>(static_cast<std::size_t>(16.0 * kPi * sweep / w), 64, 1 << 14);
-  const std::size_t panels = std::clamp<std::size_t>(static_cast<std::size_t>(sweep / w), 4, 1 << 11);
-  const GaussLegendreRule& rule = gauss_legendre<8>();
-  double sum = 0.0, coarse = 0.0;
-  for (std::size_t pnl = 0; pnl < panels; ++pnl) {
-    const double lo = inner + (radius - inner) * pnl / panels, hi = inner + (radius - inner) * (pnl + 1) / panels;
-    for (std::size_t i = 0; i < rule.x.size(); ++i) {
-      const double rho = 0.5 * (lo + hi) + 0.5 * (hi - lo) * rule.x[i];
-      double ring = 0.0, even = 0.0;
-      for (std::size_t k = 0; k < angles; ++k) {
-        const double theta = 2.0 * kPi * k / angles;
-        const Vec2 a{rho * std::cos(theta), rho * std::sin(theta)};
-        const double value = k_of(norm(scale * a + (d / radius) * ab.gradient((1.0 / radius) * a) + s));
-        ring += value;
-        if (k % 2 == 0) even += value;
-      }
-      const double weight = 0.5 * (hi - lo) * rule.w[i] * rho * (2.0 * kPi / angles);
-      sum += weight * ring;
-      coarse += 2.0 * weight * even;
-    }
-  }
-  const double area = kPi * radius * radius;
-  return {sum / area, std::abs(sum - coarse) / area};
-}
-
 bool rotationally_symmetric(const LidarSystem& system, const Aberrations& ab) {
   if (!system.is_axisymmetric()) return false;
   for (std::size_t i = 0; i < ab.zernike.size(); ++i)
@@ -195,11 +123,13 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
   const bool dual = !aberrations.field_dependent() && !system.detector.numerical_aperture &&
                     (t.obstruction_radius == 0.0 || t.obstruction_distance == 0.0);
   out.pupil_form = dual;
+  std::optional<detail::AberratedPupilIntegral> pupil;
+  if (dual) pupil.emplace(system, aberrations, ranges, out.rotationally_symmetric);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (long i = 0; i < static_cast<long>(n); ++i) {
-    if (dual) {
-      std::tie(out.overlap[i], out.error_estimate[i]) = pupil_dual_overlap(system, aberrations, ranges[i]);
+    if (pupil) {
+      std::tie(out.overlap[i], out.error_estimate[i]) = pupil->at(i);
       continue;
     }
     const double z = ranges[i], w = system.beam.radius(z), var = 0.25 * w * w;
