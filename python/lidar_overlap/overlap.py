@@ -45,7 +45,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     tolerance : absolute error allowed on G at each range, in (0, 1). RT: the adaptive beam integral (radial
         with Rice weights about each coupling term's centre of symmetry, two-dimensional where there is
         none) stops when its error estimate is below it. auto: the model error plus the numerical error.
-    fo_path : FO with a Gaussian beam: ``"radial"`` (axisymmetric scenes only: one integral per range, no
+    fo_path : FO with a Gaussian beam: ``"radial"`` (one integral per range, the beam image's offset as J0, no
         grids, exact to ~1e-9), ``"2d"`` (the sampled beam propagated on a grid, ~1e-6), or ``"auto"``
         (radial whenever the scene allows it).
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it.
