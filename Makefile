@@ -57,6 +57,7 @@ bench: setup
 	$(PY) benchmarks/bench_flat_top.py
 	$(PY) benchmarks/speed_accuracy.py
 	$(PY) benchmarks/bench_phase_screen.py
+	$(PY) benchmarks/bench_turbulent_overlap.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)

@@ -12,6 +12,8 @@ angle, and the beam wander and long-term spread of a collimated Gaussian beam (a
 - RT: each realisation is the short-term beam (radius W_ST) displaced by a random wander drawn from a
   Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it, the
   long-term beam W_LT; the mean overlap is then that of the long-term beam (G is linear in the irradiance).
+  With Andrews & Phillips' W_ST² = W_LT² − <r_c²> that 2-D wander variance is <r_c²>/2, 2^(-1/3) = 0.79
+  times the centroid variance of the FO screens for a collimated beam: the RT band is a little narrower.
 """
 
 from __future__ import annotations
@@ -80,11 +82,16 @@ class Turbulence:
         return self._native.isoplanatic_angle(wavelength, path_length)
 
     def beam_wander_variance(self, waist_radius: float, wavelength: float, path_length: float) -> float:
-        """<r_c²> (m²) of a collimated Gaussian beam's centroid at path_length."""
+        """Andrews & Phillips' beam-wander variance <r_c²> (m², 2-D) of a collimated Gaussian beam at
+        path_length, 2.42 Cn² L³ W0^(-1/3) for a constant Cn². It is the large-scale part of their W_LT²
+        (eddies filtered by exp(-κ² W0²)); the centroid of the irradiance-weighted tilt, which the FO
+        screens reproduce, has 2^(-2/3) = 0.63 of it."""
         return self._native.beam_wander_variance(waist_radius, wavelength, path_length)
 
     def long_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
-        """W_LT (m): the 1/e² radius of the beam averaged over time (spread and wander)."""
+        """W_LT (m): the 1/e² radius of the Gaussian core of the beam averaged over time (spread and wander),
+        set by its mean irradiance on the axis. The second-moment radius of that mean irradiance is
+        larger: scattered light makes its wings, unbounded for a zero inner scale."""
         return self._native.long_term_radius(waist_radius, wavelength, path_length)
 
     def short_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:

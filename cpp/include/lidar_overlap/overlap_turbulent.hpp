@@ -3,6 +3,8 @@
 // phase_screen.hpp) placed along the path with the Fried parameters of their segments (Cn2Profile::
 // place_screens), by split-step Fresnel propagation on grids that follow the beam's long-term radius, and
 // the overlap is computed at each range from that realisation's irradiance exactly as in overlap_fo.
+// That sum is linear in the irradiance, so it is made once per range as a map on the beam grid (n^2
+// doubles per range) and costs each realisation one pass over its irradiance.
 // Each realisation is one random draw of the atmosphere (frozen during the pulse): the statistics over
 // realisations give the mean overlap and its spread. The return path is taken as unperturbed (the
 // receiver sees the scattering volume through the same turbulence, which mostly moves the image).

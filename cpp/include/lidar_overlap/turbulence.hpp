@@ -74,10 +74,13 @@ struct Cn2Profile {
   //
   // Beam-wander variance (m^2): <r_c^2> = 2.42 W0^(-1/3) 3 int Cn^2(z) (L - z)^2 dz, i.e.
   // 2.42 Cn^2 L^3 W0^(-1/3) for a constant Cn^2. A tilt picked up at z moves the beam at L by (L - z)
-  // times it, and the tilt variance of a layer is Cn^2 dz W0^(-1/3) (the beam stays ~W0 wide).
+  // times it, and the tilt variance of a layer is Cn^2 dz W0^(-1/3) (the beam stays ~W0 wide). This is
+  // A&P's large-scale part of W_LT^2 (eddies filtered by exp(-kappa^2 W0^2)); the centroid of the
+  // irradiance-weighted tilt (exp(-kappa^2 W0^2 / 4)), which the FO screens give, has 2^(-2/3) of it.
   double beam_wander_variance(double waist_radius, double wavelength, double path_length) const;
 
-  // Long-term radius (m): W_LT^2 = W^2 (1 + 1.33 sigma^2 Lambda^(5/6)). For a constant Cn^2, sigma^2 is
+  // Long-term radius (m): W_LT^2 = W^2 (1 + 1.33 sigma^2 Lambda^(5/6)), the Gaussian core of the mean
+  // irradiance, from its value on the axis (its second moment is larger). For a constant Cn^2, sigma^2 is
   // the Rytov variance; for a profile it is the same expression with Cn^2 replaced by its average
   // weighted by (1 - z / L)^(5/3), i.e. 2.25 k^(7/6) L^(5/6) (16 / 11) int Cn^2(z) (1 - z / L)^(5/3) dz.
   // This weight is the one of the Kolmogorov path integral behind 1.33 sigma_R^2 Lambda^(5/6),
