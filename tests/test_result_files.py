@@ -26,7 +26,14 @@ def _biaxial():
 def results():
     return {"rt": lo.overlap(lo.paper_table1(), RANGES, method="rt"),
             "fo": lo.overlap(lo.paper_table1(obstruction_radius=0.02), RANGES[20::4], method="fo"),
-            "biaxial": lo.overlap(_biaxial(), RANGES, method="rt", tolerance=1e-6)}
+            "biaxial": lo.overlap(_biaxial(), RANGES, method="rt", tolerance=1e-6),
+            "aberrated": lo.overlap(_aberrated(), RANGES[20::8], method="rt")}
+
+
+def _aberrated():
+    aberrations = lo.Aberrations(zernike={6: 0.2e-6, 11: 0.3e-6}, w222=0.1e-6, field_radius=0.45e-3)
+    base = lo.paper_table1()
+    return dataclasses.replace(base, telescope=dataclasses.replace(base.telescope, aberrations=aberrations))
 
 
 def _assert_same(read, original, system_too=True):
@@ -39,14 +46,14 @@ def _assert_same(read, original, system_too=True):
         assert read.system == original.system
 
 
-@pytest.mark.parametrize("key", ["rt", "fo", "biaxial"])
+@pytest.mark.parametrize("key", ["rt", "fo", "biaxial", "aberrated"])
 def test_csv_round_trip_is_exact(results, key, tmp_path):
     path = tmp_path / "g.csv"
     results[key].to_csv(path)
     _assert_same(lo.OverlapResult.from_csv(path), results[key])
 
 
-@pytest.mark.parametrize("key", ["rt", "fo", "biaxial"])
+@pytest.mark.parametrize("key", ["rt", "fo", "biaxial", "aberrated"])
 def test_netcdf_round_trip_is_exact(results, key, tmp_path):
     path = tmp_path / "g.nc"
     results[key].to_netcdf(path)

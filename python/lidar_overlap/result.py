@@ -10,6 +10,7 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from . import _checks
+from .aberrations import SEIDEL_TERMS, Aberrations
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 CSV_COLUMNS = ("range_m", "overlap", "error_estimate")
@@ -239,7 +240,21 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
     if det.numerical_aperture is not None:
         a["detector_numerical_aperture"] = det.numerical_aperture
     a["detector_fov_rad"] = float(system.fov)
+    if tel.aberrations is not None:
+        a.update({f"aberration_zernike_{j}_m": c for j, c in tel.aberrations.zernike.items()})
+        a.update({f"aberration_{name}_m": getattr(tel.aberrations, name) for name in SEIDEL_TERMS
+                  if getattr(tel.aberrations, name) != 0.0})
+        if tel.aberrations.field_radius:
+            a["aberration_field_radius_rad"] = tel.aberrations.field_radius
     return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in a.items()}
+
+
+def _aberrations_from_attributes(attrs: Dict[str, Any]) -> Optional[Aberrations]:
+    if not any(k.startswith("aberration_") for k in attrs):
+        return None
+    zernike = {int(k.split("_")[2]): v for k, v in attrs.items() if k.startswith("aberration_zernike_")}
+    seidel = {name: attrs.get(f"aberration_{name}_m", 0.0) for name in SEIDEL_TERMS}
+    return Aberrations(zernike=zernike, field_radius=attrs.get("aberration_field_radius_rad", 0.0), **seidel)
 
 
 def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
@@ -257,7 +272,8 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
                             tilt=pair("beam_tilt", "rad"), width_law=str(attrs.get("beam_width_law", "gaussian")))
         telescope = Telescope(diameter=attrs["telescope_diameter_m"], focal_length=attrs["telescope_focal_length_m"],
                               obstruction_radius=attrs["telescope_obstruction_radius_m"],
-                              obstruction_distance=attrs["telescope_obstruction_distance_m"])
+                              obstruction_distance=attrs["telescope_obstruction_distance_m"],
+                              aberrations=_aberrations_from_attributes(attrs))
         detector = Detector(radius=attrs["detector_radius_m"], defocus=attrs["detector_defocus_m"],
                             offset=pair("detector_offset", "m"),
                             numerical_aperture=attrs.get("detector_numerical_aperture"))
