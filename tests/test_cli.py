@@ -5,6 +5,7 @@ message naming the key, `demo` writes the three Table 1 variants, and the module
 import subprocess
 import sys
 import types
+import re
 from pathlib import Path
 
 import numpy as np
@@ -60,6 +61,21 @@ def test_bundled_file_is_the_built_in_scenario():
     assert np.array_equal(from_file.ranges, built_in.ranges)
     for key in ("name", "description", "method", "options", "outputs"):
         assert getattr(from_file, key) == getattr(built_in, key), key
+
+
+def test_aberrated_scenario_loads_and_refuses_bad_terms(tmp_path):
+    scenario = load_scenario(SCENARIOS / "table1_aberrated.toml")
+    ab = scenario.system.telescope.aberrations
+    assert ab.zernike == {6: 0.3e-6, 11: 0.5e-6} and ab.w131 == 0.2e-6 and ab.field_radius == 0.45e-3
+    assert scenario.model() == "rt"
+    text = (SCENARIOS / "table1_aberrated.toml").read_text()
+    for change, words in ((('"11" = 0.5e-6', '"eleven" = 0.5e-6'), "[telescope.aberrations.zernike] eleven"),
+                          (("w131 = 0.2e-6", "w132 = 0.2e-6"), "unknown key 'w132'"),
+                          (("field_radius = 0.45e-3", "field_radius = 0.0"), "field_radius")):
+        path = tmp_path / "bad.toml"
+        path.write_text(text.replace(*change))
+        with pytest.raises(ValueError, match=re.escape(words)):
+            load_scenario(path)
 
 
 def test_biaxial_flat_top_scenario_loads():

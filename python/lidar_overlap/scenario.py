@@ -21,6 +21,7 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
+from .aberrations import Aberrations
 from .auto import decide
 from .field_beam import FieldBeam
 from .flat_top import FlatTopBeam
@@ -45,7 +46,9 @@ _SCHEMA: Dict[str, Dict[str, str]] = {
                  "max_iterations": _INT, "tolerance": _NUMBER, "max_error": _NUMBER, "power": _NUMBER,
                  "type": _STR},
     "telescope": {"diameter": _NUMBER, "focal_length": _NUMBER, "obstruction_radius": _NUMBER,
-                  "obstruction_distance": _NUMBER},
+                  "obstruction_distance": _NUMBER, "aberrations": "table"},
+    "telescope.aberrations": {"zernike": "table", "w040": _NUMBER, "w131": _NUMBER, "w222": _NUMBER,
+                              "w220": _NUMBER, "w311": _NUMBER, "field_radius": _NUMBER},
     "detector": {"fov": _NUMBER, "radius": _NUMBER, "defocus": _NUMBER, "offset": _PAIR,
                  "numerical_aperture": _NUMBER},
     "ranges": {"start": _NUMBER, "stop": _NUMBER, "count": _INT, "spacing": _STR, "values": "values"},
@@ -178,8 +181,23 @@ def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
 
 
 def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
-    return _build(source, "telescope", Telescope,
-                  **_keys(source, "telescope", table, _SCHEMA["telescope"], _REQUIRED["telescope"]))
+    values = dict(_keys(source, "telescope", table, _SCHEMA["telescope"], _REQUIRED["telescope"]))
+    if "aberrations" in values:
+        values["aberrations"] = _aberrations(source, values["aberrations"])
+    return _build(source, "telescope", Telescope, **values)
+
+
+def _aberrations(source: str, table: Dict[str, Any]) -> Aberrations:
+    """[telescope.aberrations]: Seidel coefficients (m), field_radius (rad) and a [..zernike] table of
+    "Noll index" = m RMS."""
+    values = dict(_keys(source, "telescope.aberrations", table, _SCHEMA["telescope.aberrations"]))
+    terms = {}
+    for key, value in values.pop("zernike", {}).items():
+        if not (key.isdigit() and 1 <= int(key) <= 1000) or not _is_number(value):
+            raise ScenarioError(f"{source}: [telescope.aberrations.zernike] {key} = {value!r} is invalid: expected "
+                                '"Noll index" (1-1000) = RMS wavefront in m, e.g. "11" = 5e-8')
+        terms[int(key)] = value
+    return _build(source, "telescope.aberrations", Aberrations, zernike=terms, **values)
 
 
 def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detector:
