@@ -1,6 +1,8 @@
 #include "lidar_overlap/beam.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
@@ -35,6 +37,16 @@ double GaussianBeam::irradiance(Vec2 p, double z) const {
 
 bool GaussianBeam::on_axis() const {
   return offset.x == 0.0 && offset.y == 0.0 && tilt.x == 0.0 && tilt.y == 0.0;
+}
+
+void GaussianBeam::validate_for_fourier_optics() const {
+  if (width_law != WidthLaw::gaussian)
+    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
+                                "(the linear law is the paper's RT marginal-ray model)");
+  const double theta_d = wavelength / (kPi * waist_radius);
+  if (divergence && *divergence < theta_d * (1.0 - 1e-9))
+    checks::fail("beam.divergence", *divergence,
+                 "at least the diffraction limit lambda / (pi w0) = " + std::to_string(theta_d) + " rad (M^2 >= 1)");
 }
 
 }  // namespace lidar_overlap

@@ -208,9 +208,7 @@ void validate_ranges(const LidarSystem& system, const std::vector<double>& range
 FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
   system.validate();
   const GaussianBeam& beam = system.beam;
-  if (beam.width_law != WidthLaw::gaussian)
-    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
-                                "(the linear law is the paper's RT marginal-ray model)");
+  beam.validate_for_fourier_optics();
   if (options.beam_grid < 16 || options.beam_grid % 2)
     checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
   checks::positive("beam_window", options.beam_window);
@@ -221,9 +219,6 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
     return overlap_fo(system, ranges,
                       Field::gaussian(beam.wavelength, beam.waist_radius, nb, options.beam_window * beam.waist_radius / nb),
                       options);
-  if (*beam.divergence < theta_d)
-    checks::fail("beam.divergence", *beam.divergence,
-                 "at least the diffraction limit lambda / (pi w0) = " + std::to_string(theta_d) + " rad (M^2 >= 1)");
   // M^2 > 1: a Gaussian Schell-model beam. Its coherent modes add incoherently to a Gaussian irradiance of
   // radius w(z)^2 = w0^2 + (theta z)^2 at every range, and the overlap needs only the irradiance.
   // Sampled like the TEM00 path's field: the waist's spacing while the beam is near its waist, then the

@@ -111,8 +111,7 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
     throw std::invalid_argument("aberrations with W131, W222, W220 or W311 vary across the field, which the Fourier-"
                                 "optics path (one point image for every scatterer) cannot model: use method 'rt', "
                                 "or their Zernike form at one field point");
-  if (system.beam.width_law != WidthLaw::gaussian)
-    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian'");
+  system.beam.validate_for_fourier_optics();
   if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
   checks::in_open_unit("tail_error", options.tail_error);
   const double radius = telescope_radius(system);

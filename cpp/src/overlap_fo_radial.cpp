@@ -56,12 +56,7 @@ RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<d
                                   const RadialFoOptions& options) {
   system.validate();
   const GaussianBeam& beam = system.beam;
-  if (beam.width_law != WidthLaw::gaussian)
-    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian'");
-  const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
-  if (beam.divergence && *beam.divergence < theta_d * (1.0 - 1e-9))
-    checks::fail("beam.divergence", *beam.divergence,
-                 "at least the diffraction limit lambda / (pi w0) = " + std::to_string(theta_d) + " rad (M^2 >= 1)");
+  beam.validate_for_fourier_optics();
   checks::positive("periods_per_panel", options.periods_per_panel);
   if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
   for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");

@@ -35,6 +35,9 @@ struct GaussianBeam {
   double irradiance(Vec2 p, double z) const;
   // True when the beam axis coincides with the telescope axis (no offset, no tilt).
   bool on_axis() const;
+  // Throws std::invalid_argument unless Fourier optics can model the beam: the Gaussian width law and a
+  // divergence at or above the diffraction limit lambda / (pi w0) (M^2 >= 1).
+  void validate_for_fourier_optics() const;
 };
 
 }  // namespace lidar_overlap
