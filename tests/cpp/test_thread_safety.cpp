@@ -1,5 +1,6 @@
 // Concurrent calls from several threads (as an instrument's acquisition and display threads would make):
-// RT and FO overlap curves, propagations and a flat-top design run at once on shared plan caches, and
+// RT and FO overlap curves (plain and aberrated), propagations and a flat-top design run at once on shared
+// plan caches, and
 // each result is bit-for-bit the one computed alone.
 #include <thread>
 #include <vector>
@@ -11,7 +12,7 @@ using namespace lidar_overlap;
 
 namespace {
 struct Results {
-  std::vector<double> rt, fo, propagated;
+  std::vector<double> rt, fo, propagated, rt_aberrated, fo_aberrated;
   std::vector<double> plate;
 };
 
@@ -30,6 +31,14 @@ Results compute(int variant) {
   FlatTopOptions ft;
   ft.grid = 128;
   r.plate = design_flat_top(355e-9, 1e-3, 0.36e-3 * (1.0 + 0.5 * variant), ft).phase;
+  Aberrations ab;
+  ab.zernike = {0.0, 0.0, 0.0, 0.0, 0.0, 0.2e-6 * (1 + variant), 0.0, 0.0, 0.0, 0.0, 0.3e-6};
+  RtAberratedOptions rta;
+  rta.threads = 1;
+  r.rt_aberrated = overlap_rt_aberrated(s, ab, ranges, rta).overlap;
+  FoAberratedOptions foa;
+  foa.threads = 1;
+  r.fo_aberrated = overlap_fo_aberrated(s, ab, {1000.0}, foa).overlap;
   return r;
 }
 }  // namespace
@@ -48,6 +57,8 @@ int main() {
       test::near("FO identical" + tag, together[v].fo == alone[v].fo ? 0.0 : 1.0, 0.0, 0.0);
       test::near("propagation identical" + tag, together[v].propagated == alone[v].propagated ? 0.0 : 1.0, 0.0, 0.0);
       test::near("flat-top plate identical" + tag, together[v].plate == alone[v].plate ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("aberrated RT identical" + tag, together[v].rt_aberrated == alone[v].rt_aberrated ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("aberrated FO identical" + tag, together[v].fo_aberrated == alone[v].fo_aberrated ? 0.0 : 1.0, 0.0, 0.0);
     }
   }
   return test::report("test_thread_safety");
