@@ -186,3 +186,14 @@ def test_bad_input_names_the_parameter():
         lo.overlap(spherical, [1000.0], "fo", turbulence=lo.Turbulence(1e-14))
     with pytest.raises(ValueError, match="max_grid.*'rt'"):
         lo.overlap(spherical, [5.0], "fo")
+
+
+@pytest.mark.parametrize("tolerance, chosen", [(2e-2, "rt"), (1e-3, "fo")])
+def test_auto_with_aberrations_meets_its_tolerance(tolerance, chosen):
+    system = with_aberrations(BASE, lo.Aberrations(zernike={6: 0.3e-6, 11: 0.5e-6}))
+    z = np.geomspace(150.0, 3000.0, 12)
+    res = lo.overlap(system, z, "auto", tolerance=tolerance)
+    assert res.method == chosen
+    reference = lo.overlap(system, z, "fo").overlap
+    assert np.max(np.abs(res.overlap - reference)) <= tolerance
+    assert np.all(np.abs(res.overlap - reference) <= res.error_estimate + 1e-6)   # the estimate covers it
