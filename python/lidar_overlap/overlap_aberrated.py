@@ -82,7 +82,7 @@ def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, 
 
 def _rt(system, z, tolerance, threads, rings, ring_rays) -> dict:
     return _core.overlap_rt_aberrated(system._native, system.telescope.aberrations._native, z, rings, ring_rays,
-                                      tolerance, 32, threads, 4000)
+                                      tolerance, 64, threads, 4000)
 
 
 def point_image(system, z: float, n: int = 256, spacing: float | None = None) -> Field:

@@ -26,7 +26,8 @@ struct RtAberratedOptions {
   std::size_t rings = 48;         // rays per scatterer: rings equally spaced in rho^2 ...
   std::size_t ring_rays = 128;    // ... times rays per ring
   double tolerance = 1e-4;        // absolute, on G, for the beam integral
-  std::size_t directions = 32;    // beam integral over directions when the scene is not rotationally symmetric
+  std::size_t directions = 64;    // cap on the directions of the beam integral (from 8, doubled until it
+                                  // converges) when the scene is not rotationally symmetric
   int threads = 0;                // OpenMP threads across ranges; 0: all cores
   std::size_t max_segments = 2000;
 };
