@@ -58,6 +58,7 @@ bench: setup
 	$(PY) benchmarks/speed_accuracy.py
 	$(PY) benchmarks/bench_phase_screen.py
 	$(PY) benchmarks/bench_turbulent_overlap.py
+	$(PY) benchmarks/bench_aberrations.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)

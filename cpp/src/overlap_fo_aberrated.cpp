@@ -193,7 +193,7 @@ Field point_image(const LidarSystem& system, const Aberrations& aberrations, dou
                      " m, so that the pupil fits the n x n transform");
   ComplexBuffer buffer;
   sample_pupil(rx, aberrations, aberrations.pupil_polynomial(), radius, lambda, delta, n, buffer);
-  fft2d(buffer, n, FftDirection::forward, FftPlanning::estimate);
+  fft2d(buffer, n, FftDirection::forward);  // a size users call again: FFTW_MEASURE pays off
   Field f;
   f.n = n;
   f.spacing = spacing;

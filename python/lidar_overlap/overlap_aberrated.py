@@ -27,7 +27,7 @@ from .field_beam import FieldBeam
 from .result import OverlapResult
 
 #: Accuracy of the FO path at its default tail_error, measured against finer sampling (docs/aberrations.md).
-FO_ABERRATED_ACCURACY = 1e-6
+FO_ABERRATED_ACCURACY = 5e-6
 #: Factor on the first-order estimate of RT's diffraction error (largest measured actual/estimate: see docs).
 RT_ESTIMATE_SAFETY = 1.25
 #: Ranges on which the edge term is sampled (it varies smoothly along the curve).
