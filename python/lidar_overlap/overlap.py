@@ -117,9 +117,11 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     return _rt_result(system, z, raw, tolerance)
 
 
-def _rt_result(system: LidarSystem, z: np.ndarray, raw: dict, tolerance: float) -> OverlapResult:
-    """The RT result from the core's output, with the validity and convergence warnings."""
-    warn_if_rt_invalid(system, z, stacklevel=4)
+def _rt_result(system: LidarSystem, z: np.ndarray, raw: dict, tolerance: float,
+               diffraction_bounded: bool = False) -> OverlapResult:
+    """The RT result from the core's output, with the validity and convergence warnings (not the diffraction
+    one when auto has bounded RT's diffraction error within its tolerance)."""
+    warn_if_rt_invalid(system, z, stacklevel=4, diffraction=not diffraction_bounded)
     converged = np.asarray(raw["converged"], dtype=bool)
     if not converged.all():
         worst = float(np.max(raw["error_estimate"][~converged]))
@@ -160,7 +162,7 @@ def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads:
         raw = decision.rt_raw   # the RT curve the estimate was made from
         if max_segments != 4000 or not np.all(raw["converged"]):
             raw = _core.overlap_rt(system._native, z, decision.rt_quadrature_tolerance, threads, max_segments)
-        res = _rt_result(system, z, raw, decision.rt_quadrature_tolerance)
+        res = _rt_result(system, z, raw, decision.rt_quadrature_tolerance, diffraction_bounded=True)
         error = res.error_estimate + decision.rt_model_error
     else:
         res = overlap(system, z, "fo", threads=threads, fo_path=decision.fo_path)

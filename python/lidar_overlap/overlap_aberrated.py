@@ -42,14 +42,15 @@ def overlap_aberrated(system, z: np.ndarray, method: str, tolerance: float, thre
                          "paths weight the point image by the Gaussian beam image)")
     ab = system.telescope.aberrations
     if method == "auto":
-        raw = _rt(system, z, 0.01 * tolerance, threads, rings, ring_rays)
-        g = np.asarray(raw["overlap"])
-        error = rt_diffraction_estimate(system, z, g, threads, rings, ring_rays)
-        if error + 0.01 * tolerance <= tolerance or ab.field_dependent:
-            if error + 0.01 * tolerance > tolerance:
+        decision = decide_aberrated(system, z, tolerance, threads, rings, ring_rays)
+        if decision.method == "rt":
+            if decision.rt_model_error + decision.rt_quadrature_tolerance > tolerance:
                 warnings.warn(f"overlap(auto): field-dependent Seidel terms need ray tracing, whose diffraction error "
-                              f"here may reach {error:.2g} > tolerance {tolerance:g}", RuntimeWarning, stacklevel=3)
-            return OverlapResult(ranges=z, overlap=g, method="rt", error_estimate=np.asarray(raw["error_estimate"]) + error,
+                              f"here may reach {decision.rt_model_error:.2g} > tolerance {tolerance:g}",
+                              RuntimeWarning, stacklevel=3)
+            raw = decision.rt_raw
+            return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
+                                 error_estimate=np.asarray(raw["error_estimate"]) + decision.rt_model_error,
                                  system=system, tolerance=tolerance)
         res = overlap_aberrated(system, z, "fo", tolerance, threads, max_grid, rings, ring_rays, tail_error)
         return dataclasses.replace(res, tolerance=tolerance)
@@ -61,6 +62,27 @@ def overlap_aberrated(system, z: np.ndarray, method: str, tolerance: float, thre
     return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
                          error_estimate=np.full(z.size, FO_ABERRATED_ACCURACY), system=system,
                          tolerance=float("nan"))
+
+
+def decide_aberrated(system, z: np.ndarray, tolerance: float, threads: int = 0, rings: int = 48,
+                     ring_rays: int = 128):
+    """The :class:`lidar_overlap.auto.Decision` for an aberrated system (see the module docstring)."""
+    from .auto import Decision
+
+    quadrature = 0.01 * tolerance
+    raw = _rt(system, z, quadrature, threads, rings, ring_rays)
+    error = rt_diffraction_estimate(system, z, np.asarray(raw["overlap"]), threads, rings, ring_rays)
+    reasons = [f"receiver aberrations: ray tracing displaces each ray by d grad W; its diffraction error here is up "
+               f"to {error:.2g} (Airy tail plus edge blur from the aberrated RT curve, x {RT_ESTIMATE_SAFETY})"]
+    if error + quadrature <= tolerance:
+        reasons.append(f"{error:.2g} + quadrature {quadrature:.1g} <= tolerance {tolerance:g}: ray tracing is enough")
+        return Decision("rt", "", error, quadrature, reasons, raw)
+    if system.telescope.aberrations.field_dependent:
+        reasons.append("field-dependent Seidel terms exist only in ray tracing: RT, whose model error may exceed the "
+                       "tolerance")
+        return Decision("rt", "", error, quadrature, reasons, raw)
+    reasons.append(f"{error:.2g} > tolerance {tolerance:g}: Fourier optics with the sampled aberrated pupil")
+    return Decision("fo", "aberrated", error, 0.0, reasons)
 
 
 def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, rings: int = 48,
