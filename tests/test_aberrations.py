@@ -197,3 +197,10 @@ def test_auto_with_aberrations_meets_its_tolerance(tolerance, chosen):
     reference = lo.overlap(system, z, "fo").overlap
     assert np.max(np.abs(res.overlap - reference)) <= tolerance
     assert np.all(np.abs(res.overlap - reference) <= res.error_estimate + 1e-6)   # the estimate covers it
+
+
+def test_aberrated_ray_tracing_warns_outside_its_validity():
+    """A 5 um fibre (1.7 Airy radii) is as far outside geometric optics with aberrations as without."""
+    fibre = dataclasses.replace(BASE, detector=lo.Detector(radius=5e-6))
+    with pytest.warns(RuntimeWarning, match="outside its validity"):
+        lo.overlap(with_aberrations(fibre, lo.Aberrations(zernike={11: 0.1e-6})), [1000.0], "rt")

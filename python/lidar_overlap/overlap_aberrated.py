@@ -25,6 +25,7 @@ from . import _checks, _core
 from .fields import Field
 from .field_beam import FieldBeam
 from .result import OverlapResult
+from .validity import warn_if_rt_invalid
 
 #: Accuracy of the FO path at its default tail_error, measured against finer sampling (docs/aberrations.md).
 FO_ABERRATED_ACCURACY = 5e-6
@@ -48,14 +49,14 @@ def overlap_aberrated(system, z: np.ndarray, method: str, tolerance: float, thre
                 warnings.warn(f"overlap(auto): field-dependent Seidel terms need ray tracing, whose diffraction error "
                               f"here may reach {decision.rt_model_error:.2g} > tolerance {tolerance:g}",
                               RuntimeWarning, stacklevel=3)
-            raw = decision.rt_raw
+            raw = _checked(system, z, decision.rt_raw, decision.rt_quadrature_tolerance, diffraction=False)
             return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
                                  error_estimate=np.asarray(raw["error_estimate"]) + decision.rt_model_error,
                                  system=system, tolerance=tolerance)
         res = overlap_aberrated(system, z, "fo", tolerance, threads, max_grid, rings, ring_rays, tail_error)
         return dataclasses.replace(res, tolerance=tolerance)
     if method == "rt":
-        raw = _rt(system, z, tolerance, threads, rings, ring_rays)
+        raw = _checked(system, z, _rt(system, z, tolerance, threads, rings, ring_rays), tolerance, diffraction=True)
         return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
                              error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
     raw = _core.overlap_fo_aberrated(system._native, ab._native, z, max_grid, tail_error, threads)
@@ -100,6 +101,17 @@ def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, 
     e_tail = 2.0 * blur / (math.pi ** 2 * r_d)
     edge = np.interp(np.log(z), np.log(zs), blur * np.abs(up - down) / (2.0 * h))
     return RT_ESTIMATE_SAFETY * float(np.max(e_tail * g + edge))
+
+
+def _checked(system, z: np.ndarray, raw: dict, tolerance: float, diffraction: bool) -> dict:
+    """``raw`` after the warnings plain RT gives: outside its validity, or short of its tolerance."""
+    warn_if_rt_invalid(system, z, stacklevel=5, diffraction=diffraction)
+    converged = np.asarray(raw["converged"], dtype=bool)
+    if not converged.all():
+        warnings.warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {z.size} ranges "
+                      f"(largest error estimate {float(np.max(raw['error_estimate'][~converged])):.3g}); loosen the "
+                      "tolerance", RuntimeWarning, stacklevel=4)
+    return raw
 
 
 def _rt(system, z, tolerance, threads, rings, ring_rays) -> dict:
