@@ -16,15 +16,7 @@ using namespace lidar_overlap;
 namespace {
 py::dict to_dict(const FoOverlap& r) {
   py::list reports;
-  for (const PropagationReport& p : r.beam_reports) {
-    py::dict d;
-    d["band_limit_loss"] = p.band_limit_loss;
-    d["input_edge_power"] = p.input_edge_power;
-    d["output_edge_power"] = p.output_edge_power;
-    d["chirp_phase_step"] = p.chirp_phase_step;
-    d["fresnel_phase_error"] = p.fresnel_phase_error;
-    reports.append(d);
-  }
+  for (const PropagationReport& p : r.beam_reports) reports.append(report_dict(p));
   py::dict out;
   out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
   out["spectrum_grid"] = r.spectrum_grid;

@@ -20,15 +20,6 @@ PropagationMethod method_from(const std::string& name) {
   throw std::invalid_argument("method = '" + name +
                               "' is invalid: expected 'auto', 'angular_spectrum', 'fresnel' or 'fraunhofer'");
 }
-
-const char* method_name(PropagationMethod m) {
-  switch (m) {
-    case PropagationMethod::angular_spectrum: return "angular_spectrum";
-    case PropagationMethod::fresnel: return "fresnel";
-    case PropagationMethod::fraunhofer: return "fraunhofer";
-    default: return "auto";
-  }
-}
 }  // namespace
 
 void bind_propagate(py::module_& m) {
@@ -51,18 +42,7 @@ void bind_propagate(py::module_& m) {
           }
           p = propagate(std::move(in), distance, pm, output_spacing);
         }
-        const PropagationReport& r = p.report;
-        py::dict report;
-        report["method"] = method_name(r.method);
-        report["critical_distance"] = r.critical_distance;
-        report["band_limit_loss"] = r.band_limit_loss;
-        report["input_edge_power"] = r.input_edge_power;
-        report["output_edge_power"] = r.output_edge_power;
-        report["scaled_output"] = r.scaled_output;
-        report["chirp_phase_step"] = r.chirp_phase_step;
-        report["fresnel_phase_error"] = r.fresnel_phase_error;
-        report["fraunhofer_phase"] = r.fraunhofer_phase;
-        return py::make_tuple(array_from_field(p.field), p.field.spacing, report);
+        return py::make_tuple(array_from_field(p.field), p.field.spacing, report_dict(p.report));
       },
       py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"), py::arg("method"),
       py::arg("output_spacing"), py::arg("grid_size"));

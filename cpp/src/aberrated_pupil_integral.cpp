@@ -10,8 +10,6 @@
 
 namespace lidar_overlap::detail {
 
-namespace {
-
 // K(s): the share of a Gaussian image (1/e^2 radius w) centred s from the detector centre that falls on the
 // detector (radius r_d), the Rice distribution's integral over [0, r_d]; tabulated at w/32 up to r_d + 6 w
 // (beyond, below 1e-31) and interpolated by cubic Lagrange polynomials (error ~1e-8).
@@ -45,6 +43,8 @@ class ImageOnDetector {
   double h_, s_max_;
   std::vector<double> table_;
 };
+
+namespace {
 
 constexpr std::size_t kPanelNodes = 8;
 constexpr std::size_t kMaxSteps = std::size_t{1} << 14;
@@ -114,8 +114,8 @@ const AberratedPupilIntegral::Nodes& AberratedPupilIntegral::nodes(Key key) {
   return n;
 }
 
-double AberratedPupilIntegral::sum(const Nodes& n, double scale, Vec2 s, double w, bool every_other_angle) const {
-  const ImageOnDetector k_of(w, system_.detector.radius);
+double AberratedPupilIntegral::sum(const Nodes& n, double scale, Vec2 s, const ImageOnDetector& k_of,
+                                   bool every_other_angle) const {
   double total = 0.0;
   const std::size_t step = every_other_angle ? 2 : 1;
   for (std::size_t j = 0; j < n.a.size(); j += step) total += n.weight[j] * k_of(norm(scale * n.a[j] + n.slope[j] + s));
@@ -125,9 +125,10 @@ double AberratedPupilIntegral::sum(const Nodes& n, double scale, Vec2 s, double 
 std::pair<double, double> AberratedPupilIntegral::at(std::size_t i) const {
   const Geometry g = geometry(system_, ranges_[i]);
   const Nodes& n = node_sets_.at(keys_[i]);
-  const double value = sum(n, g.scale, g.s, g.w, false);
-  const double coarse = coarse_in_rho_[i] ? sum(node_sets_.at({keys_[i].first / 2, 1}), g.scale, g.s, g.w, false)
-                                          : sum(n, g.scale, g.s, g.w, true);
+  const ImageOnDetector k_of(g.w, system_.detector.radius);  // shared by the rule and its coarse twin
+  const double value = sum(n, g.scale, g.s, k_of, false);
+  const double coarse = coarse_in_rho_[i] ? sum(node_sets_.at({keys_[i].first / 2, 1}), g.scale, g.s, k_of, false)
+                                          : sum(n, g.scale, g.s, k_of, true);
   return {value, std::abs(value - coarse)};
 }
 

@@ -23,6 +23,8 @@
 
 namespace lidar_overlap::detail {
 
+class ImageOnDetector;
+
 class AberratedPupilIntegral {
  public:
   // `rotational`: the aberrations and the scene are rotationally symmetric (one angle per ring suffices).
@@ -39,7 +41,7 @@ class AberratedPupilIntegral {
   };
   using Key = std::pair<std::size_t, std::size_t>;  // (panels, angles)
   const Nodes& nodes(Key key);
-  double sum(const Nodes& n, double scale, Vec2 s, double w, bool every_other_angle) const;
+  double sum(const Nodes& n, double scale, Vec2 s, const ImageOnDetector& k_of, bool every_other_angle) const;
 
   const LidarSystem& system_;
   const Aberrations& aberrations_;

@@ -19,16 +19,6 @@ namespace {
 // The beam image's spectrum exp(-pi^2 w^2 q^2 / 2) is below 4e-14 beyond |q| = 2.5 / w.
 constexpr double kImageSpectrumReach = 2.5;
 
-// Smallest n' >= n of the form 2^a 3^b 5^c 7^d: FFTW's fast sizes, closer to n than a power of two.
-std::size_t fast_fft_size(std::size_t n) {
-  for (std::size_t m = std::max<std::size_t>(n, 2);; ++m) {
-    std::size_t r = m;
-    for (std::size_t p : {2, 3, 5, 7})
-      while (r % p == 0) r /= p;
-    if (r == 1) return m;
-  }
-}
-
 // Writes P(a) exp(i psi |a|^2 + 2 pi i W(a / R) / lambda) into the centre of an n x n buffer at pupil spacing
 // `delta` (m). Edge pixels carry the annulus area they hold (8 x 8 sub-samples), so the sampled pupil keeps
 // the continuous one's area and low-frequency content.

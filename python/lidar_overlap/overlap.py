@@ -19,7 +19,7 @@ from .field_beam import FieldBeam
 from .overlap_aberrated import overlap_aberrated
 from .system import LidarSystem
 from .fields import EDGE_POWER_LIMIT, SamplingWarning
-from .validity import warn_if_rt_invalid
+from .validity import warn_if_rt_invalid, warn_if_rt_unconverged
 
 METHODS = ("rt", "fo", "auto")
 FO_PATHS = ("auto", "radial", "2d")
@@ -122,12 +122,7 @@ def _rt_result(system: LidarSystem, z: np.ndarray, raw: dict, tolerance: float,
     """The RT result from the core's output, with the validity and convergence warnings (not the diffraction
     one when auto has bounded RT's diffraction error within its tolerance)."""
     warn_if_rt_invalid(system, z, stacklevel=4, diffraction=not diffraction_bounded)
-    converged = np.asarray(raw["converged"], dtype=bool)
-    if not converged.all():
-        worst = float(np.max(raw["error_estimate"][~converged]))
-        warnings.warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {z.size} "
-                      f"ranges (largest error estimate {worst:.3g}); raise max_segments or loosen tolerance",
-                      RuntimeWarning, stacklevel=3)
+    warn_if_rt_unconverged(raw, z, tolerance, "raise max_segments or loosen tolerance", stacklevel=4)
     return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
                          error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
 

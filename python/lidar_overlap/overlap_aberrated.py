@@ -16,16 +16,16 @@
 from __future__ import annotations
 
 import dataclasses
-import math
 import warnings
 
 import numpy as np
 
 from . import _checks, _core
+from .aberrations import Aberrations
 from .fields import Field
 from .field_beam import FieldBeam
 from .result import OverlapResult
-from .validity import warn_if_rt_invalid
+from .validity import rt_diffraction_error, warn_if_rt_invalid, warn_if_rt_unconverged
 
 #: Accuracy of the FO path at its default tail_error, measured against finer sampling (docs/aberrations.md).
 FO_ABERRATED_ACCURACY = 5e-6
@@ -98,19 +98,14 @@ def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, 
                                zs, 1e-6, threads, rings, ring_rays)["overlap"]) for s in (h, -h))
     t, d = system.telescope, system.detector
     blur = system.beam.wavelength * (t.focal_length + d.defocus) / t.diameter
-    e_tail = 2.0 * blur / (math.pi ** 2 * r_d)
     edge = np.interp(np.log(z), np.log(zs), blur * np.abs(up - down) / (2.0 * h))
-    return RT_ESTIMATE_SAFETY * float(np.max(e_tail * g + edge))
+    return RT_ESTIMATE_SAFETY * float(np.max(rt_diffraction_error(system) * g + edge))
 
 
 def _checked(system, z: np.ndarray, raw: dict, tolerance: float, diffraction: bool) -> dict:
     """``raw`` after the warnings plain RT gives: outside its validity, or short of its tolerance."""
     warn_if_rt_invalid(system, z, stacklevel=5, diffraction=diffraction)
-    converged = np.asarray(raw["converged"], dtype=bool)
-    if not converged.all():
-        warnings.warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {z.size} ranges "
-                      f"(largest error estimate {float(np.max(raw['error_estimate'][~converged])):.3g}); loosen the "
-                      "tolerance", RuntimeWarning, stacklevel=4)
+    warn_if_rt_unconverged(raw, z, tolerance, "loosen the tolerance", stacklevel=5)
     return raw
 
 
@@ -131,18 +126,12 @@ def point_image(system, z: float, n: int = 256, spacing: float | None = None) ->
     n = _checks.count("n", n, 8)
     z = _checks.real("z", z)
     t = system.telescope
-    ab = t.aberrations if t.aberrations is not None else _ideal()
+    ab = t.aberrations if t.aberrations is not None else Aberrations()
     d = t.focal_length + system.detector.defocus
     if spacing is None:
         spacing = system.beam.wavelength * d / (2.0 * t.diameter)
     values = _core.point_image(system._native, ab._native, z, n, _checks.real("spacing", spacing))
     return Field(values, spacing, system.beam.wavelength)
-
-
-def _ideal():
-    from .aberrations import Aberrations
-
-    return Aberrations()
 
 
 def with_aberrations(system, aberrations):

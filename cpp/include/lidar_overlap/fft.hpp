@@ -3,6 +3,7 @@
 // thread-safe new-array interface, so plans may be shared by concurrent calls.
 #pragma once
 
+#include <algorithm>
 #include <complex>
 #include <cstddef>
 #include <new>
@@ -56,6 +57,17 @@ inline std::size_t next_power_of_two(std::size_t v) {
   std::size_t p = 1;
   while (p < v) p <<= 1;
   return p;
+}
+
+// Smallest n' >= n of the form 2^a 3^b 5^c 7^d: sizes FFTW also transforms fast, closer to n than a power
+// of two (for one-off transforms, where a power of two would only add work).
+inline std::size_t fast_fft_size(std::size_t n) {
+  for (std::size_t m = std::max<std::size_t>(n, 2);; ++m) {
+    std::size_t r = m;
+    for (std::size_t p : {2, 3, 5, 7})
+      while (r % p == 0) r /= p;
+    if (r == 1) return m;
+  }
 }
 
 }  // namespace lidar_overlap
