@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bind_field.hpp"
+#include "interruptible.hpp"
 #include "lidar_overlap/aberrations.hpp"
 #include "lidar_overlap/overlap_fo_aberrated.hpp"
 #include "lidar_overlap/overlap_rt_aberrated.hpp"
@@ -67,7 +68,7 @@ void bind_aberrations(py::module_& m) {
                                    int threads) {
     FoAberratedOverlap r;
     {
-      py::gil_scoped_release release;
+      Interruptible release;
       r = overlap_fo_aberrated(system, aberrations, ranges, FoAberratedOptions{max_grid, tail_error, threads});
     }
     py::dict out;
@@ -82,7 +83,7 @@ void bind_aberrations(py::module_& m) {
                                    double tolerance, std::size_t directions, int threads, std::size_t max_segments) {
     RtAberratedOverlap r;
     {
-      py::gil_scoped_release release;
+      Interruptible release;
       r = overlap_rt_aberrated(system, aberrations, ranges,
                                RtAberratedOptions{rings, ring_rays, tolerance, directions, threads, max_segments});
     }
@@ -108,7 +109,7 @@ void bind_aberrations(py::module_& m) {
                           double spacing) {
     Field f;
     {
-      py::gil_scoped_release release;
+      Interruptible release;
       f = point_image(system, aberrations, z, n, spacing);
     }
     return array_from_field(f);

@@ -1,5 +1,6 @@
 // Fields cross the boundary as (complex array, spacing, wavelength); the C++ Field owns an aligned copy.
 #include "bind_field.hpp"
+#include "interruptible.hpp"
 
 #include <pybind11/stl.h>
 
@@ -68,7 +69,7 @@ void bind_field(py::module_& m) {
         double power, radius;
         Vec2 c;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           power = f.power();
           c = f.centroid();
           radius = f.beam_radius();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bind_field.hpp"
+#include "interruptible.hpp"
 #include "lidar_overlap/flat_top.hpp"
 
 namespace py = pybind11;
@@ -17,7 +18,7 @@ void bind_flat_top(py::module_& m) {
          double edge_width, std::size_t max_iterations, double tolerance, double max_error, double power) {
         FlatTopDesign d;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           d = design_flat_top(wavelength, waist_radius, angular_diameter,
                               FlatTopOptions{grid, samples_per_waist, edge_width, max_iterations, tolerance, max_error, power});
         }

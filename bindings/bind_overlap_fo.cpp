@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bind_field.hpp"
+#include "interruptible.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/overlap_fo_radial.hpp"
 
@@ -32,7 +33,7 @@ void bind_overlap_fo(py::module_& m) {
          std::size_t max_spectrum_grid, int threads) {
         FoOverlap r;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           r = overlap_fo(system, ranges, FoOptions{beam_grid, beam_window, max_spectrum_grid, threads});
         }
         return to_dict(r);
@@ -48,7 +49,7 @@ void bind_overlap_fo(py::module_& m) {
         const Field transmitted = field_from_array(values, spacing, wavelength);
         FoOverlap r;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           FoOptions options;
           options.max_spectrum_grid = max_spectrum_grid;
           options.threads = threads;
@@ -64,7 +65,7 @@ void bind_overlap_fo(py::module_& m) {
       [](const LidarSystem& system, const std::vector<double>& ranges, double periods_per_panel, int threads) {
         RadialFoOverlap r;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           r = overlap_fo_radial(system, ranges, RadialFoOptions{periods_per_panel, threads});
         }
         py::dict out;
@@ -77,7 +78,7 @@ void bind_overlap_fo(py::module_& m) {
   m.def(
       "emitter_coupling_fo",
       [](const LidarSystem& system, double z, std::array<double, 2> position) {
-        py::gil_scoped_release release;
+        Interruptible release;
         return emitter_coupling_fo(system, z, {position[0], position[1]});
       },
       py::arg("system"), py::arg("z"), py::arg("position"));

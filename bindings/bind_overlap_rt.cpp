@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "interruptible.hpp"
 #include "lidar_overlap/overlap_rt.hpp"
 #include "lidar_overlap/receiver.hpp"
 
@@ -19,7 +20,7 @@ void bind_overlap_rt(py::module_& m) {
          std::size_t max_segments) {
         RtOverlap r;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           r = overlap_rt(system, ranges, RtOptions{tolerance, threads, max_segments});
         }
         py::dict out;

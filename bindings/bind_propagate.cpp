@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bind_field.hpp"
+#include "interruptible.hpp"
 #include "lidar_overlap/grid_choice.hpp"
 #include "lidar_overlap/propagate.hpp"
 
@@ -32,7 +33,7 @@ void bind_propagate(py::module_& m) {
         PropagationMethod pm = method_from(method);
         Propagated p;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           if (grid_size == -1) {
             const GridChoice g = choose_grid(in, distance, pm);
             pm = g.method;
@@ -54,7 +55,7 @@ void bind_propagate(py::module_& m) {
       [](const ComplexArray& values) {
         Field f = field_from_array(values, 1.0, 1.0);
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           fft2d(f.values, f.n, FftDirection::forward);
           fft2d(f.values, f.n, FftDirection::backward);
         }

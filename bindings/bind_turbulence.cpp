@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "bind_field.hpp"
+#include "interruptible.hpp"
 #include "lidar_overlap/overlap_turbulent.hpp"
 #include "lidar_overlap/phase_screen.hpp"
 #include "lidar_overlap/turbulence.hpp"
@@ -43,7 +44,7 @@ void bind_turbulence(py::module_& m) {
          std::size_t index) {
         std::vector<double> s;
         {
-          py::gil_scoped_release release;
+          Interruptible release;
           s = PhaseScreenGenerator(n, spacing, r0, outer_scale, inner_scale).generate(seed, index);
         }
         return square_array(s, n);
@@ -65,7 +66,7 @@ void bind_turbulence(py::module_& m) {
         o.beam_window = beam_window;
         o.threads = threads;
         {
-          py::gil_scoped_release release;  // a custom profile re-acquires it through pybind11's wrapper
+          Interruptible release;  // a custom profile re-acquires it through pybind11's wrapper
           r = overlap_fo_turbulent(system, ranges, atmosphere, o);
         }
         py::array_t<double> g({r.overlap.size(), ranges.size()});

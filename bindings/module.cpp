@@ -5,6 +5,7 @@
 
 namespace py = pybind11;
 
+void bind_limits(py::module_& m);
 void bind_system(py::module_& m);
 void bind_overlap_rt(py::module_& m);
 void bind_field(py::module_& m);
@@ -17,6 +18,7 @@ void bind_aberrations(py::module_& m);
 PYBIND11_MODULE(_core, m) {
   m.doc() = "C++ core of lidar_overlap (SI units throughout).";
   m.attr("__version__") = lidar_overlap::kVersion;
+  bind_limits(m);
   bind_system(m);
   bind_overlap_rt(m);
   bind_field(m);

@@ -89,9 +89,12 @@ def test_fo_2d_grid_size_is_not_the_limit():
 
 
 def test_fo_2d_small_window_fails_far_and_passes_near():
+    # Far, the cut field's G leaves [0, 1] (1.0054): an error that names the cause and the fix.
+    with pytest.raises(ValueError, match="window edge.*enlarge beam_window"):
+        fo_2d_error(FAR, 64, FO_SMALL_WINDOW)
     with pytest.warns(lo.SamplingWarning, match="window edge"):    # the cut field is flagged
-        far = fo_2d_error(FAR, 64, FO_SMALL_WINDOW)
+        middle = fo_2d_error(FAR / 2, 64, FO_SMALL_WINDOW)
     with pytest.warns(lo.SamplingWarning):
         near = fo_2d_error(NEAR, 64, FO_SMALL_WINDOW)
-    assert far > 2 * TOLERANCE
+    assert middle > 2 * TOLERANCE
     assert near < TOLERANCE / 10

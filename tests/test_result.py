@@ -13,7 +13,7 @@ import pytest  # noqa: E402
 
 import lidar_overlap as lo  # noqa: E402
 
-THIN = dict(waist_radius=1e-9, divergence=1e-12)
+THIN = dict(waist_radius=1e-9, divergence=1e-12, width_law="linear")  # a geometric pencil beam (M^2 < 1 needs the linear law)
 RANGES = np.geomspace(1.0, 1e4, 300)
 
 

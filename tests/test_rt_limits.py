@@ -47,7 +47,7 @@ R = 0.075        # Table 1 aperture radius (m)
 R_D = 0.45e-3    # Table 1 detector radius = FOV * f / 2 (m)
 Z_OBS = 0.7      # obstruction distance of Section 4A (m)
 
-THIN = dict(waist_radius=1e-9, divergence=1e-12)
+THIN = dict(waist_radius=1e-9, divergence=1e-12, width_law="linear")  # a geometric pencil beam (M^2 < 1 needs the linear law)
 
 
 def beam_radius(z, w0, theta, width_law):

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/fft.hpp"
 #include "lidar_overlap/quadrature.hpp"
@@ -17,7 +18,10 @@ class ImageOnDetector {
  public:
   ImageOnDetector(double w, double r_d) : h_(w / 32.0), s_max_(r_d + 6.0 * w) {
     const double var = 0.25 * w * w;
-    const std::size_t n = 4 + static_cast<std::size_t>(std::ceil(s_max_ / h_));
+    const std::size_t n = 4 + checks::count_from(std::ceil(s_max_ / h_), std::size_t{1} << 20, "detector.radius", r_d,
+                                                 "table points (32 per beam-image radius " + checks::number(w) +
+                                                     " m): the beam image is too small beside the detector for the "
+                                                     "aberrated ray-tracing table; use method 'fo'");
     table_.resize(n + 1);
     for (std::size_t i = 0; i <= n; ++i) {
       const double nu = std::abs((static_cast<double>(i) - 1.0) * h_);  // one node before 0: K is even
@@ -33,7 +37,7 @@ class ImageOnDetector {
   double operator()(double s) const {
     if (s >= s_max_) return 0.0;
     const double pos = s / h_ + 1.0;
-    const std::size_t j = std::max<std::size_t>(1, static_cast<std::size_t>(pos));
+    const std::size_t j = std::max<std::size_t>(1, checks::saturate(pos));
     const double t = pos - j, *p = &table_[j - 1];
     const double a = t + 1.0, b = t - 1.0, c = t - 2.0;
     return (-t * b * c * p[0] + 3.0 * a * b * c * p[1] - 3.0 * a * t * c * p[2] + a * t * b * p[3]) * (1.0 / 6.0);
@@ -76,7 +80,7 @@ AberratedPupilIntegral::AberratedPupilIntegral(const LidarSystem& system, const 
     const Geometry g = geometry(system, z);
     const double sweep = std::abs(g.scale) * radius + g.d * slope;  // m, largest |D(a)|
     // Nodes every w_i / 4 of the sweep (powers of two, so few node sets serve all ranges).
-    const std::size_t steps = next_power_of_two(std::min(kMaxSteps, static_cast<std::size_t>(4.0 * sweep / g.w) + 1));
+    const std::size_t steps = next_power_of_two(std::min(kMaxSteps, checks::saturate(4.0 * sweep / g.w) + 1));
     const std::size_t panels = std::max<std::size_t>(4, steps / kPanelNodes);
     const bool one_angle = rotational && g.s.x == 0.0 && g.s.y == 0.0;
     keys_.push_back({panels, one_angle ? 1 : std::max<std::size_t>(64, 2 * steps)});

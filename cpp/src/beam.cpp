@@ -6,15 +6,32 @@
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
+#include "lidar_overlap/limits.hpp"
 
 namespace lidar_overlap {
 
 void GaussianBeam::validate() const {
-  checks::positive("beam.wavelength", wavelength);
-  checks::positive("beam.waist_radius", waist_radius);
-  if (divergence) checks::positive("beam.divergence", *divergence);
-  checks::finite("beam.offset", offset);
-  checks::finite("beam.tilt", tilt);
+  checks::length("beam.wavelength", wavelength);
+  checks::length("beam.waist_radius", waist_radius);
+  const double theta_d = wavelength / (kPi * waist_radius);
+  const bool diffraction_limited_law = !divergence || width_law == WidthLaw::gaussian;
+  if (diffraction_limited_law && !(theta_d <= kMaxAngle))
+    checks::fail("beam.waist_radius", waist_radius,
+                 "a waist of at least lambda / (pi x " + checks::number(kMaxAngle) + " rad) = " +
+                     checks::number(wavelength / (kPi * kMaxAngle)) +
+                     " m: a smaller one diffracts beyond the paraxial model");
+  if (divergence) {
+    checks::positive("beam.divergence", *divergence);
+    checks::angle("beam.divergence", *divergence);
+    // A Gaussian beam cannot spread less than its diffraction limit (M^2 >= 1). The linear law is the
+    // paper's geometric marginal-ray model and takes any divergence (ray tracing only).
+    if (width_law == WidthLaw::gaussian && *divergence < theta_d * (1.0 - 1e-9))
+      checks::fail("beam.divergence", *divergence,
+                   "at least the diffraction limit lambda / (pi w0) = " + checks::number(theta_d) +
+                       " rad (M^2 >= 1); width_law 'linear' takes any divergence (ray tracing only)");
+  }
+  checks::coordinate("beam.offset", offset);
+  checks::angle("beam.tilt", tilt);
 }
 
 double GaussianBeam::half_angle_divergence() const {
@@ -43,10 +60,6 @@ void GaussianBeam::validate_for_fourier_optics() const {
   if (width_law != WidthLaw::gaussian)
     throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
                                 "(the linear law is the paper's RT marginal-ray model)");
-  const double theta_d = wavelength / (kPi * waist_radius);
-  if (divergence && *divergence < theta_d * (1.0 - 1e-9))
-    checks::fail("beam.divergence", *divergence,
-                 "at least the diffraction limit lambda / (pi w0) = " + std::to_string(theta_d) + " rad (M^2 >= 1)");
 }
 
 }  // namespace lidar_overlap

@@ -4,14 +4,16 @@
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
+#include "lidar_overlap/limits.hpp"
 
 namespace lidar_overlap {
 
 void Field::validate() const {
-  if (n < 8 || n % 2 != 0) checks::fail("field.n", static_cast<double>(n), "an even grid size >= 8");
+  if (n < 8 || n % 2 != 0 || n > kMaxGridSide)
+    checks::fail("field.n", static_cast<double>(n), "an even grid size from 8 to " + std::to_string(kMaxGridSide));
   if (values.size() != n * n) checks::fail("field.values", static_cast<double>(values.size()), "n * n values");
-  checks::positive("field.spacing", spacing);
-  checks::positive("field.wavelength", wavelength);
+  checks::length("field.spacing", spacing);
+  checks::length("field.wavelength", wavelength);
 }
 
 double Field::power() const {
@@ -47,9 +49,13 @@ double Field::beam_radius() const {
 
 Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, double spacing, Vec2 center,
                       double power) {
-  checks::positive("waist_radius", waist_radius);
-  checks::positive("power", power);
-  checks::finite("center", center);
+  checks::length("wavelength", wavelength);
+  checks::length("waist_radius", waist_radius);
+  checks::length("spacing", spacing);
+  if (!(power > 0.0 && power <= kMaxPower)) checks::fail("power", power, "a power > 0 and at most 1e30 W");
+  checks::coordinate("center", center);
+  if (n < 8 || n % 2 != 0) checks::fail("n", static_cast<double>(n), "an even grid size >= 8");
+  checks::grid("n", n, sizeof(Complex));
   Field f{ComplexBuffer(n * n), n, spacing, wavelength};
   f.validate();
   const double amplitude = std::sqrt(2.0 * power / (kPi * waist_radius * waist_radius));

@@ -5,8 +5,10 @@
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/fft.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap {
 
@@ -60,17 +62,20 @@ const char* to_string(FlatTopStop stop) {
 
 FlatTopDesign design_flat_top(double wavelength, double waist_radius, double angular_diameter,
                               const FlatTopOptions& o) {
-  checks::positive("wavelength", wavelength);
-  checks::positive("waist_radius", waist_radius);
+  checks::length("wavelength", wavelength);
+  checks::length("waist_radius", waist_radius);
   checks::positive("angular_diameter", angular_diameter);
+  checks::angle("angular_diameter", 0.5 * angular_diameter);
   checks::positive("samples_per_waist", o.samples_per_waist);
   checks::non_negative("edge_width", o.edge_width);
-  checks::positive("tolerance", o.tolerance);
+  checks::in_open_unit("tolerance", o.tolerance);
   checks::positive("max_error", o.max_error);
   checks::positive("power", o.power);
-  if (o.max_iterations < 1) checks::fail("max_iterations", 0.0, "at least 1");
+  if (o.max_iterations < 1 || o.max_iterations > 100000)
+    checks::fail("max_iterations", static_cast<double>(o.max_iterations), "a count from 1 to 100000");
   const std::size_t n = o.grid;
   if (n < 64 || n % 2) checks::fail("grid", static_cast<double>(n), "an even size >= 64");
+  checks::grid("grid", n, sizeof(double), 12);  // the fields, targets and angle maps of the iteration
   const double theta_d = wavelength / (kPi * waist_radius);  // TEM00 half-angle divergence
   if (angular_diameter <= 2.0 * theta_d)
     checks::fail("angular_diameter", angular_diameter,
@@ -137,6 +142,7 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
     return a > 0.0 ? v * (m / a) : Complex{m, 0.0};
   };
   for (std::size_t it = 0;; ++it) {
+    detail::cancellation_point();
     fft2d(u, n, FftDirection::forward);
     double err = 0.0;
     for (std::size_t i = 0; i < n * n; ++i) {

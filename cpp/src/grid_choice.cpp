@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/limits.hpp"
 
 namespace lidar_overlap {
 
@@ -46,7 +47,7 @@ double power_radius(const ComplexBuffer& u, std::size_t n, bool fft_order) {
 
 GridChoice choose_grid(const Field& in, double distance, PropagationMethod method, std::size_t max_n) {
   in.validate();
-  checks::finite("distance", distance);
+  checks::coordinate("distance", distance);
   const std::size_t n = in.n;
   const double dx = in.spacing, lambda = in.wavelength, z = std::abs(distance);
   ComplexBuffer spectrum = in.values;
@@ -63,12 +64,12 @@ GridChoice choose_grid(const Field& in, double distance, PropagationMethod metho
   double n_as = 16.0 * g.output_radius / (7.0 * dx);
   const double sin_max = g.angular_radius;
   if (sin_max > 0.0 && sin_max < 1.0) n_as = std::max(n_as, 2.0 * z / (dx * std::sqrt(1.0 / (sin_max * sin_max) - 1.0)));
-  const std::size_t n_as_fast = next_power_of_two(std::max<std::size_t>(n, static_cast<std::size_t>(std::ceil(n_as))));
+  const std::size_t n_as_fast = next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(n_as))));
   // Fresnel and Fraunhofer: the output window lambda z / dx does not depend on n. The output irradiance
   // is |FT(input x chirp)|^2, band-limited to the input's diameter over lambda z, so the output spacing
   // lambda z / (n dx) samples it at Nyquist once the window n dx spans twice that diameter.
   const double n_fr = 4.0 * g.input_radius / dx;
-  const std::size_t n_fr_fast = next_power_of_two(std::max<std::size_t>(n, static_cast<std::size_t>(std::ceil(n_fr))));
+  const std::size_t n_fr_fast = next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(n_fr))));
 
   // Powers of two: FFTW's fastest sizes, and few of them, so that plans are made once and reused across
   // calls (planning a new size costs far more than one transform).
@@ -88,6 +89,7 @@ GridChoice choose_grid(const Field& in, double distance, PropagationMethod metho
 Field zero_pad(const Field& in, std::size_t n) {
   in.validate();
   if (n < in.n || n % 2) checks::fail("grid_size", static_cast<double>(n), "an even size >= the field's " + std::to_string(in.n));
+  checks::grid("grid_size", n, sizeof(Complex), 3);  // the padded field, the plan's transfer function, a copy
   Field out{ComplexBuffer(n * n, Complex{}), n, in.spacing, in.wavelength};
   const std::size_t off = n / 2 - in.n / 2;  // keeps index n/2 at x = 0
   for (std::size_t iy = 0; iy < in.n; ++iy)

@@ -1,7 +1,5 @@
 #include "lidar_overlap/overlap_fo.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <functional>
 #include <cmath>
@@ -11,14 +9,16 @@
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/grid_choice.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "overlap_fo_detail.hpp"
 #include "lidar_overlap/quadrature.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap {
 
-FoReceiver::FoReceiver(const LidarSystem& system, double z) {
+FoReceiver::FoReceiver(const LidarSystem& system, double z, const std::string& parameter) {
   system.validate();
-  system.validate_range(z, "z");
+  system.validate_range(z, parameter);
   const Telescope& t = system.telescope;
   const Detector& det = system.detector;
   wavelength_ = system.beam.wavelength;
@@ -37,6 +37,11 @@ FoReceiver::FoReceiver(const LidarSystem& system, double z) {
   if (pupil_.inner >= pupil_.outer) pupil_.outer = pupil_.inner = 0.0;  // nothing passes
   // Spherical wave from the scatterer (1/z), lens (-1/f), propagation to the detector plane (1/d).
   pupil_.psi = kPi / wavelength_ * (1.0 / z - 1.0 / t.focal_length + 1.0 / d_);
+  const double phase = 4.0 * std::abs(pupil_.psi) * pupil_.outer * pupil_.outer;  // bounds every OTF argument
+  if (!(phase <= kMaxPupilPhase))
+    checks::fail(parameter, z,
+                 "a range where the defocus phase across the pupil (here " + checks::number(phase) + " rad) is at most " +
+                     checks::number(kMaxPupilPhase) + " rad: the image is geometric there, where method 'rt' is exact");
 }
 
 double FoReceiver::blur_radius() const { return pupil_.outer * d_ * std::abs(pupil_.psi * wavelength_ / kPi); }
@@ -55,7 +60,7 @@ double FoReceiver::point_coupling(double offset) const {
   const double qc = cutoff();
   // Breakpoints closer than the shortest oscillation of disc^, J0 and the OTF.
   const double scale = std::max({r_d_, offset, blur_radius(), wavelength_ * d_ / pupil_.outer});
-  const std::size_t pieces = std::min<std::size_t>(20000, 2 + static_cast<std::size_t>(2.0 * qc * scale));
+  const std::size_t pieces = std::min<std::size_t>(20000, 2 + checks::saturate(2.0 * qc * scale));
   std::vector<double> points(pieces + 1);
   for (std::size_t i = 0; i <= pieces; ++i) points[i] = qc * static_cast<double>(i) / pieces;
   auto integrand = [&](double q) {
@@ -94,7 +99,7 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   // 24 table points per period of the fastest oscillation (detector disc or point-image blur), interpolated
   // by quintic (six-point Lagrange) polynomials: G converged to ~3e-7 (cubic needed 128 points for that).
   const double period = 1.0 / std::max({system.detector.radius, rx.blur_radius(), 1.0 / rx.cutoff()});
-  const std::size_t nt = std::min<std::size_t>(1 << 16, 6 + static_cast<std::size_t>(24.0 * q_max / period));
+  const std::size_t nt = std::min<std::size_t>(1 << 16, 6 + checks::saturate(24.0 * q_max / period));
   const double h = q_max / (nt - 3);
   std::vector<double> table(nt + 3);
   for (std::size_t t = 0; t < table.size(); ++t) {
@@ -104,7 +109,7 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   const double inv_h = 1.0 / h;
   auto interpolate = [&](double q) {
     const double pos = q * inv_h;
-    const std::size_t j = std::min(static_cast<std::size_t>(pos), nt - 4);
+    const std::size_t j = std::min(checks::saturate(pos), nt - 4);
     const double* p = &table[j];  // the six nodes at q/h = j-2 ... j+3
     const double x = pos - j, a = x + 2.0, b = x + 1.0, d = x - 1.0, e = x - 2.0, f = x - 3.0;
     const double ab = a * b, de = d * e, xf = x * f;
@@ -148,7 +153,7 @@ std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, doubl
   // keep those below tail_error of G (1e-6: 4e-7 measured against a direct quadrature).
   const double period = 1.1 * reach + rx.tail_period(tail_error);
   const std::size_t np =
-      next_power_of_two(std::max<std::size_t>(n, static_cast<std::size_t>(std::ceil(period / (spacing * to_image)))));
+      next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image)))));
   if (np > max_grid)
     checks::fail("ranges[" + std::to_string(range_index) + "]", z,
                  "a range where the point image (radius " + std::to_string(rx.blur_radius()) +
@@ -172,30 +177,44 @@ struct BeamAtRanges {
 
 FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
                               const BeamAtRanges& beam_at, const FoOptions& options) {
-  if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
+  const int threads = detail::thread_count(options.threads);
+  if (options.max_spectrum_grid < 16 || options.max_spectrum_grid > kMaxGridSide)
+    checks::fail("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
+                 "a size from 16 to " + std::to_string(kMaxGridSide));
   const std::size_t n_ranges = ranges.size();
   // Everything that can fail is settled before the parallel loop: receivers and grid sizes.
   std::vector<FoReceiver> receivers;
   FoOverlap out;
   for (std::size_t i = 0; i < n_ranges; ++i) {
     const double z = ranges[i];
-    receivers.emplace_back(system, z);
+    receivers.emplace_back(system, z, "ranges[" + std::to_string(i) + "]");
     const FoReceiver& rx = receivers.back();
     const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
                                                  options.max_spectrum_grid, i);
     out.spectrum_grid.push_back(np);
+    // Each thread holds the beam field and its padded spectrum.
+    checks::memory("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
+                   16.0 * threads * (double(np) * double(np) + double(beam_at.n) * double(beam_at.n)),
+                   "ranges[" + std::to_string(i) + "] needs a " + std::to_string(np) +
+                       "^2 spectrum per thread: lower max_spectrum_grid (that range then raises), use fewer threads, "
+                       "or method 'rt' there");
   }
 
   out.overlap.assign(n_ranges, 0.0);
   out.beam_reports.assign(n_ranges, {});
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   // Ranges in parallel; the work inside each runs on one thread (nested regions stay inactive).
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(n_ranges); ++i) {
+  detail::parallel_for(n_ranges, threads, [&](std::size_t i) {
     Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
     out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;
-  }
+  });
+  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo", [&](std::size_t i) {
+    const PropagationReport& r = out.beam_reports[i];
+    const double loss = std::max({r.output_edge_power, r.input_edge_power, r.band_limit_loss});
+    return loss > 1e-6 ? "the transmitted field loses " + checks::number(loss) +
+                             " of its power to the window edge or the band limit: enlarge beam_window or beam_grid"
+                       : std::string();
+  });
   return out;
 }
 
@@ -211,7 +230,12 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   beam.validate_for_fourier_optics();
   if (options.beam_grid < 16 || options.beam_grid % 2)
     checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
-  checks::positive("beam_window", options.beam_window);
+  checks::grid("beam_grid", options.beam_grid, sizeof(Complex), 2 * detail::thread_count(options.threads));
+  // At least two samples per waist radius, and a window that holds the waist (+-1 w0).
+  if (!(options.beam_window >= 2.0 && options.beam_window <= 0.5 * static_cast<double>(options.beam_grid)))
+    checks::fail("beam_window", options.beam_window,
+                 "a window from 2 to beam_grid / 2 = " + std::to_string(options.beam_grid / 2) +
+                     " waist radii, so that the waist is sampled by at least 2 points per radius");
   validate_ranges(system, ranges);
   const std::size_t nb = options.beam_grid;
   const double theta_d = beam.wavelength / (kPi * beam.waist_radius);

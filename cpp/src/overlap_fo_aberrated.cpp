@@ -1,7 +1,5 @@
 #include "lidar_overlap/overlap_fo_aberrated.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -11,6 +9,8 @@
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/overlap_fo_radial.hpp"
 #include "lidar_overlap/otf.hpp"
+#include "overlap_fo_detail.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap {
 
@@ -77,9 +77,12 @@ RangePlan plan_range(const LidarSystem& system, const FoReceiver& rx, double blu
   const double period = 1.1 * reach + rx.tail_period(options.tail_error);
   RangePlan p;
   p.delta = lambda * d / period;
-  p.lags = static_cast<long>(std::ceil(kImageSpectrumReach * period / w)) + 1;
-  const std::size_t pupil = 2 * static_cast<std::size_t>(std::ceil(rx.pupil().outer / p.delta)) + 3;
-  p.n = fast_fft_size(pupil + static_cast<std::size_t>(p.lags) + 1);
+  // Sizes in floating point first: with huge blurs they exceed any grid long before they are rounded.
+  const double lags = std::ceil(kImageSpectrumReach * period / w) + 1.0;
+  const double needed = 2.0 * std::ceil(rx.pupil().outer / p.delta) + 4.0 + lags;
+  p.lags = static_cast<long>(std::min(lags, 1e9));
+  p.n = needed <= static_cast<double>(options.max_grid) ? fast_fft_size(static_cast<std::size_t>(needed))
+                                                        : checks::saturate(needed);
   if (p.n > options.max_grid)
     checks::fail("ranges[" + std::to_string(index) + "]", z,
                  "a range whose point image (blur radius " + std::to_string(blur) +
@@ -102,7 +105,7 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
                                 "optics path (one point image for every scatterer) cannot model: use method 'rt', "
                                 "or their Zernike form at one field point");
   system.beam.validate_for_fourier_optics();
-  if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
+  const int threads = detail::thread_count(options.threads);
   checks::in_open_unit("tail_error", options.tail_error);
   const double radius = telescope_radius(system);
   const double ray_blur = aberrations.max_gradient() / radius;  // rad: d grad W / R per unit d
@@ -110,7 +113,7 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
   std::vector<RangePlan> plans;
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
-    receivers.emplace_back(system, ranges[i]);
+    receivers.emplace_back(system, ranges[i], "ranges[" + std::to_string(i) + "]");
     const FoReceiver& rx = receivers.back();
     const double blur = rx.blur_radius() + rx.detector_distance() * ray_blur;
     plans.push_back(plan_range(system, rx, blur, ranges[i], options, i));
@@ -119,11 +122,9 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
   FoAberratedOverlap out;
   out.overlap.assign(ranges.size(), 0.0);
   for (const RangePlan& p : plans) out.grid.push_back(p.n);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(ranges.size()); ++i) {
+  detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
     const FoReceiver& rx = receivers[i];
-    if (rx.pupil().outer == 0.0) continue;
+    if (rx.pupil().outer == 0.0) return;
     const RangePlan& p = plans[i];
     const double z = ranges[i], d = rx.detector_distance(), to_image = d / z;
     const double w = system.beam.radius(z) * to_image, r_d = system.detector.radius;
@@ -161,8 +162,9 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
       }
     }
     const double n2 = static_cast<double>(p.n) * static_cast<double>(p.n);
-    out.overlap[i] = gaussian_image_overlap(system, z) + sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
-  }
+    out.overlap[i] = gaussian_image_overlap(system, z, 4.0, nullptr, "ranges[" + std::to_string(i) + "]") + sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
+  });
+  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo_aberrated");
   return out;
 }
 

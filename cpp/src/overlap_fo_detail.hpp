@@ -10,6 +10,10 @@
 
 namespace lidar_overlap::detail {
 
+// How far a Fourier-optics G may stray outside [0, 1] before it is an error rather than round-off: 100x the
+// 2-D path's nominal accuracy (the radial path is far more accurate, the aberrated one 5e-6).
+inline constexpr double kFoOverlapSlack = 1e-4;
+
 // G at range z (m) from the beam field at_z in the beam's own frame (centred on system.beam.center(z)):
 // Parseval's sum over its irradiance spectrum zero-padded to np x np (see overlap_fo.hpp).
 double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z,

@@ -1,7 +1,5 @@
 #include "lidar_overlap/overlap_fo_radial.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -11,11 +9,14 @@
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/quadrature.hpp"
+#include "overlap_fo_detail.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap {
 
-double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel, std::size_t* evaluations) {
-  const FoReceiver rx(system, z);
+double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel, std::size_t* evaluations,
+                              const std::string& parameter) {
+  const FoReceiver rx(system, z, parameter);
   const double q_cut = rx.cutoff();
   if (q_cut == 0.0) return 0.0;
   const double to_image = rx.detector_distance() / z, w_image = system.beam.radius(z) * to_image;
@@ -24,7 +25,11 @@ double gaussian_image_overlap(const LidarSystem& system, double z, double period
   const double q_end = std::min(q_cut, std::sqrt(2.0 * std::log(1e16)) / (kPi * w_image));
   // Fastest oscillation: disc^ (period 1/r_d) times the OTF (1/blur); the OTF's own scale is q_cut.
   const double frequency = system.detector.radius + rx.blur_radius() + offset + 4.0 / q_cut;
-  const std::size_t panels = 1 + static_cast<std::size_t>(q_end * frequency / periods_per_panel);
+  const std::size_t panels =
+      1 + checks::count_from(q_end * frequency / periods_per_panel, kMaxRadialPanels, parameter, z,
+                             "quadrature panels: the detector, blur and image offset span " + checks::number(frequency) +
+                                 " m against an image resolution of " + checks::number(1.0 / q_end) +
+                                 " m; the image is geometric there, where method 'rt' is exact");
   // The annular OTF has kinks where one shifted disc leaves the other: shifts R -+ r_obs and 2 r_obs.
   std::vector<double> edges;
   for (std::size_t i = 0; i <= panels; ++i) edges.push_back(q_end * static_cast<double>(i) / panels);
@@ -58,16 +63,17 @@ RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<d
   const GaussianBeam& beam = system.beam;
   beam.validate_for_fourier_optics();
   checks::positive("periods_per_panel", options.periods_per_panel);
-  if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
+  const int threads = detail::thread_count(options.threads);
   for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
 
   RadialFoOverlap out;
   out.overlap.assign(ranges.size(), 0.0);
   out.evaluations.assign(ranges.size(), 0);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(ranges.size()); ++i)
-    out.overlap[i] = gaussian_image_overlap(system, ranges[i], options.periods_per_panel, &out.evaluations[i]);
+  detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
+    out.overlap[i] = gaussian_image_overlap(system, ranges[i], options.periods_per_panel, &out.evaluations[i],
+                                            "ranges[" + std::to_string(i) + "]");
+  });
+  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo_radial");
   return out;
 }
 

@@ -1,7 +1,5 @@
 #include "lidar_overlap/overlap_rt.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -12,6 +10,7 @@
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/receiver.hpp"
 #include "lidar_overlap/special_functions.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap {
 
@@ -165,7 +164,7 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
                      const RtOptions& options) {
   system.validate();
   checks::in_open_unit("tolerance", options.tolerance);
-  if (options.threads < 0) checks::fail("threads", options.threads, "0 (all cores) or a count >= 1");
+  const int threads = detail::thread_count(options.threads);
   if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
 
   // Receivers are built (and ranges validated) before the parallel region: nothing throws inside it.
@@ -183,15 +182,16 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
   out.converged.assign(n, true);
   out.axisymmetric = system.is_axisymmetric();
   std::vector<RangeResult> results(n);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(n); ++i) results[i] = overlap_at(system, receivers[i], options);
+  detail::parallel_for(n, threads, [&](std::size_t i) { results[i] = overlap_at(system, receivers[i], options); });
   for (std::size_t i = 0; i < n; ++i) {
     out.overlap[i] = results[i].value;
     out.error_estimate[i] = results[i].error;
     out.converged[i] = results[i].converged;
     out.evaluations += results[i].evaluations;
   }
+  double slack = options.tolerance;
+  for (double e : out.error_estimate) slack = std::max(slack, e);
+  checks::overlap_values(out.overlap, ranges, slack, "overlap_rt");
   return out;
 }
 

@@ -1,7 +1,5 @@
 #include "lidar_overlap/overlap_rt_aberrated.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -13,6 +11,7 @@
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "aberrated_pupil_integral.hpp"
+#include "parallel.hpp"
 #include "lidar_overlap/zernike.hpp"
 
 namespace lidar_overlap {
@@ -100,7 +99,7 @@ void validate(const LidarSystem& system, const Aberrations& aberrations, const R
   if (o.ring_rays < 8) checks::fail("ring_rays", static_cast<double>(o.ring_rays), "at least 8");
   if (o.directions < 4) checks::fail("directions", static_cast<double>(o.directions), "at least 4");
   checks::in_open_unit("tolerance", o.tolerance);
-  if (o.threads < 0) checks::fail("threads", o.threads, "0 (all cores) or a count >= 1");
+  detail::thread_count(o.threads);
   if (o.max_segments < 1) checks::fail("max_segments", 0.0, "at least 1");
 }
 
@@ -109,6 +108,7 @@ void validate(const LidarSystem& system, const Aberrations& aberrations, const R
 RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
                                         const std::vector<double>& ranges, const RtAberratedOptions& options) {
   validate(system, aberrations, options);
+  const int threads = detail::thread_count(options.threads);
   for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
   const RayFan fan(system, aberrations, options);
   RtAberratedOverlap out;
@@ -125,12 +125,10 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
   out.pupil_form = dual;
   std::optional<detail::AberratedPupilIntegral> pupil;
   if (dual) pupil.emplace(system, aberrations, ranges, out.rotationally_symmetric);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(n); ++i) {
+  detail::parallel_for(n, threads, [&](std::size_t i) {
     if (pupil) {
       std::tie(out.overlap[i], out.error_estimate[i]) = pupil->at(i);
-      continue;
+      return;
     }
     const double z = ranges[i], w = system.beam.radius(z), var = 0.25 * w * w;
     const Vec2 c = system.beam.center(z);
@@ -160,8 +158,11 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
     const double error = radial_error / count + change;
     out.overlap[i] = value;
     out.error_estimate[i] = error;
-  }
+  });
   for (std::size_t i = 0; i < n; ++i) out.converged[i] = converged[i] != 0;
+  double slack = options.tolerance;
+  for (double e : out.error_estimate) slack = std::max(slack, e);
+  checks::overlap_values(out.overlap, ranges, slack, "overlap_rt_aberrated");
   return out;
 }
 

@@ -1,7 +1,5 @@
 #include "lidar_overlap/overlap_turbulent.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -14,6 +12,7 @@
 #include "lidar_overlap/phase_screen.hpp"
 #include "lidar_overlap/fft.hpp"
 #include "overlap_fo_detail.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap {
 
@@ -94,7 +93,7 @@ class CouplingMap {
     // (24 points per period of its fastest oscillation, six-point Lagrange interpolation).
     const double q_max = std::min(rx.cutoff(), df * (0.5 * np * std::sqrt(2.0) + 1.0) / to_image);
     const double period = 1.0 / std::max({system.detector.radius, rx.blur_radius(), 1.0 / rx.cutoff()});
-    const std::size_t nt = std::min<std::size_t>(1 << 16, 6 + static_cast<std::size_t>(24.0 * q_max / period));
+    const std::size_t nt = std::min<std::size_t>(1 << 16, 6 + checks::saturate(24.0 * q_max / period));
     const double h = q_max / (nt - 3), inv_h = 1.0 / h;
     std::vector<double> table(nt + 3);
     for (std::size_t t = 0; t < table.size(); ++t) {
@@ -103,7 +102,7 @@ class CouplingMap {
     }
     auto transfer = [&](double q) {
       const double pos = q * inv_h;
-      const std::size_t j = std::min(static_cast<std::size_t>(pos), nt - 4);
+      const std::size_t j = std::min(checks::saturate(pos), nt - 4);
       const double* p = &table[j];
       const double x = pos - j, a = x + 2.0, b = x + 1.0, d = x - 1.0, e = x - 2.0, f = x - 3.0;
       const double ab = a * b, de = d * e, xf = x * f;
@@ -122,7 +121,7 @@ class CouplingMap {
     // time, transformed along x and cut to the window's columns; then those columns along y. Rows ky and
     // -ky are neighbours and share T(|kx|, |ky|), evaluated once per quadrant.
     const std::size_t off = np / 2 - n / 2, chunk = std::min<std::size_t>(64, np), half = np / 2;
-    const std::size_t k_max = std::min(half, static_cast<std::size_t>(q_max * to_image / df));  // beyond: T = 0
+    const std::size_t k_max = std::min(half, checks::saturate(q_max * to_image / df));  // beyond: T = 0
     std::vector<std::size_t> rows{0};
     for (std::size_t a = 1; a <= k_max; ++a) {
       rows.push_back(a);
@@ -186,7 +185,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   if (o.screens < 1) checks::fail("screens", 0.0, "at least 1");
   if (o.beam_grid < 32 || o.beam_grid % 2) checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
   checks::positive("beam_window", o.beam_window);
-  if (o.threads < 0) checks::fail("threads", o.threads, "0 (all cores) or a count >= 1");
+  const int threads = detail::thread_count(o.threads);
   if (ranges.empty()) return {};
   for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
   const double z_max = *std::max_element(ranges.begin(), ranges.end());
@@ -231,17 +230,16 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     dx_prev = dx;
   }
   for (std::size_t i = 0; i < ranges.size(); ++i) {
-    receivers.emplace_back(system, ranges[i]);
+    receivers.emplace_back(system, ranges[i], "ranges[" + std::to_string(i) + "]");
     const double radius = 2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +
                                   3.0 * std::sqrt(atmosphere.beam_wander_variance(w0, lambda, ranges[i])));
     // Tails to 1e-4 of G: far below the spread between realisations, at a quarter of the grid of 1e-6.
     grids[i] = detail::spectrum_grid(system, receivers[i], ranges[i], range_spacing[i], radius, n,
                                      o.max_spectrum_grid, i, 1e-4);
   }
-  const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(ranges.size()); ++i)
+  detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
     maps[i] = std::make_unique<CouplingMap>(system, receivers[i], ranges[i], range_spacing[i], n, grids[i]);
+  });
 
   TurbulentOverlap out;
   out.overlap.assign(o.realizations, std::vector<double>(ranges.size(), 0.0));
@@ -253,9 +251,8 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   // two realisations of a pair side by side and uses both screens.
   const std::size_t per_task = o.realizations >= 2 * static_cast<std::size_t>(threads) ? 2 : 1;
   const std::size_t tasks = (o.realizations + per_task - 1) / per_task;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (long t = 0; t < static_cast<long>(tasks); ++t) {
-    const std::size_t k0 = per_task * static_cast<std::size_t>(t), count = std::min(per_task, o.realizations - k0);
+  detail::parallel_for(tasks, threads, [&](std::size_t t) {
+    const std::size_t k0 = per_task * t, count = std::min(per_task, o.realizations - k0);
     std::vector<Field> fields(count, Field::gaussian(lambda, w0, n, spacing_at(0.0)));
     for (std::size_t s = 0; s < planes.size(); ++s) {
       const Plane& p = planes[s];
@@ -276,7 +273,8 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
       out.wander_y[k0 + c] = centre.y;
       out.radius_last[k0 + c] = fields[c].beam_radius();
     }
-  }
+  });
+  for (std::vector<double>& g : out.overlap) checks::overlap_values(g, ranges, detail::kFoOverlapSlack, "overlap_fo_turbulent");
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/scaled_dft.hpp"
 
@@ -132,11 +133,14 @@ double border_power(const ComplexBuffer& u, std::size_t n) {
 PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelength, double distance,
                                  PropagationMethod method, double output_spacing)
     : n_(n), spacing_(spacing), wavelength_(wavelength), distance_(distance), output_spacing_(output_spacing) {
-  if (n < 8 || n % 2 != 0) checks::fail("field.n", static_cast<double>(n), "an even grid size >= 8");
-  checks::positive("field.spacing", spacing);
-  checks::positive("field.wavelength", wavelength);
-  checks::finite("distance", distance);
+  if (n < 8 || n % 2 != 0 || n > kMaxGridSide)
+    checks::fail("field.n", static_cast<double>(n), "an even grid size from 8 to " + std::to_string(kMaxGridSide));
+  checks::grid("field.n", n, sizeof(Complex), 3);  // the field, the transfer function or chirps, a copy
+  checks::length("field.spacing", spacing);
+  checks::length("field.wavelength", wavelength);
+  checks::coordinate("distance", distance);
   checks::non_negative("output_spacing", output_spacing);
+  if (output_spacing > 0.0) checks::length("output_spacing", output_spacing);
   critical_distance_ = n * spacing * spacing / wavelength;
   if (method == PropagationMethod::automatic) {
     const bool natural_as = output_spacing == 0.0 || output_spacing == spacing;
@@ -268,7 +272,12 @@ Propagated PropagationPlan::execute(Field in) const {
 
 Propagated propagate(Field in, double distance, PropagationMethod method, double output_spacing) {
   const auto plan = PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing);
-  return plan->execute(std::move(in));
+  Propagated out = plan->execute(std::move(in));
+  for (const Complex& v : out.field.values)
+    if (!std::isfinite(v.real()) || !std::isfinite(v.imag()))
+      throw std::domain_error("propagate: the field holds non-finite values after " + checks::number(distance) +
+                              " m: its input was not finite, or the distance and sampling leave double precision");
+  return out;
 }
 
 }  // namespace lidar_overlap

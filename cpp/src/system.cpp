@@ -3,23 +3,26 @@
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/limits.hpp"
 
 namespace lidar_overlap {
 
 void Telescope::validate() const {
-  checks::positive("telescope.diameter", diameter);
-  checks::positive("telescope.focal_length", focal_length);
+  checks::length("telescope.diameter", diameter);
+  checks::length("telescope.focal_length", focal_length);
   checks::non_negative("telescope.obstruction_radius", obstruction_radius);
   checks::non_negative("telescope.obstruction_distance", obstruction_distance);
+  checks::coordinate("telescope.obstruction_distance", obstruction_distance);
+  if (obstruction_radius > 0.0) checks::length("telescope.obstruction_radius", obstruction_radius);
   if (!(obstruction_radius < 0.5 * diameter))
     checks::fail("telescope.obstruction_radius", obstruction_radius,
-                 "a value smaller than the aperture radius " + std::to_string(0.5 * diameter) + " m");
+                 "a value smaller than the aperture radius " + checks::number(0.5 * diameter) + " m");
 }
 
 void Detector::validate() const {
-  checks::positive("detector.radius", radius);
-  checks::finite("detector.defocus", defocus);
-  checks::finite("detector.offset", offset);
+  checks::length("detector.radius", radius);
+  checks::coordinate("detector.defocus", defocus);
+  checks::coordinate("detector.offset", offset);
   if (numerical_aperture) {
     const double na = *numerical_aperture;
     if (!(na > 0.0 && na < 1.0)) checks::fail("detector.numerical_aperture", na, "a value in (0, 1)");
@@ -29,7 +32,8 @@ void Detector::validate() const {
 Detector Detector::from_fov(double fov, double focal_length, double defocus, Vec2 offset,
                             std::optional<double> numerical_aperture) {
   checks::positive("fov", fov);
-  checks::positive("focal_length", focal_length);
+  checks::angle("fov", 0.5 * fov);
+  checks::length("focal_length", focal_length);
   Detector d{0.5 * fov * focal_length, defocus, offset, numerical_aperture};
   d.validate();
   return d;
@@ -41,16 +45,16 @@ void LidarSystem::validate() const {
   detector.validate();
   if (!(telescope.focal_length + detector.defocus > 0.0))
     checks::fail("detector.defocus", detector.defocus,
-                 "a value > -focal_length = " + std::to_string(-telescope.focal_length) +
+                 "a value > -focal_length = " + checks::number(-telescope.focal_length) +
                      " m (the detector plane must lie behind the lens)");
 }
 
 void LidarSystem::validate_range(double z, const std::string& parameter) const {
-  checks::positive(parameter, z);
+  checks::length(parameter, z);
   if (telescope.obstruction_radius > 0.0 && !(z > telescope.obstruction_distance))
     checks::fail(parameter, z,
                  "a range beyond the obstruction distance " +
-                     std::to_string(telescope.obstruction_distance) + " m");
+                     checks::number(telescope.obstruction_distance) + " m");
 }
 
 bool LidarSystem::is_axisymmetric() const {

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "lidar_overlap/otf.hpp"
@@ -34,7 +35,10 @@ struct FoOverlap {
 // The receiver of the Fourier-optics path at range z (m).
 class FoReceiver {
  public:
-  FoReceiver(const LidarSystem& system, double z);
+  // Throws std::invalid_argument naming `parameter` (the range's name) where the defocus phase across the
+  // pupil exceeds kMaxPupilPhase rad: the image is geometric there and its closed-form OTF would cost O(phase).
+  FoReceiver(const LidarSystem& system, double z, const std::string& parameter = "z");
+  static constexpr double kMaxPupilPhase = 1e7;
   // Coupling (as emitter_coupling_rt) of a point scatterer whose image centre lies `offset` (m) from
   // the detector centre: (2 pi / pi R^2) int OTF disc^ J0(2 pi q offset) q dq.
   double point_coupling(double offset) const;

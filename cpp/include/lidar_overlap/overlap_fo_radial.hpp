@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "lidar_overlap/system.hpp"
@@ -31,9 +32,11 @@ struct RadialFoOverlap {
 RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<double>& ranges,
                                   const RadialFoOptions& options = {});
 
-// The integral above at one range z (m), unchecked (the system and z are validated by the caller); adds the
-// number of OTF evaluations to *evaluations when given.
+// The integral above at one range z (m), named `parameter` in errors; adds the number of OTF evaluations to
+// *evaluations when given. Throws std::invalid_argument where it would need more than kMaxRadialPanels
+// panels (a detector, blur or offset of very many image resolutions: the geometric regime).
+inline constexpr std::size_t kMaxRadialPanels = std::size_t{1} << 18;
 double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel = 4.0,
-                              std::size_t* evaluations = nullptr);
+                              std::size_t* evaluations = nullptr, const std::string& parameter = "z");
 
 }  // namespace lidar_overlap

@@ -1,0 +1,28 @@
+// Limits and cancellation: the memory budget and thread cap every entry point enforces, and
+// lidar_overlap::Cancelled raised as the pending KeyboardInterrupt.
+#include <pybind11/pybind11.h>
+
+#include <exception>
+
+#include "lidar_overlap/cancel.hpp"
+#include "lidar_overlap/limits.hpp"
+
+namespace py = pybind11;
+using namespace lidar_overlap;
+
+void bind_limits(py::module_& m) {
+  m.def("max_memory", &max_memory, "Bytes one call may allocate for its grids and tables.");
+  m.def("set_max_memory", &set_max_memory, py::arg("bytes"), "Set that budget (0: half the physical memory).");
+  m.def("max_threads", &max_threads, "The largest `threads` option accepted.");
+  m.attr("MIN_LENGTH") = kMinLength;
+  m.attr("MAX_LENGTH") = kMaxLength;
+  m.attr("MAX_ANGLE") = kMaxAngle;
+  m.attr("MAX_GRID_SIDE") = kMaxGridSide;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Cancelled& e) {
+      if (!PyErr_Occurred()) PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    }
+  });
+}

@@ -1,0 +1,22 @@
+// Long core calls from Python: the GIL released around the compute, and Ctrl-C honoured within ~0.1 s.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include "lidar_overlap/cancel.hpp"
+
+// For its lifetime: the GIL is released, and the core asks Python for pending signals between ranges,
+// realisations and iterations. On Ctrl-C the call stops with lidar_overlap::Cancelled, which the module
+// turns into the pending KeyboardInterrupt.
+class Interruptible {
+ public:
+  Interruptible()
+      : scope_([] {
+          pybind11::gil_scoped_acquire gil;
+          return PyErr_CheckSignals() != 0;  // leaves KeyboardInterrupt set for the caller
+        }) {}
+
+ private:
+  lidar_overlap::CancelScope scope_;      // made while the GIL is held, ended after it is back
+  pybind11::gil_scoped_release release_;
+};
