@@ -1,0 +1,34 @@
+"""Hostile input never crashes, hangs or returns a silent wrong number: property-based probes of every
+public entry point (hypothesis, fixed seed), run in a worker process so that a crash cannot take the
+test session down (see tests/_probe_worker.py for the contract and tests/_hostile_probes.py for what is
+drawn). Each area's probes all run; its test then fails with the table of outcomes and a reproducer for
+every probe that broke the contract.
+"""
+
+import pytest
+from hypothesis import HealthCheck, Phase, given, settings
+
+from _hostile_probes import AREAS, EXAMPLES
+from _probe_runner import Campaign, ProbeRunner
+
+
+@pytest.fixture(scope="module")
+def runner():
+    with ProbeRunner() as r:
+        yield r
+
+
+@pytest.mark.parametrize("area", sorted(EXAMPLES))
+def test_hostile_inputs_end_in_a_clean_error_or_a_finite_result(area, runner):
+    campaign = Campaign(runner)
+
+    # Failures are collected rather than raised: every example runs, and no time goes into shrinking.
+    @settings(max_examples=EXAMPLES[area], derandomize=True, database=None, deadline=None,
+              phases=[Phase.explicit, Phase.generate], suppress_health_check=list(HealthCheck))
+    @given(probe=AREAS[area]())
+    def probe_once(probe):
+        campaign.run(probe)
+
+    probe_once()
+    if campaign.tally.broken or campaign.not_run:
+        pytest.fail(campaign.failure_report(), pytrace=False)
