@@ -1,9 +1,13 @@
 """OverlapResult files: CSV and NetCDF round trips are exact (ranges, G, error estimates, method, tolerance),
-the files carry units and the system description, a Gaussian system is rebuilt from the attributes, and a
-missing xarray gives an ImportError saying what to install."""
+the files carry units and the system description, a Gaussian system is rebuilt from the attributes, a
+missing xarray gives an ImportError saying what to install; a file appears only once complete (a full disk
+leaves nothing, or the previous file)."""
 
 import dataclasses
+import errno
 import math
+import os
+import stat
 import sys
 
 import numpy as np
@@ -143,3 +147,104 @@ def test_not_a_result_file(tmp_path):
     good.write_text(good.read_text() + "5,x,1\n")
     with pytest.raises(ValueError, match="line .* is invalid: expected 3 numbers"):
         lo.OverlapResult.from_csv(good)
+
+
+# ----------------------------------------------------------------------------- atomic writes, refused files
+class _DiskFullAfter:
+    """A file object that writes the first ``limit`` characters, then fails as a full disk would."""
+
+    def __init__(self, f, limit):
+        self._f, self._left = f, limit
+
+    def write(self, text):
+        if len(text) > self._left:
+            self._f.write(text[:self._left])
+            self._f.flush()
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        self._left -= len(text)
+        return self._f.write(text)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self._f.close()
+        return False
+
+
+def _leftovers(directory):
+    return sorted(p.name for p in directory.iterdir())
+
+
+def test_a_full_disk_leaves_no_csv(results, tmp_path, monkeypatch):
+    from lidar_overlap import _files
+
+    written = []
+
+    def full_disk_open(path, mode="r", **kwargs):
+        written.append(path)
+        return _DiskFullAfter(open(path, mode, **kwargs), limit=1000)
+
+    monkeypatch.setattr(_files, "open", full_disk_open, raising=False)
+    with pytest.raises(OSError) as info:
+        results["rt"].to_csv(tmp_path / "g.csv")
+    assert info.value.errno == errno.ENOSPC and info.value.filename == str(tmp_path / "g.csv")
+    assert written and written[0] != tmp_path / "g.csv"   # it wrote beside the file, not to it
+    assert _leftovers(tmp_path) == []
+
+
+def test_a_full_disk_keeps_the_previous_file(results, tmp_path, monkeypatch):
+    from lidar_overlap import _files
+
+    path = tmp_path / "g.csv"
+    results["fo"].to_csv(path)
+    before = path.read_bytes()
+    monkeypatch.setattr(_files, "open", lambda p, mode="r", **kw: _DiskFullAfter(open(p, mode, **kw), 1000),
+                        raising=False)
+    with pytest.raises(OSError):
+        results["rt"].to_csv(path)
+    assert path.read_bytes() == before and _leftovers(tmp_path) == ["g.csv"]
+
+
+def test_a_full_disk_leaves_no_netcdf(results, tmp_path, monkeypatch):
+    import xarray as xr
+
+    def half_then_full(self, path, *args, **kwargs):
+        with open(path, "wb") as f:
+            f.write(b"\x89HDF\r\n\x1a\n" + b"\0" * 100)
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", half_then_full)
+    with pytest.raises(OSError) as info:
+        results["rt"].to_netcdf(tmp_path / "g.nc")
+    assert info.value.errno == errno.ENOSPC and "g.nc" in info.value.filename
+    assert _leftovers(tmp_path) == []
+
+
+def test_files_keep_the_usual_permissions(results, tmp_path):
+    results["rt"].to_csv(tmp_path / "g.csv")
+    results["rt"].to_netcdf(tmp_path / "g.nc")
+    umask = os.umask(0)
+    os.umask(umask)
+    for name in ("g.csv", "g.nc"):
+        assert stat.S_IMODE(os.stat(tmp_path / name).st_mode) == 0o666 & ~umask, name
+    (tmp_path / "g.csv").chmod(0o640)
+    results["fo"].to_csv(tmp_path / "g.csv")  # replacing keeps the file's own mode
+    assert stat.S_IMODE(os.stat(tmp_path / "g.csv").st_mode) == 0o640
+    assert _leftovers(tmp_path) == ["g.csv", "g.nc"]
+
+
+@pytest.mark.skipif(not os.path.exists("/dev/full"), reason="no /dev/full on this system")
+def test_writing_to_dev_full_fails_and_leaves_it_a_device(results):
+    with pytest.raises(OSError) as info:
+        results["rt"].to_csv("/dev/full")
+    assert info.value.errno == errno.ENOSPC
+    assert stat.S_ISCHR(os.stat("/dev/full").st_mode)
+
+
+def test_a_link_is_kept_and_its_target_replaced(results, tmp_path):
+    (tmp_path / "data").mkdir()
+    (tmp_path / "link.csv").symlink_to(tmp_path / "data" / "g.csv")
+    results["rt"].to_csv(tmp_path / "link.csv")
+    assert (tmp_path / "link.csv").is_symlink()
+    _assert_same(lo.OverlapResult.from_csv(tmp_path / "data" / "g.csv"), results["rt"])

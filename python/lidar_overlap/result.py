@@ -9,7 +9,7 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
-from . import _checks
+from . import _checks, _files
 from .aberrations import SEIDEL_TERMS, Aberrations
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
@@ -74,7 +74,8 @@ class OverlapResult:
 
     def to_csv(self, path, attrs: Optional[Dict[str, Any]] = None) -> None:
         """Write ``# key: value`` header lines (method, tolerance, system), then the columns
-        ``range_m,overlap,error_estimate``. Numbers are written with ``repr``, so they read back exactly."""
+        ``range_m,overlap,error_estimate``. Numbers are written with ``repr``, so they read back exactly.
+        The file appears under ``path`` only once complete (written beside it, then renamed)."""
         header = {"format": "lidar-overlap result", **self.attributes(), **(attrs or {})}
         if self.system is not None:
             header["system"] = repr(self.system)
@@ -82,7 +83,7 @@ class OverlapResult:
         lines.append(",".join(CSV_COLUMNS))
         for row in zip(self.ranges.tolist(), self.overlap.tolist(), self.error_estimate.tolist()):
             lines.append(",".join(repr(float(v)) for v in row))
-        with open(path, "w", encoding="utf-8", newline="\n") as f:
+        with _files.replacing(path, "w", encoding="utf-8", newline="\n") as f:
             f.write("\n".join(lines) + "\n")
 
     @classmethod
@@ -151,10 +152,13 @@ class OverlapResult:
 
     def to_netcdf(self, path, attrs: Optional[Dict[str, Any]] = None, engine: Optional[str] = None) -> None:
         """Write :meth:`to_xarray` to a NetCDF file. ``engine=None``: ``"h5netcdf"`` (NetCDF-4) when h5netcdf
-        and its h5py backend are installed, else ``"scipy"`` (NetCDF-3, same variables and attributes)."""
+        and its h5py backend are installed, else ``"scipy"`` (NetCDF-3, same variables and attributes).
+        The file appears under ``path`` only once complete (written beside it, then renamed)."""
         ds = self.to_xarray(attrs)
         encoding = {name: {"_FillValue": None} for name in ("range", "overlap", "error_estimate")}
-        ds.to_netcdf(path, engine=engine or _netcdf_engine(), encoding=encoding)
+        engine = engine or _netcdf_engine()
+        with _files.replacing_path(path) as temporary:
+            ds.to_netcdf(temporary, engine=engine, encoding=encoding)
 
     @classmethod
     def from_netcdf(cls, path, engine: Optional[str] = None) -> "OverlapResult":
