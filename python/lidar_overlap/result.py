@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from datetime import datetime, timezone
 from typing import Any, Dict, Optional
@@ -14,6 +15,12 @@ from .aberrations import SEIDEL_TERMS, Aberrations
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 CSV_COLUMNS = ("range_m", "overlap", "error_estimate")
+#: Smallest allowance for G outside [0, 1] (the round-off of a sum of order-one terms), used where the
+#: result states neither an error estimate nor a tolerance.
+ROUND_OFF = 1e-12
+#: full_overlap_range warns when G still rises at the end of the ranges by more than this fraction of its
+#: maximum per decade of range.
+FAR_SLOPE = 0.01
 _IO_HINT = "reading and writing NetCDF needs xarray and h5netcdf (with h5py): pip install 'lidar-overlap[io]'"
 
 
@@ -28,7 +35,13 @@ class OverlapResult:
     method : the model that computed it (``"rt"`` or ``"fo"``).
     error_estimate : estimated absolute error of each G value (NaN where the method gives none).
     system : the lidar it describes (``None`` for a result read from a file whose beam is not Gaussian).
-    tolerance : the absolute tolerance that was asked for.
+    tolerance : the absolute tolerance that was asked for (NaN where none was).
+
+    Checked on construction, so that no computation failure can pass as a result: ``ranges`` finite, > 0 and
+    strictly increasing; ``overlap`` and ``error_estimate`` one value per range; ``error_estimate`` >= 0 or
+    NaN; every G finite and within [0, 1] up to its slack, max(error_estimate, tolerance, 1e-12) (each
+    where finite). G outside that is a ValueError naming the range, the value and the method; G within it
+    (round-off) is clipped into [0, 1].
     """
 
     ranges: np.ndarray
@@ -38,14 +51,32 @@ class OverlapResult:
     system: Optional[LidarSystem]
     tolerance: float
 
+    def __post_init__(self) -> None:
+        for name, value in zip(("ranges", "overlap", "error_estimate", "tolerance"),
+                               _checked(self.ranges, self.overlap, self.method, self.error_estimate, self.tolerance)):
+            object.__setattr__(self, name, value)
+
     def full_overlap_range(self, threshold: float = 0.99) -> float:
         """First range (m) of the grid where G >= threshold · max G; NaN if G is zero everywhere.
 
-        Relative to the maximum, so an obstructed system (max G = 1 - (r_obs/R)²) has one too."""
+        Relative to the maximum, so an obstructed system (max G = 1 - (r_obs/R)²) has one too. That is the
+        full-overlap range only when max G is the curve's far-range limit, which the grid must reach.
+
+        Warns (RuntimeWarning) when G is still rising at the end of the ranges by more than 1 % of max G per
+        decade of range, measured from z_last / 2 (or the first range, if later) to z_last, less the two
+        values' error estimates; and for a single range. Max G may then be short of the far-range limit and
+        the range returned too early: extend the ranges. Why this rule: G approaches its limit
+        algebraically, gap(z) ~ z^-k with k >= 1 (offsets, tilts and image sizes scale as 1/z), and then
+        rises by k ln(10) gap >= 2.3 gap per decade, so a curve rising by less than 1 % of its maximum per
+        decade ends within 0.43 % of its limit. A curve that peaks and falls (a defocused detector) does
+        not warn: its maximum is its own. Where the maximum sits is no test: a converged, rising curve
+        has it at the last range too. A curve zero everywhere returns NaN without a warning.
+        """
         threshold = _checks.unit_interval("threshold", threshold, include_one=True)
         peak = float(np.max(self.overlap))
         if peak <= 0.0:
             return float("nan")
+        _warn_if_still_rising(self.ranges, self.overlap, self.error_estimate, peak)
         return float(self.ranges[np.argmax(self.overlap >= threshold * peak)])
 
     def first_signal_range(self, threshold: float = 1e-3) -> float:
@@ -89,38 +120,16 @@ class OverlapResult:
     @classmethod
     def from_csv(cls, path) -> "OverlapResult":
         """Read a result written by :meth:`to_csv`. ``system`` is rebuilt from the header for a Gaussian beam,
-        else ``None``."""
-        attrs: Dict[str, Any] = {}
-        rows, columns = [], False
-        with open(path, encoding="utf-8") as f:
-            for number, line in enumerate(f, 1):
-                line = line.strip()
-                if not line:
-                    continue
-                if line.startswith("#"):
-                    key, sep, value = line[1:].partition(":")
-                    if sep:
-                        attrs[key.strip()] = _parse_value(value.strip())
-                elif not columns:
-                    if "method" not in attrs or line.replace(" ", "") != ",".join(CSV_COLUMNS):
-                        raise ValueError(f"{path}: not a file written by OverlapResult.to_csv: expected '# method:' "
-                                         f"and the other header lines, then the columns {','.join(CSV_COLUMNS)}")
-                    columns = True
-                else:
-                    try:
-                        values = [float(v) for v in line.split(",")]
-                    except ValueError:
-                        values = []
-                    if len(values) != len(CSV_COLUMNS):
-                        raise ValueError(f"{path}: line {number} = {line!r} is invalid: expected "
-                                         f"{len(CSV_COLUMNS)} numbers ({','.join(CSV_COLUMNS)})")
-                    rows.append(values)
-        if not columns:
-            raise ValueError(f"{path}: no columns {','.join(CSV_COLUMNS)}: not a file written by OverlapResult.to_csv")
+        else ``None``. A file that is not such a result, or whose values break the class's checks (a NaN or
+        out-of-range G), is a ValueError naming the file."""
+        try:
+            with open(path, encoding="utf-8") as f:
+                attrs, rows = _read_csv(path, f)
+        except UnicodeDecodeError as exc:
+            raise ValueError(f"{path}: not a file written by OverlapResult.to_csv: byte {exc.start} is not UTF-8 "
+                             "text") from None
         data = np.array(rows, dtype=float).reshape(-1, len(CSV_COLUMNS))
-        return cls(ranges=data[:, 0].copy(), overlap=data[:, 1].copy(), method=str(attrs["method"]),
-                   error_estimate=data[:, 2].copy(), system=system_from_attributes(attrs),
-                   tolerance=float(attrs.get("tolerance", math.nan)))
+        return _read(cls, path, attrs, data[:, 0].copy(), data[:, 1].copy(), data[:, 2].copy())
 
     def to_xarray(self, attrs: Optional[Dict[str, Any]] = None):
         """An ``xarray.Dataset`` with coordinate ``range`` (m), variables ``overlap`` and ``error_estimate``,
@@ -162,17 +171,133 @@ class OverlapResult:
 
     @classmethod
     def from_netcdf(cls, path, engine: Optional[str] = None) -> "OverlapResult":
-        """Read a result written by :meth:`to_netcdf`; ``system`` is rebuilt for a Gaussian beam, else ``None``."""
+        """Read a result written by :meth:`to_netcdf`; ``system`` is rebuilt for a Gaussian beam, else ``None``.
+        Values that break the class's checks (a NaN or out-of-range G) are a ValueError naming the file."""
         xr = _xarray()
         with xr.open_dataset(path, engine=engine) as ds:
             ds = ds.load()
         attrs = dict(ds.attrs)
-        if "method" not in attrs or "overlap" not in ds:
-            raise ValueError(f"{path}: not a file written by OverlapResult.to_netcdf (no 'method' or 'overlap')")
-        return cls(ranges=np.asarray(ds["range"].values, dtype=float),
-                   overlap=np.asarray(ds["overlap"].values, dtype=float), method=str(attrs["method"]),
-                   error_estimate=np.asarray(ds["error_estimate"].values, dtype=float),
-                   system=system_from_attributes(attrs), tolerance=float(attrs.get("tolerance", math.nan)))
+        if "method" not in attrs or any(name not in ds.variables for name in ("range", "overlap", "error_estimate")):
+            raise ValueError(f"{path}: not a file written by OverlapResult.to_netcdf (no 'method' attribute, or no "
+                             "'range', 'overlap' or 'error_estimate')")
+        return _read(cls, path, attrs, ds["range"].values, ds["overlap"].values, ds["error_estimate"].values)
+
+
+def _read_csv(path, lines):
+    """The ``# key: value`` header and the rows of numbers of a file written by :meth:`OverlapResult.to_csv`."""
+    attrs: Dict[str, Any] = {}
+    rows, columns = [], False
+    for number, line in enumerate(lines, 1):
+        line = line.strip()
+        if not line:
+            continue
+        if line.startswith("#"):
+            key, sep, value = line[1:].partition(":")
+            if sep:
+                attrs[key.strip()] = _parse_value(value.strip())
+        elif not columns:
+            if "method" not in attrs or line.replace(" ", "") != ",".join(CSV_COLUMNS):
+                raise ValueError(f"{path}: not a file written by OverlapResult.to_csv: expected '# method:' "
+                                 f"and the other header lines, then the columns {','.join(CSV_COLUMNS)}")
+            columns = True
+        else:
+            try:
+                values = [float(v) for v in line.split(",")]
+            except ValueError:
+                values = []
+            if len(values) != len(CSV_COLUMNS):
+                raise ValueError(f"{path}: line {number} = {_short(line)} is invalid: expected "
+                                 f"{len(CSV_COLUMNS)} numbers ({','.join(CSV_COLUMNS)})")
+            rows.append(values)
+    if not columns:
+        raise ValueError(f"{path}: no columns {','.join(CSV_COLUMNS)}: not a file written by OverlapResult.to_csv")
+    return attrs, rows
+
+
+def _read(cls, path, attrs: Dict[str, Any], ranges, overlap, error_estimate):
+    """``cls`` from what a file holds; a ValueError of the class's checks names the file."""
+    try:
+        return cls(ranges=ranges, overlap=overlap, method=str(attrs["method"]), error_estimate=error_estimate,
+                   system=system_from_attributes(attrs), tolerance=attrs.get("tolerance", math.nan))
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None
+
+
+def _checked(ranges, overlap, method, error_estimate, tolerance):
+    """The class's invariants (see :class:`OverlapResult`): the arrays as float arrays, G clipped within its
+    slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
+    if not isinstance(method, str) or not method:
+        raise ValueError(f"method = {method!r} is invalid: expected the name of the model, such as 'rt' or 'fo'")
+    z, g, e = (_curve_array(name, value) for name, value in
+               (("ranges", ranges), ("overlap", overlap), ("error_estimate", error_estimate)))
+    if z.size == 0:
+        raise ValueError("ranges is empty: expected at least one range (m)")
+    for name, values in (("overlap", g), ("error_estimate", e)):
+        if values.size != z.size:
+            raise ValueError(f"{name} has {values.size} values for {z.size} ranges: expected one per range")
+    _first_bad("ranges", z, ~(np.isfinite(z) & (z > 0)), "expected a finite range > 0 (m)")
+    if z.size > 1 and not np.all(np.diff(z) > 0):
+        i = int(np.argmax(~(np.diff(z) > 0))) + 1
+        raise ValueError(f"ranges must be strictly increasing: ranges[{i}] = {float(z[i])!r} follows "
+                         f"{float(z[i - 1])!r}")
+    tolerance = _checks.real("tolerance", tolerance)
+    if not (math.isnan(tolerance) or (math.isfinite(tolerance) and tolerance >= 0.0)):
+        raise ValueError(f"tolerance = {tolerance!r} is invalid: expected a finite value >= 0, or NaN for none")
+    _first_bad("error_estimate", e, ~(np.isnan(e) | (np.isfinite(e) & (e >= 0.0))),
+               "expected a finite value >= 0, or NaN where the method gives none")
+    slack = np.fmax(np.fmax(e, tolerance), ROUND_OFF)   # fmax: a NaN estimate or tolerance gives way
+    outside = ~((g >= -slack) & (g <= 1.0 + slack))    # NaN is outside too
+    if outside.any():
+        i = int(np.argmax(outside))
+        raise ValueError(f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is invalid: "
+                         "G must be "
+                         f"finite and within [0, 1] up to its error estimate or tolerance ({slack[i]:.3g}); "
+                         "the computation failed at this range")
+    if g.min() < 0.0 or g.max() > 1.0:
+        g = np.clip(g, 0.0, 1.0)
+    return z, g, e, tolerance
+
+
+def _curve_array(name: str, value) -> np.ndarray:
+    try:
+        values = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        values = None
+    if values is None or values.ndim != 1:
+        raise ValueError(f"{name} is invalid: expected a 1-D array of numbers, got {type(value).__name__} "
+                         f"{_short(value)}")
+    return values
+
+
+def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, expected: str) -> None:
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"{name}[{i}] = {float(values[i])!r} is invalid: {expected}")
+
+
+def _short(value, limit: int = 80) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def _warn_if_still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) -> None:
+    """The RuntimeWarning of :meth:`OverlapResult.full_overlap_range` (the rule is explained there)."""
+    if z.size == 1:
+        warnings.warn(f"full_overlap_range: one range ({z[0]:.4g} m) cannot show whether G has reached its "
+                      "far-range limit; compute more ranges, out to where G stops rising", RuntimeWarning,
+                      stacklevel=3)
+        return
+    start = max(z[-1] / 2.0, float(z[0]))
+    log_z = np.log(z)
+    g_start, e_start = (float(np.interp(np.log(start), log_z, values)) for values in (g, np.nan_to_num(error)))
+    decades = math.log10(z[-1] / start)
+    rise = float(g[-1]) - g_start - (float(np.nan_to_num(error[-1])) + e_start)
+    if rise > FAR_SLOPE * peak * decades:
+        warnings.warn(f"full_overlap_range: G is still rising at the end of the ranges: it gains {rise / peak:.2g} "
+                      f"of its maximum {peak:.4g} from {start:.4g} m to {z[-1]:.4g} m, more than {FAR_SLOPE:.0%} per "
+                      "decade of range, so max G may be short of its far-range limit and the range found too "
+                      "early; extend the ranges farther",
+                      RuntimeWarning, stacklevel=3)
 
 
 def _xarray():
