@@ -1,6 +1,15 @@
 """Command line: ``lidar-overlap run SCENARIO.toml`` and ``lidar-overlap demo`` (see :mod:`.scenario`).
 
-Exit codes: 0 success, 2 bad argument or scenario (one-line message on stderr), 1 a file cannot be written.
+Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library refuses, a
+file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted (Ctrl-C). A
+failure prints exactly one line on stderr, ``lidar-overlap: error: ...``, naming the file, the section and
+the key where it can, and never a traceback.
+
+Nothing is written before the computation has succeeded, and every file (CSV, NetCDF, PNG) is written
+under a temporary name beside its final one and renamed only when complete, so a failure (a full disk,
+Ctrl-C) never leaves a partial file. Results are checked on construction (:class:`OverlapResult`), so a
+curve with a NaN or out-of-range G is a failure, not a file. Warnings are printed, one line each, once the
+scenario has succeeded.
 """
 
 from __future__ import annotations
@@ -8,16 +17,22 @@ from __future__ import annotations
 import argparse
 import importlib
 import inspect
+import math
+import os
 import sys
 import time
 import warnings
+from contextlib import contextmanager
 from pathlib import Path
 from typing import List, Optional
 
+from . import _files
 from ._core import __version__
-from .scenario import METHODS, Scenario, ScenarioError, load_scenario, table1_scenarios
+from .scenario import METHODS, Scenario, load_scenario, table1_scenarios
 
 PROG = "lidar-overlap"
+#: The longest error line printed (a message quoting a large value is cut there).
+MAX_MESSAGE = 1000
 
 
 class _UsageError(Exception):
@@ -57,37 +72,47 @@ def main(argv: Optional[List[str]] = None) -> int:
     except _UsageError as exc:
         return _fail(str(exc), 2)
     try:
-        with warnings.catch_warnings():
-            warnings.showwarning = _show_warning
-            if args.command == "run":
-                scenario = load_scenario(args.scenario)
-                _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
-            else:
-                out = args.out or Path("lidar-overlap-demo")
-                results = [_run_one(s, out, args.method, args.quiet) for s in table1_scenarios()]
+        if args.command == "run":
+            scenario = load_scenario(args.scenario)
+            _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
+        else:
+            out = args.out or Path("lidar-overlap-demo")
+            results = [_run_one(s, out, args.method, args.quiet) for s in table1_scenarios()]
+            with _printed_warnings():
                 combined = _note(_plot_file(results, out / "table1_variants_overlap.png", "Table 1 and its variants"))
-                print(f"demo: {len(results)} scenarios written to {out}"
-                      + (f"; compared in {combined}" if combined else ""))
-    except ScenarioError as exc:
-        return _fail(str(exc), 2)
-    except OSError as exc:
-        return _fail(f"cannot write {exc.filename or 'output'}: {exc.strerror or exc}", 1)
+            print(f"demo: {len(results)} scenarios written to {out}"
+                  + (f"; compared in {combined}" if combined else ""))
     except KeyboardInterrupt:
         return _fail("interrupted", 130)
+    except ValueError as exc:  # ScenarioError, and the library's refusals (one line naming the parameter)
+        return _fail(str(exc), 1)
+    except OSError as exc:
+        return _fail(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", 1)
+    except MemoryError:
+        return _fail("out of memory: ask for fewer ranges or smaller grids", 1)
+    except Exception as exc:  # a defect: still one line and a failure, never a traceback
+        return _fail(f"internal error: {type(exc).__name__}: {exc} (please report it with the scenario)", 1)
     return 0
 
 
 def _run_one(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
+    with _printed_warnings():
+        return _compute_and_write(scenario, out, method, quiet)
+
+
+def _compute_and_write(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
     method = scenario.resolved_method(method)
     n = scenario.ranges.size
     slow = n > 50 or scenario.model(method) == "fo"
     show, close = _progress(scenario.name, n) if slow and not quiet else (None, None)
     start = time.perf_counter()
+    done = False
     try:
         result = scenario.compute(method, callback=show)
+        done = True
     finally:
         if close is not None:
-            close()
+            close(done)
     elapsed = time.perf_counter() - start
     out.mkdir(parents=True, exist_ok=True)
     stem, attrs = out / scenario.name, {"scenario": scenario.name, "description": scenario.description}
@@ -111,9 +136,9 @@ def _run_one(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
 
 def _summary(scenario: Scenario, result, elapsed: float, files: List[str]) -> None:
     def at(z: float, rule: str) -> str:
-        return f"{z:.4g} m ({rule})" if z == z else f"none ({rule} nowhere on the grid)"
+        return f"{z:.4g} m ({rule})" if math.isfinite(z) else f"none ({rule} nowhere on the grid)"
 
-    tolerance = "" if result.tolerance != result.tolerance else f" (tolerance {result.tolerance:g})"
+    tolerance = f" (tolerance {result.tolerance:g})" if math.isfinite(result.tolerance) else ""
     z = result.ranges
     print(f"{scenario.name}: {scenario.description}" if scenario.description else scenario.name)
     print(f"  method        {result.method}{tolerance}")
@@ -139,11 +164,12 @@ def _plot_file(runs, path: Path, title: str):
         color = ax.lines[-1].get_color()
         for z, style, what in ((result.full_overlap_range(), "--", "full overlap"),
                                (result.first_signal_range(), ":", "first signal")):
-            if z == z:
+            if math.isfinite(z):
                 ax.plot([], [], style, color=color, lw=0.8, label=f"{what}: {z:.4g} m")
     ax.legend(fontsize=8, loc="lower right")
     ax.set_title(title, fontsize=9)
-    fig.savefig(path, dpi=120)
+    with _files.replacing_path(path) as temporary:  # keeps the .png suffix, which sets the format
+        fig.savefig(temporary, dpi=120)
     return str(path), None
 
 
@@ -160,37 +186,70 @@ def _scene_file(scenario: Scenario, result, path: Path):
     extra = {"result": result} if "result" in params or any_keyword else (
         {"ranges": result.ranges} if "ranges" in params else {})
     try:
-        save(scenario.system, str(path), **extra)
+        with _files.replacing_path(path) as temporary:
+            save(scenario.system, str(temporary), **extra)
+            if os.path.getsize(temporary) == 0:
+                raise _NothingWritten
+    except _NothingWritten:
+        return None, f"{path} not written by save_scene"
+    except OSError:
+        raise  # a file error (a full disk) fails the run like any other file
     except Exception as exc:  # an optional picture must not lose the computed results
         return None, f"{path} not written: {type(exc).__name__}: {exc}"
-    return (str(path), None) if path.exists() else (None, f"{path} not written by save_scene")
+    return str(path), None
+
+
+class _NothingWritten(Exception):
+    pass
 
 
 def _progress(label: str, total: int):
-    """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its closer."""
+    """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its closer
+    close(completed), which erases the counter of a failed run so that the error stays the only line."""
     try:
         from tqdm import tqdm
     except ImportError:
         def show(done):
             print(f"\r{label}: {done}/{total} ranges", end="", file=sys.stderr, flush=True)
-        return show, lambda: print(file=sys.stderr)
+
+        def close(completed):
+            blank = " " * len(f"{label}: {total}/{total} ranges")
+            print("" if completed else f"\r{blank}\r", end="\n" if completed else "", file=sys.stderr, flush=True)
+        return show, close
     bar = tqdm(total=total, desc=label, unit="range", file=sys.stderr, leave=False)
-    return lambda done: bar.update(done - bar.n), bar.close
+    return lambda done: bar.update(done - bar.n), lambda completed: bar.close()
+
+
+class _Note(UserWarning):
+    """An output left out (an optional dependency missing), printed as "note: ..." with the warnings."""
 
 
 def _note(written_and_note):
     path, note = written_and_note
     if note:
-        print(f"note: {note}", file=sys.stderr)
+        warnings.warn(note, _Note)
     return path
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
-    print(f"warning: {message}", file=sys.stderr)
+@contextmanager
+def _printed_warnings():
+    """Collect the warnings of a block and print them, one line each and each once, if the block succeeds
+    (a failure prints its error alone). Runtime warnings are always shown, whatever filters the caller set."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", RuntimeWarning)
+        warnings.simplefilter("always", UserWarning)
+        yield
+    kinds = {_Note: "note"}
+    lines = (f"{kinds.get(w.category, 'warning')}: {' '.join(str(w.message).split())}" for w in caught)
+    for line in dict.fromkeys(lines):  # each once, in order
+        print(line, file=sys.stderr)
 
 
 def _fail(message: str, code: int) -> int:
-    print(f"{PROG}: error: {message}", file=sys.stderr)
+    line = " ".join(str(message).split())  # one line, whatever the message holds
+    if len(line) > MAX_MESSAGE:
+        line = f"{line[:MAX_MESSAGE - 3]}..."
+    print(f"{PROG}: error: {line}", file=sys.stderr)
     return code
 
 

@@ -2,9 +2,13 @@
 
 A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``, ``[telescope]``,
 ``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
-``examples/scenarios/table1.toml``. Every error names the file, the section and the key, and says what is
-valid. ``method = "auto"`` in ``[run]`` means Fourier optics (``"fo"``) for a beam that is not Gaussian
-(``flat_top``), ray tracing (``"rt"``) otherwise.
+``examples/scenarios/table1.toml``. Every error is a :class:`ScenarioError` (a ValueError) that names the
+file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` means Fourier optics
+(``"fo"``) for a beam that is not Gaussian (``flat_top``), ray tracing (``"rt"``) otherwise.
+
+A scenario is read as untrusted input: the file must be UTF-8 TOML of at most 10 MB, every number finite,
+every integer within the bounds of :data:`INTEGER_LIMITS` and at most :data:`MAX_RANGES` ranges, so that no
+file can ask for unbounded work or memory before the library's own checks of the physics.
 """
 
 from __future__ import annotations
@@ -37,23 +41,55 @@ else:  # pragma: no cover
 
 METHODS = ("rt", "fo", "auto")
 OUTPUTS = ("csv", "netcdf", "plot", "scene")
-_NUMBER, _INT, _STR, _BOOL, _PAIR = "a real number", "an integer", "a string", "true or false", "pair"
-_SCHEMA: Dict[str, Dict[str, str]] = {
+#: The most ranges one scenario may ask for (``count``, or the length of ``values``).
+MAX_RANGES = 100_000
+#: The largest scenario file read (bytes).
+MAX_FILE_BYTES = 10_000_000
+#: The longest ``name`` (it names the output files, whose names the file system limits to 255 bytes).
+MAX_NAME_LENGTH = 100
+
+
+@dataclass(frozen=True)
+class _Int:
+    """An integer key's valid range and why it ends there."""
+
+    low: int
+    high: int
+    why: str = ""
+
+    def __str__(self) -> str:
+        return f"an integer from {self.low} to {self.high}" + (f" ({self.why})" if self.why else "")
+
+
+#: Bounds of the integer keys: each sizes work or memory (grid sides are squared, threads are started).
+INTEGER_LIMITS: Dict[str, _Int] = {
+    "ranges.count": _Int(2, MAX_RANGES, "the most ranges one scenario may ask for"),
+    "run.threads": _Int(0, 256, "0 uses all cores"),
+    "run.max_segments": _Int(1, 100_000, "adaptive subdivisions per integral"),
+    "run.beam_grid": _Int(16, 8192, "samples per side of the beam's grid"),
+    "run.max_spectrum_grid": _Int(16, 8192, "samples per side of the spectrum's grid"),
+    "flat_top.grid": _Int(64, 4096, "samples per side of the phase plate"),
+    "flat_top.max_iterations": _Int(1, 10_000, "iterations of the plate's design"),
+}
+_NUMBER, _STR, _BOOL, _PAIR = "a finite real number", "a string", "true or false", "pair"
+_SCHEMA: Dict[str, Dict[str, Any]] = {
     "gaussian": {"wavelength": _NUMBER, "waist_radius": _NUMBER, "divergence": _NUMBER, "offset": _PAIR,
                  "tilt": _PAIR, "width_law": _STR, "type": _STR},
     "flat_top": {"wavelength": _NUMBER, "waist_radius": _NUMBER, "angular_diameter": _NUMBER, "offset": _PAIR,
-                 "tilt": _PAIR, "grid": _INT, "samples_per_waist": _NUMBER, "edge_width": _NUMBER,
-                 "max_iterations": _INT, "tolerance": _NUMBER, "max_error": _NUMBER, "power": _NUMBER,
-                 "type": _STR},
+                 "tilt": _PAIR, "grid": INTEGER_LIMITS["flat_top.grid"], "samples_per_waist": _NUMBER,
+                 "edge_width": _NUMBER, "max_iterations": INTEGER_LIMITS["flat_top.max_iterations"],
+                 "tolerance": _NUMBER, "max_error": _NUMBER, "power": _NUMBER, "type": _STR},
     "telescope": {"diameter": _NUMBER, "focal_length": _NUMBER, "obstruction_radius": _NUMBER,
                   "obstruction_distance": _NUMBER, "aberrations": "table"},
     "telescope.aberrations": {"zernike": "table", "w040": _NUMBER, "w131": _NUMBER, "w222": _NUMBER,
                               "w220": _NUMBER, "w311": _NUMBER, "field_radius": _NUMBER},
     "detector": {"fov": _NUMBER, "radius": _NUMBER, "defocus": _NUMBER, "offset": _PAIR,
                  "numerical_aperture": _NUMBER},
-    "ranges": {"start": _NUMBER, "stop": _NUMBER, "count": _INT, "spacing": _STR, "values": "values"},
-    "run": {"method": _STR, "tolerance": _NUMBER, "threads": _INT, "max_segments": _INT, "beam_grid": _INT,
-            "beam_window": _NUMBER, "max_spectrum_grid": _INT},
+    "ranges": {"start": _NUMBER, "stop": _NUMBER, "count": INTEGER_LIMITS["ranges.count"], "spacing": _STR,
+               "values": "values"},
+    "run": {"method": _STR, "tolerance": _NUMBER, "beam_window": _NUMBER,
+            **{key: INTEGER_LIMITS[f"run.{key}"] for key in ("threads", "max_segments", "beam_grid",
+                                                            "max_spectrum_grid")}},
     "output": {name: _BOOL for name in OUTPUTS},
 }
 _TOP = {"name": _STR, "description": _STR, "beam": "table", "telescope": "table", "detector": "table",
@@ -63,7 +99,8 @@ _REQUIRED = {"gaussian": ("wavelength", "waist_radius"), "flat_top": ("wavelengt
 
 
 class ScenarioError(ValueError):
-    """A scenario that cannot be used; the message names the file, section and key."""
+    """A scenario that cannot be used (or whose computation the library refused); the message names the file,
+    section and key."""
 
 
 @dataclass(eq=False)
@@ -92,7 +129,10 @@ class Scenario:
         method = self.resolved_method(method)
         if method != "auto":
             return method
-        return decide(self.system, self.ranges, self.options.get("tolerance", 1e-4)).method
+        try:
+            return decide(self.system, self.ranges, self.options.get("tolerance", 1e-4)).method
+        except ValueError as exc:
+            raise self._library_error(exc, 0) from None
 
     def compute(self, method: Optional[str] = None, chunk: Optional[int] = None,
                 callback: Optional[Callable[[int], None]] = None) -> OverlapResult:
@@ -111,15 +151,21 @@ class Scenario:
             try:
                 parts.append(_overlap.overlap(self.system, z[start:start + chunk], method=method, **self.options))
             except ValueError as exc:
-                message = re.sub(r"^ranges\[(\d+)\]", lambda m: f"ranges[{int(m.group(1)) + start}]", str(exc))
-                section = "ranges" if message.startswith("ranges") else "run"
-                raise ScenarioError(_prefixed(self.source, section, message)) from None
+                raise self._library_error(exc, start) from None
             if callback is not None:
                 callback(min(start + chunk, z.size))
         first = parts[0]
         return OverlapResult(ranges=z.copy(), overlap=np.concatenate([p.overlap for p in parts]), method=first.method,
                              error_estimate=np.concatenate([p.error_estimate for p in parts]), system=self.system,
                              tolerance=first.tolerance)
+
+    def _library_error(self, exc: ValueError, start: int) -> ScenarioError:
+        """The library's ValueError about ranges ``start``, ... as a ScenarioError naming the file, its section
+        and the index in the whole grid."""
+        message = re.sub(r"^(ranges|overlap|error_estimate)\[(\d+)\]",
+                         lambda m: f"{m.group(1)}[{int(m.group(2)) + start}]", str(exc))
+        section = "ranges" if message.startswith("ranges") else "run"
+        return ScenarioError(_prefixed(self.source, section, message))
 
 
 def load_scenario(path) -> Scenario:
@@ -128,11 +174,21 @@ def load_scenario(path) -> Scenario:
     source = path.name
     try:
         with open(path, "rb") as f:
-            data = tomllib.load(f)
+            raw = f.read(MAX_FILE_BYTES + 1)
     except OSError as exc:
         raise ScenarioError(f"{path}: cannot read the scenario: {exc.strerror or exc}") from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise ScenarioError(f"{source}: the file is larger than {MAX_FILE_BYTES:,} bytes: expected a scenario "
+                            "(TOML), which needs a few kB")
+    try:
+        data = tomllib.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(f"{source}: not a TOML file: byte {exc.start} (0x{raw[exc.start]:02x}) is not UTF-8 "
+                            "text") from None
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{source}: invalid TOML: {exc}") from None
+    except RecursionError:
+        raise ScenarioError(f"{source}: invalid TOML: arrays or tables nested too deeply") from None
     data.setdefault("name", path.stem)
     return scenario_from_dict(data, source)
 
@@ -146,9 +202,9 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
                                 "[detector], [ranges]; optional: [run], [output])")
     _require(f"{source}:", data, ("name",))
     name = data["name"]
-    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.+-]*", name):
-        raise ScenarioError(f"{source}: name = {name!r} is invalid: expected letters, digits and _ . + - "
-                            "(it names the output files)")
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.+-]*", name) or len(name) > MAX_NAME_LENGTH:
+        raise ScenarioError(f"{source}: name = {_short(name)} is invalid: expected 1 to {MAX_NAME_LENGTH} letters, "
+                            "digits and _ . + - (it names the output files)")
     telescope = _telescope(source, data["telescope"])
     system = _build(source, None, LidarSystem, beam=_beam(source, data["beam"]), telescope=telescope,
                     detector=_detector(source, data["detector"], telescope))
@@ -193,9 +249,10 @@ def _aberrations(source: str, table: Dict[str, Any]) -> Aberrations:
     values = dict(_keys(source, "telescope.aberrations", table, _SCHEMA["telescope.aberrations"]))
     terms = {}
     for key, value in values.pop("zernike", {}).items():
-        if not (key.isdigit() and 1 <= int(key) <= 1000) or not _is_number(value):
-            raise ScenarioError(f"{source}: [telescope.aberrations.zernike] {key} = {value!r} is invalid: expected "
-                                '"Noll index" (1-1000) = RMS wavefront in m, e.g. "11" = 5e-8')
+        if not (key.isdigit() and len(key) <= 4 and 1 <= int(key) <= 1000) or not _is_number(value):
+            raise ScenarioError(f"{source}: [telescope.aberrations.zernike] {_short(key, 40)[1:-1]} = "
+                                f'{_short(value)} is invalid: expected "Noll index" (1-1000) = RMS wavefront in m, '
+                                'e.g. "11" = 5e-8')
         terms[int(key)] = value
     return _build(source, "telescope.aberrations", Aberrations, zernike=terms, **values)
 
@@ -217,9 +274,10 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
     t, where = _keys(source, "ranges", table, _SCHEMA["ranges"]), f"{source}: [ranges]"
     if "values" in t:
         z = np.asarray(t["values"], dtype=float)
-        if len(t) > 1 or z.size == 0 or not np.all(np.isfinite(z) & (z > 0)) or np.any(np.diff(z) <= 0):
-            raise ScenarioError(f"{where} values = {t['values']!r} is invalid: expected a non-empty, strictly "
-                                "increasing list of finite ranges > 0 (m), and no start, stop, count")
+        if len(t) > 1 or not 0 < z.size <= MAX_RANGES or not np.all(z > 0) or np.any(np.diff(z) <= 0):
+            raise ScenarioError(f"{where} values = {_short(t['values'])} ({z.size} values) is invalid: expected a "
+                                f"strictly increasing list of 1 to {MAX_RANGES:,} ranges > 0 (m), and no start, stop, "
+                                "count")
         return z
     _require(where, t, ("start", "stop", "count"), " (or values = [...])")
     start, stop, count = t["start"], t["stop"], t["count"]
@@ -229,33 +287,40 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
         if not ok:
             raise ScenarioError(f"{where} {key} = {t[key]!r} is invalid: expected {rule}")
     spacing = _choice(where, "spacing", t.get("spacing", "linear"), ("linear", "log"))
-    return (np.geomspace if spacing == "log" else np.linspace)(float(start), float(stop), count)
+    z = (np.geomspace if spacing == "log" else np.linspace)(float(start), float(stop), count)
+    if not np.all(np.diff(z) > 0):
+        raise ScenarioError(f"{where} start = {start!r}, stop = {stop!r}, count = {count} are invalid: {count} "
+                            "ranges between them are not distinct in double precision; expected fewer ranges or a "
+                            "wider span")
+    return z
 
 
 # ------------------------------------------------------------------------------------------------ helpers
-def _keys(source: str, section: Optional[str], table: Any, schema: Dict[str, str], required=()) -> Dict[str, Any]:
+def _keys(source: str, section: Optional[str], table: Any, schema: Dict[str, Any], required=()) -> Dict[str, Any]:
     """Check a table against ``schema`` (key -> expected kind): unknown keys, missing keys and types."""
     where = f"{source}: [{section}]" if section else f"{source}:"
     if not isinstance(table, dict):
-        raise ScenarioError(f"{where} is {table!r}: expected a table of keys ({', '.join(schema)})")
+        raise ScenarioError(f"{where} is {_short(table)}: expected a table of keys ({', '.join(schema)})")
     for key, value in table.items():
         if key not in schema:
-            raise ScenarioError(f"{where} unknown key {key!r} (valid: {', '.join(schema)})")
+            raise ScenarioError(f"{where} unknown key {_short(key, 40)} (valid: {', '.join(schema)})")
         kind = schema[key]
-        if kind == _PAIR:
+        if isinstance(kind, _Int):
+            ok = isinstance(value, int) and not isinstance(value, bool) and kind.low <= value <= kind.high
+        elif kind == _PAIR:
             ok = isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value)
-            kind = "an (x, y) pair of two numbers, e.g. [0.0, 0.0]"
+            kind = "an (x, y) pair of two finite numbers, e.g. [0.0, 0.0]"
         elif kind == "values":
             ok = isinstance(value, list) and all(_is_number(v) for v in value)
-            kind = "a list of numbers (m)"
+            kind = "a list of finite numbers (m)"
         elif kind == "table":
             ok = isinstance(value, dict)
             kind = f"a table [{key}]"
         else:
-            ok = {_NUMBER: _is_number, _INT: lambda v: isinstance(v, int) and not isinstance(v, bool),
-                  _STR: lambda v: isinstance(v, str), _BOOL: lambda v: isinstance(v, bool)}[kind](value)
+            ok = {_NUMBER: _is_number, _STR: lambda v: isinstance(v, str),
+                  _BOOL: lambda v: isinstance(v, bool)}[kind](value)
         if not ok:
-            raise ScenarioError(f"{where} {key} = {value!r} is invalid: expected {kind}")
+            raise ScenarioError(f"{where} {key} = {_short(value)} is invalid: expected {kind}")
     _require(where, table, required)
     return table
 
@@ -267,13 +332,26 @@ def _require(where: str, table: Dict[str, Any], required, alternative: str = "")
 
 
 def _choice(where: str, key: str, value: Any, valid) -> Any:
-    if value not in valid:
-        raise ScenarioError(f"{where} {key} = {value!r} is invalid: expected one of {', '.join(map(repr, valid))}")
+    if not isinstance(value, str) or value not in valid:
+        raise ScenarioError(f"{where} {key} = {_short(value)} is invalid: expected one of "
+                            f"{', '.join(map(repr, valid))}")
     return value
 
 
 def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
+    """A finite int or float (TOML also has nan, inf and integers beyond any float)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
+
+
+def _short(value: Any, limit: int = 80) -> str:
+    """repr(value), cut to ``limit`` characters so that a message stays one readable line."""
+    text = repr(value)
+    return text if len(text) <= limit else f"{text[:limit - 3]}..."
 
 
 def _prefixed(source: str, section: Optional[str], message: str) -> str:
