@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/fft.hpp"
 #include "lidar_overlap/quadrature.hpp"
 #include "lidar_overlap/special_functions.hpp"
+#include "parallel.hpp"
 
 namespace lidar_overlap::detail {
 
@@ -86,6 +88,17 @@ AberratedPupilIntegral::AberratedPupilIntegral(const LidarSystem& system, const 
     keys_.push_back({panels, one_angle ? 1 : std::max<std::size_t>(64, 2 * steps)});
     coarse_in_rho_.push_back(one_angle);
   }
+  // Memory of the node sets (a, slope, weight: 40 bytes a node), distinct keys counted once.
+  std::map<Key, bool> distinct;
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    distinct[keys_[i]] = true;
+    if (coarse_in_rho_[i]) distinct[{keys_[i].first / 2, 1}] = true;
+  }
+  double bytes = 0.0;
+  for (const auto& [key, unused] : distinct) bytes += 40.0 * kPanelNodes * double(key.first) * double(key.second);
+  checks::memory("aberrations", aberrations.max_gradient(), bytes,
+                 "the pupil nodes resolve the beam image across the aberrated blur; use fewer ranges at the "
+                 "shortest distances or smaller aberrations");
   for (std::size_t i = 0; i < keys_.size(); ++i) {
     nodes(keys_[i]);
     if (coarse_in_rho_[i]) nodes({keys_[i].first / 2, 1});
@@ -102,6 +115,7 @@ const AberratedPupilIntegral::Nodes& AberratedPupilIntegral::nodes(Key key) {
   const double radius = 0.5 * t.diameter, inner = t.obstruction_radius, d = t.focal_length + system_.detector.defocus;
   const GaussLegendreRule& rule = gauss_legendre<kPanelNodes>();
   for (std::size_t p = 0; p < panels; ++p) {
+    cancellation_point();
     const double lo = inner + (radius - inner) * p / panels, hi = inner + (radius - inner) * (p + 1) / panels;
     for (std::size_t i = 0; i < kPanelNodes; ++i) {
       const double rho = 0.5 * (lo + hi) + 0.5 * (hi - lo) * rule.x[i];

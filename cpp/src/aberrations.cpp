@@ -11,15 +11,21 @@
 namespace lidar_overlap {
 
 void Aberrations::validate() const {
-  if (zernike.size() > 1000) checks::fail("aberrations.zernike (length)", zernike.size(), "at most 1000 Noll terms");
-  for (std::size_t i = 0; i < zernike.size(); ++i)
-    checks::finite("aberrations.zernike[" + std::to_string(i + 1) + "]", zernike[i]);
-  checks::finite("aberrations.w040", w040);
-  checks::finite("aberrations.w131", w131);
-  checks::finite("aberrations.w222", w222);
-  checks::finite("aberrations.w220", w220);
-  checks::finite("aberrations.w311", w311);
+  if (zernike.size() > kMaxNollIndex)
+    checks::fail("aberrations.zernike (highest Noll index)", static_cast<double>(zernike.size()),
+                 "at most " + std::to_string(kMaxNollIndex) + " (radial order 20)");
+  auto coefficient = [](const std::string& name, double value) {
+    if (!(std::abs(value) <= kMaxCoefficient))
+      checks::fail(name, value, "a finite value within +-" + checks::number(kMaxCoefficient) + " m of wavefront");
+  };
+  for (std::size_t i = 0; i < zernike.size(); ++i) coefficient("aberrations.zernike[" + std::to_string(i + 1) + "]", zernike[i]);
+  coefficient("aberrations.w040", w040);
+  coefficient("aberrations.w131", w131);
+  coefficient("aberrations.w222", w222);
+  coefficient("aberrations.w220", w220);
+  coefficient("aberrations.w311", w311);
   checks::non_negative("aberrations.field_radius", field_radius);
+  checks::angle("aberrations.field_radius", field_radius);
   if (field_dependent() && !(field_radius > 0.0))
     checks::fail("aberrations.field_radius", field_radius,
                  "a field angle > 0 rad (the field at H = 1) when W131, W222, W220 or W311 is set");

@@ -156,10 +156,13 @@ std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, doubl
       next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image)))));
   if (np > max_grid)
     checks::fail("ranges[" + std::to_string(range_index) + "]", z,
-                 "a range where the point image (radius " + std::to_string(rx.blur_radius()) +
-                     " m on the detector plane) needs a beam spectrum grid of at most max_spectrum_grid = " +
-                     std::to_string(max_grid) + " (here " + std::to_string(np) +
-                     "); this is the geometric regime, where method 'rt' is accurate");
+                 "a range needing a beam spectrum grid of at most max_spectrum_grid = " + std::to_string(max_grid) +
+                     " (here " + std::to_string(np) + "): its alias period must hold, on the detector plane, the "
+                     "point image (blur radius " + checks::number(rx.blur_radius()) + " m), the beam image (offset " +
+                     checks::number(norm(system.detector.offset + to_image * system.beam.center(z))) + " m, radius " +
+                     checks::number(radius_bound * to_image) + " m) and the detector (" +
+                     checks::number(system.detector.radius) + " m); where the blur dominates the image is geometric and "
+                     "method 'rt' is exact, otherwise fo_path='radial' needs no grid");
   return np;
 }
 
@@ -231,11 +234,11 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   if (options.beam_grid < 16 || options.beam_grid % 2)
     checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
   checks::grid("beam_grid", options.beam_grid, sizeof(Complex), 2 * detail::thread_count(options.threads));
-  // At least two samples per waist radius, and a window that holds the waist (+-1 w0).
-  if (!(options.beam_window >= 2.0 && options.beam_window <= 0.5 * static_cast<double>(options.beam_grid)))
+  // A window that holds the waist (+-1 w0), sampled at least once per waist radius.
+  if (!(options.beam_window >= 2.0 && options.beam_window <= static_cast<double>(options.beam_grid)))
     checks::fail("beam_window", options.beam_window,
-                 "a window from 2 to beam_grid / 2 = " + std::to_string(options.beam_grid / 2) +
-                     " waist radii, so that the waist is sampled by at least 2 points per radius");
+                 "a window from 2 to beam_grid = " + std::to_string(options.beam_grid) +
+                     " waist radii, so that the waist is sampled at least once per radius");
   validate_ranges(system, ranges);
   const std::size_t nb = options.beam_grid;
   const double theta_d = beam.wavelength / (kPi * beam.waist_radius);

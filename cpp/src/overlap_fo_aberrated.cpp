@@ -105,6 +105,10 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
                                 "optics path (one point image for every scatterer) cannot model: use method 'rt', "
                                 "or their Zernike form at one field point");
   system.beam.validate_for_fourier_optics();
+  if (aberrations.pupil_polynomial().degree < 0)
+    checks::fail("aberrations.zernike (highest Noll index)", static_cast<double>(aberrations.zernike.size()),
+                 "at most 153 (radial order 16) for Fourier optics, which samples the pupil as one polynomial "
+                 "(higher orders lose digits to cancellation and cost O(order) per sample): use method 'rt'");
   const int threads = detail::thread_count(options.threads);
   checks::in_open_unit("tail_error", options.tail_error);
   const double radius = telescope_radius(system);

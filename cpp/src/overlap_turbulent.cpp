@@ -8,6 +8,7 @@
 
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/constants.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/phase_screen.hpp"
 #include "lidar_overlap/fft.hpp"
@@ -181,10 +182,14 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
       (beam.divergence && std::abs(*beam.divergence * kPi * w0 / lambda - 1.0) > 1e-9))
     checks::fail("beam.divergence", beam.divergence.value_or(0.0),
                  "None (a diffraction-limited TEM00 beam with the Gaussian width law) for the turbulent FO path");
-  if (o.realizations < 1) checks::fail("realizations", 0.0, "at least 1");
-  if (o.screens < 1) checks::fail("screens", 0.0, "at least 1");
+  if (o.realizations < 1 || o.realizations > kMaxRealizations)
+    checks::fail("realizations", static_cast<double>(o.realizations), "a count from 1 to 1000000");
+  if (o.screens < 1 || o.screens > kMaxScreens) checks::fail("screens", static_cast<double>(o.screens), "a count from 1 to 1000");
   if (o.beam_grid < 32 || o.beam_grid % 2) checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
-  checks::positive("beam_window", o.beam_window);
+  if (!(o.beam_window >= 2.0 && o.beam_window <= static_cast<double>(o.beam_grid)))
+    checks::fail("beam_window", o.beam_window, "a window from 2 to beam_grid long-term beam radii");
+  if (o.max_spectrum_grid < 32 || o.max_spectrum_grid > kMaxGridSide)
+    checks::fail("max_spectrum_grid", static_cast<double>(o.max_spectrum_grid), "a size from 32 to 65536");
   const int threads = detail::thread_count(o.threads);
   if (ranges.empty()) return {};
   for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
@@ -237,6 +242,15 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     grids[i] = detail::spectrum_grid(system, receivers[i], ranges[i], range_spacing[i], radius, n,
                                      o.max_spectrum_grid, i, 1e-4);
   }
+  // Coupling maps (one n x n table per range), screen generators (a spectrum each) and per-thread fields and
+  // map-building buffers, before any of it is allocated.
+  double np_max = 0.0;
+  for (std::size_t g : grids) np_max = std::max(np_max, static_cast<double>(g));
+  const double n2 = double(n) * double(n);
+  checks::memory("beam_grid", static_cast<double>(n),
+                 8.0 * n2 * double(ranges.size()) + 16.0 * n2 * double(o.screens) +
+                     16.0 * double(threads) * (4.0 * n2 + 2.0 * double(n) * np_max),
+                 "lower beam_grid, screens or the number of ranges");
   detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
     maps[i] = std::make_unique<CouplingMap>(system, receivers[i], ranges[i], range_spacing[i], n, grids[i]);
   });

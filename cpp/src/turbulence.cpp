@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "lidar_overlap/quadrature.hpp"
 
 namespace lidar_overlap {
@@ -93,14 +94,22 @@ Cn2Profile Cn2Profile::custom(std::function<double(double)> cn2_of_height) {
   return p;
 }
 
+namespace {
+// Cn^2 from 0 to 1e-9 m^-2/3, a thousand times the strongest turbulence measured near the ground.
+constexpr double kMaxCn2 = 1e-9;
+void strength(const std::string& name, double value) {
+  if (!(value >= 0.0 && value <= kMaxCn2)) checks::fail(name, value, "a value from 0 to 1e-9 m^-2/3");
+}
+}  // namespace
+
 void Cn2Profile::validate() const {
   switch (model) {
     case Cn2Model::constant:
-      checks::non_negative("cn2", cn2);
+      strength("cn2", cn2);
       break;
     case Cn2Model::hufnagel_valley:
-      checks::non_negative("hv_ground", hv_ground);
-      checks::non_negative("hv_wind", hv_wind);
+      strength("hv_ground", hv_ground);
+      if (!(hv_wind >= 0.0 && hv_wind <= 300.0)) checks::fail("hv_wind", hv_wind, "a wind speed from 0 to 300 m/s");
       break;
     case Cn2Model::custom:
       if (!cn2_of_height) checks::fail("cn2_of_height", 0.0, "a callable giving Cn^2 (m^-2/3) at a height (m)");
@@ -109,9 +118,10 @@ void Cn2Profile::validate() const {
       checks::fail("model", static_cast<double>(model), "constant, hufnagel_valley or custom");
   }
   if (!(elevation > 0.0 && elevation <= kPi / 2.0)) checks::fail("elevation", elevation, "a value in (0, pi/2] rad");
-  checks::non_negative("altitude", altitude);
-  checks::non_negative("inner_scale", inner_scale);
-  if (!(outer_scale > 0.0)) checks::fail("outer_scale", outer_scale, "a value > 0 m (infinity: Kolmogorov)");
+  if (!(altitude >= 0.0 && altitude <= 1e5)) checks::fail("altitude", altitude, "a height from 0 to 1e5 m");
+  if (!(inner_scale >= 0.0 && inner_scale <= 1.0)) checks::fail("inner_scale", inner_scale, "a length from 0 to 1 m");
+  if (!(outer_scale > 0.0) || (std::isfinite(outer_scale) && outer_scale < kMinLength))
+    checks::fail("outer_scale", outer_scale, "a value >= 1e-10 m (infinity: Kolmogorov)");
 }
 
 double Cn2Profile::cn2_at_height(double height) const {
@@ -125,8 +135,8 @@ double Cn2Profile::cn2_at_height(double height) const {
     }
     default: {
       const double c = cn2_of_height(height);
-      if (!(c >= 0.0) || !std::isfinite(c))
-        checks::fail("cn2_of_height", c, "a finite value >= 0 m^-2/3 (at height " + std::to_string(height) + " m)");
+      if (!(c >= 0.0 && c <= kMaxCn2))
+        checks::fail("cn2_of_height", c, "a value from 0 to 1e-9 m^-2/3 (at height " + std::to_string(height) + " m)");
       return c;
     }
   }

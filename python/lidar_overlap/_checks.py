@@ -13,11 +13,25 @@ import math
 import numpy as np
 
 
+#: Largest integer option passed to the core (sizes are checked there against grid and memory limits).
+MAX_COUNT = 2**62
+
+
+def shown(value: Any) -> str:
+    """repr(value), shortened for messages (an int of 400 digits, a long list)."""
+    text = repr(value)
+    return text if len(text) <= 60 else f"{text[:28]}...{text[-12:]} ({type(value).__name__})"
+
+
 def real(name: str, value: Any) -> float:
-    """A real scalar as float; bools, strings and arrays are rejected."""
+    """A real scalar as float; bools, strings and arrays are rejected, and so are ints beyond float range."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValueError(f"{name} = {value!r} is invalid: expected a real number")
-    return float(value)
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected a real number")
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected a real number within double range "
+                         "(|x| < 1.8e308)") from None
 
 
 def positive(name: str, value: Any) -> float:
@@ -33,13 +47,14 @@ def optional_real(name: str, value: Any) -> float | None:
 
 
 def pair(name: str, value: Any) -> tuple[float, float]:
-    """An (x, y) pair of finite floats."""
-    arr = np.asarray(value, dtype=float) if not isinstance(value, str) else np.asarray([])
-    if arr.shape != (2,):
-        raise ValueError(f"{name} = {value!r} is invalid: expected an (x, y) pair of two numbers")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} = {value!r} is invalid: expected finite numbers")
-    return (float(arr[0]), float(arr[1]))
+    """An (x, y) pair of finite floats: a tuple, list or 1-D array of two real numbers (not bools or strings)."""
+    items = value.tolist() if isinstance(value, np.ndarray) and value.ndim == 1 else value
+    if not isinstance(items, (tuple, list)) or len(items) != 2:
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected an (x, y) pair of two numbers")
+    x, y = (real(f"{name}[{i}]", v) for i, v in enumerate(items))
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected finite numbers")
+    return (x, y)
 
 
 def ranges(name: str, value: Any) -> np.ndarray:
@@ -65,10 +80,18 @@ def choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
     return value
 
 
-def count(name: str, value: Any, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} = {value!r} is invalid: expected an integer >= {minimum}")
+def count(name: str, value: Any, minimum: int, maximum: int = MAX_COUNT) -> int:
+    """An integer in [minimum, maximum] (bools refused)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
+        limit = f">= {minimum}" if maximum == MAX_COUNT else f"from {minimum} to {maximum}"
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected an integer {limit}")
     return int(value)
+
+
+def threads(value: Any) -> int:
+    """The `threads` option: 0 (all cores) up to the core's cap, max(256, 4 x cores)."""
+    from . import _core
+    return count("threads", value, 0, _core.max_threads())
 
 
 def unit_interval(name: str, value: Any, include_one: bool = False) -> float:

@@ -27,6 +27,9 @@ from . import _checks, _core
 
 SEIDEL_TERMS = ("w040", "w131", "w222", "w220", "w311")
 
+#: Highest Noll index (radial order 20); the Fourier-optics path takes up to 153 (radial order 16).
+MAX_NOLL_INDEX = 231
+
 
 @dataclass(frozen=True)
 class Aberrations:
@@ -34,7 +37,7 @@ class Aberrations:
 
     Parameters
     ----------
-    zernike : {Noll index j: coefficient in m RMS}, j from 1 (piston) to 1000; e.g. ``{11: 50e-9}`` is
+    zernike : {Noll index j: coefficient in m RMS}, j from 1 (piston) to 231 (radial order 20; Fourier optics takes up to 153, radial order 16); e.g. ``{11: 50e-9}`` is
         50 nm RMS of primary spherical aberration.
     w040, w131, w222, w220, w311 : m, Seidel coefficients (spherical, coma, astigmatism, field curvature,
         distortion) at the pupil edge and at field height H = 1.
@@ -56,8 +59,9 @@ class Aberrations:
                              "{Noll index: m RMS}")
         terms: Dict[int, float] = {}
         for j, c in self.zernike.items():
-            if isinstance(j, bool) or not isinstance(j, (int, np.integer)) or not 1 <= j <= 1000:
-                raise ValueError(f"aberrations.zernike index {j!r} is invalid: expected a Noll index in [1, 1000]")
+            if isinstance(j, bool) or not isinstance(j, (int, np.integer)) or not 1 <= j <= MAX_NOLL_INDEX:
+                raise ValueError(f"aberrations.zernike index {_checks.shown(j)} is invalid: expected a Noll index in "
+                                 f"[1, {MAX_NOLL_INDEX}] (radial order 20)")
             terms[int(j)] = _checks.real(f"aberrations.zernike[{j}]", c)
         object.__setattr__(self, "zernike", dict(sorted(terms.items())))
         for name in SEIDEL_TERMS + ("field_radius",):

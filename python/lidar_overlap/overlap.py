@@ -75,7 +75,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
     _checks.choice("method", method, METHODS)
     z = _checks.ranges("ranges", ranges)
     tolerance = _checks.unit_interval("tolerance", tolerance)
-    threads = _checks.count("threads", threads, 0)
+    threads = _checks.threads(threads)
     max_segments = _checks.count("max_segments", max_segments, 1)
     max_spectrum_grid = _checks.count("max_spectrum_grid", max_spectrum_grid, 16)
     _checks.choice("fo_path", fo_path, FO_PATHS)
@@ -87,7 +87,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
         return overlap_aberrated(system, z, method, tolerance, threads, max_spectrum_grid)
     if turbulence is not None:
         return _overlap_turbulent(system, z, method, turbulence, _checks.count("realizations", realizations, 1),
-                                  _checks.count("seed", seed, 0), _checks.count("screens", screens, 1), tolerance,
+                                  _checks.count("seed", seed, 0, 2**64 - 1), _checks.count("screens", screens, 1), tolerance,
                                   beam_grid, beam_window, threads)
     if method == "auto":
         return _overlap_auto(system, z, tolerance, threads, max_segments)

@@ -18,6 +18,10 @@
 
 namespace lidar_overlap {
 
+// Bounds on the work one call may ask for (each realisation costs one split-step pass per screen).
+inline constexpr std::size_t kMaxRealizations = 1000000;
+inline constexpr std::size_t kMaxScreens = 1000;
+
 struct TurbulenceOptions {
   std::size_t realizations = 20;
   std::size_t screens = 10;             // phase screens over [0, last range]
