@@ -342,3 +342,11 @@ def test_an_output_directory_that_is_a_file(tmp_path, capsys):
     (tmp_path / "taken").write_text("")
     assert main(["run", str(_small_scenario(tmp_path)), "--out", str(tmp_path / "taken"), "--quiet"]) == 1
     _one_error_line(capsys.readouterr().err, "cannot write", "taken")
+
+
+def test_text_from_the_scenario_cannot_drive_the_terminal(tmp_path, capsys):
+    path = _small_scenario(tmp_path)
+    path.write_text(path.read_text().replace('description = "Mono-axial', 'description = "\\u001b[2J\\u0007Mono-axial'))
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "\x07" not in out and "table1: [2J Mono-axial lidar" in out

@@ -156,18 +156,21 @@ def test_the_loader_refuses_in_one_line(tmp_path, capsys, case, data, words):
     assert not (tmp_path / "out").exists() and out == ""
 
 
-#: Finite but absurd values that pass the loader and reach the core (one subprocess each, ~1 s).
-CORE_CASES = ([(f"{s}.{k} = {v}", _set(base, s, k, v)) for s, k, base in REAL_KEYS if base is BASE
+#: Finite but absurd values that pass the loader and reach the core (one subprocess each, ~1 s):
+#: (id, section the error must name if the run fails, file text).
+CORE_CASES = ([(f"{s}.{k} = {v}", s, _set(base, s, k, v)) for s, k, base in REAL_KEYS if base is BASE
                for v in ("1e300", "1e-300")]
-              + [(f"{s}.{k} = 1e300", _set(ABERRATED, s, k, "1e300")) for s, k, base in REAL_KEYS
+              + [(f"{s}.{k} = 1e300", s, _set(ABERRATED, s, k, "1e300")) for s, k, base in REAL_KEYS
                  if base is ABERRATED]
-              + [(f"{s}.{k} = [-1e300, 0.0]", _set(BASE, s, k, "[-1e300, 0.0]")) for s, k in PAIR_KEYS]
-              + [("flat_top angular_diameter = 1e300", _set(FLAT, "beam", "angular_diameter", "1e300")),
-                 ("flat_top samples_per_waist = 1e-300", _set(FLAT, "beam", "samples_per_waist", "1e-300"))]
-              + [("zernike 1e300", _set(ABERRATED, "telescope.aberrations.zernike", '"11"', "1e300")),
-                 ("fo beam_grid at its bound", _set(_set(BASE, "run", "method", '"fo"'), "run", "beam_grid", "16")),
-                 ("ranges start 1e-10", _set(BASE, "ranges", "start", "1e-10")),
-                 ("ranges stop 1e10", _set(BASE, "ranges", "stop", "1e10"))])
+              + [(f"{s}.{k} = [-1e300, 0.0]", s, _set(BASE, s, k, "[-1e300, 0.0]")) for s, k in PAIR_KEYS]
+              + [("flat_top angular_diameter = 1e300", "beam", _set(FLAT, "beam", "angular_diameter", "1e300")),
+                 ("flat_top samples_per_waist = 1e-300", "beam", _set(FLAT, "beam", "samples_per_waist", "1e-300")),
+                 ("zernike 1e300", "telescope.aberrations.zernike",
+                  _set(ABERRATED, "telescope.aberrations.zernike", '"11"', "1e300")),
+                 ("fo beam_grid at its bound", "run", _set(_set(BASE, "run", "method", '"fo"'), "run", "beam_grid",
+                                                           "16")),
+                 ("ranges start 1e-10", "ranges", _set(BASE, "ranges", "start", "1e-10")),
+                 ("ranges stop 1e10", "ranges", _set(BASE, "ranges", "stop", "1e10"))])
 
 
 def _limit_memory():  # pragma: no cover - runs in the child
@@ -176,8 +179,8 @@ def _limit_memory():  # pragma: no cover - runs in the child
     resource.setrlimit(resource.RLIMIT_AS, (PROBE_MEMORY_BYTES, PROBE_MEMORY_BYTES))
 
 
-@pytest.mark.parametrize("case, text", CORE_CASES, ids=[c[0] for c in CORE_CASES])
-def test_extreme_values_in_a_subprocess(tmp_path, case, text):
+@pytest.mark.parametrize("case, section, text", CORE_CASES, ids=[c[0] for c in CORE_CASES])
+def test_extreme_values_in_a_subprocess(tmp_path, case, section, text):
     path = tmp_path / "hostile.toml"
     path.write_text(text)
     env = dict(os.environ, PYTHONPATH=str(ROOT / "python"))
@@ -189,6 +192,7 @@ def test_extreme_values_in_a_subprocess(tmp_path, case, text):
     assert "Traceback" not in done.stderr, done.stderr
     if done.returncode == 1:
         _assert_one_clean_line(1, done.stderr)
+        assert f"hostile.toml: [{section}]" in done.stderr
         assert not (tmp_path / "out").exists()
         return
     data = _csv_columns(tmp_path / "out")

@@ -36,7 +36,7 @@ def replacing_path(path) -> Iterator[Path]:
         except OSError as exc:
             raise _naming(exc, path, target) from exc
         return
-    temporary = _create_beside(target)
+    temporary = _create_beside(target, path)
     try:
         yield temporary
         _sync(temporary)
@@ -64,7 +64,7 @@ def _is_special(target: Path) -> bool:
         return False
 
 
-def _create_beside(target: Path) -> Path:
+def _create_beside(target: Path, path) -> Path:
     """Create (exclusively, so no other writer shares it) an empty temporary file in the target's directory,
     with the permissions the target has, or else the ones a new file gets (0666 less the umask)."""
     try:
@@ -78,9 +78,9 @@ def _create_beside(target: Path) -> Path:
         except FileExistsError:
             continue
         except OSError as exc:
-            raise _naming(exc, target, temporary) from None
+            raise _naming(exc, path, temporary) from None
         try:
-            if mode is not None:
+            if mode is not None and hasattr(os, "fchmod"):  # POSIX: keep the replaced file's permissions
                 os.fchmod(fd, mode)
         finally:
             os.close(fd)
@@ -90,7 +90,7 @@ def _create_beside(target: Path) -> Path:
 def _sync(temporary: Path) -> None:
     """Flush the written data to disk before the rename, so a crash cannot leave a short file under the
     final name."""
-    fd = os.open(temporary, os.O_RDONLY)
+    fd = os.open(temporary, os.O_RDWR if os.name == "nt" else os.O_RDONLY)  # Windows syncs writable handles
     try:
         os.fsync(fd)
     finally:

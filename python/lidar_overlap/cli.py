@@ -140,7 +140,7 @@ def _summary(scenario: Scenario, result, elapsed: float, files: List[str]) -> No
 
     tolerance = f" (tolerance {result.tolerance:g})" if math.isfinite(result.tolerance) else ""
     z = result.ranges
-    print(f"{scenario.name}: {scenario.description}" if scenario.description else scenario.name)
+    print(f"{scenario.name}: {_one_line(scenario.description)}" if scenario.description else scenario.name)
     print(f"  method        {result.method}{tolerance}")
     print(f"  ranges        {z.size} from {z[0]:.4g} m to {z[-1]:.4g} m; max G = {result.overlap.max():.4g}")
     print(f"  full overlap  {at(result.full_overlap_range(), 'G >= 0.99 max G')}")
@@ -240,17 +240,22 @@ def _printed_warnings():
         warnings.simplefilter("always", UserWarning)
         yield
     kinds = {_Note: "note"}
-    lines = (f"{kinds.get(w.category, 'warning')}: {' '.join(str(w.message).split())}" for w in caught)
+    lines = (f"{kinds.get(w.category, 'warning')}: {_one_line(str(w.message))}" for w in caught)
     for line in dict.fromkeys(lines):  # each once, in order
         print(line, file=sys.stderr)
 
 
 def _fail(message: str, code: int) -> int:
-    line = " ".join(str(message).split())  # one line, whatever the message holds
+    line = _one_line(str(message))
     if len(line) > MAX_MESSAGE:
         line = f"{line[:MAX_MESSAGE - 3]}..."
     print(f"{PROG}: error: {line}", file=sys.stderr)
     return code
+
+
+def _one_line(text: str) -> str:
+    """``text`` on one line, without control characters (a scenario's text must not drive the terminal)."""
+    return " ".join("".join(c if c.isprintable() else " " for c in text).split())
 
 
 if __name__ == "__main__":

@@ -355,9 +355,15 @@ def _short(value: Any, limit: int = 80) -> str:
 
 
 def _prefixed(source: str, section: Optional[str], message: str) -> str:
-    match = re.match(r"(beam|telescope|detector)\.(\w+)", message)
-    if match:
-        return f"{source}: [{match.group(1)}] {match.group(2)}{message[match.end():]}"
+    """The library's message about ``beam.offset``, ``aberrations.zernike[11]``, ... as the file's section and
+    key: ``[beam] offset``, ``[telescope.aberrations.zernike] 11``."""
+    for pattern, table in ((r"aberrations\.zernike\[(\d+)\]", "telescope.aberrations.zernike"),
+                           (r"aberrations\.(\w+)", "telescope.aberrations"),
+                           (r"(?:beam|telescope|detector)\.(\w+)", None)):
+        match = re.match(pattern, message)
+        if match:
+            table = table or message.split(".", 1)[0]
+            return f"{source}: [{table}] {match.group(1)}{message[match.end():]}"
     return f"{source}: [{section}] {message}" if section else f"{source}: {message}"
 
 
