@@ -154,6 +154,14 @@ def test_noise_within_the_error_estimates_does_not_warn():
         _result(g, error=np.zeros(z.size), ranges=z).full_overlap_range()
 
 
+def test_reaches_far_range_says_whether_full_overlap_range_warns():
+    rising = _result(0.32 * Z_FAR / Z_FAR[-1], error=np.zeros(Z_FAR.size), ranges=Z_FAR)
+    settled = _result(_algebraic(0.8, 1e-4, Z_FAR), error=np.zeros(Z_FAR.size), ranges=Z_FAR)
+    assert not rising.reaches_far_range() and settled.reaches_far_range()
+    assert not _result([0.7], error=[0.0], ranges=[300.0]).reaches_far_range()
+    assert _result([0.0, 0.0, 0.0, 0.0]).reaches_far_range()   # nothing rises
+
+
 def test_a_single_range_warns():
     res = _result([0.7], error=[0.0], ranges=[300.0])
     with pytest.warns(RuntimeWarning, match="one range"):

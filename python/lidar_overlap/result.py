@@ -62,22 +62,27 @@ class OverlapResult:
         Relative to the maximum, so an obstructed system (max G = 1 - (r_obs/R)²) has one too. That is the
         full-overlap range only when max G is the curve's far-range limit, which the grid must reach.
 
-        Warns (RuntimeWarning) when G is still rising at the end of the ranges by more than 1 % of max G per
-        decade of range, measured from z_last / 2 (or the first range, if later) to z_last, less the two
-        values' error estimates; and for a single range. Max G may then be short of the far-range limit and
-        the range returned too early: extend the ranges. Why this rule: G approaches its limit
-        algebraically, gap(z) ~ z^-k with k >= 1 (offsets, tilts and image sizes scale as 1/z), and then
-        rises by k ln(10) gap >= 2.3 gap per decade, so a curve rising by less than 1 % of its maximum per
-        decade ends within 0.43 % of its limit. A curve that peaks and falls (a defocused detector) does
-        not warn: its maximum is its own. Where the maximum sits is no test: a converged, rising curve
-        has it at the last range too. A curve zero everywhere returns NaN without a warning.
+        Warns (RuntimeWarning), and :meth:`reaches_far_range` is False, when G still rises at the end of the
+        ranges by more than 1 % of max G per decade (from z_last / 2, or the first range, to z_last, less the
+        two values' error estimates), or for a single range: extend the ranges. Why: G nears its limit as
+        gap(z) ~ z^-k, k >= 1 (offsets, tilts, image sizes scale as 1/z), so it rises by k ln(10) gap >= 2.3
+        gap per decade, and a curve rising by less than 1 % per decade ends within 0.43 % of its limit. A
+        curve that peaks and falls (defocus) does not warn; where the maximum sits is no test (a converged,
+        rising curve has it at the last range too).
         """
         threshold = _checks.unit_interval("threshold", threshold, include_one=True)
         peak = float(np.max(self.overlap))
         if peak <= 0.0:
             return float("nan")
-        _warn_if_still_rising(self.ranges, self.overlap, self.error_estimate, peak)
+        reason = _still_rising(self.ranges, self.overlap, self.error_estimate, peak)
+        if reason:
+            warnings.warn(f"full_overlap_range: {reason}", RuntimeWarning, stacklevel=2)
         return float(self.ranges[np.argmax(self.overlap >= threshold * peak)])
+
+    def reaches_far_range(self) -> bool:
+        """False when :meth:`full_overlap_range` would warn that G is still rising at the end of the ranges
+        (or there is only one range), True otherwise: a caller can test it instead of catching the warning."""
+        return _still_rising(self.ranges, self.overlap, self.error_estimate, float(np.max(self.overlap))) is None
 
     def first_signal_range(self, threshold: float = 1e-3) -> float:
         """First range (m) of the grid where G >= threshold (absolute fraction); NaN if never."""
@@ -280,24 +285,24 @@ def _short(value, limit: int = 80) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
-def _warn_if_still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) -> None:
-    """The RuntimeWarning of :meth:`OverlapResult.full_overlap_range` (the rule is explained there)."""
+def _still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) -> Optional[str]:
+    """Why the curve has not shown its far-range limit, by the rule of :meth:`OverlapResult.full_overlap_range`;
+    None when it has (or G is zero everywhere)."""
+    if peak <= 0.0:
+        return None
     if z.size == 1:
-        warnings.warn(f"full_overlap_range: one range ({z[0]:.4g} m) cannot show whether G has reached its "
-                      "far-range limit; compute more ranges, out to where G stops rising", RuntimeWarning,
-                      stacklevel=3)
-        return
+        return (f"one range ({z[0]:.4g} m) cannot show whether G has reached its far-range limit; compute more "
+                "ranges, out to where G stops rising")
     start = max(z[-1] / 2.0, float(z[0]))
     log_z = np.log(z)
     g_start, e_start = (float(np.interp(np.log(start), log_z, values)) for values in (g, np.nan_to_num(error)))
     decades = math.log10(z[-1] / start)
     rise = float(g[-1]) - g_start - (float(np.nan_to_num(error[-1])) + e_start)
-    if rise > FAR_SLOPE * peak * decades:
-        warnings.warn(f"full_overlap_range: G is still rising at the end of the ranges: it gains {rise / peak:.2g} "
-                      f"of its maximum {peak:.4g} from {start:.4g} m to {z[-1]:.4g} m, more than {FAR_SLOPE:.0%} per "
-                      "decade of range, so max G may be short of its far-range limit and the range found too "
-                      "early; extend the ranges farther",
-                      RuntimeWarning, stacklevel=3)
+    if rise <= FAR_SLOPE * peak * decades:
+        return None
+    return (f"G is still rising at the end of the ranges: it gains {rise / peak:.2g} of its maximum {peak:.4g} from "
+            f"{start:.4g} m to {z[-1]:.4g} m, more than {FAR_SLOPE:.0%} per decade of range, so max G may be short of "
+            "its far-range limit and the range found too early; extend the ranges farther")
 
 
 def _xarray():
