@@ -1,9 +1,9 @@
-"""Hypothesis strategies for one probe of each public entry point of lidar_overlap, by API area.
+"""Hypothesis strategies for one probe of each public entry point of lidar_overlap, and how many examples each gets.
 
 Each strategy draws a :class:`Call` tree: a sane call near the paper's Table 1 with (usually) one or two
 hostile values in the system, the ranges or the options. Valid work is kept small (at most 6 ranges,
 8-128 sample grids, 1-3 turbulence realisations and screens) so that a probe costs milliseconds; the
-expensive valid Fourier-optics paths sit in their own area, run with fewer examples.
+expensive valid Fourier-optics paths get fewer examples.
 """
 
 from __future__ import annotations
@@ -60,12 +60,6 @@ def turbulence_method(draw):
     kwargs = corrupt(draw, sane, {a: PATH_HOSTILITY[a] for a in TURBULENCE_METHODS[name]},
                                0 if on_object else count)
     return call(Attr(obj, name), *(kwargs[a] for a in TURBULENCE_METHODS[name]))
-
-
-def constructors():
-    """The system's parts and the turbulence description."""
-    return st.one_of(gaussian_beam(), telescope(), detector(), detector_from_fov(), system(), aberrations(),
-                     turbulence(), telescope(aberrated=True))
 
 
 # ------------------------------------------------------------------------------------------ fields
@@ -130,10 +124,6 @@ def field_beam(draw, bad=None):
     sane = {"offset": r.pair(0.1), "tilt": r.pair(5e-4)}
     kwargs = corrupt(draw, sane, FIELD_BEAM_HOSTILITY, 0 if on_field else count)
     return call("FieldBeam", kwargs.pop("field", source), **kwargs)
-
-
-def fields():
-    return st.one_of(gaussian_field(), field_from_values(), propagation(), field_beam())
 
 
 # ------------------------------------------------------------------------------------------ overlap
@@ -219,18 +209,7 @@ def result_method(draw):
     return call(Attr(obj, draw(_result_methods)), threshold)
 
 
-def overlap_light():
-    """RT, radial FO and auto, single scatterers, the decision and the result's ranges."""
-    return st.one_of(overlap_call("rt"), overlap_call("rt"), overlap_call("radial"), overlap_call("auto"),
-                     emitter_coupling("rt"), explain(), result_method())
-
-
-def emitter_fo():
-    """One scatterer through the diffraction-limited receiver: a slow path, in an area of its own."""
-    return emitter_coupling("fo")
-
-
-# ------------------------------------------------------------------------------------------ heavy paths
+# ------------------------------------------------------------------------------------------ flat top, images
 FLAT_TOP_HOSTILITY = {name: hostile_real for name in ("wavelength", "waist_radius", "angular_diameter",
                                                       "samples_per_waist", "tolerance", "max_error", "power",
                                                       "edge_width")}
@@ -277,13 +256,6 @@ def detector_image(draw):
                 **corrupt(draw, sane, DETECTOR_IMAGE_HOSTILITY, 0 if in_system else count))
 
 
-def overlap_heavy():
-    """The 2-D FO path, field beams, turbulence, aberrations, flat-top design, point and detector images."""
-    return st.one_of(overlap_call("2d", max_ranges=3, low=20.0), overlap_call("field_beam", max_ranges=3, low=20.0),
-                     overlap_call("turbulent", max_ranges=3), overlap_call("aberrated", max_ranges=3, low=20.0),
-                     flat_top(), point_image(), detector_image())
-
-
 FOCUS_HOSTILITY = {"focal_length": hostile_real, "defocus": hostile_real}
 
 
@@ -294,15 +266,35 @@ def optimal_focus(draw):
     return call("optimal_focus_range", **corrupt(draw, sane, FOCUS_HOSTILITY))
 
 
-def small_calls():
-    """Turbulence path quantities and Eq. (5)."""
-    return st.one_of(turbulence_method(), optimal_focus())
-
-
-#: Every API area's probe strategy.
-AREAS = {"constructors": constructors, "fields": fields, "overlap_light": overlap_light,
-         "overlap_heavy": overlap_heavy, "emitter_fo": emitter_fo, "small_calls": small_calls}
-#: Examples per area in a run of the test suite (2,110 in all); a campaign shares its probes in proportion.
-#: The areas that draw valid Fourier-optics work get fewer.
-EXAMPLES = {"constructors": 500, "fields": 350, "overlap_light": 700, "overlap_heavy": 250, "emitter_fo": 60,
-            "small_calls": 250}
+#: Every entry point's probe strategy, and its examples in a run of the test suite (2,220 in all; a
+#: campaign shares its probes in the same proportions). Paths that draw valid Fourier-optics work get fewer.
+PROBES = {
+    "GaussianBeam": (gaussian_beam(), 100),
+    "Telescope": (telescope(), 60),
+    "Telescope_aberrated": (telescope(aberrated=True), 40),
+    "Detector": (detector(), 80),
+    "Detector.from_fov": (detector_from_fov(), 80),
+    "LidarSystem": (system(), 100),
+    "Aberrations": (aberrations(), 80),
+    "Turbulence": (turbulence(), 80),
+    "Field.gaussian": (gaussian_field(), 80),
+    "Field": (field_from_values(), 80),
+    "propagate": (propagation(), 120),
+    "FieldBeam": (field_beam(), 60),
+    "overlap_rt": (overlap_call("rt"), 250),
+    "overlap_fo_radial": (overlap_call("radial"), 120),
+    "overlap_auto": (overlap_call("auto"), 120),
+    "overlap_fo_2d": (overlap_call("2d", max_ranges=3, low=20.0), 60),
+    "overlap_field_beam": (overlap_call("field_beam", max_ranges=3, low=20.0), 50),
+    "overlap_turbulent": (overlap_call("turbulent", max_ranges=3), 60),
+    "overlap_aberrated": (overlap_call("aberrated", max_ranges=2, low=20.0), 40),
+    "emitter_coupling_rt": (emitter_coupling("rt"), 80),
+    "emitter_coupling_fo": (emitter_coupling("fo"), 40),
+    "explain": (explain(), 80),
+    "result_ranges": (result_method(), 60),
+    "FlatTopBeam": (flat_top(), 40),
+    "point_image": (point_image(), 60),
+    "detector_image": (detector_image(), 60),
+    "Turbulence_methods": (turbulence_method(), 80),
+    "optimal_focus_range": (optimal_focus(), 60),
+}

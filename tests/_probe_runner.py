@@ -10,6 +10,7 @@ import importlib.util
 import math
 import os
 import pickle
+import re
 import select
 import signal
 import struct
@@ -204,7 +205,7 @@ def render(node) -> str:
 
 
 def describe(probe: Call, outcome: dict) -> str:
-    """One line per broken probe: its reproducer, verdict and reason."""
+    """A broken probe: its reproducer, verdict and reason."""
     detail = outcome.get("why", "")
     if outcome["verdict"] == BAD_ERROR:
         detail = f"{outcome['type']}: {outcome['message'][:200]} ({detail})"
@@ -213,36 +214,51 @@ def describe(probe: Call, outcome: dict) -> str:
     return f"{outcome['verdict'].upper()}: {render(probe)}\n    -> {detail}"
 
 
+def cause(probe: Call, outcome: dict) -> tuple:
+    """What a broken probe has in common with others that break the same way: entry point, verdict, and
+    the error or the reason with its numbers blanked."""
+    text = outcome.get("message") if outcome["verdict"] == BAD_ERROR else outcome.get("why", "")
+    text = re.sub(r"\(np\.float64\(([^)]*)\)", r"(\1", text or "")
+    return (entry_name(probe), outcome["verdict"], outcome.get("type", ""),
+            re.sub(r"[-+]?\b\d[\d.e+-]*|nan|inf", "#", text.splitlines()[0] if text else "")[:100])
+
+
 class Tally:
-    """Outcome counts per entry point, and the broken probes."""
+    """Outcome counts per entry point, and the broken probes grouped by cause."""
 
     def __init__(self) -> None:
         self.counts = defaultdict(Counter)
-        self.broken: list = []
+        self.total = Counter()
+        self.causes: dict = defaultdict(list)
+
+    @property
+    def broken(self) -> list:
+        return [pair for group in self.causes.values() for pair in group]
 
     def add(self, probe: Call, outcome: dict) -> None:
         self.counts[entry_name(probe)][outcome["verdict"]] += 1
+        self.total[outcome["verdict"]] += 1
         if outcome["verdict"] in FAILURES:
-            self.broken.append((probe, outcome))
+            self.causes[cause(probe, outcome)].append((probe, outcome))
 
     def table(self) -> str:
         head = ("entry point", "tried", "clean error", "finite result", "bad error", "crash", "hang", "silent wrong")
-        rows = []
-        total = Counter()
-        for name in sorted(self.counts):
-            c = self.counts[name]
-            total.update(c)
-            rows.append((name, sum(c.values()), *(c[v] for v in VERDICTS)))
-        rows.append(("TOTAL", sum(total.values()), *(total[v] for v in VERDICTS)))
+        rows = [(name, sum(c.values()), *(c[v] for v in VERDICTS)) for name, c in sorted(self.counts.items())]
+        rows.append(("TOTAL", sum(self.total.values()), *(self.total[v] for v in VERDICTS)))
         width = max(len(r[0]) for r in rows + [head])
         lines = [f"{head[0]:<{width}} " + " ".join(f"{h:>13}" for h in head[1:])]
         lines += [f"{r[0]:<{width}} " + " ".join(f"{v:>13}" for v in r[1:]) for r in rows]
         return "\n".join(lines)
 
     def report(self, limit: int = 40) -> str:
-        lines = [describe(p, o) for p, o in self.broken[:limit]]
-        if len(self.broken) > limit:
-            lines.append(f"... and {len(self.broken) - limit} more")
+        """Each cause (most frequent first) with its count and its shortest reproducer."""
+        groups = sorted(self.causes.values(), key=len, reverse=True)
+        lines = []
+        for group in groups[:limit]:
+            probe, outcome = min(group, key=lambda pair: len(render(pair[0])))
+            lines.append(f"[{len(group)} probe{'s' if len(group) > 1 else ''}] {describe(probe, outcome)}")
+        if len(groups) > limit:
+            lines.append(f"... and {len(groups) - limit} more causes")
         return "\n".join(lines)
 
 
@@ -258,8 +274,7 @@ class Campaign:
         self.seconds = 0.0
 
     def run(self, probe: Call) -> None:
-        counts = sum(self.tally.counts.values(), Counter())
-        if counts[HANG] >= self.max_hangs or counts[CRASH] >= self.max_crashes:
+        if self.tally.total[HANG] >= self.max_hangs or self.tally.total[CRASH] >= self.max_crashes:
             self.not_run += 1
             return
         start = time.monotonic()
@@ -267,8 +282,9 @@ class Campaign:
         self.seconds += time.monotonic() - start
 
     def failure_report(self) -> str:
-        tried = sum(sum(c.values()) for c in self.tally.counts.values())
-        head = f"{len(self.tally.broken)} of {tried} probes broke the input contract"
+        tried = sum(self.tally.total.values())
+        head = (f"{len(self.tally.broken)} of {tried} probes broke the input contract, "
+                f"{len(self.tally.causes)} causes")
         if self.not_run:
             head += f" ({self.not_run} more not run after {self.max_hangs} hangs or {self.max_crashes} crashes)"
         return f"{head}:\n{self.tally.table()}\n\n{self.tally.report()}"

@@ -76,11 +76,15 @@ def _resolve(fn, names: set):
 
     if isinstance(fn, Attr):
         return getattr(_build(fn.node, names), fn.name)
-    root, _, rest = fn.partition(".") if fn.startswith("np.") else ("lo", "", fn)
+    root, _, rest = fn.partition(".") if _is_numpy(fn) else ("lo", "", fn)
     obj = np if root == "np" else lo
     for part in rest.split("."):
         obj = getattr(obj, part)
     return obj
+
+
+def _is_numpy(fn) -> bool:
+    return isinstance(fn, str) and fn.startswith("np.")
 
 
 def _bound_names(fn, args, kwargs) -> set:
@@ -99,7 +103,8 @@ def _build(node, names: set):
         fn = _resolve(node.fn, names)
         args = tuple(_build(a, names) for a in node.args)
         kwargs = {k: _build(v, names) for k, v in node.kwargs.items()}
-        names |= _bound_names(fn, args, kwargs)
+        if not _is_numpy(node.fn):        # numpy builds test data; its parameters are not the library's
+            names |= _bound_names(fn, args, kwargs)
         if isinstance(node.fn, Attr):
             names.add(node.fn.name)
         return fn(*args, **kwargs)
