@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "parallel.hpp"
+
 namespace lidar_overlap {
 
 void* fftw_aligned_alloc(std::size_t bytes) { return fftw_malloc(bytes); }
@@ -28,9 +30,19 @@ using PlanKey = std::tuple<std::size_t, std::size_t, int, int, unsigned>;
 // (several transforms at once) threads would only oversubscribe the cores.
 constexpr std::size_t kThreadedPoints = std::size_t{1} << 20;
 
+// Inside the library's loops over ranges or realisations (any OpenMP region, even a team of one) every
+// transform is single-threaded and planned with FFTW_ESTIMATE, whose choice is fixed for a machine: the
+// overlap paths then give the same bits whatever the thread count and in every process. FFTW_MEASURE,
+// which times candidates, serves the calls made outside such loops (propagate, point_image).
+bool in_library_loop() { return omp_get_level() > 0; }
+
 int threads_for(std::size_t points) {
-  if (points < kThreadedPoints || omp_in_parallel()) return 1;
+  if (points < kThreadedPoints || in_library_loop()) return 1;
   return omp_get_max_threads();
+}
+
+unsigned planner_flag(FftPlanning planning) {
+  return planning == FftPlanning::measure && !in_library_loop() ? FFTW_MEASURE : FFTW_ESTIMATE;
 }
 
 fftw_plan get_plan(const PlanKey& key, bool two_d) {
@@ -45,6 +57,9 @@ fftw_plan get_plan(const PlanKey& key, bool two_d) {
   }
   const auto [rows, length, sign, threads, flag] = key;
   fftw_plan_with_nthreads(threads);
+  // FFTW_ESTIMATE would reuse wisdom that FFTW_MEASURE gathered (timings, different in every process) for
+  // subproblems: forget it, so that estimate plans depend on the shape alone.
+  if (flag == FFTW_ESTIMATE) fftw_forget_wisdom();
   // Plan on a scratch buffer (FFTW_MEASURE overwrites it); execution uses the caller's buffers.
   ComplexBuffer scratch(rows * length);
   auto* p = reinterpret_cast<fftw_complex*>(scratch.data());
@@ -65,17 +80,18 @@ int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD :
 }  // namespace
 
 void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning planning) {
+  detail::cancellation_point();  // transforms are where long FO runs spend their time
   if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n),
-                                  planning == FftPlanning::measure ? FFTW_MEASURE : FFTW_ESTIMATE},
-                                 true), p, p);
+  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n), planner_flag(planning)}, true), p, p);
 }
 
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
+  detail::cancellation_point();
   if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length), FFTW_MEASURE}, false), p, p);
+  fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length),
+                            planner_flag(FftPlanning::measure)}, false), p, p);
 }
 
 }  // namespace lidar_overlap

@@ -61,7 +61,7 @@ def ranges(name: str, value: Any) -> np.ndarray:
     """A non-empty, strictly increasing 1-D array of finite ranges (m)."""
     try:
         arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise ValueError(f"{name} is invalid: expected a 1-D array of ranges in m ({exc})") from None
     if arr.ndim != 1 or arr.size == 0:
         raise ValueError(f"{name} has shape {arr.shape}: expected a non-empty 1-D array of ranges in m")

@@ -14,14 +14,15 @@ def _pyplot():
 
 
 def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
-    """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G) and
-    first-signal (G >= 1e-3) ranges. Returns the Axes."""
+    """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G, only where the
+    curve shows its far-range limit) and first-signal (G >= 1e-3) ranges. Returns the Axes."""
     plt = _pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
     line, = ax.plot(result.ranges, result.overlap, label=label or result.method, **line_kwargs)
     if mark_ranges:
-        for z, style in ((result.full_overlap_range(), "--"), (result.first_signal_range(), ":")):
+        z_full = result.full_overlap_range() if result.reaches_far_range() else float("nan")
+        for z, style in ((z_full, "--"), (result.first_signal_range(), ":")):
             if np.isfinite(z):
                 ax.axvline(z, color=line.get_color(), linestyle=style, linewidth=0.8, alpha=0.7)
     ax.set_xscale("log")

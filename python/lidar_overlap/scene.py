@@ -196,7 +196,8 @@ def scene(system: LidarSystem, ranges=None, *, result: OverlapResult | None = No
         raise ValueError(f"ranges[0] = {z[0]} is invalid: expected ranges > 0 m")
     if result is None:
         result = overlap(system, z, method=method)
-    z_full = result.full_overlap_range()
+    # No full-overlap ring for a curve still rising at its last range: its "full overlap" would be a guess.
+    z_full = result.full_overlap_range() if result.reaches_far_range() else float("nan")
     zmax = float(z[-1])
     if cut and np.isfinite(z_full) and 2 * z_full < zmax:
         zmax = 2 * z_full

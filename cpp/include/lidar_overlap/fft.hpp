@@ -43,7 +43,9 @@ using ComplexBuffer = std::vector<Complex, FftwAllocator<Complex>>;
 enum class FftDirection { forward, backward };  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
 
 // How hard FFTW plans: `measure` times candidate algorithms once per shape (worth it for shapes used many
-// times); `estimate` plans at once, for large shapes that change from call to call.
+// times); `estimate` plans at once, for large shapes that change from call to call. Inside an OpenMP region
+// (the library's loops over ranges) every plan is `estimate` and single-threaded, so that the overlap paths
+// give the same bits for any thread count and in any process.
 enum class FftPlanning { measure, estimate };
 
 // In-place 2-D transform of an n x n row-major array.
