@@ -72,9 +72,11 @@ class Sane(random.Random):
         return self.often((0.0, 0.0), lambda: (self.real(-limit, limit), self.real(-limit, limit)))
 
     def wavelength(self) -> float:
+        """m: a common laser line, or anything from 250 nm to 2 µm."""
         return self.often(self.choice((355e-9, 532e-9, 1064e-9)), lambda: self.real(250e-9, 2e-6))
 
     def waist(self) -> float:
+        """m: a 1/e² waist radius from 0.2 to 5 mm."""
         return self.log(2e-4, 5e-3)
 
     def ranges(self, low: float = 2.0, high: float = 2e4, max_size: int = 6) -> list:
