@@ -31,7 +31,7 @@ def main(argv=None) -> int:
     parser.add_argument("--time-limit", type=float, default=20.0, help="seconds before a probe counts as a hang")
     parser.add_argument("--entry", choices=list(PROBES), action="append", help="only these entry points (repeatable)")
     parser.add_argument("--show", type=int, default=200, help="causes of broken probes to print (default 200)")
-    parser.add_argument("--slowest", type=int, default=0, help="also print the slowest probes that kept the contract")
+    parser.add_argument("--slowest", type=int, default=0, help="also print the N slowest probes (hangs included)")
     args = parser.parse_args(argv)
 
     entries = args.entry or list(PROBES)
