@@ -45,7 +45,10 @@ std::string number(double v) {
 }
 
 namespace {
-std::string gib(double bytes) { return number(bytes / double(std::size_t{1} << 30)) + " GiB"; }
+std::string gib(double bytes) {
+  const double mib = bytes / double(std::size_t{1} << 20);
+  return mib < 1024.0 ? number(mib) + " MiB" : number(mib / 1024.0) + " GiB";
+}
 }  // namespace
 
 void length(const std::string& parameter, double value) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lidar_overlap/checks.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/fft.hpp"
 #include "lidar_overlap/quadrature.hpp"
@@ -120,10 +121,12 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
                                            double inner_scale, SubharmonicWeights weights)
     : n_(n), spacing_(spacing), r0_(r0), outer_scale_(outer_scale), inner_scale_(inner_scale), weights_(weights) {
   if (n < 8 || n % 2 != 0) checks::fail("n", static_cast<double>(n), "an even grid size >= 8");
-  checks::positive("spacing", spacing);
-  if (!(r0 > 0.0)) checks::fail("r0", r0, "a value > 0 m (infinity: no turbulence)");
-  if (!(outer_scale > 0.0)) checks::fail("outer_scale", outer_scale, "a value > 0 m (infinity: Kolmogorov)");
-  checks::non_negative("inner_scale", inner_scale);
+  checks::grid("n", n, sizeof(Complex), 2);  // the spectrum and the screen pair
+  checks::length("spacing", spacing);
+  if (!(r0 >= kMinLength)) checks::fail("r0", r0, "a value >= 1e-10 m (infinity: no turbulence)");
+  if (!(outer_scale >= kMinLength)) checks::fail("outer_scale", outer_scale, "a value >= 1e-10 m (infinity: Kolmogorov)");
+  if (!(inner_scale >= 0.0 && inner_scale <= kMaxLength))
+    checks::fail("inner_scale", inner_scale, "a length from 0 to 1e10 m");
   if (weights != SubharmonicWeights::tilt_matched && weights != SubharmonicWeights::schmidt)
     checks::fail("weights", static_cast<double>(weights), "tilt_matched or schmidt");
 

@@ -1,6 +1,6 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
-from ._core import __version__
+from ._core import __version__, max_memory, max_threads, set_max_memory
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, zernike, zernike_to_seidel
 from .auto import explain
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
@@ -10,6 +10,7 @@ from .fields import Field, SamplingWarning, propagate
 from .flat_top import FlatTopBeam
 from .overlap import emitter_coupling, optimal_focus_range, overlap
 from .overlap_aberrated import point_image
+from .phase_screen import phase_screen
 from .presets import paper_table1
 from .result import OverlapResult
 from .scene import save_scene, scene
@@ -45,6 +46,10 @@ __all__ = [
     "optimal_focus_range",
     "overlap",
     "paper_table1",
+    "phase_screen",
+    "max_memory",
+    "max_threads",
+    "set_max_memory",
     "propagate",
     "save_scene",
     "scene",

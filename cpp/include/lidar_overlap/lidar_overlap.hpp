@@ -11,6 +11,7 @@
 
 #include "lidar_overlap/aberrations.hpp"
 #include "lidar_overlap/beam.hpp"
+#include "lidar_overlap/cancel.hpp"
 #include "lidar_overlap/checks.hpp"
 #include "lidar_overlap/circles.hpp"
 #include "lidar_overlap/constants.hpp"
@@ -19,6 +20,7 @@
 #include "lidar_overlap/field.hpp"
 #include "lidar_overlap/flat_top.hpp"
 #include "lidar_overlap/grid_choice.hpp"
+#include "lidar_overlap/limits.hpp"
 #include "lidar_overlap/otf.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/overlap_fo_aberrated.hpp"
