@@ -1,6 +1,7 @@
 // Fields cross the boundary as (complex array, spacing, wavelength); the C++ Field owns an aligned copy.
 #include "bind_field.hpp"
 #include "interruptible.hpp"
+#include "lidar_overlap/checks.hpp"
 
 #include <pybind11/stl.h>
 
@@ -81,6 +82,7 @@ void bind_field(py::module_& m) {
       "gaussian_field",
       [](double wavelength, double waist_radius, std::size_t n, double spacing, std::array<double, 2> center,
          double power) {
+        checks::grid("n", n, sizeof(Complex), 2);  // the core's field and the NumPy copy returned
         return array_from_field(Field::gaussian(wavelength, waist_radius, n, spacing, {center[0], center[1]}, power));
       },
       py::arg("wavelength"), py::arg("waist_radius"), py::arg("n"), py::arg("spacing"), py::arg("center"),

@@ -41,8 +41,12 @@ int threads_for(std::size_t points) {
   return omp_get_max_threads();
 }
 
-unsigned planner_flag(FftPlanning planning) {
-  return planning == FftPlanning::measure && !in_library_loop() ? FFTW_MEASURE : FFTW_ESTIMATE;
+// FFTW_MEASURE plans a 2048^2 transform for tens of seconds: beyond 1024^2 points it would cost more than it saves.
+constexpr std::size_t kMeasuredPoints = std::size_t{1} << 20;
+
+unsigned planner_flag(FftPlanning planning, std::size_t points) {
+  const bool measure = planning == FftPlanning::measure && !in_library_loop() && points <= kMeasuredPoints;
+  return measure ? FFTW_MEASURE : FFTW_ESTIMATE;
 }
 
 fftw_plan get_plan(const PlanKey& key, bool two_d) {
@@ -83,7 +87,7 @@ void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanni
   detail::cancellation_point();  // transforms are where long FO runs spend their time
   if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n), planner_flag(planning)}, true), p, p);
+  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n), planner_flag(planning, n * n)}, true), p, p);
 }
 
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
@@ -91,7 +95,7 @@ void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDire
   if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
   auto* p = reinterpret_cast<fftw_complex*>(data.data());
   fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length),
-                            planner_flag(FftPlanning::measure)}, false), p, p);
+                            planner_flag(FftPlanning::measure, rows * length)}, false), p, p);
 }
 
 }  // namespace lidar_overlap

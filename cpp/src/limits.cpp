@@ -17,7 +17,7 @@ std::atomic<std::size_t> g_max_memory{0};  // 0: the default
 std::size_t default_max_memory() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   if (pages <= 0 || page <= 0) return std::size_t{4} << 30;  // unknown machine: 4 GiB
-  return static_cast<std::size_t>(pages) / 2 * static_cast<std::size_t>(page);
+  return static_cast<std::size_t>(pages) / 4 * static_cast<std::size_t>(page);
 }
 }  // namespace
 

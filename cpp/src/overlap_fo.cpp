@@ -22,6 +22,7 @@ FoReceiver::FoReceiver(const LidarSystem& system, double z, const std::string& p
   const Telescope& t = system.telescope;
   const Detector& det = system.detector;
   wavelength_ = system.beam.wavelength;
+  z_ = z;
   d_ = t.focal_length + det.defocus;
   r_d_ = det.radius;
   const double radius = 0.5 * t.diameter;
@@ -44,6 +45,8 @@ FoReceiver::FoReceiver(const LidarSystem& system, double z, const std::string& p
                      checks::number(kMaxPupilPhase) + " rad: the image is geometric there, where method 'rt' is exact");
 }
 
+double FoReceiver::otf_cost() const { return 4.0 * std::abs(pupil_.psi) * pupil_.outer * pupil_.outer + 50.0; }
+
 double FoReceiver::blur_radius() const { return pupil_.outer * d_ * std::abs(pupil_.psi * wavelength_ / kPi); }
 
 double FoReceiver::tail_period(double max_error) const {
@@ -61,9 +64,15 @@ double FoReceiver::point_coupling(double offset) const {
   // Breakpoints closer than the shortest oscillation of disc^, J0 and the OTF.
   const double scale = std::max({r_d_, offset, blur_radius(), wavelength_ * d_ / pupil_.outer});
   const std::size_t pieces = std::min<std::size_t>(20000, 2 + checks::saturate(2.0 * qc * scale));
+  // ~2 adaptive panels of 21 nodes per piece, each node one OTF evaluation.
+  checks::count_from(42.0 * pieces * otf_cost(), static_cast<std::size_t>(kMaxOtfWork), "z", z_,
+                     "Bessel terms: the point's image spans " + checks::number(scale) +
+                         " m, many resolutions, with a defocus phase of " + checks::number(otf_cost()) +
+                         " rad across the pupil; the image is geometric there, where method 'rt' is exact");
   std::vector<double> points(pieces + 1);
   for (std::size_t i = 0; i <= pieces; ++i) points[i] = qc * static_cast<double>(i) / pieces;
   auto integrand = [&](double q) {
+    detail::cancellation_point();
     return otf(q) * disc_transform(r_d_, q) * std::cyl_bessel_j(0.0, 2.0 * kPi * q * offset) * 2.0 * kPi * q;
   };
   return integrate(integrand, points.data(), points.size(), 1e-10 * area_, 100000).value / area_;
@@ -287,9 +296,11 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
 }
 
 double emitter_coupling_fo(const LidarSystem& system, double z, Vec2 position) {
-  checks::finite("position", position);
+  checks::coordinate("position", position);
   const FoReceiver rx(system, z);
-  return rx.point_coupling(norm(system.detector.offset + (rx.detector_distance() / z) * position));
+  std::vector<double> g{rx.point_coupling(norm(system.detector.offset + (rx.detector_distance() / z) * position))};
+  checks::overlap_values(g, {z}, 1e-6, "emitter_coupling_fo");  // the integral's accuracy, ~1e-10 of the area
+  return g[0];
 }
 
 }  // namespace lidar_overlap

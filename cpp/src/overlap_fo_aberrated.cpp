@@ -179,7 +179,8 @@ Field point_image(const LidarSystem& system, const Aberrations& aberrations, dou
   if (aberrations.field_dependent())
     throw std::invalid_argument("point_image takes field-independent aberrations (Zernike terms and W040)");
   if (n < 8 || n % 2) checks::fail("n", static_cast<double>(n), "an even size >= 8");
-  checks::positive("spacing", spacing);
+  checks::grid("n", n, sizeof(Complex), 3);  // the pupil, the image and the caller's copy
+  checks::length("spacing", spacing);
   const FoReceiver rx(system, z);
   const double lambda = system.beam.wavelength, d = rx.detector_distance();
   const double delta = lambda * d / (n * spacing), radius = telescope_radius(system);

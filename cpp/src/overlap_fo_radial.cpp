@@ -9,6 +9,7 @@
 #include "lidar_overlap/constants.hpp"
 #include "lidar_overlap/overlap_fo.hpp"
 #include "lidar_overlap/quadrature.hpp"
+#include "parallel.hpp"
 #include "overlap_fo_detail.hpp"
 #include "parallel.hpp"
 
@@ -30,6 +31,10 @@ double gaussian_image_overlap(const LidarSystem& system, double z, double period
                              "quadrature panels: the detector, blur and image offset span " + checks::number(frequency) +
                                  " m against an image resolution of " + checks::number(1.0 / q_end) +
                                  " m; the image is geometric there, where method 'rt' is exact");
+  checks::count_from(24.0 * double(panels) * rx.otf_cost(), static_cast<std::size_t>(FoReceiver::kMaxOtfWork), parameter, z,
+                     "Bessel terms (" + std::to_string(panels) + " panels of 24 OTF evaluations with a defocus phase of " +
+                         checks::number(rx.otf_cost()) + " rad across the pupil); the image is geometric there, where "
+                         "method 'rt' is exact");
   // The annular OTF has kinks where one shifted disc leaves the other: shifts R -+ r_obs and 2 r_obs.
   std::vector<double> edges;
   for (std::size_t i = 0; i <= panels; ++i) edges.push_back(q_end * static_cast<double>(i) / panels);
@@ -45,6 +50,7 @@ double gaussian_image_overlap(const LidarSystem& system, double z, double period
   for (std::size_t k = 0; k + 1 < edges.size(); ++k) {
     const double mid = 0.5 * (edges[k + 1] + edges[k]), half = 0.5 * (edges[k + 1] - edges[k]);
     if (!(half > 0.0)) continue;
+    detail::cancellation_point();
     double panel = 0.0;
     for (std::size_t i = 0; i < rule.x.size(); ++i) {
       const double q = mid + half * rule.x[i];

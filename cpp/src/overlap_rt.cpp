@@ -196,8 +196,10 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
 }
 
 double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position) {
-  checks::finite("position", position);
-  return Receiver(system, z).coupling(position);
+  checks::coordinate("position", position);
+  std::vector<double> g{Receiver(system, z).coupling(position)};
+  checks::overlap_values(g, {z}, 1e-9, "emitter_coupling_rt");  // exact geometry: round-off only
+  return g[0];
 }
 
 }  // namespace lidar_overlap

@@ -170,8 +170,10 @@ double emitter_coupling_rt_aberrated(const LidarSystem& system, const Aberration
                                      Vec2 position, const RtAberratedOptions& options) {
   validate(system, aberrations, options);
   system.validate_range(z, "z");
-  checks::finite("position", position);
-  return RayFan(system, aberrations, options).coupling(z, position);
+  checks::coordinate("position", position);
+  std::vector<double> g{RayFan(system, aberrations, options).coupling(z, position)};
+  checks::overlap_values(g, {z}, 1e-9, "emitter_coupling_rt_aberrated");
+  return g[0];
 }
 
 }  // namespace lidar_overlap

@@ -186,6 +186,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     checks::fail("realizations", static_cast<double>(o.realizations), "a count from 1 to 1000000");
   if (o.screens < 1 || o.screens > kMaxScreens) checks::fail("screens", static_cast<double>(o.screens), "a count from 1 to 1000");
   if (o.beam_grid < 32 || o.beam_grid % 2) checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
+  checks::grid("beam_grid", o.beam_grid, sizeof(Complex), 4);  // at least a field, a screen pair and a map
   if (!(o.beam_window >= 2.0 && o.beam_window <= static_cast<double>(o.beam_grid)))
     checks::fail("beam_window", o.beam_window, "a window from 2 to beam_grid long-term beam radii");
   if (o.max_spectrum_grid < 32 || o.max_spectrum_grid > kMaxGridSide)

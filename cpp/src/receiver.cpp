@@ -10,8 +10,9 @@
 namespace lidar_overlap {
 
 double optimal_focus_range(double focal_length, double defocus) {
-  checks::positive("focal_length", focal_length);
+  checks::length("focal_length", focal_length);
   checks::non_negative("defocus", defocus);
+  checks::coordinate("defocus", defocus);
   if (defocus == 0.0) return std::numeric_limits<double>::infinity();
   return focal_length * (focal_length + defocus) / defocus;
 }

@@ -34,6 +34,8 @@ Detector Detector::from_fov(double fov, double focal_length, double defocus, Vec
   checks::positive("fov", fov);
   checks::angle("fov", 0.5 * fov);
   checks::length("focal_length", focal_length);
+  if (!(0.5 * fov * focal_length >= kMinLength))
+    checks::fail("fov", fov, "a field of view giving a detector radius fov f / 2 of at least 1e-10 m");
   Detector d{0.5 * fov * focal_length, defocus, offset, numerical_aperture};
   d.validate();
   return d;

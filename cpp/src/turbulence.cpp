@@ -16,7 +16,7 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double wavenumber(double wavelength) {
-  checks::positive("wavelength", wavelength);
+  checks::length("wavelength", wavelength);
   return 2.0 * kPi / wavelength;
 }
 
@@ -52,7 +52,7 @@ double path_integral(const Cn2Profile& profile, double a, double b, Weight weigh
 
 void check_path(const Cn2Profile& profile, double path_length) {
   profile.validate();
-  checks::positive("path_length", path_length);
+  checks::length("path_length", path_length);
 }
 
 // [c k^2 integral]^(-3/5): the form of r0 and theta0; infinite without turbulence.
@@ -143,6 +143,7 @@ double Cn2Profile::cn2_at_height(double height) const {
 }
 
 double Cn2Profile::cn2_at_range(double range) const {
+  if (!(range >= 0.0 && range <= kMaxLength)) checks::fail("range", range, "a range from 0 to 1e10 m");
   return cn2_at_height(altitude + range * std::sin(elevation));
 }
 
@@ -194,7 +195,7 @@ std::vector<ScreenPlacement> Cn2Profile::place_screens(double wavelength, double
 }
 
 double Cn2Profile::beam_wander_variance(double waist_radius, double wavelength, double path_length) const {
-  checks::positive("waist_radius", waist_radius);
+  checks::length("waist_radius", waist_radius);
   wavenumber(wavelength);  // validated for a uniform interface; the geometric-optics wander does not use it
   check_path(*this, path_length);
   const double integral = path_integral(*this, 0.0, path_length, [&](double z) {
@@ -205,7 +206,7 @@ double Cn2Profile::beam_wander_variance(double waist_radius, double wavelength, 
 }
 
 double Cn2Profile::long_term_radius(double waist_radius, double wavelength, double path_length) const {
-  checks::positive("waist_radius", waist_radius);
+  checks::length("waist_radius", waist_radius);
   const double k = wavenumber(wavelength);
   check_path(*this, path_length);
   const auto [w2, lambda] = diffraction_limited(waist_radius, k, path_length);

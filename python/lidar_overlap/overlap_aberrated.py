@@ -72,7 +72,7 @@ def decide_aberrated(system, z: np.ndarray, tolerance: float, threads: int = 0, 
 
     quadrature = 0.01 * tolerance
     raw = _rt(system, z, quadrature, threads, rings, ring_rays)
-    error = rt_diffraction_estimate(system, z, np.asarray(raw["overlap"]), threads, rings, ring_rays)
+    error = rt_diffraction_estimate(system, z, np.asarray(raw["overlap"]), threads, rings, ring_rays, tolerance)
     reasons = [f"receiver aberrations: ray tracing displaces each ray by d grad W; its diffraction error here is up "
                f"to {error:.2g} (Airy tail plus edge blur from the aberrated RT curve, x {RT_ESTIMATE_SAFETY})"]
     if error + quadrature <= tolerance:
@@ -87,15 +87,18 @@ def decide_aberrated(system, z: np.ndarray, tolerance: float, threads: int = 0, 
 
 
 def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, rings: int = 48,
-                            ring_rays: int = 128) -> float:
+                            ring_rays: int = 128, tolerance: float = 1e-3) -> float:
     """Largest |G_RT - G_FO| expected of aberrated ray tracing over ``z`` given its curve ``g``: the Airy tail
     beyond the detector edge, e_tail G, plus the edge blur (λd/D)|∂G/∂r_d| (from RT at r_d (1 ± 1e-2) on
     EDGE_SAMPLES ranges), times RT_ESTIMATE_SAFETY. Diffraction spreads each point image by λd/D whatever the
-    aberrations; this first-order bound covers the measured RT-FO difference (docs/aberrations.md)."""
+    aberrations; this first-order bound covers the measured RT-FO difference (docs/aberrations.md).
+
+    The two edge curves are computed to 1e-3 x ``tolerance`` (1e-6 at most): their difference over 2 % of r_d
+    then errs by far less than the tolerance, and a loose tolerance does not pay for a tight derivative."""
     zs = z if z.size <= EDGE_SAMPLES else np.geomspace(z[0], z[-1], EDGE_SAMPLES)
     r_d, h = system.detector.radius, 1e-2 * system.detector.radius
     up, down = (np.asarray(_rt(dataclasses.replace(system, detector=dataclasses.replace(system.detector, radius=r_d + s)),
-                               zs, 1e-6, threads, rings, ring_rays)["overlap"]) for s in (h, -h))
+                               zs, max(1e-6, 1e-3 * tolerance), threads, rings, ring_rays)["overlap"]) for s in (h, -h))
     t, d = system.telescope, system.detector
     blur = system.beam.wavelength * (t.focal_length + d.defocus) / t.diameter
     edge = np.interp(np.log(z), np.log(zs), blur * np.abs(up - down) / (2.0 * h))

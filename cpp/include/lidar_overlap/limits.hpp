@@ -20,7 +20,8 @@ inline constexpr double kMaxPower = 1e30;
 // Samples per side of any square grid (a further bound under the memory budget below).
 inline constexpr std::size_t kMaxGridSide = std::size_t{1} << 16;
 
-// Bytes one call may allocate for its grids and tables. Default: half the physical memory of the machine.
+// Bytes one call may allocate for its grids and tables. Default: a quarter of the machine's physical memory
+// (room for the caller's own copies and for a second call running beside it).
 std::size_t max_memory();
 // Sets that budget for every later call (0 restores the default). Not meant to change during a call.
 void set_max_memory(std::size_t bytes);

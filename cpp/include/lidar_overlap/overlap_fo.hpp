@@ -39,6 +39,10 @@ class FoReceiver {
   // pupil exceeds kMaxPupilPhase rad: the image is geometric there and its closed-form OTF would cost O(phase).
   FoReceiver(const LidarSystem& system, double z, const std::string& parameter = "z");
   static constexpr double kMaxPupilPhase = 1e7;
+  // Work of one OTF evaluation (Bessel terms, ~ the defocus phase across the pupil), and the most work one
+  // integral over the OTF may ask for (a few seconds): beyond it the image is geometric and RT is exact.
+  double otf_cost() const;
+  static constexpr double kMaxOtfWork = 2e9;
   // Coupling (as emitter_coupling_rt) of a point scatterer whose image centre lies `offset` (m) from
   // the detector centre: (2 pi / pi R^2) int OTF disc^ J0(2 pi q offset) q dq.
   double point_coupling(double offset) const;
@@ -55,7 +59,7 @@ class FoReceiver {
 
  private:
   AnnularPupil pupil_{};
-  double wavelength_, d_, r_d_, area_;
+  double wavelength_, d_, r_d_, area_, z_;
 };
 
 // A diffraction-limited Gaussian beam is sampled (beam_grid, beam_window) and propagated to each range.
