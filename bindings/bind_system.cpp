@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "lidar_overlap/system.hpp"
 
@@ -70,5 +71,12 @@ void bind_system(py::module_& m) {
              return s;
            }),
            py::arg("beam"), py::arg("telescope"), py::arg("detector"))
-      .def("is_axisymmetric", &LidarSystem::is_axisymmetric);
+      .def("is_axisymmetric", &LidarSystem::is_axisymmetric)
+      .def(
+          "validate_ranges",
+          [](const LidarSystem& s, const std::vector<double>& ranges) {
+            for (std::size_t i = 0; i < ranges.size(); ++i) s.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+          },
+          py::arg("ranges"), "Throws ValueError naming ranges[i] for a range out of [1e-10, 1e10] m or inside the "
+                             "obstruction distance.");
 }

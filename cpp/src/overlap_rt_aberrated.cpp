@@ -119,6 +119,11 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
   out.converged.assign(n, true);
   std::vector<char> converged(n, 1);
   const std::size_t directions = out.rotationally_symmetric ? 1 : options.directions;
+  // Each coupling traces rings x ring_rays rays. The radial integrals of one range may trace kMaxFanRays in all
+  // (a few seconds); past that they stop short of the tolerance, which clears `converged` (and warns in Python).
+  const double rays_per_segment = 21.0 * double(options.rings) * double(options.ring_rays) * double(directions);
+  const std::size_t fan_segments =
+      std::min<std::size_t>(options.max_segments, std::max<std::size_t>(8, checks::saturate(kMaxFanRays / rays_per_segment)));
   const Telescope& t = system.telescope;
   const bool dual = !aberrations.field_dependent() && !system.detector.numerical_aperture &&
                     (t.obstruction_radius == 0.0 || t.obstruction_distance == 0.0);
@@ -138,9 +143,12 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
     auto add_direction = [&](double alpha) {
       const Vec2 dir{std::cos(alpha), std::sin(alpha)};
       // Rayleigh density of the distance from the beam centre (sigma = w/2), cut at 5 w (exp(-50)).
-      auto integrand = [&](double r) { return r / var * std::exp(-0.5 * r * r / var) * fan.coupling(z, c + r * dir); };
+      auto integrand = [&](double r) {
+        detail::cancellation_point();
+        return r / var * std::exp(-0.5 * r * r / var) * fan.coupling(z, c + r * dir);
+      };
       const double points[2] = {0.0, 5.0 * w};
-      const QuadratureResult q = integrate(integrand, points, 2, options.tolerance, options.max_segments);
+      const QuadratureResult q = integrate(integrand, points, 2, options.tolerance, fan_segments);
       sum += q.value;
       radial_error += q.error;
       if (!q.converged) converged[i] = 0;

@@ -74,6 +74,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
         raise ValueError(f"system = {system!r} is invalid: expected a LidarSystem")
     _checks.choice("method", method, METHODS)
     z = _checks.ranges("ranges", ranges)
+    system._native.validate_ranges(z)   # before any path derives quantities from them
     tolerance = _checks.unit_interval("tolerance", tolerance)
     threads = _checks.threads(threads)
     max_segments = _checks.count("max_segments", max_segments, 1)

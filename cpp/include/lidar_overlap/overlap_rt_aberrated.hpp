@@ -22,6 +22,9 @@
 
 namespace lidar_overlap {
 
+// Rays one range's ray-fan integrals may trace (field-dependent terms, NA, obstruction in front): a few seconds.
+inline constexpr double kMaxFanRays = 3e8;
+
 struct RtAberratedOptions {
   std::size_t rings = 48;         // rays per scatterer: rings equally spaced in rho^2 ...
   std::size_t ring_rays = 128;    // ... times rays per ring
