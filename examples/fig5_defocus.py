@@ -72,8 +72,11 @@ def panel_table1(ax):
 
 
 def helix_system(defocus, divergence):
+    # The expanded beam: a Gaussian beam cannot spread less than lambda / (pi w0) (M^2 >= 1), so a divergence
+    # below that of the 7.2 mm waist takes the smallest waist that allows it.
+    waist = HELIX_WAIST if divergence is None else max(HELIX_WAIST, HELIX_WAVELENGTH / (np.pi * divergence))
     return lo.LidarSystem(
-        beam=lo.GaussianBeam(wavelength=HELIX_WAVELENGTH, waist_radius=HELIX_WAIST, divergence=divergence),
+        beam=lo.GaussianBeam(wavelength=HELIX_WAVELENGTH, waist_radius=waist, divergence=divergence),
         telescope=lo.Telescope(diameter=HELIX_DIAMETER, focal_length=HELIX_FOCAL_LENGTH),
         detector=lo.Detector.from_fov(fov=HELIX_FOV, focal_length=HELIX_FOCAL_LENGTH, defocus=defocus),
     )
