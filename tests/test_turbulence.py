@@ -129,3 +129,114 @@ def test_bad_turbulence_input():
         lo.overlap(lo.paper_table1(), [100.0], "rt", turbulence=1e-14)
     with pytest.raises(ValueError, match="realizations"):
         lo.overlap(lo.paper_table1(), [100.0], "rt", turbulence=lo.Turbulence(1e-14), realizations=0)
+
+
+# --------------------------------------------------------------------------------- hostile input
+NON_REALS = [None, "1", "", True, 10**400, -10**400, (1.0, 2.0, 3.0), [1e-3], {}]
+PATH_ARGUMENTS = {"fried_parameter": ("wavelength", "path_length"), "rytov_variance": ("wavelength", "path_length"),
+                  "isoplanatic_angle": ("wavelength", "path_length"),
+                  "beam_wander_variance": ("waist_radius", "wavelength", "path_length"),
+                  "long_term_radius": ("waist_radius", "wavelength", "path_length"),
+                  "short_term_radius": ("waist_radius", "wavelength", "path_length")}
+SANE_PATH = {"waist_radius": 1e-3, "wavelength": 1064e-9, "path_length": 1000.0}
+
+
+@pytest.mark.parametrize("value", NON_REALS)
+@pytest.mark.parametrize("method, argument", [(m, a) for m, args in PATH_ARGUMENTS.items() for a in args])
+def test_path_methods_refuse_non_numbers_by_name(method, argument, value):
+    """No pybind11 signature dump: each argument is converted, and refused by its own name, before the core."""
+    args = {a: SANE_PATH[a] for a in PATH_ARGUMENTS[method]}
+    args[argument] = value
+    with pytest.raises(ValueError, match=f"^{argument} = "):
+        getattr(lo.Turbulence(1e-14), method)(**args)
+
+
+@pytest.mark.parametrize("value", [math.nan, math.inf, 0.0, -0.0, 5e-324, 1e-300, 1e300, 2**63])
+@pytest.mark.parametrize("method", sorted(PATH_ARGUMENTS))
+def test_path_lengths_outside_the_scales_are_refused_by_name(method, value):
+    args = {a: SANE_PATH[a] for a in PATH_ARGUMENTS[method]}
+    args["path_length"] = value
+    with pytest.raises(ValueError, match="^path_length = "):
+        getattr(lo.Turbulence("hv57"), method)(**args)
+
+
+@pytest.mark.parametrize("value", NON_REALS + [math.nan, math.inf, -1.0, -5e-324, 1e300, 2**63])
+def test_cn2_at_range_refuses_z_by_name(value):
+    with pytest.raises(ValueError, match="^z = "):
+        lo.Turbulence(1e-14).cn2_at_range(value)
+
+
+@pytest.mark.parametrize("z", [0.0, -0.0, 5e-324, 1e10])
+def test_cn2_at_range_takes_every_range_of_the_scales(z):
+    assert lo.Turbulence(3e-15).cn2_at_range(z) == 3e-15            # a constant profile
+
+
+@pytest.mark.parametrize("value", NON_REALS + [math.nan, 0.0, -1.0, 5e-324])
+def test_outer_scale_refused_by_name(value):
+    with pytest.raises(ValueError, match="^outer_scale = "):
+        lo.Turbulence(1e-14, outer_scale=value)
+
+
+@pytest.mark.parametrize("answer", [math.nan, math.inf, -1e-15, 1.0, "1e-14", None, True, 10**400])
+def test_a_custom_profile_answer_is_refused_naming_cn2(answer):
+    with pytest.raises(ValueError, match=r"^cn2\([^)]* m\) = "):     # the height the quadrature asked for
+        lo.Turbulence(lambda h: answer).rytov_variance(LAM, 1000.0)
+
+
+def test_a_custom_constant_profile_is_the_constant():
+    custom, constant = lo.Turbulence(lambda h: 1e-14), lo.Turbulence(1e-14)
+    assert abs(custom.rytov_variance(LAM, 2000.0) / constant.rytov_variance(LAM, 2000.0) - 1) < CLOSED_FORM_RTOL
+
+
+@pytest.mark.parametrize("law", ["gaussian", "linear"])
+def test_rt_realisation_beam_has_the_short_term_radius_on_either_width_law(law):
+    """The beam each RT realisation traces has radius W_ST at its range, whatever the beam's width law."""
+    from lidar_overlap.turbulence import _beam_for
+
+    beam, z, radius = lo.GaussianBeam(width_law=law), 150.0, 0.06
+    drawn = _beam_for(beam, z, radius, (0.01, -0.02))
+    assert abs(drawn.radius(z) / radius - 1) < 1e-12
+    assert drawn.center(z) == pytest.approx((0.01, -0.02), abs=1e-15)
+
+
+@pytest.mark.parametrize("cn2, z", [(1e-9, 1e9), (1e-9, 1e10)])
+def test_rt_turbulence_beyond_the_paraxial_model_names_ranges_and_turbulence(cn2, z):
+    """Strong turbulence over a long path spreads the short-term beam beyond 1 rad: refused naming the range
+    and the turbulence, not the internal beam.divergence."""
+    with pytest.raises(ValueError, match=r"^ranges\[0\] = .* with turbulence = Turbulence\(cn2=") as info:
+        lo.overlap(lo.paper_table1(), [z], "rt", turbulence=lo.Turbulence(cn2), realizations=2)
+    assert "beam.divergence" not in str(info.value)
+
+
+def test_rt_turbulence_with_a_beam_axis_beyond_the_lengths_names_ranges():
+    s = lo.paper_table1()
+    tilted = dataclasses.replace(s, beam=dataclasses.replace(s.beam, tilt=(1.0, 0.0), offset=(0.01, 0.0)))
+    with pytest.raises(ValueError, match=r"^ranges\[0\] = 10000000000\.0 m with turbulence = .*smaller tilt"):
+        lo.overlap(tilted, [1e10], "rt", turbulence=lo.Turbulence(1e-14), realizations=2)
+
+
+@pytest.mark.parametrize("cn2", [1e-9, 1e-12, "hv57"])
+@pytest.mark.parametrize("z", [1e5, 1e6])
+@pytest.mark.parametrize("waist", [1e-3, 1e-6])
+def test_rt_turbulence_strong_long_and_tiny_gives_overlaps_in_the_unit_interval(cn2, z, waist):
+    s = lo.paper_table1(waist_radius=waist)
+    res = lo.overlap(s, [z], "rt", turbulence=lo.Turbulence(cn2), realizations=3)
+    for values in (res.overlap, res.low, res.high, res.realizations):
+        assert np.all(np.isfinite(values)) and np.all((values >= 0) & (values <= 1))
+
+
+@pytest.mark.parametrize("ranges, name", [([0.0], r"ranges\[0\]"), ([100.0, 2e10], r"ranges\[1\]"),
+                                          ([1e-300], r"ranges\[0\]")])
+def test_rt_turbulence_refuses_ranges_by_index(ranges, name):
+    from lidar_overlap.turbulence import overlap_rt_turbulent
+
+    with pytest.raises(ValueError, match=f"^{name} = "):
+        overlap_rt_turbulent(lo.paper_table1(), np.array(ranges), lo.Turbulence(1e-14), 2, 0, 1e-4)
+
+
+def test_rt_turbulence_refuses_realisations_beyond_the_cap_and_the_budget():
+    s, t = lo.paper_table1(), lo.Turbulence(1e-14)
+    with pytest.raises(ValueError, match="^realizations = 2147483648 is invalid"):
+        lo.overlap(s, [100.0], "rt", turbulence=t, realizations=2**31)
+    with pytest.raises(ValueError, match=r"^realizations = 1000000 needs .* \(max_memory\)"):
+        lo.overlap(s, np.arange(1.0, 100001.0), "rt", turbulence=t, realizations=10**6)
