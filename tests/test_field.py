@@ -198,3 +198,76 @@ def test_gaussian_bad_power(value):
 def test_gaussian_bad_center(value):
     with pytest.raises(ValueError, match="center"):
         lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4, center=value)
+
+
+# --------------------------------------------------------------------------------- hostile input
+#: Neither a real number nor a length within the core's scales (1e-10 to 1e10 m).
+HOSTILE_LENGTHS = [math.nan, math.inf, 0.0, -0.0, 5e-324, 1e-300, 1e300, 2**40, 2**63, 10**400, True, "1", None]
+
+
+@pytest.mark.parametrize("values", [np.full((8, 8), "a"), np.full((8, 8), True), np.full((8, 8), None),
+                                    np.full((8, 8), 10**400), [["1"] * 8] * 8, None, "values"])
+def test_field_refuses_values_that_are_not_numbers(values):
+    with pytest.raises(ValueError, match="^values has dtype"):
+        lo.Field(values, 1e-4, 355e-9)
+
+
+def test_field_refuses_ragged_values_by_name():
+    with pytest.raises(ValueError, match="^values is invalid"):
+        lo.Field([[1.0] * 8] * 7 + [[1.0] * 3], 1e-4, 355e-9)
+
+
+@pytest.mark.parametrize("amplitude", [1e200, 1e300, 1e17])
+def test_field_refuses_values_whose_power_leaves_double_range(amplitude):
+    """Σ|U|² spacing² must stay <= 1e30 W, the core's power bound: 64 samples of 1e17 on 1 cm carry 6.4e31 W,
+    larger amplitudes overflow to inf."""
+    spacing = 1e-2
+    with pytest.raises(ValueError, match=r"^values is invalid: its power"):
+        lo.Field(np.full((8, 8), amplitude), spacing, 355e-9)
+
+
+def test_field_takes_integer_values_as_complex():
+    ints = np.arange(64, dtype=np.int64).reshape(8, 8)
+    f = lo.Field(ints, 1e-4, 355e-9)
+    assert f.values.dtype == np.complex128 and np.array_equal(f.values, ints.astype(complex))
+
+
+@pytest.mark.parametrize("value", HOSTILE_LENGTHS)
+@pytest.mark.parametrize("name", ["spacing", "wavelength"])
+def test_field_refuses_lengths_outside_the_scales_by_name(name, value):
+    args = dict(spacing=1e-4, wavelength=355e-9)
+    args[name] = value
+    with pytest.raises(ValueError, match=f"^{name} = "):
+        lo.Field(np.ones((8, 8), complex), **args)
+
+
+SMALL = lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4)
+
+
+@pytest.mark.parametrize("value", [math.nan, math.inf, 1e300, 2**63, 10**400, True, "1", None, (1.0, 2.0)])
+def test_propagate_refuses_distance_by_name(value):
+    with pytest.raises(ValueError, match="^distance = "):
+        lo.propagate(SMALL, value)
+
+
+@pytest.mark.parametrize("value", [math.nan, 0.0, -0.0, 5e-324, 1e-300, 1e300, 2**63, 10**400, True, "1"])
+def test_propagate_refuses_output_spacing_by_name(value):
+    with pytest.raises(ValueError, match="^output_spacing = "):
+        lo.propagate(SMALL, 10.0, method="fresnel", output_spacing=value)
+
+
+@pytest.mark.parametrize("value", [2**31 - 1, 2**62, 2**63, 10**400, 65538, 63, 65, 1.0, 64.0, True, "AUTO", (64,)])
+def test_propagate_refuses_grid_size_by_name(value):
+    with pytest.raises(ValueError, match="^grid_size = "):
+        lo.propagate(SMALL, 10.0, grid_size=value)
+
+
+@pytest.mark.parametrize("value", [None, "", "Fresnel", b"fresnel", 0, True, ("fresnel",)])
+def test_propagate_refuses_method_by_name(value):
+    with pytest.raises(ValueError, match="^method = "):
+        lo.propagate(SMALL, 10.0, method=value)
+
+
+def test_propagate_refuses_a_non_field_by_name():
+    with pytest.raises(ValueError, match="^field = "):
+        lo.propagate(np.ones((8, 8)), 10.0)

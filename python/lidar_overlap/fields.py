@@ -23,6 +23,9 @@ EDGE_POWER_LIMIT = 1e-6
 BAND_LIMIT_LOSS_LIMIT = 1e-6
 #: Phase (rad) allowed for the terms the Fresnel (A3) and Fraunhofer (A6) approximations neglect.
 APPROXIMATION_PHASE_LIMIT = 0.1
+#: Largest power (W) of a field, the core's bound for ``Field.gaussian``: irradiances stay far inside
+#: double precision.
+MAX_POWER = 1e30
 
 
 class SamplingWarning(RuntimeWarning):
@@ -35,20 +38,23 @@ class Field:
 
     Parameters
     ----------
-    values : (n, n) complex array, n even >= 8; row index is y, column index is x; |values|² in W/m².
-    spacing : m, grid spacing.
-    wavelength : m.
+    values : (n, n) array of numbers (complex, real or integer; not strings, objects or bools), n even from 8
+        to 65536, finite; row index is y, column index is x; |values|² in W/m², their power Σ|U|² spacing²
+        at most 1e30 W.
+    spacing : m, grid spacing, 1e-10 to 1e10 m.
+    wavelength : m, 1e-10 to 1e10 m.
     """
 
     def __init__(self, values, spacing: float, wavelength: float) -> None:
-        arr = np.array(values, dtype=np.complex128, copy=True)
-        if arr.ndim != 2 or arr.shape[0] != arr.shape[1] or arr.shape[0] < 8 or arr.shape[0] % 2:
-            raise ValueError(f"values has shape {arr.shape}: expected a square (n, n) array with n even >= 8")
-        if not np.all(np.isfinite(arr)):
-            raise ValueError("values contains NaN or infinity: expected finite complex numbers")
+        self.spacing = length("spacing", spacing)
+        self.wavelength = length("wavelength", wavelength)
+        arr = _complex_grid(values)
+        with np.errstate(over="ignore"):
+            power = float(np.sum(arr.real ** 2 + arr.imag ** 2)) * self.spacing ** 2
+        if not power <= MAX_POWER:
+            raise ValueError(f"values is invalid: its power Σ|U|² spacing² is {power:.4g} W; expected at most "
+                             f"{MAX_POWER:g} W")
         self.values = arr
-        self.spacing = _checks.positive("spacing", spacing)
-        self.wavelength = _checks.positive("wavelength", wavelength)
 
     @classmethod
     def _from_core(cls, values: np.ndarray, spacing: float, wavelength: float) -> "Field":
@@ -108,6 +114,49 @@ class Field:
         return f"Field(n={self.n}, spacing={self.spacing:.4g} m, wavelength={self.wavelength:.4g} m)"
 
 
+def length(name: str, value) -> float:
+    """A length (m) within the core's scales, MIN_LENGTH to MAX_LENGTH, refused by name otherwise."""
+    v = _checks.real(name, value)
+    if not _core.MIN_LENGTH <= v <= _core.MAX_LENGTH:
+        raise ValueError(f"{name} = {v!r} is invalid: expected a length from {_core.MIN_LENGTH:g} m to "
+                         f"{_core.MAX_LENGTH:g} m")
+    return v
+
+
+def check_memory(name: str, value, needed: float, fix: str) -> None:
+    """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the core's rule
+    for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
+    budget = _core.max_memory()
+    if not needed <= budget:
+        raise ValueError(f"{name} = {_checks.shown(value)} needs {_bytes_shown(needed)} of memory, more than the "
+                         f"budget of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
+                         "set_max_memory")
+
+
+def _bytes_shown(size: float) -> str:
+    mib = size / 2**20
+    return f"{mib:.6g} MiB" if mib < 1024 else f"{mib / 1024:.6g} GiB"
+
+
+def _complex_grid(values) -> np.ndarray:
+    """``values`` as a fresh (n, n) complex128 array, n even from 8 to MAX_GRID_SIDE, with finite numbers. Only
+    numeric arrays are taken: strings, objects and bools are refused before any conversion."""
+    try:
+        raw = np.asarray(values)
+    except (ValueError, TypeError, OverflowError) as exc:      # ragged nesting, unconvertible objects
+        raise ValueError(f"values is invalid: expected a square (n, n) array of numbers ({exc})") from None
+    if raw.dtype == np.bool_ or not np.issubdtype(raw.dtype, np.number):
+        raise ValueError(f"values has dtype {raw.dtype}: expected an array of numbers (complex, real or integer)")
+    n_max = _core.MAX_GRID_SIDE
+    if raw.ndim != 2 or raw.shape[0] != raw.shape[1] or not 8 <= raw.shape[0] <= n_max or raw.shape[0] % 2:
+        raise ValueError(f"values has shape {raw.shape}: expected a square (n, n) array with n even from 8 to {n_max}")
+    with np.errstate(over="ignore"):                            # long doubles beyond double range become inf
+        arr = np.array(raw, dtype=np.complex128, copy=True)
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("values contains NaN or infinity: expected finite complex numbers")
+    return arr
+
+
 def propagate(field: Field, distance: float, method: str = "auto",
               output_spacing: Optional[float] = None, grid_size: Union[None, int, str] = None) -> Field:
     """Propagate ``field`` over ``distance`` (m) in free space.
@@ -130,7 +179,7 @@ def propagate(field: Field, distance: float, method: str = "auto",
     undersampled, or the Fresnel (A3) or Fraunhofer (A6) approximation is used outside its region.
     """
     if not isinstance(field, Field):
-        raise ValueError(f"field = {field!r} is invalid: expected a Field")
+        raise ValueError(f"field = {_checks.shown(field)} is invalid: expected a Field")
     _checks.choice("method", method, PROPAGATION_METHODS)
     distance = _checks.real("distance", distance)
     spacing_out = 0.0 if output_spacing is None else _checks.positive("output_spacing", output_spacing)
@@ -148,8 +197,9 @@ def _grid_size_code(grid_size: Union[None, int, str], n: int) -> int:
         _checks.choice("grid_size", grid_size, ("auto",))
         return -1
     size = _checks.count("grid_size", grid_size, n)
-    if size % 2:
-        raise ValueError(f"grid_size = {size} is invalid: expected an even size >= the field's n = {n}, or 'auto'")
+    if size % 2 or size > _core.MAX_GRID_SIDE:
+        raise ValueError(f"grid_size = {size} is invalid: expected an even size from the field's n = {n} to "
+                         f"{_core.MAX_GRID_SIDE}, or 'auto'")
     return size
 
 
