@@ -12,6 +12,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import _core
+from lidar_overlap.auto import decide
 
 Z = np.geomspace(10.0, 3000.0, 60)
 
@@ -96,3 +97,39 @@ def test_auto_result_reports_method_and_tolerance():
     res = lo.overlap(base, Z, method="auto", tolerance=2e-2)
     assert res.method == "rt" and res.tolerance == 2e-2
     assert np.all(res.error_estimate > 0)
+
+
+# --------------------------------------------------------------------------------- hostile input
+OBSTRUCTED = lo.paper_table1(obstruction_radius=0.02, obstruction_distance=0.7)
+
+
+@pytest.mark.parametrize("system, ranges, index", [
+    (base, [-0.0], 0), (base, [0.0], 0), (base, [5e-324], 0), (base, [1e-300, 1.0], 0), (base, [1.0, 1e11], 1),
+    (base, [1e300], 0), (OBSTRUCTED, [0.5, 1.0], 0), (OBSTRUCTED, [0.7, 1.0], 0)])
+def test_explain_refuses_the_ranges_overlap_refuses(system, ranges, index):
+    """explain and auto's decision validate the ranges as the overlap paths do, instead of estimating NaN."""
+    message = rf"^ranges\[{index}\] = .* is invalid"
+    with pytest.raises(ValueError, match=message):
+        lo.explain(system, ranges)
+    with pytest.raises(ValueError, match=message):
+        decide(system, np.asarray(ranges, dtype=float), 1e-3)
+    with pytest.raises(ValueError, match=message):
+        lo.overlap(system, ranges, "rt")
+
+
+@pytest.mark.parametrize("ranges", [[1e-10], [1e10], [1e-10, 1.0, 1e10]])
+def test_explain_at_the_ends_of_the_ranges_gives_a_finite_estimate(ranges, capsys):
+    d = lo.explain(base, ranges)
+    assert d.method in ("rt", "fo") and np.isfinite(d.rt_model_error) and d.rt_model_error >= 0
+
+
+@pytest.mark.parametrize("ranges", [[None], [[1.0]], [], [2**63, 1.0], 10**400, "ranges"])
+def test_explain_refuses_ranges_that_are_not_numbers_by_name(ranges):
+    with pytest.raises(ValueError, match="^ranges"):
+        lo.explain(base, ranges)
+
+
+@pytest.mark.parametrize("system", [None, base.beam, "paper_table1", 1.0])
+def test_explain_refuses_a_system_of_the_wrong_kind_by_name(system):
+    with pytest.raises(ValueError, match="^system = "):
+        lo.explain(system, [100.0])

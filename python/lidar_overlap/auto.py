@@ -27,6 +27,7 @@ import numpy as np
 
 from . import _checks, _core
 from .field_beam import FieldBeam
+from .system import LidarSystem
 from .validity import rt_error_bound
 
 #: Safety factor on the estimate: the measured error reached 1.14 times the unscaled estimate.
@@ -54,6 +55,22 @@ class Decision:
         return "\n".join([f"auto: {model}"] + [f"  - {r}" for r in self.reasons])
 
 
+def validate_ranges(system, ranges: np.ndarray) -> None:
+    """Refuse, as the overlap paths do and naming ``ranges[i]``, a range outside the core's lengths (1e-10 to
+    1e10 m) or, behind an obstruction, not beyond its distance (``LidarSystem.validate_ranges`` in C++)."""
+    system._native.validate_ranges(ranges)
+
+
+def validate_range(system, z: float, name: str) -> None:
+    """:func:`validate_ranges` for one range ``z`` (m), refused as ``name``."""
+    try:
+        system._native.validate_ranges([z])
+    except ValueError as exc:
+        message = str(exc)
+        raise ValueError(name + message.removeprefix("ranges[0]") if message.startswith("ranges[0]") else message) \
+            from None
+
+
 def rt_model_error(system, ranges: np.ndarray) -> float:
     """Estimated largest |G_RT - G_exact| over ``ranges`` (m), safety factor included (module docstring).
     Remembered for the last 32 (system, ranges): a curve computed again skips the ~50 µs estimate."""
@@ -77,7 +94,9 @@ def radial_fo_applies(system) -> bool:
 
 def decide(system, ranges: np.ndarray, tolerance: float, threads: int = 0) -> Decision:
     """The model ``overlap(..., method="auto", tolerance=...)`` uses for this scene; when it is RT, the RT
-    run itself (``rt_raw``), at the quadrature tolerance the model error leaves."""
+    run itself (``rt_raw``), at the quadrature tolerance the model error leaves. Refuses the ranges the
+    overlap paths refuse (:func:`validate_ranges`), before any estimate is made of them."""
+    validate_ranges(system, ranges)
     radial_ok = radial_fo_applies(system)
     fo_path = "radial" if radial_ok else "2d"
     fo_accuracy = FO_RADIAL_ACCURACY if radial_ok else FO_2D_ACCURACY
@@ -114,6 +133,8 @@ def decide(system, ranges: np.ndarray, tolerance: float, threads: int = 0) -> De
 def explain(system, ranges, tolerance: float = 1e-3) -> Decision:
     """Print and return the decision ``lo.overlap(system, ranges, method="auto", tolerance=tolerance)``
     makes, with the estimates behind it."""
+    if not isinstance(system, LidarSystem):
+        raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     z = _checks.ranges("ranges", ranges)
     decision = decide(system, z, _checks.unit_interval("tolerance", tolerance))
     print(decision)
