@@ -2,6 +2,7 @@
 the detector equal to the RT overlap (which integrates the same circles of confusion exactly)."""
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -43,3 +44,72 @@ def test_plot_detector_image_draws(tmp_path):
 def test_bad_range():
     with pytest.raises(ValueError, match="z = -1"):
         lo.detector_image(lo.paper_table1(), -1.0)
+
+
+# --------------------------------------------------------------------------------- hostile input
+#: Budget (bytes) the memory tests set, whatever the machine's RAM.
+TEST_BUDGET = 1 << 30
+
+
+@pytest.fixture
+def small_budget():
+    previous = lo.max_memory()
+    lo.set_max_memory(TEST_BUDGET)
+    yield TEST_BUDGET
+    lo.set_max_memory(previous)
+
+
+@pytest.mark.parametrize("n", [4096, 16384, 65536])
+def test_n_beyond_the_memory_budget_is_refused_before_allocation(n, small_budget):
+    with pytest.raises(ValueError, match=rf"^n = {n} needs [0-9.]+ GiB of memory, more than the budget of 1 GiB "
+                                         r"\(max_memory\)"):
+        lo.detector_image(lo.paper_table1(), 100.0, n=n)
+
+
+@pytest.mark.parametrize("n", [2**31 - 1, 2**63, 10**400, 65538, 15, 0, -1, 64.0, True, "64", None])
+def test_n_outside_the_grid_sides_is_refused_by_name(n):
+    with pytest.raises(ValueError, match="^n = "):
+        lo.detector_image(lo.paper_table1(), 100.0, n=n)
+
+
+@pytest.mark.parametrize("field_beam", [False, True])
+def test_memory_estimate_covers_the_arrays_built(field_beam):
+    """The budget check's estimate is at least the peak NumPy allocation (tracemalloc) of a real call."""
+    import tracemalloc
+
+    from lidar_overlap.detector_image import _bytes_needed
+
+    system = lo.paper_table1()
+    if field_beam:
+        system = dataclasses.replace(system, beam=lo.FieldBeam(lo.Field.gaussian(355e-9, 1e-3, 128, 1e-4)))
+    n = 256
+    tracemalloc.start()
+    try:
+        lo.detector_image(system, 100.0, n=n).fraction
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak <= _bytes_needed(system, n)
+
+
+@pytest.mark.parametrize("z", [math.nan, math.inf, 0.0, -0.0, 5e-324, 1e-300, 1e300, 2e10, 2**63, 10**400, True,
+                               "1", None])
+def test_z_outside_the_ranges_is_refused_by_name(z):
+    with pytest.raises(ValueError, match="^z = "):
+        lo.detector_image(lo.paper_table1(), z)
+
+
+def test_z_before_the_obstruction_is_refused_by_name():
+    with pytest.raises(ValueError, match="^z = 0.5 is invalid: expected a range beyond the obstruction"):
+        lo.detector_image(lo.paper_table1(obstruction_radius=0.02, obstruction_distance=0.7), 0.5)
+
+
+@pytest.mark.parametrize("z", [1e-10, 1e10])
+def test_z_at_the_ends_of_the_ranges_gives_a_finite_image(z):
+    img = lo.detector_image(lo.paper_table1(), z, n=32)
+    assert np.all(np.isfinite(img.image)) and 0.0 <= img.fraction <= 1.0
+
+
+def test_system_of_the_wrong_kind_is_refused_by_name():
+    with pytest.raises(ValueError, match="^system = "):
+        lo.detector_image(lo.GaussianBeam(), 100.0)

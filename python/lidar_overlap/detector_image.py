@@ -11,11 +11,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _checks
+from . import _checks, _core
+from .auto import validate_range
 from .field_beam import FieldBeam
-from .fields import propagate
+from .fields import check_memory, propagate
+from .system import LidarSystem
 
 _erf = np.vectorize(math.erf, otypes=[float])
+
+#: Peak bytes per image pixel (measured 168: the (4n)² sub-pixel kernel of the blur and the padded FFTs).
+BYTES_PER_PIXEL = 192
+#: A field beam's propagated field (complex, its irradiance, normalised) per sample, and the interpolation
+#: matrices and product per (image side x field side).
+BYTES_PER_FIELD_SAMPLE = 48
+BYTES_PER_WEIGHT = 32
 
 
 @dataclass(frozen=True)
@@ -39,9 +48,15 @@ class DetectorImage:
 
 def detector_image(system, z: float, n: int = 192) -> DetectorImage:
     """Geometric detector-plane image at range ``z`` (m) on an n × n grid holding the beam image (2.5 w)
-    spread by its circle of confusion and the detector disc."""
-    z = _checks.positive("z", z)
-    n = _checks.count("n", n, 16)
+    spread by its circle of confusion and the detector disc. ``z`` is refused as the overlap refuses a
+    range (outside 1e-10..1e10 m, or not beyond the obstruction), ``n`` (16 to 65536) when its arrays,
+    ~192 n² bytes, exceed ``lo.max_memory()``."""
+    if not isinstance(system, LidarSystem):
+        raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
+    z = _checks.real("z", z)
+    validate_range(system, z, "z")
+    n = _checks.count("n", n, 16, _core.MAX_GRID_SIDE)
+    check_memory("n", n, _bytes_needed(system, n), "use a smaller n")
     tel, det = system.telescope, system.detector
     f, radius = tel.focal_length, 0.5 * tel.diameter
     d = f + det.defocus
@@ -62,6 +77,16 @@ def detector_image(system, z: float, n: int = 192) -> DetectorImage:
     u, v = (-(mid[k] + grid[::-1] * h) * scale for k in (0, 1))
     return DetectorImage(u=u, v=v, image=img / scale**2, detector_radius=det.radius,
                          detector_offset=tuple(det.offset), range=z)
+
+
+def _bytes_needed(system, n: int) -> float:
+    """Peak bytes of the arrays detector_image builds on an n x n image: the blur's sub-pixel kernel and
+    FFTs (BYTES_PER_PIXEL, measured), and for a field beam its propagated field and interpolation matrices."""
+    needed = BYTES_PER_PIXEL * float(n) ** 2
+    if isinstance(system.beam, FieldBeam):
+        m = float(system.beam.field.n)
+        needed += BYTES_PER_FIELD_SAMPLE * m**2 + BYTES_PER_WEIGHT * n * m
+    return needed
 
 
 def _irradiance(system, z, x, y, field=None):
@@ -93,8 +118,9 @@ def _blur(image, h, outer, inner):
     """``image`` convolved (FFT, zero-padded) with a uniform annulus inner..outer (m), pixel h (m)."""
     n = image.shape[0]
     u = (np.arange(n * 4) - n * 2 - 1.5) * h / 4        # 4 x 4 sub-pixels per pixel, pixel n/2 at 0
-    r = np.hypot(*np.meshgrid(u, u))
-    kernel = ((r < outer) & (r >= inner)).reshape(n, 4, n, 4).mean(axis=(1, 3))
+    r2 = u[:, None] ** 2 + u[None, :] ** 2                # one (4n)² array: the peak of the call's memory
+    r2 = (r2 < outer**2) & (r2 >= inner**2)
+    kernel = r2.reshape(n, 4, n, 4).mean(axis=(1, 3))
     if kernel.sum() == 0:                                # blur below one pixel: a point
         kernel[n // 2, n // 2] = 1.0
     kernel /= kernel.sum()

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _checks, _core
-from .field_beam import FieldBeam, Pair
+from .field_beam import MIN_BEAM_POWER, FieldBeam, Pair
 from .fields import Field
 
 
@@ -48,13 +48,16 @@ class FlatTopBeam(FieldBeam):
                  samples_per_waist: float = 8.0, edge_width: float | None = None, max_iterations: int = 300,
                  tolerance: float = 1e-4, max_error: float = 0.05, power: float = 1.0,
                  offset: Pair = (0.0, 0.0), tilt: Pair = (0.0, 0.0)) -> None:
+        power = _checks.real("power", power)
+        if not power >= MIN_BEAM_POWER:                   # the core refuses <= 0 and > 1e30 W
+            raise ValueError(f"power = {power!r} is invalid: expected a power of at least {MIN_BEAM_POWER:g} W")
         d = _core.design_flat_top(_checks.real("wavelength", wavelength), _checks.real("waist_radius", waist_radius),
                                   _checks.real("angular_diameter", angular_diameter), _checks.count("grid", grid, 1),
                                   _checks.real("samples_per_waist", samples_per_waist),
                                   0.0 if edge_width is None else _checks.positive("edge_width", edge_width),
                                   _checks.count("max_iterations", max_iterations, 1),
                                   _checks.real("tolerance", tolerance), _checks.real("max_error", max_error),
-                                  _checks.real("power", power))
+                                  power)
         super().__init__(Field._from_core(d["field"], d["spacing"], wavelength), offset, tilt)
         self.waist_radius = float(waist_radius)
         self.angular_diameter = float(angular_diameter)
