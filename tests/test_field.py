@@ -271,3 +271,9 @@ def test_propagate_refuses_method_by_name(value):
 def test_propagate_refuses_a_non_field_by_name():
     with pytest.raises(ValueError, match="^field = "):
         lo.propagate(np.ones((8, 8)), 10.0)
+
+
+@pytest.mark.parametrize("value", [np.array(["fresnel", "auto"]), np.array(["fresnel"]), ["fresnel"]])
+def test_propagate_refuses_a_method_that_is_not_a_string_by_name(value):
+    with pytest.raises(ValueError, match="^method = "):
+        lo.propagate(SMALL, 10.0, method=value)

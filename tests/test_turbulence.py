@@ -240,3 +240,9 @@ def test_rt_turbulence_refuses_realisations_beyond_the_cap_and_the_budget():
         lo.overlap(s, [100.0], "rt", turbulence=t, realizations=2**31)
     with pytest.raises(ValueError, match=r"^realizations = 1000000 needs .* \(max_memory\)"):
         lo.overlap(s, np.arange(1.0, 100001.0), "rt", turbulence=t, realizations=10**6)
+
+
+@pytest.mark.parametrize("value", [np.array(["plane", "spherical"]), np.array(["plane"]), ["plane"], None, b"plane"])
+def test_fried_parameter_refuses_a_wave_that_is_not_a_string_by_name(value):
+    with pytest.raises(ValueError, match="^wave = "):
+        lo.Turbulence(1e-14).fried_parameter(LAM, 1000.0, value)

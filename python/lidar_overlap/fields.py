@@ -123,6 +123,14 @@ def length(name: str, value) -> float:
     return v
 
 
+def choice(name: str, value, valid: tuple) -> str:
+    """``_checks.choice`` for a value that may be anything: arrays and other non-strings are refused by name
+    before a comparison that NumPy would make ambiguous."""
+    if not isinstance(value, str):
+        raise ValueError(f"{name} = {_checks.shown(value)} is invalid: expected one of {', '.join(map(repr, valid))}")
+    return _checks.choice(name, value, valid)
+
+
 def check_memory(name: str, value, needed: float, fix: str) -> None:
     """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the core's rule
     for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
@@ -180,7 +188,7 @@ def propagate(field: Field, distance: float, method: str = "auto",
     """
     if not isinstance(field, Field):
         raise ValueError(f"field = {_checks.shown(field)} is invalid: expected a Field")
-    _checks.choice("method", method, PROPAGATION_METHODS)
+    choice("method", method, PROPAGATION_METHODS)
     distance = _checks.real("distance", distance)
     spacing_out = 0.0 if output_spacing is None else _checks.positive("output_spacing", output_spacing)
     values, spacing, report = _core.propagate(field.values, field.spacing, field.wavelength, distance, method,

@@ -26,7 +26,7 @@ from typing import Callable, Optional, Union
 import numpy as np
 
 from . import _checks, _core
-from .fields import check_memory
+from .fields import check_memory, choice
 from .result import OverlapResult
 
 #: Percentiles of the spread band reported per range.
@@ -58,7 +58,7 @@ class Turbulence:
                  altitude: float = 0.0, outer_scale: float = math.inf, inner_scale: float = 0.0,
                  hv_ground: float = 1.7e-14, hv_wind: float = 21.0) -> None:
         if isinstance(cn2, str):
-            _checks.choice("cn2", cn2, ("hv57",))
+            choice("cn2", cn2, ("hv57",))
             native = _core.Cn2Profile.hufnagel_valley(_checks.real("hv_ground", hv_ground), _checks.real("hv_wind", hv_wind))
         elif callable(cn2):
             native = _core.Cn2Profile.custom(_checked_profile(cn2))
@@ -80,7 +80,7 @@ class Turbulence:
 
     def fried_parameter(self, wavelength: float, path_length: float, wave: str = "spherical") -> float:
         """r0 (m) over [0, path_length]: ``"spherical"`` (a point source at the lidar) or ``"plane"``."""
-        _checks.choice("wave", wave, ("spherical", "plane"))
+        choice("wave", wave, ("spherical", "plane"))
         f = self._native.fried_parameter_spherical if wave == "spherical" else self._native.fried_parameter_plane
         return f(*_reals(wavelength=wavelength, path_length=path_length))
 
