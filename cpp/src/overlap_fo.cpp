@@ -272,10 +272,18 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   return overlap_over_ranges(system, ranges, b, options);
 }
 
-FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const Field& transmitted,
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const Field& given,
                      const FoOptions& options) {
   system.validate();
-  transmitted.validate();
+  given.validate();
+  // G does not depend on the field's power: carry it at unit power, so that no weak or strong field
+  // underflows or overflows in the irradiance spectra.
+  const double power = given.power();
+  if (!(power > 0.0) || !std::isfinite(power))
+    checks::fail("transmitted.power", power, "a field with finite power > 0");
+  Field transmitted = given;
+  const double to_unit = 1.0 / std::sqrt(power);
+  for (Complex& v : transmitted.values) v *= to_unit;
   if (transmitted.wavelength != system.beam.wavelength)
     checks::fail("transmitted.wavelength", transmitted.wavelength,
                  "the system's beam wavelength " + std::to_string(system.beam.wavelength) + " m");

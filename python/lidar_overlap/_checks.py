@@ -1,7 +1,8 @@
 """Conversion of user input into the shapes the core expects, with errors that name the parameter.
 
 Value ranges (positive sizes, obstruction inside the aperture, ...) are checked once, in C++; this
-module only checks types and shapes, which the core cannot see.
+module checks types and shapes, which the core cannot see, and applies the core's rules (its length scales
+and memory budget) to the arrays Python builds itself.
 """
 
 from __future__ import annotations
@@ -11,6 +12,8 @@ from typing import Any
 import math
 
 import numpy as np
+
+from . import _core
 
 
 #: Largest integer option passed to the core (sizes are checked there against grid and memory limits).
@@ -59,6 +62,9 @@ def pair(name: str, value: Any) -> tuple[float, float]:
 
 def ranges(name: str, value: Any) -> np.ndarray:
     """A non-empty, strictly increasing 1-D array of finite ranges (m)."""
+    raw = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray([value])
+    if raw.dtype.kind not in "iuf":   # strings, bools, objects: refused before float() could accept "100"
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected a 1-D array of ranges in m (real numbers)")
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError, OverflowError) as exc:
@@ -75,22 +81,23 @@ def ranges(name: str, value: Any) -> np.ndarray:
 
 
 def choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
-    if value not in valid:
-        raise ValueError(f"{name} = {value!r} is invalid: expected one of {', '.join(map(repr, valid))}")
+    """One of ``valid``; non-strings (NumPy arrays would make the comparison ambiguous) refused by name."""
+    if not isinstance(value, str) or value not in valid:
+        raise ValueError(f"{name} = {shown(value)} is invalid: expected one of {', '.join(map(repr, valid))}")
     return value
 
 
 def count(name: str, value: Any, minimum: int, maximum: int = MAX_COUNT) -> int:
     """An integer in [minimum, maximum] (bools refused)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
-        limit = f">= {minimum}" if maximum == MAX_COUNT else f"from {minimum} to {maximum}"
+        too_large = isinstance(value, (int, np.integer)) and value > maximum
+        limit = f"from {minimum} to {maximum}" if maximum != MAX_COUNT or too_large else f">= {minimum}"
         raise ValueError(f"{name} = {shown(value)} is invalid: expected an integer {limit}")
     return int(value)
 
 
 def threads(value: Any) -> int:
     """The `threads` option: 0 (all cores) up to the core's cap, max(256, 4 x cores)."""
-    from . import _core
     return count("threads", value, 0, _core.max_threads())
 
 
@@ -100,3 +107,27 @@ def unit_interval(name: str, value: Any, include_one: bool = False) -> float:
     if not (0.0 < v < 1.0 or (include_one and v == 1.0)):
         raise ValueError(f"{name} = {v!r} is invalid: expected a value in (0, {'1]' if include_one else '1)'}")
     return v
+
+
+def length(name: str, value) -> float:
+    """A length (m) within the core's scales, MIN_LENGTH to MAX_LENGTH, refused by name otherwise."""
+    v = real(name, value)
+    if not _core.MIN_LENGTH <= v <= _core.MAX_LENGTH:
+        raise ValueError(f"{name} = {v!r} is invalid: expected a length from {_core.MIN_LENGTH:g} m to "
+                         f"{_core.MAX_LENGTH:g} m")
+    return v
+
+
+def check_memory(name: str, value, needed: float, fix: str) -> None:
+    """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the core's rule
+    for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
+    budget = _core.max_memory()
+    if not needed <= budget:
+        raise ValueError(f"{name} = {shown(value)} needs {_bytes_shown(needed)} of memory, more than the "
+                         f"budget of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
+                         "set_max_memory")
+
+
+def _bytes_shown(size: float) -> str:
+    mib = size / 2**20
+    return f"{mib:.6g} MiB" if mib < 1024 else f"{mib / 1024:.6g} GiB"

@@ -13,7 +13,8 @@ import numpy as np
 from scipy.special import eval_genlaguerre
 
 from . import _checks, _core
-from .fields import MAX_POWER, Field, check_memory, length
+from ._checks import check_memory, length
+from .fields import MAX_POWER, Field
 
 #: The window half-width must hold this many second-moment radii: beyond 3 w a TEM00 beam carries
 #: exp(-18) ~ 2e-8 of its power, below the 1e-6 edge limit that :func:`propagate` warns about.

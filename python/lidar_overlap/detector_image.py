@@ -14,7 +14,8 @@ import numpy as np
 from . import _checks, _core
 from .auto import validate_range
 from .field_beam import FieldBeam
-from .fields import check_memory, propagate
+from ._checks import check_memory
+from .fields import propagate
 from .system import LidarSystem
 
 _erf = np.vectorize(math.erf, otypes=[float])

@@ -46,8 +46,8 @@ class Field:
     """
 
     def __init__(self, values, spacing: float, wavelength: float) -> None:
-        self.spacing = length("spacing", spacing)
-        self.wavelength = length("wavelength", wavelength)
+        self.spacing = _checks.length("spacing", spacing)
+        self.wavelength = _checks.length("wavelength", wavelength)
         arr = _complex_grid(values)
         with np.errstate(over="ignore"):
             power = float(np.sum(arr.real ** 2 + arr.imag ** 2)) * self.spacing ** 2
@@ -114,38 +114,6 @@ class Field:
         return f"Field(n={self.n}, spacing={self.spacing:.4g} m, wavelength={self.wavelength:.4g} m)"
 
 
-def length(name: str, value) -> float:
-    """A length (m) within the core's scales, MIN_LENGTH to MAX_LENGTH, refused by name otherwise."""
-    v = _checks.real(name, value)
-    if not _core.MIN_LENGTH <= v <= _core.MAX_LENGTH:
-        raise ValueError(f"{name} = {v!r} is invalid: expected a length from {_core.MIN_LENGTH:g} m to "
-                         f"{_core.MAX_LENGTH:g} m")
-    return v
-
-
-def choice(name: str, value, valid: tuple) -> str:
-    """``_checks.choice`` for a value that may be anything: arrays and other non-strings are refused by name
-    before a comparison that NumPy would make ambiguous."""
-    if not isinstance(value, str):
-        raise ValueError(f"{name} = {_checks.shown(value)} is invalid: expected one of {', '.join(map(repr, valid))}")
-    return _checks.choice(name, value, valid)
-
-
-def check_memory(name: str, value, needed: float, fix: str) -> None:
-    """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the core's rule
-    for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
-    budget = _core.max_memory()
-    if not needed <= budget:
-        raise ValueError(f"{name} = {_checks.shown(value)} needs {_bytes_shown(needed)} of memory, more than the "
-                         f"budget of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
-                         "set_max_memory")
-
-
-def _bytes_shown(size: float) -> str:
-    mib = size / 2**20
-    return f"{mib:.6g} MiB" if mib < 1024 else f"{mib / 1024:.6g} GiB"
-
-
 def _complex_grid(values) -> np.ndarray:
     """``values`` as a fresh (n, n) complex128 array, n even from 8 to MAX_GRID_SIDE, with finite numbers. Only
     numeric arrays are taken: strings, objects and bools are refused before any conversion."""
@@ -188,7 +156,7 @@ def propagate(field: Field, distance: float, method: str = "auto",
     """
     if not isinstance(field, Field):
         raise ValueError(f"field = {_checks.shown(field)} is invalid: expected a Field")
-    choice("method", method, PROPAGATION_METHODS)
+    _checks.choice("method", method, PROPAGATION_METHODS)
     distance = _checks.real("distance", distance)
     spacing_out = 0.0 if output_spacing is None else _checks.positive("output_spacing", output_spacing)
     values, spacing, report = _core.propagate(field.values, field.spacing, field.wavelength, distance, method,

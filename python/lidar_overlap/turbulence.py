@@ -26,7 +26,7 @@ from typing import Callable, Optional, Union
 import numpy as np
 
 from . import _checks, _core
-from .fields import check_memory, choice
+from ._checks import check_memory, choice
 from .result import OverlapResult
 
 #: Percentiles of the spread band reported per range.
