@@ -16,10 +16,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import lidar_overlap
 from lidar_overlap.cli import main
 from lidar_overlap.scenario import INTEGER_LIMITS, MAX_FILE_BYTES, MAX_RANGES
 
 ROOT = Path(__file__).resolve().parents[1]
+PACKAGE_PARENT = str(Path(lidar_overlap.__file__).resolve().parents[1])
 TABLE1 = (ROOT / "examples" / "scenarios" / "table1.toml").read_text()
 FLAT_TOP = (ROOT / "examples" / "scenarios" / "biaxial_flat_top.toml").read_text()
 #: Subprocess limits: a probe that hangs or allocates without bound fails fast.
@@ -183,7 +185,7 @@ def _limit_memory():  # pragma: no cover - runs in the child
 def test_extreme_values_in_a_subprocess(tmp_path, case, section, text):
     path = tmp_path / "hostile.toml"
     path.write_text(text)
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "python"))
+    env = dict(os.environ, PYTHONPATH=PACKAGE_PARENT)  # the package this test run imports, built or installed
     done = subprocess.run([sys.executable, "-m", "lidar_overlap.cli", "run", str(path), "--out",
                            str(tmp_path / "out"), "--quiet"], capture_output=True, text=True, env=env,
                           timeout=PROBE_TIMEOUT_S, cwd=tmp_path,
