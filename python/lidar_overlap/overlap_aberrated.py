@@ -33,6 +33,10 @@ FO_ABERRATED_ACCURACY = 5e-6
 RT_ESTIMATE_SAFETY = 1.25
 #: Ranges on which the edge term is sampled (it varies smoothly along the curve).
 EDGE_SAMPLES = 16
+#: Segments per direction of the two edge curves' beam integrals. They share one adaptive layout, so their
+#: difference settles long before either curve: 8 segments give it within 0.2 % of 4000 segments at a fifth of
+#: the time (a field-dependent scene at 20 km where each curve stops ~2e-4 short of convergence).
+EDGE_MAX_SEGMENTS = 8
 
 
 def overlap_aberrated(system, z: np.ndarray, method: str, tolerance: float, threads: int, max_grid: int,
@@ -100,7 +104,8 @@ def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, 
     zs = z if z.size <= EDGE_SAMPLES else np.geomspace(z[0], z[-1], EDGE_SAMPLES)
     r_d, h = system.detector.radius, 1e-2 * system.detector.radius
     up, down = (np.asarray(_rt(dataclasses.replace(system, detector=dataclasses.replace(system.detector, radius=r_d + s)),
-                               zs, max(1e-6, 1e-3 * tolerance), threads, rings, ring_rays)["overlap"]) for s in (h, -h))
+                               zs, max(1e-6, 1e-3 * tolerance), threads, rings, ring_rays, EDGE_MAX_SEGMENTS)["overlap"])
+                  for s in (h, -h))
     t, d = system.telescope, system.detector
     blur = system.beam.wavelength * (t.focal_length + d.defocus) / t.diameter
     edge = np.interp(np.log(z), np.log(zs), blur * np.abs(up - down) / (2.0 * h))
@@ -114,9 +119,9 @@ def _checked(system, z: np.ndarray, raw: dict, tolerance: float, diffraction: bo
     return raw
 
 
-def _rt(system, z, tolerance, threads, rings, ring_rays) -> dict:
+def _rt(system, z, tolerance, threads, rings, ring_rays, max_segments=4000) -> dict:
     return _core.overlap_rt_aberrated(system._native, system.telescope.aberrations._native, z, rings, ring_rays,
-                                      tolerance, 64, threads, 4000)
+                                      tolerance, 64, threads, max_segments)
 
 
 def point_image(system, z: float, n: int = 256, spacing: float | None = None) -> Field:
