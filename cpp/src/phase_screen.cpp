@@ -133,10 +133,11 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
   const std::size_t h = n / 2;
   const double df = 1.0 / (static_cast<double>(n) * spacing);
   amplitude_.resize((h + 1) * (h + 1));
+  // f = 0 is skipped: the piston is not a phase aberration (and Phi(0) is infinite without an outer scale);
+  // the subharmonics stand for that cell.
   for (std::size_t ky = 0; ky <= h; ++ky)
     for (std::size_t kx = 0; kx <= h; ++kx)
-      amplitude_[ky * (h + 1) + kx] = std::sqrt(psd(df * std::hypot(double(kx), double(ky)))) * df;
-  amplitude_[0] = 0.0;  // the piston is not a phase aberration; the subharmonics stand for that cell
+      amplitude_[ky * (h + 1) + kx] = kx + ky == 0 ? 0.0 : std::sqrt(psd(df * std::hypot(double(kx), double(ky)))) * df;
   const bool tilt = weights == SubharmonicWeights::tilt_matched;
   if (tilt) {  // the FFT grid's own 3 x 3 block around f = 0 (|kx|, |ky| <= 1)
     amplitude_[1] = std::sqrt(cell_variance(*this, df, 0.0, df));

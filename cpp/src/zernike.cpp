@@ -38,6 +38,7 @@ Radial radial(int n, int abs_m, double rho) {
       r.derivative += coefficient * power * std::pow(rho, power - 1);
       r.over_rho += coefficient * std::pow(rho, power - 1);
     }
+    if (2 * (k + 1) > n - abs_m) break;  // the last term (its update would divide by n - k = 0 for n = 0)
     // Next coefficient: k -> k+1.
     const double a = (n + abs_m) / 2 - k, b = (n - abs_m) / 2 - k;
     coefficient *= -(a * b) / ((k + 1.0) * (n - k));
