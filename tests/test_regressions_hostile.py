@@ -263,3 +263,20 @@ def test_fo_2d_does_not_depend_on_threads_or_process(runner):
     assert one["verdict"] == FINITE, one
     assert one["summary"]["overlap"] == all_cores["summary"]["overlap"]          # bit for bit
     assert one["summary"]["overlap"] == other_process["summary"]["overlap"]
+
+
+def test_an_obstruction_shadow_covering_the_na_pupil_gives_zero_in_every_path():
+    """Found by the sanitizer build: with the obstruction's shadow wider than the NA cone's pupil no light
+    passes; the 2-D FO path then sized its grid from a zero cutoff (20 / 0) and refused the range naming
+    max_spectrum_grid. G = 0 exactly is the answer, and each path gives it."""
+    import lidar_overlap as lo
+
+    system = lo.LidarSystem(beam=lo.GaussianBeam(wavelength=532e-9, waist_radius=2e-3, offset=(0.05, 0.0)),
+                            telescope=lo.Telescope(diameter=0.3, focal_length=0.35, obstruction_radius=0.07,
+                                                   obstruction_distance=0.8),
+                            detector=lo.Detector(radius=4e-5, numerical_aperture=0.05))
+    ranges = [20.0, 1000.0]
+    for method, options in (("rt", {}), ("fo", {"fo_path": "radial"}), ("fo", {"fo_path": "2d"}),
+                            ("fo", {"fo_path": "2d", "turbulence": lo.Turbulence(1e-15), "realizations": 2})):
+        result = lo.overlap(system, ranges, method, **options)
+        assert np.array_equal(result.overlap, np.zeros(2)), (method, options, result.overlap)

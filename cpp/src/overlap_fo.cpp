@@ -81,6 +81,7 @@ double FoReceiver::point_coupling(double offset) const {
 namespace detail {
 
 double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
+  if (np == 0 || !rx.passes_light()) return 0.0;
   const GaussianBeam& beam = system.beam;
   const std::size_t nb = at_z.n;
   const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
@@ -154,6 +155,7 @@ std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, doubl
   // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
   // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
   // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
+  if (!rx.passes_light()) return 0;  // G = 0: no grid
   const double to_image = rx.detector_distance() / z;
   const double reach = rx.blur_radius() + 20.0 / rx.cutoff() +
                        norm(system.detector.offset + to_image * system.beam.center(z)) + system.detector.radius +
@@ -216,6 +218,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
   out.beam_reports.assign(n_ranges, {});
   // Ranges in parallel; the work inside each runs on one thread (nested regions stay inactive).
   detail::parallel_for(n_ranges, threads, [&](std::size_t i) {
+    if (out.spectrum_grid[i] == 0) return;  // no light reaches the detector plane: G = 0
     Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
     out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;

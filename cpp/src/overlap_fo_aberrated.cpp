@@ -70,6 +70,7 @@ struct RangePlan {
 // without wrapping the autocorrelation.
 RangePlan plan_range(const LidarSystem& system, const FoReceiver& rx, double blur, double z,
                      const FoAberratedOptions& options, std::size_t index) {
+  if (!rx.passes_light()) return {};  // G = 0: no transform
   const double d = rx.detector_distance(), to_image = d / z, lambda = system.beam.wavelength;
   const double w = system.beam.radius(z) * to_image;
   const double s0 = norm((-to_image) * system.beam.center(z) - system.detector.offset);
@@ -128,7 +129,7 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
   for (const RangePlan& p : plans) out.grid.push_back(p.n);
   detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
     const FoReceiver& rx = receivers[i];
-    if (rx.pupil().outer == 0.0) return;
+    if (!rx.passes_light()) return;
     const RangePlan& p = plans[i];
     const double z = ranges[i], d = rx.detector_distance(), to_image = d / z;
     const double w = system.beam.radius(z) * to_image, r_d = system.detector.radius;

@@ -21,7 +21,7 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
 
 // The padded spectrum size for a beam of grid `spacing` (m) and n samples whose power (all but 1e-7) lies
 // within `radius_bound` (m), the aliases' diffraction tails kept below `tail_error` of G; throws naming
-// ranges[range_index] above max_grid.
+// ranges[range_index] above max_grid; 0 when no light reaches the detector plane (G = 0).
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
                           double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
                           double tail_error = 1e-6);

@@ -86,6 +86,7 @@ class CouplingMap {
  public:
   CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n, std::size_t np)
       : n_(n), map_(n * n) {
+    if (np == 0) return;  // no light reaches the detector plane (spectrum_grid): a zero map, G = 0
     const double to_image = rx.detector_distance() / z, df = 1.0 / (np * dx);
     auto signed_index = [np](std::size_t k) {
       return k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(np);

@@ -50,6 +50,9 @@ class FoReceiver {
   double otf(double q) const { return annular_otf(pupil_, wavelength_ * d_ * q); }
   double detector_distance() const { return d_; }
   double cutoff() const { return 2.0 * pupil_.outer / (wavelength_ * d_); }  // 1/m, OTF = 0 beyond
+  // False when no light reaches the detector plane (the obstruction's shadow covers the NA cone's pupil):
+  // G = 0, and no sampling derived from the cutoff applies.
+  bool passes_light() const { return pupil_.outer > 0.0; }
   double blur_radius() const;  // m, geometric radius of the point image on the detector plane
   // Period (m, detector plane) of a lattice of point images whose diffraction tails put at most
   // `max_error` on the detector in total: the Parseval sum's aliases form such a lattice.
