@@ -50,7 +50,9 @@ unsigned planner_flag(FftPlanning planning, std::size_t points) {
 }
 
 fftw_plan get_plan(const PlanKey& key, bool two_d) {
-  static std::map<std::pair<bool, PlanKey>, fftw_plan> plans;
+  // Plans live as long as the process: the cache is never destroyed, so no plan outlives FFTW's cleanup
+  // and leak checkers see reachable memory.
+  static auto& plans = *new std::map<std::pair<bool, PlanKey>, fftw_plan>;
   std::lock_guard<std::mutex> lock(planner_mutex());
   auto it = plans.find({two_d, key});
   if (it != plans.end()) return it->second;
