@@ -8,7 +8,7 @@ OUT    := out
 JOBS   ?= 2
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
-.PHONY: demo test setup pytest ctest bench clean
+.PHONY: demo test setup pytest ctest sanitize bench clean
 
 setup: $(VENV)/.installed
 
@@ -49,6 +49,11 @@ ctest:
 	$(BIN)/cmake --build build/cpp -j $(JOBS)
 	$(BIN)/cmake --install build/cpp --component cpp
 	$(BIN)/ctest --test-dir build/cpp --output-on-failure -j $(JOBS)
+
+# ASan + UBSan build of the core, the C++ tests and the module; ctest and a pytest subset against it.
+sanitize: setup
+	$(BIN)/pip install -q pybind11
+	VENV=$(VENV) JOBS=$(JOBS) scripts/sanitize.sh
 
 bench: setup
 	$(PY) benchmarks/bench_rt.py
