@@ -38,18 +38,9 @@ std::atomic<bool>*& current_stop_flag() {
 void cancellation_point() {
   std::atomic<bool>* const flag = current_stop_flag();
   if (flag && flag->load(std::memory_order_relaxed)) throw Cancelled();
-  if (!tl_scope) return;
-  bool stop = false;
-  try {
-    stop = tl_scope->poll();
-  } catch (...) {
-    if (flag) flag->store(true);
-    throw;
-  }
-  if (stop) {
-    if (flag) flag->store(true);
-    throw Cancelled();
-  }
+  // An exception of should_stop propagates as it is: the enclosing parallel_for records it first and only
+  // then raises the stop flag, so that no sibling's Cancelled can take its place.
+  if (tl_scope && tl_scope->poll()) throw Cancelled();
 }
 
 }  // namespace detail

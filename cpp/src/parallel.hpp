@@ -27,6 +27,9 @@ int thread_count(int requested);
 // body(i) for i in [0, count) on `threads` threads (from thread_count), dynamic schedule.
 template <class Body>
 void parallel_for(std::size_t count, int threads, Body&& body) {
+  // The calling thread's scope is asked once before the region: with a dynamic schedule the other threads
+  // may take every iteration of a short loop before the calling thread reaches it.
+  cancellation_point();
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::mutex failure_mutex;
