@@ -161,6 +161,7 @@ def test_system_parts_have_the_right_type(name):
     [1.0, 3.0, 2.0],        # not increasing
     [1.0, 1.0, 2.0],        # repeated
     ["a", "b"],             # not numbers
+    [259.6, (1.0, 2.0, 3.0), 18064.6],  # ragged (NumPy's own error named nothing)
 ])
 def test_overlap_bad_ranges(system, ranges):
     with pytest.raises(ValueError, match="ranges"):

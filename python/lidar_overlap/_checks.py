@@ -62,7 +62,10 @@ def pair(name: str, value: Any) -> tuple[float, float]:
 
 def ranges(name: str, value: Any) -> np.ndarray:
     """A non-empty, strictly increasing 1-D array of finite ranges (m)."""
-    raw = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray([value])
+    try:   # ragged nesting such as [1.0, (2.0, 3.0)] fails here, in NumPy's words
+        raw = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray([value])
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise ValueError(f"{name} is invalid: expected a 1-D array of ranges in m ({exc})") from None
     if raw.dtype.kind not in "iuf":   # strings, bools, objects: refused before float() could accept "100"
         raise ValueError(f"{name} = {shown(value)} is invalid: expected a 1-D array of ranges in m (real numbers)")
     try:
