@@ -229,7 +229,7 @@ def test_emitter_coupling_bad_method(system):
         lo.emitter_coupling(system, 100.0, method="fo-exact")
 
 
-@pytest.mark.parametrize("defocus", [-1e-3, NAN])
+@pytest.mark.parametrize("defocus", [-1e-3, NAN, 5e-324])  # 5e-324: f (f + δ) / δ overflowed to inf
 def test_optimal_focus_range_bad_defocus(defocus):
     with pytest.raises(ValueError, match="defocus"):
         lo.optimal_focus_range(1.0, defocus)

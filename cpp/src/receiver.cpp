@@ -14,7 +14,11 @@ double optimal_focus_range(double focal_length, double defocus) {
   checks::non_negative("defocus", defocus);
   checks::coordinate("defocus", defocus);
   if (defocus == 0.0) return std::numeric_limits<double>::infinity();
-  return focal_length * (focal_length + defocus) / defocus;
+  const double z = focal_length * (focal_length + defocus) / defocus;
+  if (!std::isfinite(z))  // a subnormal defocus: the range exists but no double holds it
+    checks::fail("defocus", defocus, "0 (focus at infinity) or a defocus whose focus range f (f + defocus) / defocus is "
+                 "below 1.8e308 m");
+  return z;
 }
 
 Receiver::Receiver(const LidarSystem& system, double z) : z_(z) {
