@@ -8,6 +8,8 @@
 
 #include "check.hpp"
 #include "lidar_overlap/lidar_overlap.hpp"
+#include "core/checks.hpp"     // internal: the shared argument checks
+#include "core/constants.hpp"
 
 using namespace lidar_overlap;
 
