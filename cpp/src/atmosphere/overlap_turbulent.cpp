@@ -15,6 +15,7 @@
 #include "fourier/fft.hpp"
 #include "fourier/fo_receiver.hpp"
 #include "fourier/overlap_fo_detail.hpp"
+#include "fourier/transfer_table.hpp"
 
 namespace lidar_overlap {
 
@@ -89,37 +90,11 @@ class CouplingMap {
       : n_(n), map_(n * n) {
     if (np == 0) return;  // no light reaches the detector plane (spectrum_grid): a zero map, G = 0
     const double to_image = rx.detector_distance() / z, df = 1.0 / (np * dx);
-    auto signed_index = [np](std::size_t k) {
-      return k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(np);
-    };
-    // T = OTF x disc^ up to the cutoff or the grid's corner frequency, tabulated as in overlap_fo.cpp
-    // (24 points per period of its fastest oscillation, six-point Lagrange interpolation).
+    // T = OTF x disc^ up to the cutoff or the grid's corner frequency (fourier/transfer_table.hpp).
     const double q_max = std::min(rx.cutoff(), df * (0.5 * np * std::sqrt(2.0) + 1.0) / to_image);
-    const double period = 1.0 / std::max({system.detector.radius, rx.blur_radius(), 1.0 / rx.cutoff()});
-    const std::size_t nt = std::min<std::size_t>(1 << 16, 6 + checks::saturate(24.0 * q_max / period));
-    const double h = q_max / (nt - 3), inv_h = 1.0 / h;
-    std::vector<double> table(nt + 3);
-    for (std::size_t t = 0; t < table.size(); ++t) {
-      const double q = std::abs(static_cast<double>(t) - 2.0) * h;  // two points before 0: the even extension
-      table[t] = rx.otf(q) * disc_transform(system.detector.radius, q);
-    }
-    auto transfer = [&](double q) {
-      const double pos = q * inv_h;
-      const std::size_t j = std::min(checks::saturate(pos), nt - 4);
-      const double* p = &table[j];
-      const double x = pos - j, a = x + 2.0, b = x + 1.0, d = x - 1.0, e = x - 2.0, f = x - 3.0;
-      const double ab = a * b, de = d * e, xf = x * f;
-      return (ab * (de * (x * p[5] - 10.0 * f * p[2]) + xf * (10.0 * e * p[3] - 5.0 * d * p[4])) +
-              de * xf * (5.0 * a * p[1] - b * p[0])) * (1.0 / 120.0);
-    };
+    const detail::TransferTable transfer(system, rx, q_max);
     // P: the shift to the detector centre's image and (-1)^(kx+ky), the padded grid's origin at np/2.
-    const Vec2 shift = system.beam.center(z) + (1.0 / to_image) * system.detector.offset;
-    std::vector<Complex> phase_x(np), phase_y(np);
-    for (std::size_t k = 0; k < np; ++k) {
-      const double sign = (k % 2) ? -1.0 : 1.0, f = df * signed_index(k);
-      phase_x[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.x);
-      phase_y[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.y);
-    }
+    const detail::ShiftPhases phase(np, df, system.beam.center(z) + (1.0 / to_image) * system.detector.offset);
     // BFFT[T P] on the beam's n x n window only: rows of frequencies within q_max, a chunk of rows at a
     // time, transformed along x and cut to the window's columns; then those columns along y. Rows ky and
     // -ky are neighbours and share T(|kx|, |ky|), evaluated once per quadrant.
@@ -144,8 +119,8 @@ class CouplingMap {
           }
         }
         Complex* row = &block[(r - r0) * np];
-        const Complex py = phase_y[ky];
-        for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase_x[kx] * py);
+        const Complex py = phase.y[ky];
+        for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase.x[kx] * py);
       }
       fft_rows(block, chunk, np, FftDirection::backward);
       for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r)

@@ -11,10 +11,10 @@
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
-#include "core/quadrature.hpp"
 #include "fourier/fft.hpp"
 #include "fourier/fo_receiver.hpp"
 #include "fourier/overlap_fo_detail.hpp"
+#include "fourier/transfer_table.hpp"
 
 namespace lidar_overlap {
 
@@ -46,36 +46,11 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
         f2_max = std::max(f2_max, fx * fx + fy * fy);
       }
   const double q_max = std::min(df * std::sqrt(f2_max) / to_image, rx.cutoff());
-  // 24 table points per period of the fastest oscillation (detector disc or point-image blur), interpolated
-  // by quintic (six-point Lagrange) polynomials: G converged to ~3e-7 (cubic needed 128 points for that).
-  const double period = 1.0 / std::max({system.detector.radius, rx.blur_radius(), 1.0 / rx.cutoff()});
-  const std::size_t nt = std::min<std::size_t>(1 << 16, 6 + checks::saturate(24.0 * q_max / period));
-  const double h = q_max / (nt - 3);
-  std::vector<double> table(nt + 3);
-  for (std::size_t t = 0; t < table.size(); ++t) {
-    const double q = std::abs(static_cast<double>(t) - 2.0) * h;  // two points before 0: the even extension
-    table[t] = rx.otf(q) * disc_transform(system.detector.radius, q);
-  }
-  const double inv_h = 1.0 / h;
-  auto interpolate = [&](double q) {
-    const double pos = q * inv_h;
-    const std::size_t j = std::min(checks::saturate(pos), nt - 4);
-    const double* p = &table[j];  // the six nodes at q/h = j-2 ... j+3
-    const double x = pos - j, a = x + 2.0, b = x + 1.0, d = x - 1.0, e = x - 2.0, f = x - 3.0;
-    const double ab = a * b, de = d * e, xf = x * f;
-    return (ab * (de * (x * p[5] - 10.0 * f * p[2]) + xf * (10.0 * e * p[3] - 5.0 * d * p[4])) +
-            de * xf * (5.0 * a * p[1] - b * p[0])) * (1.0 / 120.0);
-  };
+  const TransferTable transfer(system, rx, q_max);
 
   // G = (z/d)^2 sum_f T(|f| z/d) Re[exp(2 pi i f.(c + o z/d)) (-1)^(kx+ky) conj(FFT E)] df^2 / (A E(0)),
   // the phase separable per axis.
-  const Vec2 shift = c + (1.0 / to_image) * o;
-  std::vector<Complex> phase_x(np), phase_y(np);
-  for (std::size_t k = 0; k < np; ++k) {
-    const double sign = (k % 2) ? -1.0 : 1.0, f = df * signed_index(k);
-    phase_x[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.x);
-    phase_y[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.y);
-  }
+  const ShiftPhases phase(np, df, c + (1.0 / to_image) * o);
   double sum = 0.0;
   for (std::size_t ky = 0; ky < np; ++ky) {
     const double fy = df * signed_index(ky);
@@ -83,10 +58,18 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
       const double fx = df * signed_index(kx);
       const double q = std::sqrt(fx * fx + fy * fy) / to_image;
       if (q >= q_max) continue;
-      sum += interpolate(q) * (phase_x[kx] * phase_y[ky] * std::conj(spectrum[ky * np + kx])).real();
+      sum += transfer(q) * (phase.x[kx] * phase.y[ky] * std::conj(spectrum[ky * np + kx])).real();
     }
   }
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
+}
+
+ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
+  for (std::size_t k = 0; k < np; ++k) {
+    const double sign = (k % 2) ? -1.0 : 1.0, f = df * (k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np);
+    x[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.x);
+    y[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.y);
+  }
 }
 
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "lidar_overlap/fourier/field.hpp"
 #include "fourier/fo_receiver.hpp"
@@ -22,6 +23,14 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
 // The padded spectrum size for a beam of grid `spacing` (m) and n samples whose power (all but 1e-7) lies
 // within `radius_bound` (m), the aliases' diffraction tails kept below `tail_error` of G; throws naming
 // ranges[range_index] above max_grid; 0 when no light reaches the detector plane (G = 0).
+// The phase of the Parseval sum per axis, exp(2 pi i f shift) (-1)^k at the frequencies f = df k (k signed,
+// k >= np/2 taken as k - np) of an np-point padded grid: the beam image shifted by `shift` (m, beam plane)
+// against the detector centre, and the padded grid's origin at np/2.
+struct ShiftPhases {
+  ShiftPhases(std::size_t np, double df, Vec2 shift);
+  std::vector<Complex> x, y;
+};
+
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
                           double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
                           double tail_error = 1e-6);
