@@ -7,6 +7,7 @@
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "lidar_overlap/fourier/overlap_fo_radial.hpp"
 #include "core/checks.hpp"
+#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
@@ -88,7 +89,7 @@ RangePlan plan_range(const LidarSystem& system, const FoReceiver& rx, double blu
   p.n = needed <= static_cast<double>(options.max_grid) ? fast_fft_size(static_cast<std::size_t>(needed))
                                                         : checks::saturate(needed);
   if (p.n > options.max_grid)
-    checks::fail("ranges[" + std::to_string(index) + "]", z,
+    checks::fail(detail::range_name(index), z,
                  "a range whose point image (blur radius " + std::to_string(blur) +
                      " m on the detector plane) fits a pupil transform of at most max_grid = " +
                      std::to_string(options.max_grid) + " (here " + std::to_string(p.n) +
@@ -113,15 +114,14 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
     checks::fail("aberrations.zernike (highest Noll index)", static_cast<double>(aberrations.zernike.size()),
                  "at most 153 (radial order 16) for Fourier optics, which samples the pupil as one polynomial "
                  "(higher orders lose digits to cancellation and cost O(order) per sample): use method 'rt'");
-  const int threads = detail::thread_count(options.threads);
+  const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
   checks::in_open_unit("tail_error", options.tail_error);
   const double radius = telescope_radius(system);
   const double ray_blur = aberrations.max_gradient() / radius;  // rad: d grad W / R per unit d
   std::vector<FoReceiver> receivers;
   std::vector<RangePlan> plans;
   for (std::size_t i = 0; i < ranges.size(); ++i) {
-    system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
-    receivers.emplace_back(system, ranges[i], "ranges[" + std::to_string(i) + "]");
+    receivers.emplace_back(system, ranges[i], detail::range_name(i));
     const FoReceiver& rx = receivers.back();
     const double blur = rx.blur_radius() + rx.detector_distance() * ray_blur;
     plans.push_back(plan_range(system, rx, blur, ranges[i], options, i));
@@ -170,7 +170,7 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
       }
     }
     const double n2 = static_cast<double>(p.n) * static_cast<double>(p.n);
-    out.overlap[i] = gaussian_image_overlap(system, z, 4.0, nullptr, "ranges[" + std::to_string(i) + "]") + sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
+    out.overlap[i] = gaussian_image_overlap(system, z, 4.0, nullptr, detail::range_name(i)) + sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
   });
   checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo_aberrated");
   return out;

@@ -10,6 +10,7 @@
 #include "lidar_overlap/aberrations/zernike.hpp"
 #include "aberrations/aberrated_pupil_integral.hpp"
 #include "core/checks.hpp"
+#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
@@ -108,8 +109,7 @@ void validate(const LidarSystem& system, const Aberrations& aberrations, const R
 RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
                                         const std::vector<double>& ranges, const RtAberratedOptions& options) {
   validate(system, aberrations, options);
-  const int threads = detail::thread_count(options.threads);
-  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+  const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
   const RayFan fan(system, aberrations, options);
   RtAberratedOverlap out;
   out.rotationally_symmetric = rotationally_symmetric(system, aberrations);

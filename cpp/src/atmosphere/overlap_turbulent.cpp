@@ -10,6 +10,7 @@
 #include "lidar_overlap/core/limits.hpp"
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "core/checks.hpp"
+#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
@@ -168,9 +169,8 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     checks::fail("beam_window", o.beam_window, "a window from 2 to beam_grid long-term beam radii");
   if (o.max_spectrum_grid < 32 || o.max_spectrum_grid > kMaxGridSide)
     checks::fail("max_spectrum_grid", static_cast<double>(o.max_spectrum_grid), "a size from 32 to 65536");
-  const int threads = detail::thread_count(o.threads);
+  const int threads = detail::checked_threads_and_ranges(system, ranges, o.threads);
   if (ranges.empty()) return {};
-  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
   const double z_max = *std::max_element(ranges.begin(), ranges.end());
   const std::size_t n = o.beam_grid;
 
@@ -213,7 +213,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     dx_prev = dx;
   }
   for (std::size_t i = 0; i < ranges.size(); ++i) {
-    receivers.emplace_back(system, ranges[i], "ranges[" + std::to_string(i) + "]");
+    receivers.emplace_back(system, ranges[i], detail::range_name(i));
     const double radius = 2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +
                                   3.0 * std::sqrt(atmosphere.beam_wander_variance(w0, lambda, ranges[i])));
     // Tails to 1e-4 of G: far below the spread between realisations, at a quarter of the grid of 1e-6.

@@ -9,6 +9,7 @@
 #include "lidar_overlap/core/limits.hpp"
 #include "lidar_overlap/fourier/grid_choice.hpp"
 #include "core/checks.hpp"
+#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
@@ -89,7 +90,7 @@ std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, doubl
   const std::size_t np =
       next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image)))));
   if (np > max_grid)
-    checks::fail("ranges[" + std::to_string(range_index) + "]", z,
+    checks::fail(detail::range_name(range_index), z,
                  "a range needing a beam spectrum grid of at most max_spectrum_grid = " + std::to_string(max_grid) +
                      " (here " + std::to_string(np) + "): its alias period must hold, on the detector plane, the "
                      "point image (blur radius " + checks::number(rx.blur_radius()) + " m), the beam image (offset " +
@@ -124,7 +125,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
   FoOverlap out;
   for (std::size_t i = 0; i < n_ranges; ++i) {
     const double z = ranges[i];
-    receivers.emplace_back(system, z, "ranges[" + std::to_string(i) + "]");
+    receivers.emplace_back(system, z, detail::range_name(i));
     const FoReceiver& rx = receivers.back();
     const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
                                                  options.max_spectrum_grid, i);
@@ -132,7 +133,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
     // Each thread holds the beam field and its padded spectrum.
     checks::memory("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
                    16.0 * threads * (double(np) * double(np) + double(beam_at.n) * double(beam_at.n)),
-                   "ranges[" + std::to_string(i) + "] needs a " + std::to_string(np) +
+                   detail::range_name(i) + " needs a " + std::to_string(np) +
                        "^2 spectrum per thread: lower max_spectrum_grid (that range then raises), use fewer threads, "
                        "or method 'rt' there");
   }
@@ -156,10 +157,6 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
   return out;
 }
 
-void validate_ranges(const LidarSystem& system, const std::vector<double>& ranges) {
-  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
-}
-
 }  // namespace
 
 FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
@@ -174,7 +171,7 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
     checks::fail("beam_window", options.beam_window,
                  "a window from 2 to beam_grid = " + std::to_string(options.beam_grid) +
                      " waist radii, so that the waist is sampled at least once per radius");
-  validate_ranges(system, ranges);
+  detail::checked_threads_and_ranges(system, ranges, options.threads);
   const std::size_t nb = options.beam_grid;
   const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
   if (!beam.divergence || std::abs(*beam.divergence / theta_d - 1.0) <= 1e-9)
@@ -213,7 +210,7 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   if (transmitted.wavelength != system.beam.wavelength)
     checks::fail("transmitted.wavelength", transmitted.wavelength,
                  "the system's beam wavelength " + std::to_string(system.beam.wavelength) + " m");
-  validate_ranges(system, ranges);
+  detail::checked_threads_and_ranges(system, ranges, options.threads);
   // Radii holding all but 1e-7 of the power, in space and angle: r0 + z theta bounds the beam at z.
   const GridChoice extent = choose_grid(transmitted, 0.0, PropagationMethod::automatic);
   BeamAtRanges b;

@@ -7,6 +7,7 @@
 
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "core/checks.hpp"
+#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
@@ -70,15 +71,14 @@ RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<d
   const GaussianBeam& beam = system.beam;
   beam.validate_for_fourier_optics();
   checks::positive("periods_per_panel", options.periods_per_panel);
-  const int threads = detail::thread_count(options.threads);
-  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+  const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
 
   RadialFoOverlap out;
   out.overlap.assign(ranges.size(), 0.0);
   out.evaluations.assign(ranges.size(), 0);
   detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
     out.overlap[i] = gaussian_image_overlap(system, ranges[i], options.periods_per_panel, &out.evaluations[i],
-                                            "ranges[" + std::to_string(i) + "]");
+                                            detail::range_name(i));
   });
   checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo_radial");
   return out;

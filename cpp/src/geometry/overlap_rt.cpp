@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/checks.hpp"
+#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
@@ -164,16 +165,13 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
                      const RtOptions& options) {
   system.validate();
   checks::in_open_unit("tolerance", options.tolerance);
-  const int threads = detail::thread_count(options.threads);
+  const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
   if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
 
-  // Receivers are built (and ranges validated) before the parallel region: nothing throws inside it.
+  // Receivers are built before the parallel region: nothing throws inside it.
   std::vector<Receiver> receivers;
   receivers.reserve(ranges.size());
-  for (std::size_t i = 0; i < ranges.size(); ++i) {
-    system.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
-    receivers.emplace_back(system, ranges[i]);
-  }
+  for (double z : ranges) receivers.emplace_back(system, z);
 
   const std::size_t n = ranges.size();
   RtOverlap out;
