@@ -7,6 +7,7 @@
 #include "lidar_overlap/aberrations/zernike.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "aberrations/seidel_gradient.hpp"
 
 namespace lidar_overlap {
 
@@ -59,8 +60,8 @@ Vec2 Aberrations::gradient(Vec2 p, Vec2 field) const {
   g = g + (4.0 * w040 * r2) * p;
   if (field_dependent()) {
     const Vec2 h = (1.0 / field_radius) * field;
-    const double hp = dot(h, p), h2 = dot(h, h);
-    g = g + (2.0 * w131 * hp + 2.0 * w220 * h2) * p + (w131 * r2 + 2.0 * w222 * hp + w311 * h2) * h;
+    const detail::SeidelFieldGradient s = detail::seidel_field_gradient(*this, p, h);
+    g = g + s.along_pupil * p + s.along_field * h;
   }
   return g;
 }

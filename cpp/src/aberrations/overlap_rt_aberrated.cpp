@@ -9,6 +9,7 @@
 
 #include "lidar_overlap/aberrations/zernike.hpp"
 #include "aberrations/aberrated_pupil_integral.hpp"
+#include "aberrations/seidel_gradient.hpp"
 #include "core/checks.hpp"
 #include "core/entry_checks.hpp"
 #include "core/constants.hpp"
@@ -43,11 +44,9 @@ class RayFan {
     const Telescope& t = system_.telescope;
     const Detector& det = system_.detector;
     const double d = t.focal_length + det.defocus, k = 1.0 / z - 1.0 / t.focal_length;
-    const double max_slope = det.numerical_aperture
-                                 ? *det.numerical_aperture / std::sqrt(1.0 - *det.numerical_aperture * *det.numerical_aperture)
-                                 : 0.0;
+    const double max_slope = det.max_ray_slope();
     const Vec2 field = (1.0 / z) * position, h = ab_.field_dependent() ? (1.0 / ab_.field_radius) * field : Vec2{};
-    const double h2 = dot(h, h), s_obs = t.obstruction_distance / z;
+    const double s_obs = t.obstruction_distance / z;
     std::vector<double> margin(per_ring_);
     double total = 0.0;
     for (std::size_t i = 0; i < rings_; ++i) {
@@ -55,11 +54,10 @@ class RayFan {
         const std::size_t r = i * per_ring_ + j;
         const Vec2 a = radius_ * pupil_[r];
         Vec2 slope = k * a - (1.0 / z) * position + slope_[r];
-        if (ab_.field_dependent()) {  // Seidel field terms, gradient in the normalised pupil (aberrations.cpp)
+        if (ab_.field_dependent()) {  // Seidel field terms, gradient in the normalised pupil
           const Vec2 p = pupil_[r];
-          const double hp = dot(h, p), r2 = dot(p, p);
-          slope = slope + (1.0 / radius_) * ((2.0 * ab_.w131 * hp + 2.0 * ab_.w220 * h2) * p +
-                                             (ab_.w131 * r2 + 2.0 * ab_.w222 * hp + ab_.w311 * h2) * h);
+          const detail::SeidelFieldGradient g = detail::seidel_field_gradient(ab_, p, h);
+          slope = slope + (1.0 / radius_) * (g.along_pupil * p + g.along_field * h);
         }
         double m = det.radius - norm(a + d * slope - det.offset);
         if (t.obstruction_radius > 0.0) m = std::min(m, norm(a + s_obs * (position - a)) - t.obstruction_radius);

@@ -1,5 +1,7 @@
 #include "lidar_overlap/core/system.hpp"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "lidar_overlap/core/limits.hpp"
@@ -27,6 +29,12 @@ void Detector::validate() const {
     const double na = *numerical_aperture;
     if (!(na > 0.0 && na < 1.0)) checks::fail("detector.numerical_aperture", na, "a value in (0, 1)");
   }
+}
+
+double Detector::max_ray_slope() const {
+  if (!numerical_aperture) return std::numeric_limits<double>::infinity();
+  const double na = *numerical_aperture;
+  return na / std::sqrt(1.0 - na * na);
 }
 
 Detector Detector::from_fov(double fov, double focal_length, double defocus, Vec2 offset,

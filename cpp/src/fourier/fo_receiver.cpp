@@ -25,9 +25,9 @@ FoReceiver::FoReceiver(const LidarSystem& system, double z, const std::string& p
   area_ = kPi * radius * radius;
   pupil_.outer = radius;
   if (det.numerical_aperture) {
-    // The NA cone as a pupil disc (its centre moves with the scatterer, neglected: see the header).
-    const double na = *det.numerical_aperture, k = 1.0 / z - 1.0 / t.focal_length;
-    if (k != 0.0) pupil_.outer = std::min(radius, na / std::sqrt(1.0 - na * na) / std::abs(k));
+    // The NA cone as a pupil disc (its centre moves with the scatterer, neglected: see overlap_fo.hpp).
+    const double k = 1.0 / z - 1.0 / t.focal_length;
+    if (k != 0.0) pupil_.outer = std::min(radius, det.max_ray_slope() / std::abs(k));
   }
   if (t.obstruction_radius > 0.0)
     pupil_.inner = t.obstruction_radius * z / (z - t.obstruction_distance);

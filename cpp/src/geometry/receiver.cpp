@@ -38,8 +38,7 @@ Receiver::Receiver(const LidarSystem& system, double z) : z_(z) {
 
   // Fibre NA: ray slope after the lens, A (1/z - 1/f) - P/z, within tan(asin NA).
   if (det.numerical_aperture) {
-    const double na = *det.numerical_aperture;
-    const double max_slope = na / std::sqrt(1.0 - na * na);
+    const double max_slope = det.max_ray_slope();
     const double k = 1.0 / z - 1.0 / t.focal_length;
     if (k != 0.0)
       passing_.add(MovingDisc{1.0 / (z * k), {}, max_slope / std::abs(k)});

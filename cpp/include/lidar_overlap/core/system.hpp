@@ -26,6 +26,9 @@ struct Detector {
   std::optional<double> numerical_aperture;  // accepted sin(angle); empty: accepts every ray
 
   void validate() const;
+  // tan(asin NA): the steepest ray slope behind the lens that the detector accepts (rad, paraxial);
+  // infinity without a numerical aperture.
+  double max_ray_slope() const;
   // The detector that sees a full field of view `fov` (rad, full angle) through focal length f (m).
   static Detector from_fov(double fov, double focal_length, double defocus = 0.0, Vec2 offset = {},
                            std::optional<double> numerical_aperture = std::nullopt);
