@@ -31,7 +31,8 @@ struct RtAberratedOptions {
   double tolerance = 1e-4;        // absolute, on G, for the beam integral
   std::size_t directions = 64;    // cap on the directions of the beam integral (from 8, doubled until it
                                   // converges) when the scene is not rotationally symmetric
-  int threads = 0;                // OpenMP threads across ranges; 0: all cores
+  int threads = 0;                // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                                  // calls from several threads pass 1 (or their share): core/limits.hpp
   std::size_t max_segments = 2000;
 };
 

@@ -29,7 +29,8 @@ struct TurbulenceOptions {
   std::size_t beam_grid = 256;          // samples per side of the propagated field
   double beam_window = 8.0;             // window in long-term radii (plus 8 rms wander) at every plane
   std::size_t max_spectrum_grid = 4096;
-  int threads = 0;                      // OpenMP threads across realisations; 0: all cores
+  int threads = 0;                      // OpenMP threads across realisations; 0: all cores, per call. Callers that run
+                                        // calls from several threads pass 1 (or their share): core/limits.hpp
 };
 
 struct TurbulentOverlap {

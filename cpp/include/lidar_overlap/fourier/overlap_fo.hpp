@@ -20,7 +20,8 @@ struct FoOptions {
   std::size_t beam_grid = 256;          // samples per side of the TEM00 field (Gaussian beams only)
   double beam_window = 10.0;            // its window, in waist radii (10: +-5 w0)
   std::size_t max_spectrum_grid = 4096; // cap on the zero-padded beam spectrum (near-range defocus)
-  int threads = 0;                      // OpenMP threads across ranges; 0: all cores
+  int threads = 0;                      // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                                        // calls from several threads pass 1 (or their share): core/limits.hpp
 };
 
 struct FoOverlap {

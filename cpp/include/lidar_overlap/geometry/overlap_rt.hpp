@@ -12,7 +12,8 @@ namespace lidar_overlap {
 
 struct RtOptions {
   double tolerance = 1e-4;          // absolute error allowed on G at each range, in (0, 1)
-  int threads = 0;                  // OpenMP threads across ranges; 0: all cores
+  int threads = 0;                  // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                                    // calls from several threads pass 1 (or their share): core/limits.hpp
   std::size_t max_segments = 4000;  // per adaptive integral; reaching it clears `converged`
 };
 
