@@ -22,7 +22,7 @@ void positive(const std::string& parameter, double value);        // 0 < value <
 void non_negative(const std::string& parameter, double value);    // 0 <= value < inf
 void in_open_unit(const std::string& parameter, double value);    // 0 < value < 1
 
-// Physical scales (lidar_overlap/limits.hpp): a length in [kMinLength, kMaxLength] m, a coordinate
+// Physical scales (lidar_overlap/core/limits.hpp): a length in [kMinLength, kMaxLength] m, a coordinate
 // (offset, defocus) within +-kMaxLength m, an angle within +-kMaxAngle rad.
 void length(const std::string& parameter, double value);
 void coordinate(const std::string& parameter, double value);

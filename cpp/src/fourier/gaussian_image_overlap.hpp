@@ -9,8 +9,8 @@
 
 namespace lidar_overlap {
 
-// The integral of overlap_fo_radial.hpp at one range z (m), named `parameter` in errors; adds the number of OTF evaluations to
-// *evaluations when given. Throws std::invalid_argument where it would need more than kMaxRadialPanels
+// The integral of overlap_fo_radial.hpp at one range z (m), named `parameter` in errors; adds the number of
+// OTF evaluations to *evaluations when given. Throws std::invalid_argument where it would need more than kMaxRadialPanels
 // panels (a detector, blur or offset of very many image resolutions: the geometric regime).
 inline constexpr std::size_t kMaxRadialPanels = std::size_t{1} << 18;
 double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel = 4.0,

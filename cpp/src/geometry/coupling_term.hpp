@@ -1,6 +1,6 @@
 // One term of a scatterer's coupling: the area of an intersection of discs in the aperture plane
 // whose centres move linearly with the scatterer position P, over the aperture area. The receiver's
-// coupling is "rays passing" minus "rays passing but blocked by the obstruction" (receiver.hpp).
+// coupling is "rays passing" minus "rays passing but blocked by the obstruction" (receiver_coupling.hpp).
 #pragma once
 
 #include <array>

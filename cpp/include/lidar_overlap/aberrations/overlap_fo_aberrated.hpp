@@ -5,7 +5,7 @@
 // for every scatterer), G is the Parseval sum over that OTF times the spectrum of the Gaussian beam image seen
 // through the detector disc, exp(-pi^2 w_i^2 q^2 / 2) disc^(q) exp(-2 pi i q.s):
 //   G = G_0 + sum_q [OTF_W(q) - OTF_0(q)] K^(q) dq^2 / (pi R^2),
-// where G_0 is the aberration-free overlap from the exact radial integral (overlap_fo_radial.hpp) and the
+// where G_0 is the aberration-free overlap from the exact radial integral (fourier/overlap_fo_radial.hpp) and the
 // sum takes the difference of the sampled aberrated and aberration-free OTFs: the sampling's own errors (edge
 // pixels, periodic copies of the point image) are nearly equal in both and cancel (measured: ~5x smaller).
 // The pupil spacing lambda d / L puts the copies L apart, beyond the point image plus the beam image and the

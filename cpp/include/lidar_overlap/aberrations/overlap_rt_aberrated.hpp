@@ -11,7 +11,7 @@
 // When the rays' displacements are the same for every scatterer (Zernike terms and W040 only, no NA cone,
 // obstruction absent or in the aperture plane), G is instead one smooth integral over the pupil of the share of
 // the Gaussian beam image that each ray's displacement leaves on the detector: no ray fan, no beam integral
-// (src/aberrated_pupil_integral.hpp).
+// (src/aberrations/aberrated_pupil_integral.hpp).
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
 // Fourier-optics overlap through a turbulent atmosphere (paper Section 3, step 2): the transmitted TEM00
 // beam is carried through thin phase screens (modified von Karman statistics, lidar_overlap/
-// phase_screen.hpp) placed along the path with the Fried parameters of their segments (Cn2Profile::
+// atmosphere/phase_screen.hpp) placed along the path with the Fried parameters of their segments (Cn2Profile::
 // place_screens), by split-step Fresnel propagation on grids that follow the beam's long-term radius, and
 // the overlap is computed at each range from that realisation's irradiance exactly as in overlap_fo.
 // That sum is linear in the irradiance, so it is made once per range as a map on the beam grid (n^2

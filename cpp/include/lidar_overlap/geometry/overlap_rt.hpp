@@ -1,5 +1,5 @@
 // Ray-tracing overlap function G(z) (paper Appendix B, Sections 4A-4B): the beam irradiance at each
-// range, weighted by the exact paraxial coupling of every scatterer (lidar_overlap/receiver.hpp),
+// range, weighted by the exact paraxial coupling of every scatterer (src/geometry/receiver_coupling.hpp),
 // integrated by adaptive quadrature to an absolute tolerance on G instead of a fixed emitter grid.
 #pragma once
 
