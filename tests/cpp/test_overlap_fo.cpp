@@ -5,8 +5,8 @@
 
 #include "check.hpp"
 #include "lidar_overlap/fourier/overlap_fo.hpp"
-#include "fourier/otf.hpp"
 #include "core/constants.hpp"
+#include "fourier/otf.hpp"
 
 using namespace lidar_overlap;
 

@@ -5,9 +5,9 @@
 #include <string>
 
 #include "lidar_overlap/aberrations/zernike.hpp"
+#include "aberrations/seidel_gradient.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
-#include "aberrations/seidel_gradient.hpp"
 
 namespace lidar_overlap {
 

@@ -11,8 +11,8 @@
 #include "aberrations/aberrated_pupil_integral.hpp"
 #include "aberrations/seidel_gradient.hpp"
 #include "core/checks.hpp"
-#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
+#include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
 

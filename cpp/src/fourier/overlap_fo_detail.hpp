@@ -20,9 +20,6 @@ inline constexpr double kFoOverlapSlack = 1e-4;
 double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z,
                                std::size_t np);
 
-// The padded spectrum size for a beam of grid `spacing` (m) and n samples whose power (all but 1e-7) lies
-// within `radius_bound` (m), the aliases' diffraction tails kept below `tail_error` of G; throws naming
-// ranges[range_index] above max_grid; 0 when no light reaches the detector plane (G = 0).
 // The phase of the Parseval sum per axis, exp(2 pi i f shift) (-1)^k at the frequencies f = df k (k signed,
 // k >= np/2 taken as k - np) of an np-point padded grid: the beam image shifted by `shift` (m, beam plane)
 // against the detector centre, and the padded grid's origin at np/2.
@@ -31,6 +28,9 @@ struct ShiftPhases {
   std::vector<Complex> x, y;
 };
 
+// The padded spectrum size for a beam of grid `spacing` (m) and n samples whose power (all but 1e-7) lies
+// within `radius_bound` (m), the aliases' diffraction tails kept below `tail_error` of G; throws naming
+// ranges[range_index] above max_grid; 0 when no light reaches the detector plane (G = 0).
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
                           double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
                           double tail_error = 1e-6);

@@ -7,8 +7,8 @@
 
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "core/checks.hpp"
-#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
+#include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
 #include "fourier/fo_receiver.hpp"

@@ -10,9 +10,9 @@
 #include <cstddef>
 #include <vector>
 
+#include "lidar_overlap/core/system.hpp"
 #include "core/checks.hpp"
 #include "fourier/fo_receiver.hpp"
-#include "lidar_overlap/core/system.hpp"
 
 namespace lidar_overlap::detail {
 

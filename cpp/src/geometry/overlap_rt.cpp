@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/checks.hpp"
-#include "core/entry_checks.hpp"
 #include "core/constants.hpp"
+#include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
 #include "core/special_functions.hpp"
