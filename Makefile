@@ -47,6 +47,7 @@ ctest:
 	$(BIN)/cmake -S . -B build/cpp -G Ninja -DLIDAR_OVERLAP_TESTS=ON -DLIDAR_OVERLAP_PYTHON=OFF \
 	  -DCMAKE_INSTALL_PREFIX=$(CURDIR)/build/cpp-install -DCMAKE_MAKE_PROGRAM=$(CURDIR)/$(BIN)/ninja
 	$(BIN)/cmake --build build/cpp -j $(JOBS)
+	rm -rf build/cpp-install  # a fresh tree: the consumer test proves that no internal header is installed
 	$(BIN)/cmake --install build/cpp --component cpp
 	$(BIN)/ctest --test-dir build/cpp --output-on-failure -j $(JOBS)
 

@@ -9,10 +9,10 @@
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
-#include "lidar_overlap/aberrations.hpp"
-#include "lidar_overlap/overlap_fo_aberrated.hpp"
-#include "lidar_overlap/overlap_rt_aberrated.hpp"
-#include "lidar_overlap/zernike.hpp"
+#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
+#include "lidar_overlap/aberrations/zernike.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

@@ -1,7 +1,7 @@
 // Fields cross the boundary as (complex array, spacing, wavelength); the C++ Field owns an aligned copy.
 #include "bind_field.hpp"
 #include "interruptible.hpp"
-#include "lidar_overlap/checks.hpp"
+#include "core/checks.hpp"
 
 #include <pybind11/stl.h>
 

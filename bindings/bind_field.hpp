@@ -6,8 +6,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include "lidar_overlap/field.hpp"
-#include "lidar_overlap/propagate.hpp"
+#include "lidar_overlap/fourier/field.hpp"
+#include "lidar_overlap/fourier/propagate.hpp"
 
 using ComplexArray = pybind11::array_t<std::complex<double>, pybind11::array::c_style | pybind11::array::forcecast>;
 

@@ -6,7 +6,7 @@
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
-#include "lidar_overlap/flat_top.hpp"
+#include "lidar_overlap/beams/flat_top.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

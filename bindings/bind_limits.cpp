@@ -4,8 +4,8 @@
 
 #include <exception>
 
-#include "lidar_overlap/cancel.hpp"
-#include "lidar_overlap/limits.hpp"
+#include "lidar_overlap/core/cancel.hpp"
+#include "lidar_overlap/core/limits.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

@@ -8,8 +8,8 @@
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
-#include "lidar_overlap/overlap_fo.hpp"
-#include "lidar_overlap/overlap_fo_radial.hpp"
+#include "lidar_overlap/fourier/overlap_fo.hpp"
+#include "lidar_overlap/fourier/overlap_fo_radial.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "interruptible.hpp"
-#include "lidar_overlap/overlap_rt.hpp"
-#include "lidar_overlap/receiver.hpp"
+#include "lidar_overlap/geometry/overlap_rt.hpp"
+#include "lidar_overlap/geometry/receiver.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

@@ -6,8 +6,9 @@
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
-#include "lidar_overlap/grid_choice.hpp"
-#include "lidar_overlap/propagate.hpp"
+#include "fourier/fft.hpp"
+#include "lidar_overlap/fourier/grid_choice.hpp"
+#include "lidar_overlap/fourier/propagate.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "lidar_overlap/system.hpp"
+#include "lidar_overlap/core/system.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

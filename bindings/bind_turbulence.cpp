@@ -6,9 +6,9 @@
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
-#include "lidar_overlap/overlap_turbulent.hpp"
-#include "lidar_overlap/phase_screen.hpp"
-#include "lidar_overlap/turbulence.hpp"
+#include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
+#include "lidar_overlap/atmosphere/phase_screen.hpp"
+#include "lidar_overlap/atmosphere/turbulence.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

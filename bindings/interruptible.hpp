@@ -3,7 +3,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include "lidar_overlap/cancel.hpp"
+#include "lidar_overlap/core/cancel.hpp"
 
 // For its lifetime: the GIL is released, and the core asks Python for pending signals between ranges,
 // realisations and iterations. On Ctrl-C the call stops with lidar_overlap::Cancelled, which the module

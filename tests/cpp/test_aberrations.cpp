@@ -6,14 +6,14 @@
 #include <vector>
 
 #include "check.hpp"
-#include "lidar_overlap/aberrations.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/overlap_fo_aberrated.hpp"
-#include "lidar_overlap/overlap_fo_radial.hpp"
-#include "lidar_overlap/overlap_rt.hpp"
-#include "lidar_overlap/overlap_rt_aberrated.hpp"
-#include "lidar_overlap/quadrature.hpp"
-#include "lidar_overlap/zernike.hpp"
+#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
+#include "lidar_overlap/aberrations/zernike.hpp"
+#include "lidar_overlap/fourier/overlap_fo_radial.hpp"
+#include "lidar_overlap/geometry/overlap_rt.hpp"
+#include "core/constants.hpp"
+#include "core/quadrature.hpp"
 
 using namespace lidar_overlap;
 

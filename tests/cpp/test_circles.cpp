@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "check.hpp"
-#include "lidar_overlap/circles.hpp"
+#include "geometry/circles.hpp"
 
 using namespace lidar_overlap;
 

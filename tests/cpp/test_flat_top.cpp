@@ -5,8 +5,8 @@
 #include <numeric>
 
 #include "check.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/flat_top.hpp"
+#include "lidar_overlap/beams/flat_top.hpp"
+#include "core/constants.hpp"
 
 using namespace lidar_overlap;
 

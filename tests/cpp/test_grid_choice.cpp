@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "check.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/grid_choice.hpp"
+#include "lidar_overlap/fourier/grid_choice.hpp"
+#include "core/constants.hpp"
 
 using namespace lidar_overlap;
 

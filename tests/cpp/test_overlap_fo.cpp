@@ -4,8 +4,9 @@
 #include <cmath>
 
 #include "check.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/overlap_fo.hpp"
+#include "lidar_overlap/fourier/overlap_fo.hpp"
+#include "core/constants.hpp"
+#include "fourier/otf.hpp"
 
 using namespace lidar_overlap;
 

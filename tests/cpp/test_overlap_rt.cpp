@@ -5,6 +5,7 @@
 
 #include "check.hpp"
 #include "lidar_overlap/lidar_overlap.hpp"
+#include "geometry/receiver_coupling.hpp"  // internal: the coupling of single scatterers
 
 using namespace lidar_overlap;
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "check.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/phase_screen.hpp"
-#include "lidar_overlap/quadrature.hpp"
+#include "lidar_overlap/atmosphere/phase_screen.hpp"
+#include "core/constants.hpp"
+#include "core/quadrature.hpp"
 
 using namespace lidar_overlap;
 

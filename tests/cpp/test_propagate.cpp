@@ -4,9 +4,9 @@
 #include <random>
 
 #include "check.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/propagate.hpp"
-#include "lidar_overlap/scaled_dft.hpp"
+#include "lidar_overlap/fourier/propagate.hpp"
+#include "core/constants.hpp"
+#include "fourier/scaled_dft.hpp"
 
 using namespace lidar_overlap;
 

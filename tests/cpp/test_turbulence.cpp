@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "check.hpp"
-#include "lidar_overlap/constants.hpp"
-#include "lidar_overlap/turbulence.hpp"
+#include "lidar_overlap/atmosphere/turbulence.hpp"
+#include "core/constants.hpp"
 
 using namespace lidar_overlap;
 

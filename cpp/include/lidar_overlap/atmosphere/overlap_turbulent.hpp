@@ -1,0 +1,47 @@
+// Fourier-optics overlap through a turbulent atmosphere (paper Section 3, step 2): the transmitted TEM00
+// beam is carried through thin phase screens (modified von Karman statistics, lidar_overlap/
+// atmosphere/phase_screen.hpp) placed along the path with the Fried parameters of their segments (Cn2Profile::
+// place_screens), by split-step Fresnel propagation on grids that follow the beam's long-term radius, and
+// the overlap is computed at each range from that realisation's irradiance exactly as in overlap_fo.
+// That sum is linear in the irradiance, so it is made once per range as a map on the beam grid (n^2
+// doubles per range) and costs each realisation one pass over its irradiance.
+// Each realisation is one random draw of the atmosphere (frozen during the pulse): the statistics over
+// realisations give the mean overlap and its spread. The return path is taken as unperturbed (the
+// receiver sees the scattering volume through the same turbulence, which mostly moves the image).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "lidar_overlap/atmosphere/turbulence.hpp"
+#include "lidar_overlap/core/system.hpp"
+
+namespace lidar_overlap {
+
+// Bounds on the work one call may ask for (each realisation costs one split-step pass per screen).
+inline constexpr std::size_t kMaxRealizations = 1000000;
+inline constexpr std::size_t kMaxScreens = 1000;
+
+struct TurbulenceOptions {
+  std::size_t realizations = 20;
+  std::size_t screens = 10;             // phase screens over [0, last range]
+  std::uint64_t seed = 0;               // same seed, same screens, whatever the thread count
+  std::size_t beam_grid = 256;          // samples per side of the propagated field
+  double beam_window = 8.0;             // window in long-term radii (plus 8 rms wander) at every plane
+  std::size_t max_spectrum_grid = 4096;
+  int threads = 0;                      // OpenMP threads across realisations; 0: all cores, per call. Callers that run
+                                        // calls from several threads pass 1 (or their share): core/limits.hpp
+};
+
+struct TurbulentOverlap {
+  std::vector<std::vector<double>> overlap;  // [realisation][range]
+  std::vector<double> wander_x, wander_y;    // m, beam centroid at the last range, per realisation
+  std::vector<double> radius_last;           // m, second-moment radius at the last range, per realisation
+};
+
+// Throws std::invalid_argument for a system or profile that is not valid, a beam that is not a
+// diffraction-limited Gaussian, or options out of range (naming them).
+TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vector<double>& ranges,
+                                      const Cn2Profile& atmosphere, const TurbulenceOptions& options = {});
+
+}  // namespace lidar_overlap

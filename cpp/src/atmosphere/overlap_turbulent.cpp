@@ -1,0 +1,273 @@
+#include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lidar_overlap/atmosphere/phase_screen.hpp"
+#include "lidar_overlap/core/limits.hpp"
+#include "lidar_overlap/fourier/overlap_fo.hpp"
+#include "core/checks.hpp"
+#include "core/constants.hpp"
+#include "core/entry_checks.hpp"
+#include "core/parallel.hpp"
+#include "fourier/fft.hpp"
+#include "fourier/fo_receiver.hpp"
+#include "fourier/overlap_fo_detail.hpp"
+#include "fourier/transfer_table.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+
+// A plane the beam passes: a phase screen or a range where the overlap is wanted.
+struct Plane {
+  double z;
+  int screen = -1;  // index into the screens, or -1
+  int range = -1;   // index into the ranges, or -1
+};
+
+// One split step of the scaled angular-spectrum (Fresnel transfer function) method: n x n samples of
+// spacing d1 at one plane to spacing d2 = m d1 at a plane dz further, with m chosen to follow the beam's
+// growth, U2 = Q3 IFFT[Q2 FFT(Q1 U1 / m)] / n^2 with Q1 = exp(i k (1 - m) r1^2 / (2 dz)), Q2 = exp(-i 2
+// pi^2 dz f^2 / (m k)), Q3 = exp(i k (m - 1) r2^2 / (2 m dz)) (J. D. Schmidt, Numerical Simulation of
+// Optical Wave Propagation, 2010, Sec. 8.2). All three are separable in x and y. A step leaves its Q3 / n^2
+// to the next one, which applies it with its own Q1 in one pass (finish() after the last): a phase and a
+// constant change neither the phase screens' effect nor the irradiance's shape the overlap reads.
+class ScaledStep {
+ public:
+  ScaledStep(std::size_t n, double d1, double d2, double dz, double lambda, const ScaledStep* before)
+      : n_(n), d2_(d2), in_x_(n), in_y_(n), q2_(n), q3_(n) {
+    const double k = 2.0 * kPi / lambda, m = d2 / d1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x1 = (static_cast<double>(i) - 0.5 * n) * d1, x2 = (static_cast<double>(i) - 0.5 * n) * d2;
+      const double f = (i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n)) / (n * d1);
+      const Complex q1 = std::polar(1.0, k * (1.0 - m) * x1 * x1 / (2.0 * dz));
+      in_y_[i] = before ? before->q3_[i] * q1 : q1;
+      in_x_[i] = in_y_[i] * (before ? before->scale_out_ / m : 1.0 / m);
+      q2_[i] = std::polar(1.0, -2.0 * kPi * kPi * dz * f * f / (m * k));
+      q3_[i] = std::polar(1.0, k * (m - 1.0) * x2 * x2 / (2.0 * m * dz));
+    }
+    scale_out_ = 1.0 / (static_cast<double>(n) * n);
+  }
+  void execute(Field& u) const {
+    multiply(u, in_y_, in_x_);
+    fft2d(u.values, n_, FftDirection::forward);
+    multiply(u, q2_, q2_);
+    fft2d(u.values, n_, FftDirection::backward);
+    u.spacing = d2_;
+  }
+  void finish(Field& u) const {
+    std::vector<Complex> out_x(q3_);
+    for (Complex& c : out_x) c *= scale_out_;
+    multiply(u, q3_, out_x);
+  }
+
+ private:
+  void multiply(Field& u, const std::vector<Complex>& fy, const std::vector<Complex>& fx) const {
+    for (std::size_t iy = 0; iy < n_; ++iy) {
+      Complex* row = &u.values[iy * n_];
+      const Complex a = fy[iy];
+      for (std::size_t ix = 0; ix < n_; ++ix) row[ix] *= a * fx[ix];
+    }
+  }
+
+  std::size_t n_;
+  double d2_, scale_out_ = 1.0;
+  std::vector<Complex> in_x_, in_y_, q2_, q3_;
+};
+
+// G at one range as a weighted mean of the realisation's irradiance: G = sum E m / sum E. The map m is
+// the Parseval sum of overlap_from_irradiance (overlap_fo.cpp) moved to the beam plane: there G =
+// sum_f T(f) Re[P(f) conj(FFT E)(f)] df^2 / (to_image^2 A E(0)) over the np x np padded grid, and as E is
+// real, sum_f T P conj(FFT E) = sum_x E(x) BFFT[T P](x). m depends on the receiver, not on the
+// atmosphere: made once per range, it leaves each realisation one pass over its n x n irradiance, with
+// the same aliasing period (np dx) as the direct sum.
+class CouplingMap {
+ public:
+  CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n, std::size_t np)
+      : n_(n), map_(n * n) {
+    if (np == 0) return;  // no light reaches the detector plane (spectrum_grid): a zero map, G = 0
+    const double to_image = rx.detector_distance() / z, df = 1.0 / (np * dx);
+    // T = OTF x disc^ up to the cutoff or the grid's corner frequency (fourier/transfer_table.hpp).
+    const double q_max = std::min(rx.cutoff(), df * (0.5 * np * std::sqrt(2.0) + 1.0) / to_image);
+    const detail::TransferTable transfer(system, rx, q_max);
+    // P: the shift to the detector centre's image and (-1)^(kx+ky), the padded grid's origin at np/2.
+    const detail::ShiftPhases phase(np, df, system.beam.center(z) + (1.0 / to_image) * system.detector.offset);
+    // BFFT[T P] on the beam's n x n window only: rows of frequencies within q_max, a chunk of rows at a
+    // time, transformed along x and cut to the window's columns; then those columns along y. Rows ky and
+    // -ky are neighbours and share T(|kx|, |ky|), evaluated once per quadrant.
+    const std::size_t off = np / 2 - n / 2, chunk = std::min<std::size_t>(64, np), half = np / 2;
+    const std::size_t k_max = std::min(half, checks::saturate(q_max * to_image / df));  // beyond: T = 0
+    std::vector<std::size_t> rows{0};
+    for (std::size_t a = 1; a <= k_max; ++a) {
+      rows.push_back(a);
+      if (a < half) rows.push_back(np - a);
+    }
+    std::vector<double> t_row(half + 1);
+    ComplexBuffer block(chunk * np), columns(n * np, Complex{});
+    for (std::size_t r0 = 0; r0 < rows.size(); r0 += chunk) {
+      std::fill(block.begin(), block.end(), Complex{});
+      for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r) {
+        const std::size_t ky = rows[r];
+        if (ky <= half) {
+          const double fy = df * static_cast<double>(ky);
+          for (std::size_t a = 0; a <= half; ++a) {
+            const double fx = df * static_cast<double>(a), q = std::sqrt(fx * fx + fy * fy) / to_image;
+            t_row[a] = q < q_max ? transfer(q) : 0.0;
+          }
+        }
+        Complex* row = &block[(r - r0) * np];
+        const Complex py = phase.y[ky];
+        for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase.x[kx] * py);
+      }
+      fft_rows(block, chunk, np, FftDirection::backward);
+      for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r)
+        for (std::size_t ix = 0; ix < n; ++ix) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
+    }
+    fft_rows(columns, n, np, FftDirection::backward);
+    const double scale = df * df / (to_image * to_image * rx.aperture_area());
+    for (std::size_t iy = 0; iy < n; ++iy)
+      for (std::size_t ix = 0; ix < n; ++ix) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
+  }
+
+  double overlap(const Field& u) const {
+    double e = 0.0, em = 0.0;
+    for (std::size_t i = 0; i < n_ * n_; ++i) {
+      const double v = std::norm(u.values[i]);
+      e += v;
+      em += v * map_[i];
+    }
+    return em / e;
+  }
+
+ private:
+  std::size_t n_;
+  std::vector<double> map_;
+};
+
+}  // namespace
+
+TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vector<double>& ranges,
+                                      const Cn2Profile& atmosphere, const TurbulenceOptions& o) {
+  system.validate();
+  atmosphere.validate();
+  const GaussianBeam& beam = system.beam;
+  const double lambda = beam.wavelength, w0 = beam.waist_radius;
+  if (beam.width_law != WidthLaw::gaussian ||
+      (beam.divergence && std::abs(*beam.divergence * kPi * w0 / lambda - 1.0) > 1e-9))
+    checks::fail("beam.divergence", beam.divergence.value_or(0.0),
+                 "None (a diffraction-limited TEM00 beam with the Gaussian width law) for the turbulent FO path");
+  if (o.realizations < 1 || o.realizations > kMaxRealizations)
+    checks::fail("realizations", static_cast<double>(o.realizations), "a count from 1 to 1000000");
+  if (o.screens < 1 || o.screens > kMaxScreens) checks::fail("screens", static_cast<double>(o.screens), "a count from 1 to 1000");
+  if (o.beam_grid < 32 || o.beam_grid % 2) checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
+  checks::grid("beam_grid", o.beam_grid, sizeof(Complex), 4);  // at least a field, a screen pair and a map
+  if (!(o.beam_window >= 2.0 && o.beam_window <= static_cast<double>(o.beam_grid)))
+    checks::fail("beam_window", o.beam_window, "a window from 2 to beam_grid long-term beam radii");
+  if (o.max_spectrum_grid < 32 || o.max_spectrum_grid > kMaxGridSide)
+    checks::fail("max_spectrum_grid", static_cast<double>(o.max_spectrum_grid), "a size from 32 to 65536");
+  const int threads = detail::checked_threads_and_ranges(system, ranges, o.threads);
+  if (ranges.empty()) return {};
+  const double z_max = *std::max_element(ranges.begin(), ranges.end());
+  const std::size_t n = o.beam_grid;
+
+  // Each plane's grid spans beam_window long-term radii plus 8 rms wander: the beam of any realisation
+  // stays inside it (all but ~1e-9 of its power at 8 W_LT); the transmitter plane samples the waist alike.
+  auto spacing_at = [&](double z) {
+    if (z == 0.0) return o.beam_window * w0 / n;
+    const double wander = std::sqrt(atmosphere.beam_wander_variance(w0, lambda, z));
+    return (o.beam_window * atmosphere.long_term_radius(w0, lambda, z) + 8.0 * wander) / n;
+  };
+  const std::vector<ScreenPlacement> placements = atmosphere.place_screens(lambda, z_max, o.screens);
+  std::vector<Plane> planes;
+  for (std::size_t j = 0; j < placements.size(); ++j) planes.push_back({placements[j].range, static_cast<int>(j), -1});
+  for (std::size_t i = 0; i < ranges.size(); ++i) planes.push_back({ranges[i], -1, static_cast<int>(i)});
+  std::stable_sort(planes.begin(), planes.end(), [](const Plane& a, const Plane& b) { return a.z < b.z; });
+
+  // Shared, made once: one screen generator and one scaled split step per plane (the grid spacing grows
+  // with the beam), the receivers and spectrum grids per range.
+  std::vector<std::unique_ptr<PhaseScreenGenerator>> generators(placements.size());
+  std::vector<std::unique_ptr<ScaledStep>> steps;
+  std::vector<double> range_spacing(ranges.size());
+  std::vector<FoReceiver> receivers;
+  std::vector<std::size_t> grids(ranges.size());
+  std::vector<std::unique_ptr<CouplingMap>> maps(ranges.size());
+  double z_prev = 0.0, dx_prev = spacing_at(0.0);
+  const ScaledStep* last_step = nullptr;
+  for (const Plane& p : planes) {
+    const double dx = std::max(dx_prev, spacing_at(p.z));
+    if (p.z > z_prev) {
+      steps.push_back(std::make_unique<ScaledStep>(n, dx_prev, dx, p.z - z_prev, lambda, last_step));
+      last_step = steps.back().get();
+    } else {
+      steps.push_back(nullptr);
+    }
+    if (p.screen >= 0)
+      generators[p.screen] = std::make_unique<PhaseScreenGenerator>(n, dx, placements[p.screen].r0, atmosphere.outer_scale,
+                                                                    atmosphere.inner_scale);
+    if (p.range >= 0) range_spacing[p.range] = dx;
+    z_prev = p.z;
+    dx_prev = dx;
+  }
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    receivers.emplace_back(system, ranges[i], detail::range_name(i));
+    const double radius = 2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +
+                                  3.0 * std::sqrt(atmosphere.beam_wander_variance(w0, lambda, ranges[i])));
+    // Tails to 1e-4 of G: far below the spread between realisations, at a quarter of the grid of 1e-6.
+    grids[i] = detail::spectrum_grid(system, receivers[i], ranges[i], range_spacing[i], radius, n,
+                                     o.max_spectrum_grid, i, 1e-4);
+  }
+  // Coupling maps (one n x n table per range), screen generators (a spectrum each) and per-thread fields and
+  // map-building buffers, before any of it is allocated.
+  double np_max = 0.0;
+  for (std::size_t g : grids) np_max = std::max(np_max, static_cast<double>(g));
+  const double n2 = double(n) * double(n);
+  checks::memory("beam_grid", static_cast<double>(n),
+                 8.0 * n2 * double(ranges.size()) + 16.0 * n2 * double(o.screens) +
+                     16.0 * double(threads) * (4.0 * n2 + 2.0 * double(n) * np_max),
+                 "lower beam_grid, screens or the number of ranges");
+  detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
+    maps[i] = std::make_unique<CouplingMap>(system, receivers[i], ranges[i], range_spacing[i], n, grids[i]);
+  });
+
+  TurbulentOverlap out;
+  out.overlap.assign(o.realizations, std::vector<double>(ranges.size(), 0.0));
+  out.wander_x.assign(o.realizations, 0.0);
+  out.wander_y.assign(o.realizations, 0.0);
+  out.radius_last.assign(o.realizations, 0.0);
+  // Screen j of realisation k is element k % 2 of pair k / 2 of screen j's stream (the seed mixed with
+  // j): one FFT makes both. With enough realisations to keep every thread busy, each task carries the
+  // two realisations of a pair side by side and uses both screens.
+  const std::size_t per_task = o.realizations >= 2 * static_cast<std::size_t>(threads) ? 2 : 1;
+  const std::size_t tasks = (o.realizations + per_task - 1) / per_task;
+  detail::parallel_for(tasks, threads, [&](std::size_t t) {
+    const std::size_t k0 = per_task * t, count = std::min(per_task, o.realizations - k0);
+    std::vector<Field> fields(count, Field::gaussian(lambda, w0, n, spacing_at(0.0)));
+    for (std::size_t s = 0; s < planes.size(); ++s) {
+      const Plane& p = planes[s];
+      if (steps[s])
+        for (Field& u : fields) steps[s]->execute(u);
+      if (p.screen >= 0) {
+        const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
+        const auto pair = generators[p.screen]->generate_pair(stream, k0 / 2);
+        for (std::size_t c = 0; c < count; ++c) apply_phase_screen(fields[c], pair[(k0 + c) % 2]);
+      }
+      if (p.range >= 0)
+        for (std::size_t c = 0; c < count; ++c) out.overlap[k0 + c][p.range] = maps[p.range]->overlap(fields[c]);
+    }
+    for (std::size_t c = 0; c < count; ++c) {
+      if (last_step) last_step->finish(fields[c]);
+      const Vec2 centre = fields[c].centroid();
+      out.wander_x[k0 + c] = centre.x;
+      out.wander_y[k0 + c] = centre.y;
+      out.radius_last[k0 + c] = fields[c].beam_radius();
+    }
+  });
+  for (std::vector<double>& g : out.overlap) checks::overlap_values(g, ranges, detail::kFoOverlapSlack, "overlap_fo_turbulent");
+  return out;
+}
+
+}  // namespace lidar_overlap

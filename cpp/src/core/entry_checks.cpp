@@ -1,0 +1,15 @@
+#include "core/entry_checks.hpp"
+
+#include "core/parallel.hpp"
+
+namespace lidar_overlap::detail {
+
+std::string range_name(std::size_t i) { return "ranges[" + std::to_string(i) + "]"; }
+
+int checked_threads_and_ranges(const LidarSystem& system, const std::vector<double>& ranges, int threads) {
+  const int team = thread_count(threads);
+  for (std::size_t i = 0; i < ranges.size(); ++i) system.validate_range(ranges[i], range_name(i));
+  return team;
+}
+
+}  // namespace lidar_overlap::detail

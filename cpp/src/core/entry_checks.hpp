@@ -1,0 +1,20 @@
+// The checks every overlap entry point makes on its ranges and its `threads` option before it computes.
+// Internal header, not installed.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "lidar_overlap/core/system.hpp"
+
+namespace lidar_overlap::detail {
+
+// "ranges[i]": how errors name the i-th range of a call.
+std::string range_name(std::size_t i);
+
+// Checks `threads` (thread_count, core/parallel.hpp) and then every range (LidarSystem::validate_range, each
+// named ranges[i]); returns the OpenMP team size for the call.
+int checked_threads_and_ranges(const LidarSystem& system, const std::vector<double>& ranges, int threads);
+
+}  // namespace lidar_overlap::detail

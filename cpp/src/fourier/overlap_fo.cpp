@@ -1,0 +1,237 @@
+#include "lidar_overlap/fourier/overlap_fo.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "lidar_overlap/core/limits.hpp"
+#include "lidar_overlap/fourier/grid_choice.hpp"
+#include "core/checks.hpp"
+#include "core/constants.hpp"
+#include "core/entry_checks.hpp"
+#include "core/parallel.hpp"
+#include "fourier/fft.hpp"
+#include "fourier/fo_receiver.hpp"
+#include "fourier/overlap_fo_detail.hpp"
+#include "fourier/transfer_table.hpp"
+
+namespace lidar_overlap {
+
+namespace detail {
+
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
+  if (np == 0 || !rx.passes_light()) return 0.0;
+  const GaussianBeam& beam = system.beam;
+  const std::size_t nb = at_z.n;
+  const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
+  const Vec2 c = beam.center(z), o = system.detector.offset;
+
+  ComplexBuffer spectrum(np * np, Complex{});
+  const std::size_t off = np / 2 - nb / 2;
+  for (std::size_t iy = 0; iy < nb; ++iy)
+    for (std::size_t ix = 0; ix < nb; ++ix) spectrum[(iy + off) * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
+  fft2d(spectrum, np, FftDirection::forward);
+  const double e0 = spectrum[0].real();
+  const double df = 1.0 / (np * dx);
+  auto signed_index = [np](std::size_t k) { return k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np; };
+
+  // Frequencies where the beam spectrum exceeds 1e-13 of its peak bound the table of OTF x disc^
+  // (a 1e-10 cut already moves G by 1e-6 at 1000 m).
+  double f2_max = 0.0;
+  for (std::size_t ky = 0; ky < np; ++ky)
+    for (std::size_t kx = 0; kx < np; ++kx)
+      if (std::norm(spectrum[ky * np + kx]) > 1e-26 * e0 * e0) {
+        const double fx = signed_index(kx), fy = signed_index(ky);
+        f2_max = std::max(f2_max, fx * fx + fy * fy);
+      }
+  const double q_max = std::min(df * std::sqrt(f2_max) / to_image, rx.cutoff());
+  const TransferTable transfer(system, rx, q_max);
+
+  // G = (z/d)^2 sum_f T(|f| z/d) Re[exp(2 pi i f.(c + o z/d)) (-1)^(kx+ky) conj(FFT E)] df^2 / (A E(0)),
+  // the phase separable per axis.
+  const ShiftPhases phase(np, df, c + (1.0 / to_image) * o);
+  double sum = 0.0;
+  for (std::size_t ky = 0; ky < np; ++ky) {
+    const double fy = df * signed_index(ky);
+    for (std::size_t kx = 0; kx < np; ++kx) {
+      const double fx = df * signed_index(kx);
+      const double q = std::sqrt(fx * fx + fy * fy) / to_image;
+      if (q >= q_max) continue;
+      sum += transfer(q) * (phase.x[kx] * phase.y[ky] * std::conj(spectrum[ky * np + kx])).real();
+    }
+  }
+  return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
+}
+
+ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
+  for (std::size_t k = 0; k < np; ++k) {
+    const double sign = (k % 2) ? -1.0 : 1.0, f = df * (k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np);
+    x[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.x);
+    y[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.y);
+  }
+}
+
+std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
+                          double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
+                          double tail_error) {
+  // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
+  // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
+  // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
+  if (!rx.passes_light()) return 0;  // G = 0: no grid
+  const double to_image = rx.detector_distance() / z;
+  const double reach = rx.blur_radius() + 20.0 / rx.cutoff() +
+                       norm(system.detector.offset + to_image * system.beam.center(z)) + system.detector.radius +
+                       2.0 * radius_bound * to_image;
+  // The aliases also sit in the far diffraction tails of each other's point images: their period must
+  // keep those below tail_error of G (1e-6: 4e-7 measured against a direct quadrature).
+  const double period = 1.1 * reach + rx.tail_period(tail_error);
+  const std::size_t np =
+      next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image)))));
+  if (np > max_grid)
+    checks::fail(detail::range_name(range_index), z,
+                 "a range needing a beam spectrum grid of at most max_spectrum_grid = " + std::to_string(max_grid) +
+                     " (here " + std::to_string(np) + "): its alias period must hold, on the detector plane, the "
+                     "point image (blur radius " + checks::number(rx.blur_radius()) + " m), the beam image (offset " +
+                     checks::number(norm(system.detector.offset + to_image * system.beam.center(z))) + " m, radius " +
+                     checks::number(radius_bound * to_image) + " m) and the detector (" +
+                     checks::number(system.detector.radius) + " m); where the blur dominates the image is geometric and "
+                     "method 'rt' is exact, otherwise fo_path='radial' needs no grid");
+  return np;
+}
+
+}  // namespace detail
+
+namespace {
+
+// How the beam reaches the ranges: its samples per side, its grid spacing at each range, a bound on its
+// radius there (all but 1e-7 of the power inside), and the field itself (made inside the parallel loop).
+struct BeamAtRanges {
+  std::size_t n = 0;
+  std::vector<double> spacing, radius_bound;
+  std::function<Propagated(std::size_t)> at;
+};
+
+FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
+                              const BeamAtRanges& beam_at, const FoOptions& options) {
+  const int threads = detail::thread_count(options.threads);
+  if (options.max_spectrum_grid < 16 || options.max_spectrum_grid > kMaxGridSide)
+    checks::fail("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
+                 "a size from 16 to " + std::to_string(kMaxGridSide));
+  const std::size_t n_ranges = ranges.size();
+  // Everything that can fail is settled before the parallel loop: receivers and grid sizes.
+  std::vector<FoReceiver> receivers;
+  FoOverlap out;
+  for (std::size_t i = 0; i < n_ranges; ++i) {
+    const double z = ranges[i];
+    receivers.emplace_back(system, z, detail::range_name(i));
+    const FoReceiver& rx = receivers.back();
+    const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
+                                                 options.max_spectrum_grid, i);
+    out.spectrum_grid.push_back(np);
+    // Each thread holds the beam field and its padded spectrum.
+    checks::memory("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
+                   16.0 * threads * (double(np) * double(np) + double(beam_at.n) * double(beam_at.n)),
+                   detail::range_name(i) + " needs a " + std::to_string(np) +
+                       "^2 spectrum per thread: lower max_spectrum_grid (that range then raises), use fewer threads, "
+                       "or method 'rt' there");
+  }
+
+  out.overlap.assign(n_ranges, 0.0);
+  out.beam_reports.assign(n_ranges, {});
+  // Ranges in parallel; the work inside each runs on one thread (nested regions stay inactive).
+  detail::parallel_for(n_ranges, threads, [&](std::size_t i) {
+    if (out.spectrum_grid[i] == 0) return;  // no light reaches the detector plane: G = 0
+    Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
+    out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
+    out.beam_reports[i] = at_z.report;
+  });
+  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo", [&](std::size_t i) {
+    const PropagationReport& r = out.beam_reports[i];
+    const double loss = std::max({r.output_edge_power, r.input_edge_power, r.band_limit_loss});
+    return loss > 1e-6 ? "the transmitted field loses " + checks::number(loss) +
+                             " of its power to the window edge or the band limit: enlarge beam_window or beam_grid"
+                       : std::string();
+  });
+  return out;
+}
+
+}  // namespace
+
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
+  system.validate();
+  const GaussianBeam& beam = system.beam;
+  beam.validate_for_fourier_optics();
+  if (options.beam_grid < 16 || options.beam_grid % 2)
+    checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
+  checks::grid("beam_grid", options.beam_grid, sizeof(Complex), 2 * detail::thread_count(options.threads));
+  // A window that holds the waist (+-1 w0), sampled at least once per waist radius.
+  if (!(options.beam_window >= 2.0 && options.beam_window <= static_cast<double>(options.beam_grid)))
+    checks::fail("beam_window", options.beam_window,
+                 "a window from 2 to beam_grid = " + std::to_string(options.beam_grid) +
+                     " waist radii, so that the waist is sampled at least once per radius");
+  detail::checked_threads_and_ranges(system, ranges, options.threads);
+  const std::size_t nb = options.beam_grid;
+  const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
+  if (!beam.divergence || std::abs(*beam.divergence / theta_d - 1.0) <= 1e-9)
+    return overlap_fo(system, ranges,
+                      Field::gaussian(beam.wavelength, beam.waist_radius, nb, options.beam_window * beam.waist_radius / nb),
+                      options);
+  // M^2 > 1: a Gaussian Schell-model beam. Its coherent modes add incoherently to a Gaussian irradiance of
+  // radius w(z)^2 = w0^2 + (theta z)^2 at every range, and the overlap needs only the irradiance.
+  // Sampled like the TEM00 path's field: the waist's spacing while the beam is near its waist, then the
+  // Fresnel spacing lambda z / (window w0) widened by M^2 (the far-field width over the TEM00's).
+  const double m2 = *beam.divergence / theta_d, window = options.beam_window * beam.waist_radius;
+  BeamAtRanges b;
+  b.n = nb;
+  for (double z : ranges) {
+    b.spacing.push_back(std::max(window / nb, m2 * beam.wavelength * z / window));
+    b.radius_bound.push_back(std::sqrt(std::log(1e7) / 2.0) * beam.radius(z));
+  }
+  b.at = [&](std::size_t i) {
+    return Propagated{Field::gaussian(beam.wavelength, beam.radius(ranges[i]), nb, b.spacing[i]), {}};
+  };
+  return overlap_over_ranges(system, ranges, b, options);
+}
+
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const Field& given,
+                     const FoOptions& options) {
+  system.validate();
+  given.validate();
+  // G does not depend on the field's power: carry it at unit power, so that no weak or strong field
+  // underflows or overflows in the irradiance spectra.
+  const double power = given.power();
+  if (!(power > 0.0) || !std::isfinite(power))
+    checks::fail("transmitted.power", power, "a field with finite power > 0");
+  Field transmitted = given;
+  const double to_unit = 1.0 / std::sqrt(power);
+  for (Complex& v : transmitted.values) v *= to_unit;
+  if (transmitted.wavelength != system.beam.wavelength)
+    checks::fail("transmitted.wavelength", transmitted.wavelength,
+                 "the system's beam wavelength " + std::to_string(system.beam.wavelength) + " m");
+  detail::checked_threads_and_ranges(system, ranges, options.threads);
+  // Radii holding all but 1e-7 of the power, in space and angle: r0 + z theta bounds the beam at z.
+  const GridChoice extent = choose_grid(transmitted, 0.0, PropagationMethod::automatic);
+  BeamAtRanges b;
+  b.n = transmitted.n;
+  std::vector<std::shared_ptr<const PropagationPlan>> plans;
+  for (double z : ranges) {
+    plans.push_back(PropagationPlan::cached(b.n, transmitted.spacing, transmitted.wavelength, z,
+                                            PropagationMethod::automatic, 0.0));
+    b.spacing.push_back(plans.back()->output_spacing());
+    b.radius_bound.push_back(extent.input_radius + z * extent.angular_radius);
+  }
+  b.at = [&](std::size_t i) { return plans[i]->execute(transmitted); };
+  return overlap_over_ranges(system, ranges, b, options);
+}
+
+double emitter_coupling_fo(const LidarSystem& system, double z, Vec2 position) {
+  checks::coordinate("position", position);
+  const FoReceiver rx(system, z);
+  std::vector<double> g{rx.point_coupling(norm(system.detector.offset + (rx.detector_distance() / z) * position))};
+  checks::overlap_values(g, {z}, 1e-6, "emitter_coupling_fo");  // the integral's accuracy, ~1e-10 of the area
+  return g[0];
+}
+
+}  // namespace lidar_overlap
