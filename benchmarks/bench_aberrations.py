@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import lidar_overlap as lo
-from lidar_overlap.overlap_aberrated import with_aberrations
+from lidar_overlap import with_aberrations
 from _common import best_time, load_average, source_commit
 
 WAVELENGTH, D, F, DEFOCUS = 355e-9, 0.15, 1.0, 1e-3

@@ -208,7 +208,7 @@ def judge_result(result, node, built) -> tuple:
         if not problems and float(np.sum(result.image)) > 0:
             summary["fraction"] = result.fraction
             _finite_number("fraction", result.fraction, problems, 0.0, 1.0 + 1e-12)
-    elif type(result).__name__ == "Decision":
+    elif isinstance(result, lo.Plan):
         if result.method not in ("rt", "fo"):
             problems.append(f"decision.method = {result.method!r}")
         fieldbeam = isinstance(getattr(built[0], "beam", None), lo.FieldBeam) if built else False

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import lidar_overlap as lo
-from lidar_overlap.overlap_aberrated import with_aberrations
+from lidar_overlap import with_aberrations
 
 ORTHONORMALITY_TOL = 1e-12     # Gauss quadrature exact for these polynomials
 GRADIENT_TOL = 1e-7            # central differences, step 1e-5

@@ -170,3 +170,44 @@ def test_plot_without_signal_draws_no_marks(dark):
         np.testing.assert_array_equal(ax.get_lines()[0].get_ydata(), dark.overlap)
     finally:
         plt.close(ax.figure)
+
+
+# --------------------------------------------------------------------------------- equality and error kinds
+def test_equal_results_compare_equal_and_differing_ones_do_not(results):
+    res = results["table1"]
+    again = lo.overlap(res.system, res.ranges, "rt", tolerance=res.tolerance)
+    assert res == again and not (res != again)
+    assert res != dataclasses.replace(res, overlap=np.nextafter(res.overlap, 0.0))
+    assert res != dataclasses.replace(res, error_kind="nominal")
+    assert res != dataclasses.replace(res, system=lo.paper_table1(defocus=1e-3))
+    assert (res == "rt") is False
+    with pytest.raises(TypeError):
+        hash(res)
+
+
+def test_results_with_nan_tolerance_equal_themselves_and_allclose_compares_curves():
+    z = np.geomspace(50.0, 2000.0, 6)
+    fo, rt = lo.overlap(lo.paper_table1(), z, "fo"), lo.overlap(lo.paper_table1(), z, "rt", tolerance=1e-6)
+    assert np.isnan(fo.tolerance) and fo == lo.overlap(lo.paper_table1(), z, "fo")
+    gap = float(np.max(np.abs(fo.overlap - rt.overlap)))
+    assert fo != rt and fo.allclose(rt, atol=gap) and not fo.allclose(rt, atol=0.5 * gap)
+    assert not fo.allclose(lo.overlap(lo.paper_table1(), z[:-1], "fo"), atol=1.0)   # other ranges
+
+
+@pytest.mark.parametrize("other, atol, message", [("rt", 0.0, "^other = 'rt' is invalid"),
+                                                  (None, -1.0, "^atol = -1.0 is invalid"),
+                                                  (None, float("nan"), "^atol = nan is invalid")])
+def test_allclose_refuses_bad_arguments_by_name(results, other, atol, message):
+    res = results["table1"]
+    with pytest.raises(ValueError, match=message):
+        res.allclose(res if other is None else other, atol=atol)
+
+
+def test_error_kind_is_checked_and_survives_files(results, tmp_path):
+    res = results["table1"]
+    assert res.error_kind == "bound"
+    with pytest.raises(ValueError, match="^error_kind = 'exact' is invalid"):
+        dataclasses.replace(res, error_kind="exact")
+    fo = lo.overlap(res.system, res.ranges, "fo")
+    fo.to_csv(tmp_path / "fo.csv")
+    assert lo.OverlapResult.from_csv(tmp_path / "fo.csv") == fo

@@ -191,10 +191,10 @@ def test_a_custom_constant_profile_is_the_constant():
 @pytest.mark.parametrize("law", ["gaussian", "linear"])
 def test_rt_realisation_beam_has_the_short_term_radius_on_either_width_law(law):
     """The beam each RT realisation traces has radius W_ST at its range, whatever the beam's width law."""
-    from lidar_overlap.turbulence import _beam_for
+    from lidar_overlap._backends.turbulent import beam_for
 
     beam, z, radius = lo.GaussianBeam(width_law=law), 150.0, 0.06
-    drawn = _beam_for(beam, z, radius, (0.01, -0.02))
+    drawn = beam_for(beam, z, radius, (0.01, -0.02))
     assert abs(drawn.radius(z) / radius - 1) < 1e-12
     assert drawn.center(z) == pytest.approx((0.01, -0.02), abs=1e-15)
 
@@ -228,10 +228,8 @@ def test_rt_turbulence_strong_long_and_tiny_gives_overlaps_in_the_unit_interval(
 @pytest.mark.parametrize("ranges, name", [([0.0], r"ranges\[0\]"), ([100.0, 2e10], r"ranges\[1\]"),
                                           ([1e-300], r"ranges\[0\]")])
 def test_rt_turbulence_refuses_ranges_by_index(ranges, name):
-    from lidar_overlap.turbulence import overlap_rt_turbulent
-
     with pytest.raises(ValueError, match=f"^{name} = "):
-        overlap_rt_turbulent(lo.paper_table1(), np.array(ranges), lo.Turbulence(1e-14), 2, 0, 1e-4)
+        lo.overlap(lo.paper_table1(), ranges, lo.Turbulent(lo.Turbulence(1e-14), "rt", realizations=2))
 
 
 def test_rt_turbulence_refuses_realisations_beyond_the_cap_and_the_budget():

@@ -1,15 +1,17 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
 from ._core import __version__, max_memory, max_threads, set_max_memory
-from .aberrations import Aberrations, noll_index, seidel_to_zernike, zernike, zernike_to_seidel
-from .auto import explain
+from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
 from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
 from .flat_top import FlatTopBeam
-from .overlap import emitter_coupling, optimal_focus_range, overlap
-from .overlap_aberrated import point_image
+from .compute import overlap, run
+from .coupling import emitter_coupling, optimal_focus_range
+from .imaging import point_image
+from .methods import FO, RT, Auto, Turbulent
+from .planning import Plan, explain, plan
 from .phase_screen import phase_screen
 from .presets import paper_table1
 from .result import OverlapResult
@@ -20,6 +22,14 @@ from .turbulence import Turbulence, TurbulentOverlapResult
 __all__ = [
     "__version__",
     "Aberrations",
+    "Auto",
+    "FO",
+    "Plan",
+    "RT",
+    "Turbulent",
+    "plan",
+    "run",
+    "with_aberrations",
     "annular_field",
     "laguerre_gauss_field",
     "noll_index",

@@ -10,6 +10,9 @@ from __future__ import annotations
 from typing import Any
 
 import math
+import os
+import sys
+import warnings
 
 import numpy as np
 
@@ -134,3 +137,24 @@ def check_memory(name: str, value, needed: float, fix: str) -> None:
 def _bytes_shown(size: float) -> str:
     mib = size / 2**20
     return f"{mib:.6g} MiB" if mib < 1024 else f"{mib / 1024:.6g} GiB"
+
+
+def system_range(system, z: float, name: str) -> None:
+    """Refuse, as the overlap paths refuse ``ranges[i]`` but naming ``name``, a range ``z`` (m) outside the core's
+    lengths or, behind an obstruction, not beyond its distance (``LidarSystem.validate_ranges`` in C++)."""
+    try:
+        system._native.validate_ranges([z])
+    except ValueError as exc:
+        message = str(exc)
+        raise ValueError(name + message.removeprefix("ranges[0]") if message.startswith("ranges[0]") else message) \
+            from None
+
+
+def warn(message: str, category: type = RuntimeWarning) -> None:
+    """``warnings.warn`` attributed to the first caller outside this package, however deep the call that warns
+    (so the warning points at the user's line, and filters on the package's modules see only misplaced ones)."""
+    package = os.path.dirname(os.path.abspath(__file__)) + os.sep
+    frame, level = sys._getframe(1), 2
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)

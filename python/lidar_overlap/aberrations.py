@@ -17,6 +17,7 @@ and :func:`zernike_to_seidel` the reverse for a wavefront at H = 1 along +x.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Dict, Mapping, Tuple
@@ -152,3 +153,8 @@ def zernike_to_seidel(aberrations: Aberrations, field_radius: float) -> Aberrati
     w040, w131, w222 = 6 * math.sqrt(5) * g(11), 3 * math.sqrt(8) * g(8), 2 * math.sqrt(6) * g(6)
     return Aberrations(w040=w040, w131=w131, w222=w222, w220=2 * math.sqrt(3) * g(4) - w040 - w222 / 2,
                        w311=2 * g(2) - 2 * math.sqrt(8) * g(8), field_radius=_checks.real("field_radius", field_radius))
+
+
+def with_aberrations(system, aberrations):
+    """``system`` with ``aberrations`` (an :class:`Aberrations` or None) on its telescope."""
+    return dataclasses.replace(system, telescope=dataclasses.replace(system.telescope, aberrations=aberrations))

@@ -58,7 +58,7 @@ def _parser() -> argparse.ArgumentParser:
     for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/")):
         p.add_argument("--out", type=Path, help=f"output directory (default: {default})")
         p.add_argument("--method", choices=METHODS,
-                       help="override [run] method; auto: fo for a non-Gaussian beam, else rt")
+                       help="override [run] method; auto: the cheapest model within the [run] tolerance")
         p.add_argument("--quiet", action="store_true", help="no progress bar")
     return parser
 
@@ -101,14 +101,14 @@ def _run_one(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
 
 
 def _compute_and_write(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
-    method = scenario.resolved_method(method)
-    n = scenario.ranges.size
-    slow = n > 50 or scenario.model(method) == "fo"
-    show, close = _progress(scenario.name, n) if slow and not quiet else (None, None)
     start = time.perf_counter()
+    plan = scenario.plan(method)     # decided once: auto's estimate is not made again to run it
+    n = scenario.ranges.size
+    slow = n > 50 or plan.method == "fo"
+    show, close = _progress(scenario.name, n) if slow and not quiet else (None, None)
     done = False
     try:
-        result = scenario.compute(method, callback=show)
+        result = scenario.compute(plan=plan, callback=show)
         done = True
     finally:
         if close is not None:

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _checks, _core
-from .auto import validate_range
+from ._checks import system_range as validate_range
 from .field_beam import FieldBeam
 from ._checks import check_memory
 from .fields import propagate

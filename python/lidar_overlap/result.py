@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
@@ -21,10 +22,13 @@ ROUND_OFF = 1e-12
 #: full_overlap_range warns when G still rises at the end of the ranges by more than this fraction of its
 #: maximum per decade of range.
 FAR_SLOPE = 0.01
+#: What ``error_estimate`` means: a bound from the quadrature (RT, plus auto's model error), the measured
+#: accuracy of a path (FO), or the standard error of a mean over random draws (turbulence).
+ERROR_KINDS = ("bound", "nominal", "standard_error")
 _IO_HINT = "reading and writing NetCDF needs xarray and h5netcdf (with h5py): pip install 'lidar-overlap[io]'"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class OverlapResult:
     """Overlap function G(z) on a range grid.
 
@@ -33,9 +37,16 @@ class OverlapResult:
     ranges : m, the ranges asked for.
     overlap : G at each range (dimensionless, 0..1).
     method : the model that computed it (``"rt"`` or ``"fo"``).
-    error_estimate : estimated absolute error of each G value (NaN where the method gives none).
+    error_estimate : estimated absolute error of each G value (NaN where the method gives none), of the kind
+        ``error_kind`` says.
     system : the lidar it describes (``None`` for a result read from a file whose beam is not Gaussian).
     tolerance : the absolute tolerance that was asked for (NaN where none was).
+    error_kind : ``"bound"`` (RT: the adaptive quadrature's error bound, plus the model error ``method="auto"``
+        estimated for ray tracing), ``"nominal"`` (FO: the path's measured accuracy, the same at every range) or
+        ``"standard_error"`` (turbulence: the standard error of the mean over the draws).
+
+    Two results are equal (``==``) when every field is: arrays element by element (NaN equal to NaN), and the
+    systems. :meth:`allclose` compares the curves within a tolerance.
 
     Checked on construction, so that no computation failure can pass as a result: ``ranges`` finite, > 0 and
     strictly increasing; ``overlap`` and ``error_estimate`` one value per range; ``error_estimate`` >= 0 or
@@ -50,11 +61,31 @@ class OverlapResult:
     error_estimate: np.ndarray
     system: Optional[LidarSystem]
     tolerance: float
+    error_kind: str = "bound"
 
     def __post_init__(self) -> None:
         for name, value in zip(("ranges", "overlap", "error_estimate", "tolerance"),
                                _checked(self.ranges, self.overlap, self.method, self.error_estimate, self.tolerance)):
             object.__setattr__(self, name, value)
+        _checks.choice("error_kind", self.error_kind, ERROR_KINDS)
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(_same(getattr(self, f.name), getattr(other, f.name)) for f in dataclasses.fields(self))
+
+    __hash__ = None  # type: ignore[assignment]  # results hold arrays
+
+    def allclose(self, other: "OverlapResult", atol: float = 1e-12) -> bool:
+        """True when ``other`` has the same ranges and its G is within ``atol`` (absolute) of this one's at every
+        range (methods, errors and systems may differ: this compares curves)."""
+        if not isinstance(other, OverlapResult):
+            raise ValueError(f"other = {_checks.shown(other)} is invalid: expected an OverlapResult")
+        atol = _checks.real("atol", atol)
+        if not atol >= 0.0:
+            raise ValueError(f"atol = {atol!r} is invalid: expected a value >= 0")
+        return bool(np.array_equal(self.ranges, other.ranges)
+                    and np.all(np.abs(self.overlap - other.overlap) <= atol))
 
     def full_overlap_range(self, threshold: float = 0.99) -> float:
         """First range (m) of the grid where G >= threshold · max G; NaN if G is zero everywhere.
@@ -103,7 +134,7 @@ class OverlapResult:
         from ._core import __version__
 
         attrs: Dict[str, Any] = {"method": self.method, "tolerance": float(self.tolerance),
-                                 "lidar_overlap_version": __version__}
+                                 "error_kind": self.error_kind, "lidar_overlap_version": __version__}
         if self.system is not None:
             attrs.update(system_attributes(self.system))
         return attrs
@@ -222,10 +253,25 @@ def _read_csv(path, lines):
 def _read(cls, path, attrs: Dict[str, Any], ranges, overlap, error_estimate):
     """``cls`` from what a file holds; a ValueError of the class's checks names the file."""
     try:
-        return cls(ranges=ranges, overlap=overlap, method=str(attrs["method"]), error_estimate=error_estimate,
-                   system=system_from_attributes(attrs), tolerance=attrs.get("tolerance", math.nan))
+        method = str(attrs["method"])
+        kind = str(attrs.get("error_kind", "nominal" if method == "fo" else "bound"))   # files written before the kind existed
+        return cls(ranges=ranges, overlap=overlap, method=method, error_estimate=error_estimate,
+                   system=system_from_attributes(attrs), tolerance=attrs.get("tolerance", math.nan), error_kind=kind)
     except ValueError as exc:
         raise ValueError(f"{path}: {exc}") from None
+
+
+def _same(a: Any, b: Any) -> bool:
+    """Equality of two field values: arrays element by element with NaN equal to NaN, floats with NaN equal to
+    NaN, anything else by ==."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        try:
+            return bool(np.array_equal(a, b, equal_nan=True))
+        except TypeError:   # arrays without a NaN (bools, objects)
+            return bool(np.array_equal(a, b))
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return bool(a == b)
 
 
 def _checked(ranges, overlap, method, error_estimate, tolerance):

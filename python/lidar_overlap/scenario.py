@@ -3,18 +3,22 @@
 A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``, ``[telescope]``,
 ``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
 ``examples/scenarios/table1.toml``. Every error is a :class:`ScenarioError` (a ValueError) that names the
-file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` means Fourier optics
-(``"fo"``) for a beam that is not Gaussian (``flat_top``), ray tracing (``"rt"``) otherwise.
+file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
+:class:`lidar_overlap.Auto` at the ``[run]`` tolerance: the cheapest model whose error fits it (Fourier
+optics for a beam that is not Gaussian).
 
 A scenario is read as untrusted input: the file must be UTF-8 TOML of at most 10 MB, every number finite,
 every integer within the bounds of :data:`INTEGER_LIMITS` and at most :data:`MAX_RANGES` ranges, so that no
 file can ask for unbounded work or memory before the library's own checks of the physics.
+
+A scenario is planned once (:meth:`Scenario.plan`, :func:`lidar_overlap.plan`) and the plan run in chunks of
+ranges for the progress bar: auto decides for the whole curve, and nothing is computed twice.
 """
 
 from __future__ import annotations
 
 import copy
-import importlib
+import dataclasses
 import math
 import os
 import re
@@ -26,13 +30,12 @@ from typing import Any, Callable, Dict, Optional
 import numpy as np
 
 from .aberrations import Aberrations
-from .auto import decide
+from .compute import run
 from .field_beam import FieldBeam
 from .flat_top import FlatTopBeam
+from .planning import Plan, plan
 from .result import OverlapResult
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
-
-_overlap = importlib.import_module(".overlap", __package__)  # the module (the package exports the function)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -123,41 +126,39 @@ class Scenario:
         """``method`` (default: the scenario's) for ``lo.overlap``, checked."""
         return _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
 
-    def model(self, method: Optional[str] = None) -> str:
-        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) stands for; for ``"auto"``
-        the one :func:`lidar_overlap.auto.decide` picks for these ranges and tolerance."""
+    def plan(self, method: Optional[str] = None) -> Plan:
+        """The :class:`lidar_overlap.Plan` of this scenario with ``method`` (default: the scenario's); library
+        errors become :class:`ScenarioError`."""
         method = self.resolved_method(method)
-        if method != "auto":
-            return method
         try:
-            return decide(self.system, self.ranges, self.options.get("tolerance", 1e-4)).method
+            return plan(self.system, self.ranges, method, **self.options)
         except ValueError as exc:
             raise self._library_error(exc, 0) from None
 
+    def model(self, method: Optional[str] = None) -> str:
+        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) computes with (auto's choice)."""
+        return self.plan(method).method
+
     def compute(self, method: Optional[str] = None, chunk: Optional[int] = None,
-                callback: Optional[Callable[[int], None]] = None) -> OverlapResult:
-        """``lo.overlap`` over the ranges in chunks (ranges are independent: the same result as one call),
-        calling ``callback(number_done)`` after each; library errors become :class:`ScenarioError`."""
-        method = self.resolved_method(method)
+                callback: Optional[Callable[[int], None]] = None, plan: Optional[Plan] = None) -> OverlapResult:
+        """The scenario's curve: its ``plan`` (default: :meth:`plan` of ``method``) run over the ranges in chunks
+        (ranges are independent and the plan's decisions hold for all: the same result as one call), calling
+        ``callback(number_done)`` after each; library errors become :class:`ScenarioError`."""
+        p = plan if plan is not None else self.plan(method)
         z = self.ranges
         if chunk is None:
             threads = self.options.get("threads") or os.cpu_count() or 1
-            fo = self.model(method) == "fo"
-            chunk = max(threads, math.ceil(z.size / 100)) if fo else max(50, math.ceil(z.size / 20))
-        if method == "auto":
-            chunk = z.size  # one decision for the whole curve
+            chunk = max(threads, math.ceil(z.size / 100)) if p.method == "fo" else max(50, math.ceil(z.size / 20))
         parts = []
         for start in range(0, z.size, chunk):
             try:
-                parts.append(_overlap.overlap(self.system, z[start:start + chunk], method=method, **self.options))
+                parts.append(run(p.subset(slice(start, start + chunk))))
             except ValueError as exc:
                 raise self._library_error(exc, start) from None
             if callback is not None:
                 callback(min(start + chunk, z.size))
-        first = parts[0]
-        return OverlapResult(ranges=z.copy(), overlap=np.concatenate([p.overlap for p in parts]), method=first.method,
-                             error_estimate=np.concatenate([p.error_estimate for p in parts]), system=self.system,
-                             tolerance=first.tolerance)
+        return dataclasses.replace(parts[0], ranges=z.copy(), overlap=np.concatenate([q.overlap for q in parts]),
+                                   error_estimate=np.concatenate([q.error_estimate for q in parts]))
 
     def _library_error(self, exc: ValueError, start: int) -> ScenarioError:
         """The library's ValueError about ranges ``start``, ... as a ScenarioError naming the file, its section

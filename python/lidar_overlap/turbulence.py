@@ -5,8 +5,10 @@ height) and gives the weak-fluctuation quantities of a path: Fried parameter, Ry
 angle, and the beam wander and long-term spread of a collimated Gaussian beam (after Andrews & Phillips,
 "Laser Beam Propagation through Random Media", 2nd ed.; see ``cpp/include/lidar_overlap/turbulence.hpp``).
 
-``lo.overlap(system, ranges, method, turbulence=..., realizations=K, seed=...)`` returns a
-:class:`TurbulentOverlapResult`: the mean overlap over K realisations of the atmosphere and its spread.
+``lo.overlap(system, ranges, lo.Turbulent(turbulence, method, realizations=K, seed=...))`` (or the shortcut
+``lo.overlap(system, ranges, method, turbulence=..., realizations=K, seed=...)``) returns a
+:class:`TurbulentOverlapResult`: the mean overlap over K realisations of the atmosphere and its spread
+(computed in :mod:`lidar_overlap._backends.turbulent`).
 - FO: the beam is carried through phase screens (modified von Kármán, FFT with subharmonics) by
   split-step Fresnel propagation, one realisation per draw of the screens (C++, in parallel).
 - RT: each realisation is the short-term beam (radius W_ST) displaced by a random wander drawn from a
@@ -18,7 +20,6 @@ angle, and the beam wander and long-term spread of a collimated Gaussian beam (a
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Callable, Optional, Union
@@ -26,18 +27,12 @@ from typing import Callable, Optional, Union
 import numpy as np
 
 from . import _checks, _core
-from ._checks import check_memory, choice
+from ._checks import choice
 from .result import OverlapResult
 
-#: Percentiles of the spread band reported per range.
-BAND = (5.0, 95.0)
 #: Cn² (m^-2/3) a profile may reach: the core's bound, a thousand times the strongest turbulence measured
 #: near the ground.
 MAX_CN2 = 1e-9
-#: Realisations one turbulent overlap may draw (the core's bound on the FO path).
-MAX_REALIZATIONS = 1_000_000
-#: Bytes per sample (realisation x range) of the RT path: the samples and the copies percentile and std make.
-BYTES_PER_SAMPLE = 32
 
 
 class Turbulence:
@@ -133,89 +128,13 @@ def _checked_profile(cn2: Callable[[float], float]) -> Callable[[float], float]:
     return at
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class TurbulentOverlapResult(OverlapResult):
     """An :class:`OverlapResult` whose ``overlap`` is the mean over ``realizations`` (K × N array, one
-    row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``, ``high``."""
+    row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``, ``high``;
+    ``error_estimate`` is the standard error of the mean (``error_kind`` ``"standard_error"``)."""
 
     realizations: Optional[np.ndarray] = None
     std: Optional[np.ndarray] = None
     low: Optional[np.ndarray] = None
     high: Optional[np.ndarray] = None
-
-
-def _statistics(system, z, samples, method, tolerance) -> TurbulentOverlapResult:
-    low, high = np.percentile(samples, BAND, axis=0)
-    k = samples.shape[0]
-    std = samples.std(axis=0, ddof=1) if k > 1 else np.zeros(z.size)
-    return TurbulentOverlapResult(ranges=z, overlap=samples.mean(axis=0), method=method,
-                                  error_estimate=std / math.sqrt(k), system=system, tolerance=tolerance,
-                                  realizations=samples, std=std, low=low, high=high)
-
-
-def _spread(beam, z: float, radius: float) -> float:
-    """Far-field half-angle (rad) of a beam from ``beam``'s waist, on its width law, whose 1/e² radius at range
-    z (m) is ``radius``."""
-    w0 = beam.waist_radius
-    if beam.width_law == "linear":                          # w = w0 + θz
-        return max(radius - w0, 0.0) / z
-    return math.sqrt(max(radius**2 - w0**2, 0.0)) / z      # w² = w0² + (θz)²
-
-
-def _beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
-    """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is ``center``."""
-    axis = beam.center(z)
-    offset = (axis[0] + center[0], axis[1] + center[1])
-    return dataclasses.replace(beam, divergence=max(_spread(beam, z, radius), beam.half_angle_divergence),
-                               offset=offset, tilt=(0.0, 0.0))
-
-
-def _check_rt_work(z: np.ndarray, realizations: int) -> None:
-    """Refuse, naming ``realizations``, more draws than the FO path allows or samples beyond the memory budget."""
-    if realizations > MAX_REALIZATIONS:
-        raise ValueError(f"realizations = {realizations} is invalid: expected a count from 1 to {MAX_REALIZATIONS}")
-    check_memory("realizations", realizations, BYTES_PER_SAMPLE * realizations * z.size,
-                 "lower realizations or the number of ranges")
-
-
-def overlap_rt_turbulent(system, z: np.ndarray, turbulence: Turbulence, realizations: int, seed: int,
-                         tolerance: float) -> TurbulentOverlapResult:
-    """RT through turbulence (see the module docstring); one RT call per range and realisation. A range the
-    plain overlap refuses, or where the turbulent beam leaves the paraxial model (it spreads or wanders
-    beyond its angles or lengths), is refused naming ``ranges[i]`` and the turbulence."""
-    from .auto import validate_ranges
-    from .overlap import overlap
-
-    validate_ranges(system, z)
-    _check_rt_work(z, realizations)
-    beam, lam = system.beam, system.beam.wavelength
-    rng = np.random.default_rng(seed)
-    samples = np.empty((realizations, z.size))
-    for i, zi in enumerate(z):
-        where = f"ranges[{i}] = {float(zi)!r} m with turbulence = {turbulence!r}"
-        st = turbulence.short_term_radius(beam.waist_radius, lam, zi)
-        lt = turbulence.long_term_radius(beam.waist_radius, lam, zi)
-        if _spread(beam, zi, st) > _core.MAX_ANGLE:
-            raise ValueError(f"{where} is invalid: the short-term beam there ({st:.4g} m) spreads at "
-                             f"{_spread(beam, zi, st):.4g} rad, beyond the paraxial model's {_core.MAX_ANGLE:g} rad; "
-                             "expected weaker turbulence (cn2) or shorter ranges")
-        sigma = 0.5 * math.sqrt(max(lt**2 - st**2, 0.0))   # per axis: W_LT^2 / 4 = W_ST^2 / 4 + sigma^2
-        for k in range(realizations):
-            shift = rng.normal(0.0, sigma, 2)
-            try:
-                s = dataclasses.replace(system, beam=_beam_for(beam, zi, st, shift))
-            except ValueError as exc:       # the drawn beam's offset or divergence beyond the core's scales
-                raise ValueError(f"{where} is invalid: ray tracing cannot model the wandering beam there "
-                                 f"({exc}); its axis (offset + tilt x range) and wander must stay within the model's "
-                                 "lengths and angles: expected shorter ranges, a smaller tilt or weaker turbulence "
-                                 "(cn2)") from None
-            samples[k, i] = overlap(s, [zi], "rt", tolerance=tolerance).overlap[0]
-    return _statistics(system, z, samples, "rt", tolerance)
-
-
-def overlap_fo_turbulent(system, z: np.ndarray, turbulence: Turbulence, realizations: int, seed: int,
-                         screens: int, beam_grid: int, beam_window: float, threads: int) -> TurbulentOverlapResult:
-    """FO through phase screens (see the module docstring)."""
-    raw = _core.overlap_fo_turbulent(system._native, z, turbulence._native, realizations, screens, seed,
-                                     beam_grid, beam_window, threads)
-    return _statistics(system, z, np.asarray(raw["overlap"]), "fo", float("nan"))

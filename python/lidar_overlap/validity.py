@@ -13,9 +13,10 @@ RT (paper Appendix B) is paraxial geometric optics. Two things break it:
 from __future__ import annotations
 
 import math
-import warnings
 
 import numpy as np
+
+from ._checks import warn
 
 #: Model errors above this fraction of G trigger a RuntimeWarning from the RT path.
 RT_MODEL_ERROR_LIMIT = 0.01
@@ -122,30 +123,26 @@ def rt_paraxial_error(system, ranges: np.ndarray) -> float:
     return slope**2 / 3.0
 
 
-def warn_if_rt_unconverged(raw: dict, ranges: np.ndarray, tolerance: float, fix: str, stacklevel: int = 3) -> None:
-    """Warn when RT's adaptive quadrature stopped short of ``tolerance`` at some ranges; ``fix`` says what to
-    change."""
-    converged = np.asarray(raw["converged"], dtype=bool)
+def warn_if_rt_unconverged(raw, ranges: np.ndarray, tolerance: float, fix: str) -> None:
+    """Warn when RT's adaptive quadrature (a core result with ``converged`` and ``error_estimate``) stopped short
+    of ``tolerance`` at some ranges; ``fix`` says what to change."""
+    converged = np.asarray(raw.converged, dtype=bool)
     if not converged.all():
-        worst = float(np.max(np.asarray(raw["error_estimate"])[~converged]))
-        warnings.warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {ranges.size} "
-                      f"ranges (largest error estimate {worst:.3g}); {fix}", RuntimeWarning, stacklevel=stacklevel)
+        worst = float(np.max(np.asarray(raw.error_estimate)[~converged]))
+        warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {ranges.size} "
+             f"ranges (largest error estimate {worst:.3g}); {fix}")
 
 
-def warn_if_rt_invalid(system, ranges: np.ndarray, stacklevel: int = 3, diffraction: bool = True) -> None:
+def warn_if_rt_invalid(system, ranges: np.ndarray, diffraction: bool = True) -> None:
     """Warn when RT is used where its model error exceeds RT_MODEL_ERROR_LIMIT (diffraction=False: only the
     paraxial check, for callers that have bounded the diffraction error themselves)."""
     airy_tail = rt_diffraction_error(system)
     if diffraction and airy_tail > RT_MODEL_ERROR_LIMIT:
         airy = 1.22 * system.beam.wavelength * system.telescope.focal_length / system.telescope.diameter
-        warnings.warn(
-            f"ray tracing outside its validity: the detector radius is {system.detector.radius / airy:.3g} Airy "
-            f"radii, and diffraction moves about {airy_tail:.2%} of the image power across its edge; "
-            "geometric optics ignores this. Use Fourier optics (method='fo') for this receiver.",
-            RuntimeWarning, stacklevel=stacklevel)
+        warn(f"ray tracing outside its validity: the detector radius is {system.detector.radius / airy:.3g} Airy "
+             f"radii, and diffraction moves about {airy_tail:.2%} of the image power across its edge; "
+             "geometric optics ignores this. Use Fourier optics (method='fo') for this receiver.")
     paraxial = rt_paraxial_error(system, ranges)
     if paraxial > RT_MODEL_ERROR_LIMIT:
-        warnings.warn(
-            f"ray tracing outside its validity: at {float(np.min(ranges)):.3g} m the aperture is seen under slopes "
-            f"whose paraxial error is about {paraxial:.2%}; start the ranges farther away.",
-            RuntimeWarning, stacklevel=stacklevel)
+        warn(f"ray tracing outside its validity: at {float(np.min(ranges)):.3g} m the aperture is seen under slopes "
+             f"whose paraxial error is about {paraxial:.2%}; start the ranges farther away.")
