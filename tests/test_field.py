@@ -9,6 +9,7 @@ Checked against:
 - bad arguments raise ValueError naming the parameter.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -277,3 +278,35 @@ def test_propagate_refuses_a_non_field_by_name():
 def test_propagate_refuses_a_method_that_is_not_a_string_by_name(value):
     with pytest.raises(ValueError, match="^method = "):
         lo.propagate(SMALL, 10.0, method=value)
+
+
+def test_field_is_immutable_and_holds_a_read_only_copy():
+    values = np.ones((8, 8), complex)
+    f = lo.Field(values, 1e-4, 355e-9)
+    values[0, 0] = 2.0                                   # the caller's array is not the field's
+    assert f.values[0, 0] == 1.0
+    for name, value in (("values", values), ("spacing", 2e-4), ("wavelength", 532e-9)):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(f, name, value)
+    with pytest.raises(ValueError, match="read-only"):
+        f.values[0, 0] = 1.0
+
+
+@pytest.mark.parametrize("make", [lambda: lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4),
+                                  lambda: lo.propagate(lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4), 10.0)],
+                         ids=["gaussian", "propagated"])
+def test_fields_from_the_core_are_read_only(make):
+    f = make()
+    with pytest.raises(ValueError, match="read-only"):
+        f.values[0, 0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        f.spacing = 1.0
+
+
+def test_replace_makes_a_new_checked_field():
+    f = lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4)
+    g = dataclasses.replace(f, spacing=2e-4)
+    assert (g.spacing, g.wavelength, f.spacing) == (2e-4, 355e-9, 1e-4)
+    assert not g.values.flags.writeable and np.array_equal(g.values, f.values)
+    with pytest.raises(ValueError, match="spacing"):
+        dataclasses.replace(f, spacing=-1.0)
