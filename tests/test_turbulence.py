@@ -131,6 +131,20 @@ def test_bad_turbulence_input():
         lo.overlap(lo.paper_table1(), [100.0], "rt", turbulence=lo.Turbulence(1e-14), realizations=0)
 
 
+def test_turbulence_is_an_immutable_value():
+    t = lo.Turbulence(1e-14, elevation=0.5, outer_scale=20.0)
+    for name in ("cn2", "elevation", "altitude", "outer_scale", "inner_scale", "hv_ground", "hv_wind", "_native"):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(t, name, 1.0)
+    assert (t.elevation, t.altitude, t.outer_scale, t.inner_scale) == (0.5, 0.0, 20.0, 0.0)
+    assert t == lo.Turbulence(1e-14, elevation=0.5, outer_scale=20.0)
+    steeper = dataclasses.replace(t, elevation=1.0)
+    assert (steeper.elevation, t.elevation, steeper.outer_scale) == (1.0, 0.5, 20.0)
+    assert steeper.cn2_at_range(100.0) == 1e-14
+    with pytest.raises(ValueError, match="^elevation = "):
+        dataclasses.replace(t, elevation=2.0)
+
+
 # --------------------------------------------------------------------------------- hostile input
 NON_REALS = [None, "1", "", True, 10**400, -10**400, (1.0, 2.0, 3.0), [1e-3], {}]
 PATH_ARGUMENTS = {"fried_parameter": ("wavelength", "path_length"), "rytov_variance": ("wavelength", "path_length"),

@@ -40,8 +40,9 @@ MAX_REALIZATIONS = 1_000_000
 BYTES_PER_SAMPLE = 32
 
 
+@dataclass(frozen=True, init=False, repr=False)
 class Turbulence:
-    """Cn² along the path and the path geometry.
+    """Cn² along the path and the path geometry; immutable (:func:`dataclasses.replace` gives a variant).
 
     Parameters
     ----------
@@ -53,6 +54,15 @@ class Turbulence:
     outer_scale, inner_scale : m, L0 and l0 of the phase screens (inf and 0: Kolmogorov).
     hv_ground, hv_wind : the Hufnagel–Valley ground term A (m^-2/3) and rms wind (m/s) for ``"hv57"``.
     """
+
+    cn2: Union[float, str, Callable[[float], float]]
+    elevation: float
+    altitude: float
+    outer_scale: float
+    inner_scale: float
+    hv_ground: float
+    hv_wind: float
+    _native: object = dataclasses.field(init=False, repr=False, compare=False)
 
     def __init__(self, cn2: Union[float, str, Callable[[float], float]] = "hv57", *, elevation: float = math.pi / 2,
                  altitude: float = 0.0, outer_scale: float = math.inf, inner_scale: float = 0.0,
@@ -69,7 +79,12 @@ class Turbulence:
         native.outer_scale = _checks.real("outer_scale", outer_scale)
         native.inner_scale = _checks.real("inner_scale", inner_scale)
         native.validate()
-        self.cn2, self._native = cn2, native
+        hv = {"hv_ground": hv_ground, "hv_wind": hv_wind}
+        for name, value in (("cn2", cn2), ("elevation", native.elevation), ("altitude", native.altitude),
+                            ("outer_scale", native.outer_scale), ("inner_scale", native.inner_scale),
+                            *((k, _checks.real(k, v) if isinstance(cn2, str) else v) for k, v in hv.items()),
+                            ("_native", native)):
+            object.__setattr__(self, name, value)
 
     def cn2_at_range(self, z: float) -> float:
         """Cn² (m^-2/3) at range z (m), 0 <= z <= 1e10 m."""
