@@ -89,7 +89,7 @@ def test_row_index_is_y():
     f = lo.Field.gaussian(1064e-9, w0, n, dx, center=center)
     row, col = np.unravel_index(np.argmax(f.intensity), f.values.shape)
     assert (row, col) == (n // 2 - 5, n // 2 + 3)
-    assert f.centroid() == pytest.approx(center, abs=CENTROID_ATOL_W0 * w0)
+    assert f.centroid == pytest.approx(center, abs=CENTROID_ATOL_W0 * w0)
 
 
 # --- TEM00 closed forms --------------------------------------------------------------------------------
@@ -113,8 +113,8 @@ def test_gaussian_profile_and_power(n, step, power):
 def test_gaussian_beam_radius_is_waist(n, step, wavelength):
     w0 = 5e-3
     f = lo.Field.gaussian(wavelength, w0, n, step * w0)
-    assert f.beam_radius() == pytest.approx(w0, rel=RADIUS_RTOL)
-    assert f.centroid() == pytest.approx((0.0, 0.0), abs=CENTROID_ATOL_W0 * w0)
+    assert f.beam_radius == pytest.approx(w0, rel=RADIUS_RTOL)
+    assert f.centroid == pytest.approx((0.0, 0.0), abs=CENTROID_ATOL_W0 * w0)
 
 
 @pytest.mark.parametrize("center_w0", [(2.3, -1.7), (-0.37, 0.81), (0.0, 3.9)])
@@ -123,10 +123,10 @@ def test_offset_gaussian_centroid_and_radius(center_w0):
     n, w0 = 256, 1e-3
     center = (center_w0[0] * w0, center_w0[1] * w0)
     f = lo.Field.gaussian(532e-9, w0, n, w0 / 16, center=center, power=0.3)
-    cx, cy = f.centroid()
+    cx, cy = f.centroid
     assert cx == pytest.approx(center[0], abs=CENTROID_ATOL_W0 * w0)
     assert cy == pytest.approx(center[1], abs=CENTROID_ATOL_W0 * w0)
-    assert f.beam_radius() == pytest.approx(w0, rel=RADIUS_RTOL)
+    assert f.beam_radius == pytest.approx(w0, rel=RADIUS_RTOL)
     assert f.power == pytest.approx(0.3, rel=GAUSS_POWER_RTOL)
     expected = tem00(f.x, f.y, w0, 0.3, center)
     significant = expected > 1e-20 * expected.max()
@@ -141,7 +141,7 @@ def test_elliptical_beam_radius_is_second_moment():
     x = (np.arange(n) - n // 2) * dx
     values = np.exp(-x[None, :] ** 2 / wx ** 2 - x[:, None] ** 2 / wy ** 2)
     f = lo.Field(values, dx, 1064e-9)
-    assert f.beam_radius() == pytest.approx(math.sqrt((wx ** 2 + wy ** 2) / 2), rel=RADIUS_RTOL)
+    assert f.beam_radius == pytest.approx(math.sqrt((wx ** 2 + wy ** 2) / 2), rel=RADIUS_RTOL)
 
 
 def test_centroid_of_two_unequal_spots():
@@ -151,7 +151,7 @@ def test_centroid_of_two_unequal_spots():
     b = lo.Field.gaussian(1064e-9, w0, n, w0 / 16, center=(2 * w0, -1 * w0), power=3.0)
     # Field with the summed irradiance (amplitude sqrt(I_a + I_b)), so the spots add without interference.
     f = lo.Field(np.sqrt(a.intensity + b.intensity), a.spacing, a.wavelength)
-    cx, cy = f.centroid()
+    cx, cy = f.centroid
     assert cx == pytest.approx((-2 * w0 + 3 * 2 * w0) / 4, abs=CENTROID_ATOL_W0 * w0)
     assert cy == pytest.approx((1 * w0 + 3 * -1 * w0) / 4, abs=CENTROID_ATOL_W0 * w0)
     assert f.power == pytest.approx(4.0, rel=GAUSS_POWER_RTOL)

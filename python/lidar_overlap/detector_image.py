@@ -67,7 +67,7 @@ def detector_image(system, z: float, n: int = 192) -> DetectorImage:
         if z > tel.obstruction_distance else 0.0
     field = propagate(system.beam.field, z) if isinstance(system.beam, FieldBeam) else None
     c = np.array(system.beam.center(z))
-    w = float(field.beam_radius()) if field is not None else float(system.beam.radius(np.array([z]))[0])
+    w = float(field.beam_radius) if field is not None else float(system.beam.radius(np.array([z]))[0])
     o_back, r_back = -np.asarray(det.offset) * z / d, det.radius * z / d
     mid, half = _window([(c, 2.5 * w + blur), (o_back, r_back)])
     h = 2 * half / n

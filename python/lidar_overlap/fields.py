@@ -112,10 +112,12 @@ class Field:
         """Total power Σ|U|² spacing² (W)."""
         return self._moments()[0]
 
+    @property
     def centroid(self) -> Tuple[float, float]:
         """Irradiance-weighted centre (x, y) in m."""
         return tuple(self._moments()[1])
 
+    @property
     def beam_radius(self) -> float:
         """Second-moment radius about the centroid, sqrt(2 (σx² + σy²)) (m): the 1/e² radius w of a
         TEM00 beam (D4σ/2)."""

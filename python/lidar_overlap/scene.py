@@ -79,7 +79,7 @@ def _beam_profile(system, zmax):
         return width, lambda z: 2.0 / (np.pi * width(z) ** 2)
     zs = np.concatenate(([0.0], np.geomspace(zmax * 1e-3, zmax, 11)))
     fields = [beam.field] + [propagate(beam.field, zi) for zi in zs[1:]]
-    w = np.array([f.beam_radius() for f in fields])
+    w = np.array([f.beam_radius for f in fields])
     log_peak = np.log([f.intensity.max() / beam.field.power for f in fields])
     return lambda z: np.interp(z, zs, w), lambda z: np.exp(np.interp(z, zs, log_peak))
 

@@ -2,6 +2,12 @@
 
 Each dataclass is immutable and validated on construction by the C++ core, so an invalid system
 cannot reach a computation. Use :func:`dataclasses.replace` to vary one parameter.
+
+One rule across the public classes (these, :class:`Field`, :class:`FieldBeam`, :class:`FlatTopBeam`,
+:class:`Turbulence`, :class:`Aberrations`, :class:`DetectorImage`): a derived quantity that needs no
+argument is a property (``LidarSystem.fov``, ``Field.beam_radius``); one that needs an argument is a
+method (``Detector.fov(focal_length)``, ``GaussianBeam.radius(z)``). Arguments go wavelength first, then
+beam sizes, then path length or range: ``(wavelength, waist_radius, path_length)``.
 """
 
 from __future__ import annotations
