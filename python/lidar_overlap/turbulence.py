@@ -107,25 +107,25 @@ class Turbulence:
         """θ0 (rad) seen from the lidar; wavelength and path_length in m."""
         return self._native.isoplanatic_angle(*_reals(wavelength=wavelength, path_length=path_length))
 
-    def beam_wander_variance(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+    def beam_wander_variance(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """Andrews & Phillips' beam-wander variance <r_c²> (m², 2-D) of a collimated Gaussian beam at
         path_length, 2.42 Cn² L³ W0^(-1/3) for a constant Cn². It is the large-scale part of their W_LT²
         (eddies filtered by exp(-κ² W0²)); the centroid of the irradiance-weighted tilt, which the FO
         screens reproduce, has 2^(-2/3) = 0.63 of it."""
-        return self._native.beam_wander_variance(
-            *_reals(waist_radius=waist_radius, wavelength=wavelength, path_length=path_length))
+        lam, w0, length = _reals(wavelength=wavelength, waist_radius=waist_radius, path_length=path_length)
+        return self._native.beam_wander_variance(waist_radius=w0, wavelength=lam, path_length=length)
 
-    def long_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+    def long_term_radius(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """W_LT (m): the 1/e² radius of the Gaussian core of the beam averaged over time (spread and wander),
         set by its mean irradiance on the axis. The second-moment radius of that mean irradiance is
         larger: scattered light makes its wings, unbounded for a zero inner scale."""
-        return self._native.long_term_radius(
-            *_reals(waist_radius=waist_radius, wavelength=wavelength, path_length=path_length))
+        lam, w0, length = _reals(wavelength=wavelength, waist_radius=waist_radius, path_length=path_length)
+        return self._native.long_term_radius(waist_radius=w0, wavelength=lam, path_length=length)
 
-    def short_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+    def short_term_radius(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """W_ST (m): the instantaneous beam's radius about its wandering centre, sqrt(W_LT² − <r_c²>)."""
-        return self._native.short_term_radius(
-            *_reals(waist_radius=waist_radius, wavelength=wavelength, path_length=path_length))
+        lam, w0, length = _reals(wavelength=wavelength, waist_radius=waist_radius, path_length=path_length)
+        return self._native.short_term_radius(waist_radius=w0, wavelength=lam, path_length=length)
 
     def __repr__(self) -> str:
         return f"Turbulence(cn2={self.cn2!r}, elevation={self._native.elevation:.4g} rad)"
