@@ -114,7 +114,7 @@ def main():
           f"{WAVELENGTH / (np.pi * WAIST) * 1e3:.3f} mrad)")
     for z, f in zip(RANGES, fields):
         print(f"z = {z:6g} m: grid spacing {f.spacing * 1e3:.4f} mm, half-maximum diameter "
-              f"{half_maximum_diameter(f) * 1e3:7.2f} mm, D4sigma {2 * f.beam_radius() * 1e3:7.2f} mm, "
+              f"{half_maximum_diameter(f) * 1e3:7.2f} mm, D4sigma {2 * f.beam_radius * 1e3:7.2f} mm, "
               f"Psi z = {PSI * z * 1e3:6.1f} mm")
     print("wrote fig6_flat_top.png")
 

@@ -76,7 +76,7 @@ def run(wavelength):
             warnings.simplefilter("always", lo.SamplingWarning)
             g = lo.propagate(field, z, method="auto")
         auto_warnings += [str(w.message) for w in caught if issubclass(w.category, lo.SamplingWarning)]
-        w_auto[i] = g.beam_radius()
+        w_auto[i] = g.beam_radius
         # The angular spectrum keeps the input grid; Fresnel samples the output at lambda z / (n dx).
         used.append("angular_spectrum" if g.spacing == field.spacing else "fresnel")
         expected = "angular_spectrum" if z <= critical else "fresnel"
@@ -85,7 +85,7 @@ def run(wavelength):
                                f"(critical distance {critical:g} m)")
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", lo.SamplingWarning)
-            w_fra[i] = lo.propagate(field, z, method="fraunhofer").beam_radius()
+            w_fra[i] = lo.propagate(field, z, method="fraunhofer").beam_radius
         fra_warnings[i] = sum(issubclass(w.category, lo.SamplingWarning) for w in caught)
     return dict(wavelength=wavelength, critical=critical, w_auto=w_auto, w_fra=w_fra, used=np.array(used),
                 fra_warnings=fra_warnings, auto_warnings=auto_warnings,

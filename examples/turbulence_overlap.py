@@ -37,7 +37,7 @@ for ax, (title, (system, z)) in zip(axes, systems.items()):
         ax.plot(z, res.overlap, color=color, label=f"{name}: Cn² = {cn2:g}, σ_R²({z[-1]:g} m) = "
                 f"{t.rytov_variance(system.beam.wavelength, z[-1]):.2g}")
         ax.fill_between(z, res.low, res.high, color=color, alpha=0.2)
-        w = np.sqrt(t.beam_wander_variance(system.beam.waist_radius, system.beam.wavelength, z[-1]))
+        w = np.sqrt(t.beam_wander_variance(system.beam.wavelength, system.beam.waist_radius, z[-1]))
         print(f"{title}, {name}: full overlap {res.full_overlap_range():.0f} m (calm {calm.full_overlap_range():.0f} m), "
               f"rms wander at {z[-1]:g} m {w * 1e3:.1f} mm, widest band {np.max(res.high - res.low):.3f}, RT {dt:.1f} s")
     if system is systems["Table 1 lidar (355 nm, FFOV 0.9 mrad)"][0]:

@@ -27,9 +27,9 @@ TURBULENCE_HOSTILITY = {"cn2": hostile_real | hostile_choice, "elevation": hosti
 TURBULENCE_METHODS = {"fried_parameter": ("wavelength", "path_length", "wave"), "cn2_at_range": ("z",),
                       "rytov_variance": ("wavelength", "path_length"),
                       "isoplanatic_angle": ("wavelength", "path_length"),
-                      "beam_wander_variance": ("waist_radius", "wavelength", "path_length"),
-                      "long_term_radius": ("waist_radius", "wavelength", "path_length"),
-                      "short_term_radius": ("waist_radius", "wavelength", "path_length")}
+                      "beam_wander_variance": ("wavelength", "waist_radius", "path_length"),
+                      "long_term_radius": ("wavelength", "waist_radius", "path_length"),
+                      "short_term_radius": ("wavelength", "waist_radius", "path_length")}
 _turbulence_methods = st.sampled_from(sorted(TURBULENCE_METHODS))
 PATH_HOSTILITY = {"waist_radius": hostile_real, "wavelength": hostile_real, "path_length": hostile_real,
                   "wave": hostile_choice, "z": hostile_real}

@@ -9,6 +9,7 @@ Checked against:
 - bad arguments raise ValueError naming the parameter.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -88,7 +89,7 @@ def test_row_index_is_y():
     f = lo.Field.gaussian(1064e-9, w0, n, dx, center=center)
     row, col = np.unravel_index(np.argmax(f.intensity), f.values.shape)
     assert (row, col) == (n // 2 - 5, n // 2 + 3)
-    assert f.centroid() == pytest.approx(center, abs=CENTROID_ATOL_W0 * w0)
+    assert f.centroid == pytest.approx(center, abs=CENTROID_ATOL_W0 * w0)
 
 
 # --- TEM00 closed forms --------------------------------------------------------------------------------
@@ -112,8 +113,8 @@ def test_gaussian_profile_and_power(n, step, power):
 def test_gaussian_beam_radius_is_waist(n, step, wavelength):
     w0 = 5e-3
     f = lo.Field.gaussian(wavelength, w0, n, step * w0)
-    assert f.beam_radius() == pytest.approx(w0, rel=RADIUS_RTOL)
-    assert f.centroid() == pytest.approx((0.0, 0.0), abs=CENTROID_ATOL_W0 * w0)
+    assert f.beam_radius == pytest.approx(w0, rel=RADIUS_RTOL)
+    assert f.centroid == pytest.approx((0.0, 0.0), abs=CENTROID_ATOL_W0 * w0)
 
 
 @pytest.mark.parametrize("center_w0", [(2.3, -1.7), (-0.37, 0.81), (0.0, 3.9)])
@@ -122,10 +123,10 @@ def test_offset_gaussian_centroid_and_radius(center_w0):
     n, w0 = 256, 1e-3
     center = (center_w0[0] * w0, center_w0[1] * w0)
     f = lo.Field.gaussian(532e-9, w0, n, w0 / 16, center=center, power=0.3)
-    cx, cy = f.centroid()
+    cx, cy = f.centroid
     assert cx == pytest.approx(center[0], abs=CENTROID_ATOL_W0 * w0)
     assert cy == pytest.approx(center[1], abs=CENTROID_ATOL_W0 * w0)
-    assert f.beam_radius() == pytest.approx(w0, rel=RADIUS_RTOL)
+    assert f.beam_radius == pytest.approx(w0, rel=RADIUS_RTOL)
     assert f.power == pytest.approx(0.3, rel=GAUSS_POWER_RTOL)
     expected = tem00(f.x, f.y, w0, 0.3, center)
     significant = expected > 1e-20 * expected.max()
@@ -140,7 +141,7 @@ def test_elliptical_beam_radius_is_second_moment():
     x = (np.arange(n) - n // 2) * dx
     values = np.exp(-x[None, :] ** 2 / wx ** 2 - x[:, None] ** 2 / wy ** 2)
     f = lo.Field(values, dx, 1064e-9)
-    assert f.beam_radius() == pytest.approx(math.sqrt((wx ** 2 + wy ** 2) / 2), rel=RADIUS_RTOL)
+    assert f.beam_radius == pytest.approx(math.sqrt((wx ** 2 + wy ** 2) / 2), rel=RADIUS_RTOL)
 
 
 def test_centroid_of_two_unequal_spots():
@@ -150,7 +151,7 @@ def test_centroid_of_two_unequal_spots():
     b = lo.Field.gaussian(1064e-9, w0, n, w0 / 16, center=(2 * w0, -1 * w0), power=3.0)
     # Field with the summed irradiance (amplitude sqrt(I_a + I_b)), so the spots add without interference.
     f = lo.Field(np.sqrt(a.intensity + b.intensity), a.spacing, a.wavelength)
-    cx, cy = f.centroid()
+    cx, cy = f.centroid
     assert cx == pytest.approx((-2 * w0 + 3 * 2 * w0) / 4, abs=CENTROID_ATOL_W0 * w0)
     assert cy == pytest.approx((1 * w0 + 3 * -1 * w0) / 4, abs=CENTROID_ATOL_W0 * w0)
     assert f.power == pytest.approx(4.0, rel=GAUSS_POWER_RTOL)
@@ -277,3 +278,35 @@ def test_propagate_refuses_a_non_field_by_name():
 def test_propagate_refuses_a_method_that_is_not_a_string_by_name(value):
     with pytest.raises(ValueError, match="^method = "):
         lo.propagate(SMALL, 10.0, method=value)
+
+
+def test_field_is_immutable_and_holds_a_read_only_copy():
+    values = np.ones((8, 8), complex)
+    f = lo.Field(values, 1e-4, 355e-9)
+    values[0, 0] = 2.0                                   # the caller's array is not the field's
+    assert f.values[0, 0] == 1.0
+    for name, value in (("values", values), ("spacing", 2e-4), ("wavelength", 532e-9)):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(f, name, value)
+    with pytest.raises(ValueError, match="read-only"):
+        f.values[0, 0] = 1.0
+
+
+@pytest.mark.parametrize("make", [lambda: lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4),
+                                  lambda: lo.propagate(lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4), 10.0)],
+                         ids=["gaussian", "propagated"])
+def test_fields_from_the_core_are_read_only(make):
+    f = make()
+    with pytest.raises(ValueError, match="read-only"):
+        f.values[0, 0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        f.spacing = 1.0
+
+
+def test_replace_makes_a_new_checked_field():
+    f = lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4)
+    g = dataclasses.replace(f, spacing=2e-4)
+    assert (g.spacing, g.wavelength, f.spacing) == (2e-4, 355e-9, 1e-4)
+    assert not g.values.flags.writeable and np.array_equal(g.values, f.values)
+    with pytest.raises(ValueError, match="spacing"):
+        dataclasses.replace(f, spacing=-1.0)

@@ -134,3 +134,34 @@ def test_invalid_combinations(flat_top):
         lo.LidarSystem(beam="flat top")
     other_wavelength = lo.FieldBeam(lo.Field.gaussian(1064e-9, W0, 64, W0 / 8))
     assert other_wavelength.wavelength == 1064e-9
+
+
+def test_field_beam_is_immutable_and_replace_repoints_it():
+    beam = lo.FieldBeam(lo.Field.gaussian(LAM, W0, 64, W0 / 8))
+    for name, value in (("field", beam.field), ("offset", (1e-3, 0.0)), ("tilt", (1e-4, 0.0))):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(beam, name, value)
+    with pytest.raises(ValueError, match="read-only"):
+        beam.field.values[0, 0] = 1.0
+    moved = dataclasses.replace(beam, offset=(1e-3, 0.0))
+    assert (moved.offset, beam.offset, moved.field) == ((1e-3, 0.0), (0.0, 0.0), beam.field)
+    assert moved.with_pointing(tilt=(1e-4, 0.0)).center(10.0) == pytest.approx((2e-3, 0.0))
+    with pytest.raises(ValueError, match="beam.offset"):
+        dataclasses.replace(beam, offset=(np.nan, 0.0))
+
+
+def test_flat_top_is_immutable_and_with_pointing_keeps_the_design(flat_top):
+    for name in ("field", "offset", "phase", "efficiency", "waist_radius", "new_attribute"):
+        with pytest.raises(dataclasses.FrozenInstanceError, match="immutable"):
+            setattr(flat_top, name, 0.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        del flat_top.efficiency
+    for array in (flat_top.phase, flat_top.target, flat_top.far_field, flat_top.history, flat_top.field.values):
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 0.0
+    tilted = flat_top.with_pointing(tilt=(1e-4, 0.0))
+    assert isinstance(tilted, lo.FlatTopBeam) and tilted.phase is flat_top.phase
+    assert (tilted.tilt, flat_top.tilt, tilted.efficiency) == ((1e-4, 0.0), (0.0, 0.0), flat_top.efficiency)
+    assert tilted._native is not flat_top._native
+    with pytest.raises(ValueError, match="beam.tilt"):
+        flat_top.with_pointing(tilt=(np.inf, 0.0))

@@ -72,7 +72,7 @@ def test_field_beam_tube_uses_propagated_second_moment_radius():
     system = dataclasses.replace(lo.paper_table1(), beam=lo.FieldBeam(field))
     ranges = np.geomspace(20.0, 200.0, 6)
     meshes = build(system, ranges=ranges, exaggeration=100.0, planes=(50.0,))
-    for z, expected in ((0.0, field.beam_radius()), (200.0, lo.propagate(field, 200.0).beam_radius())):
+    for z, expected in ((0.0, field.beam_radius), (200.0, lo.propagate(field, 200.0).beam_radius)):
         assert ring(meshes["beam"], z)[1] == pytest.approx(100.0 * expected, rel=REL)
     assert meshes["plane_50"].n_points == meshes["detector_image_50"].n_points > 0
 

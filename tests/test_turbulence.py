@@ -46,7 +46,7 @@ def test_path_quantities_of_a_constant_cn2():
     assert abs(t.fried_parameter(LAM, L, "plane") / (0.423 * K**2 * cn2 * L) ** -0.6 - 1) < CLOSED_FORM_RTOL
     assert abs(t.fried_parameter(LAM, L) / (0.423 * K**2 * cn2 * L * 3 / 8) ** -0.6 - 1) < CLOSED_FORM_RTOL
     assert abs(t.rytov_variance(LAM, L) / (2.25 * 6 / 11 * cn2 * K ** (7 / 6) * L ** (11 / 6)) - 1) < CLOSED_FORM_RTOL
-    assert abs(t.beam_wander_variance(0.05, LAM, L) / (2.42 * cn2 * L**3 * 0.05 ** (-1 / 3)) - 1) < CLOSED_FORM_RTOL
+    assert abs(t.beam_wander_variance(LAM, 0.05, L) / (2.42 * cn2 * L**3 * 0.05 ** (-1 / 3)) - 1) < CLOSED_FORM_RTOL
     hv = lo.Turbulence("hv57")
     assert abs(hv.fried_parameter(0.5e-6, 30e3, "plane") / 0.05 - 1) < 0.05     # the model's defining r0
 
@@ -69,7 +69,7 @@ def test_rt_mean_is_the_long_term_beam():
     s, z, t = lo.paper_table1(), np.array([150.0, 250.0, 600.0]), lo.Turbulence(3e-14)
     res = lo.overlap(s, z, "rt", turbulence=t, realizations=400, seed=3)
     for i, zi in enumerate(z):
-        lt = t.long_term_radius(s.beam.waist_radius, s.beam.wavelength, zi)
+        lt = t.long_term_radius(s.beam.wavelength, s.beam.waist_radius, zi)
         beam = dataclasses.replace(s.beam, divergence=math.sqrt(lt**2 - s.beam.waist_radius**2) / zi)
         expected = lo.overlap(dataclasses.replace(s, beam=beam), [zi], "rt").overlap[0]
         assert abs(res.overlap[i] - expected) < MEAN_SIGMAS * res.error_estimate[i] + 1e-6
@@ -131,13 +131,41 @@ def test_bad_turbulence_input():
         lo.overlap(lo.paper_table1(), [100.0], "rt", turbulence=lo.Turbulence(1e-14), realizations=0)
 
 
+@pytest.mark.parametrize("cn2, w0, L", [(1e-14, 0.05, 2000.0), (3e-15, 1e-3, 500.0), (1e-13, 0.2, 10e3)])
+def test_beam_quantities_take_wavelength_first(cn2, w0, L):
+    """(wavelength, waist_radius, path_length): the closed form 2.42 Cn² L³ W0^(-1/3) of the wander, and the
+    same numbers as the core's (waist_radius, wavelength, path_length) for the same physical inputs."""
+    t = lo.Turbulence(cn2)
+    assert abs(t.beam_wander_variance(LAM, w0, L) / (2.42 * cn2 * L**3 * w0 ** (-1 / 3)) - 1) < CLOSED_FORM_RTOL
+    for name in ("beam_wander_variance", "long_term_radius", "short_term_radius"):
+        value = getattr(t, name)(LAM, w0, L)
+        assert value == getattr(t._native, name)(w0, LAM, L)
+        assert value == getattr(t, name)(path_length=L, waist_radius=w0, wavelength=LAM)
+    lt, st = t.long_term_radius(LAM, w0, L), t.short_term_radius(LAM, w0, L)
+    assert abs(lt**2 - st**2 - t.beam_wander_variance(LAM, w0, L)) <= 1e-12 * lt**2
+
+
+def test_turbulence_is_an_immutable_value():
+    t = lo.Turbulence(1e-14, elevation=0.5, outer_scale=20.0)
+    for name in ("cn2", "elevation", "altitude", "outer_scale", "inner_scale", "hv_ground", "hv_wind", "_native"):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(t, name, 1.0)
+    assert (t.elevation, t.altitude, t.outer_scale, t.inner_scale) == (0.5, 0.0, 20.0, 0.0)
+    assert t == lo.Turbulence(1e-14, elevation=0.5, outer_scale=20.0)
+    steeper = dataclasses.replace(t, elevation=1.0)
+    assert (steeper.elevation, t.elevation, steeper.outer_scale) == (1.0, 0.5, 20.0)
+    assert steeper.cn2_at_range(100.0) == 1e-14
+    with pytest.raises(ValueError, match="^elevation = "):
+        dataclasses.replace(t, elevation=2.0)
+
+
 # --------------------------------------------------------------------------------- hostile input
 NON_REALS = [None, "1", "", True, 10**400, -10**400, (1.0, 2.0, 3.0), [1e-3], {}]
 PATH_ARGUMENTS = {"fried_parameter": ("wavelength", "path_length"), "rytov_variance": ("wavelength", "path_length"),
                   "isoplanatic_angle": ("wavelength", "path_length"),
-                  "beam_wander_variance": ("waist_radius", "wavelength", "path_length"),
-                  "long_term_radius": ("waist_radius", "wavelength", "path_length"),
-                  "short_term_radius": ("waist_radius", "wavelength", "path_length")}
+                  "beam_wander_variance": ("wavelength", "waist_radius", "path_length"),
+                  "long_term_radius": ("wavelength", "waist_radius", "path_length"),
+                  "short_term_radius": ("wavelength", "waist_radius", "path_length")}
 SANE_PATH = {"waist_radius": 1e-3, "wavelength": 1064e-9, "path_length": 1000.0}
 
 

@@ -89,6 +89,7 @@ class Aberrations:
         return self._native.wavefront(np.asarray(x, float), np.asarray(y, float),
                                       _checks.pair("field_angle", field_angle))
 
+    @property
     def rms(self) -> float:
         """RMS wavefront (m) of the Zernike terms over the pupil, piston excluded (their orthonormality)."""
         return math.sqrt(sum(c * c for j, c in self.zernike.items() if j > 1))

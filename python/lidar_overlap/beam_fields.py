@@ -71,7 +71,7 @@ def _normalised(values, spacing, wavelength, power):
         raise ValueError(f"spacing = {spacing!r} is invalid: the grid samples none of the beam's power; "
                          "expected a spacing well below the beam's size")
     field = Field(values * math.sqrt(power / sampled), spacing, wavelength)
-    if not field.beam_radius() > 0.0:
+    if not field.beam_radius > 0.0:
         raise ValueError(f"spacing = {spacing!r} is invalid: the beam's power falls in a single sample; expected a "
                          "spacing well below the beam's size")
     return field

@@ -58,16 +58,12 @@ def detector_image(system, z: float, n: int = 192) -> DetectorImage:
     validate_range(system, z, "z")
     n = _checks.count("n", n, 16, _core.MAX_GRID_SIDE)
     check_memory("n", n, _bytes_needed(system, n), "use a smaller n")
-    tel, det = system.telescope, system.detector
-    f, radius = tel.focal_length, 0.5 * tel.diameter
-    d = f + det.defocus
-    m = 1.0 + d / z - d / f
-    blur = radius * abs(m) * z / d                        # the circle of confusion, back in the scattering plane
-    shadow = abs(m) * tel.obstruction_radius * z / (z - tel.obstruction_distance) * z / d \
-        if z > tel.obstruction_distance else 0.0
+    det, d = system.detector, system.image_distance
+    blur = system.confusion_radius(z) * z / d             # the circle of confusion, back in the scattering plane
+    shadow = system.shadow_radius(z) * z / d
     field = propagate(system.beam.field, z) if isinstance(system.beam, FieldBeam) else None
     c = np.array(system.beam.center(z))
-    w = float(field.beam_radius()) if field is not None else float(system.beam.radius(np.array([z]))[0])
+    w = float(field.beam_radius) if field is not None else float(system.beam.radius(np.array([z]))[0])
     o_back, r_back = -np.asarray(det.offset) * z / d, det.radius * z / d
     mid, half = _window([(c, 2.5 * w + blur), (o_back, r_back)])
     h = 2 * half / n
@@ -135,8 +131,8 @@ def _fov(system, z):
     that send some light to the detector. A ray from P through aperture point A lands at A m − P d/z
     (d = f + defocus, m = 1 + d/z − d/f), so P is seen when |P + o_d z/d| < (R|m| + r_d) z/d."""
     tel, det = system.telescope, system.detector
-    d, f = tel.focal_length + det.defocus, tel.focal_length
-    center = -np.outer(z, det.offset) / d
+    d, f = system.image_distance, tel.focal_length
+    center = -np.outer(z, det.offset) / d       # R|m| z/d written to stay finite at z = 0 (the aperture)
     return center, 0.5 * tel.diameter * np.abs(1.0 + z * (1.0 / d - 1.0 / f)) + det.radius * z / d
 
 

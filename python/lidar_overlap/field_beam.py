@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import copy
 import math
-from typing import Tuple
+from dataclasses import dataclass, field as dataclass_field
+from typing import Optional, Tuple
 
 from . import _checks, _core
 from .fields import Field
@@ -16,8 +18,10 @@ Pair = Tuple[float, float]
 MIN_BEAM_POWER = 1e-100
 
 
+@dataclass(frozen=True, eq=False, repr=False)
 class FieldBeam:
-    """A transmitted beam given by its complex field at z = 0.
+    """A transmitted beam given by its complex field at z = 0; immutable (:meth:`with_pointing` or
+    :func:`dataclasses.replace` give a re-pointed copy).
 
     Parameters
     ----------
@@ -31,7 +35,13 @@ class FieldBeam:
     Only ``lo.overlap(..., method="fo")`` accepts it: ray tracing models Gaussian beams only.
     """
 
-    def __init__(self, field: Field, offset: Pair = (0.0, 0.0), tilt: Pair = (0.0, 0.0)) -> None:
+    field: Field
+    offset: Pair = (0.0, 0.0)
+    tilt: Pair = (0.0, 0.0)
+    _native: object = dataclass_field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        field = self.field
         if not isinstance(field, Field):
             raise ValueError(f"field = {_checks.shown(field)} is invalid: expected a lidar_overlap.Field")
         power, _, radius = field._moments()
@@ -42,34 +52,29 @@ class FieldBeam:
             raise ValueError(f"field = {field!r} is invalid: its second-moment radius is {radius:.4g} m (the power sits "
                              f"in one sample); expected a beam of at least {_core.MIN_LENGTH:g} m sampled over "
                              "several points")
-        self._field = field
-        self._offset = _checks.pair("beam.offset", offset)
-        self._tilt = _checks.pair("beam.tilt", tilt)
+        set_ = object.__setattr__
+        set_(self, "offset", _checks.pair("beam.offset", self.offset))
+        set_(self, "tilt", _checks.pair("beam.tilt", self.tilt))
         # The system model carries the pointing and wavelength in a Gaussian beam of the field's
         # second-moment radius; the FO path propagates the field itself.
-        self._native = _core.GaussianBeam(field.wavelength, radius, None, self._offset, self._tilt, "gaussian")
-
-    @property
-    def field(self) -> Field:
-        """The transmitted field at z = 0."""
-        return self._field
+        set_(self, "_native", _core.GaussianBeam(field.wavelength, radius, None, self.offset, self.tilt, "gaussian"))
 
     @property
     def wavelength(self) -> float:
         """m."""
-        return self._field.wavelength
-
-    @property
-    def offset(self) -> Pair:
-        return self._offset
-
-    @property
-    def tilt(self) -> Pair:
-        return self._tilt
+        return self.field.wavelength
 
     def center(self, z: float) -> Pair:
         """Beam axis (x, y) in m at range z (m): offset + tilt·z (paraxial)."""
-        return (self._offset[0] + self._tilt[0] * z, self._offset[1] + self._tilt[1] * z)
+        return (self.offset[0] + self.tilt[0] * z, self.offset[1] + self.tilt[1] * z)
+
+    def with_pointing(self, offset: Optional[Pair] = None, tilt: Optional[Pair] = None) -> "FieldBeam":
+        """A copy of this beam (of its own type, a :class:`FlatTopBeam` too) with ``offset`` (m) and ``tilt``
+        (rad) replaced where given, checked as in the constructor."""
+        beam = copy.copy(self)
+        FieldBeam.__init__(beam, self.field, self.offset if offset is None else offset,
+                           self.tilt if tilt is None else tilt)
+        return beam
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}({self._field!r}, offset={self._offset}, tilt={self._tilt})"
+        return f"{type(self).__name__}({self.field!r}, offset={self.offset}, tilt={self.tilt})"

@@ -9,6 +9,7 @@ A :class:`Field` is an (n, n) complex array U on a square grid centred so that i
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass
 from typing import Optional, Tuple, Union
 
 import numpy as np
@@ -33,8 +34,10 @@ class SamplingWarning(RuntimeWarning):
     approximation used beyond its region). The message gives the reason and the fix."""
 
 
+@dataclass(frozen=True, eq=False, repr=False)
 class Field:
-    """Complex scalar field on an (n, n) grid.
+    """Complex scalar field on an (n, n) grid; immutable (``values`` is a read-only copy). Use
+    :func:`dataclasses.replace` for a field with other values, spacing or wavelength.
 
     Parameters
     ----------
@@ -45,22 +48,30 @@ class Field:
     wavelength : m, 1e-10 to 1e10 m.
     """
 
-    def __init__(self, values, spacing: float, wavelength: float) -> None:
-        self.spacing = _checks.length("spacing", spacing)
-        self.wavelength = _checks.length("wavelength", wavelength)
-        arr = _complex_grid(values)
+    values: np.ndarray
+    spacing: float
+    wavelength: float
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        set_(self, "spacing", _checks.length("spacing", self.spacing))
+        set_(self, "wavelength", _checks.length("wavelength", self.wavelength))
+        arr = _complex_grid(self.values)
         with np.errstate(over="ignore"):
             power = float(np.sum(arr.real ** 2 + arr.imag ** 2)) * self.spacing ** 2
         if not power <= MAX_POWER:
             raise ValueError(f"values is invalid: its power Σ|U|² spacing² is {power:.4g} W; expected at most "
                              f"{MAX_POWER:g} W")
-        self.values = arr
+        arr.flags.writeable = False
+        set_(self, "values", arr)
 
     @classmethod
     def _from_core(cls, values: np.ndarray, spacing: float, wavelength: float) -> "Field":
         """Wrap an array the core has just made (checked there), without another copy."""
         field = cls.__new__(cls)
-        field.values, field.spacing, field.wavelength = values, float(spacing), float(wavelength)
+        values.flags.writeable = False
+        for name, value in (("values", values), ("spacing", float(spacing)), ("wavelength", float(wavelength))):
+            object.__setattr__(field, name, value)
         return field
 
     @classmethod
@@ -101,10 +112,12 @@ class Field:
         """Total power Σ|U|² spacing² (W)."""
         return self._moments()[0]
 
+    @property
     def centroid(self) -> Tuple[float, float]:
         """Irradiance-weighted centre (x, y) in m."""
         return tuple(self._moments()[1])
 
+    @property
     def beam_radius(self) -> float:
         """Second-moment radius about the centroid, sqrt(2 (σx² + σy²)) (m): the 1/e² radius w of a
         TEM00 beam (D4σ/2)."""

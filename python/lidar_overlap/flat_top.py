@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import FrozenInstanceError
+
 import numpy as np
 
 from . import _checks, _core
@@ -41,7 +43,7 @@ class FlatTopBeam(FieldBeam):
     ``"converged"``, ``"stagnated"`` or ``"max_iterations"``. monotone : the error never rose.
     efficiency : power fraction inside the nominal disc. uniformity_rms, uniformity_pv : std/mean and
     (max−min)/mean of the far field where the target is at least 90 % of its plateau. edge_width :
-    achieved 10–90 % width (rad).
+    achieved 10–90 % width (rad). The beam is immutable and its arrays read-only.
     """
 
     def __init__(self, wavelength: float, waist_radius: float, angular_diameter: float, *, grid: int = 512,
@@ -73,6 +75,18 @@ class FlatTopBeam(FieldBeam):
         self.uniformity_rms: float = d["uniformity_rms"]
         self.uniformity_pv: float = d["uniformity_pv"]
         self.edge_width: float = d["edge_width"]
+        for array in (self.phase, self.target, self.far_field, self.history):
+            array.flags.writeable = False
+        object.__setattr__(self, "_sealed", True)
+
+    def __setattr__(self, name: str, value) -> None:
+        if self.__dict__.get("_sealed"):
+            raise FrozenInstanceError(f"cannot assign to field {name!r}: a FlatTopBeam is immutable; "
+                                      "with_pointing() gives a re-pointed copy, a new design needs a new FlatTopBeam")
+        super().__setattr__(name, value)
+
+    def __delattr__(self, name: str) -> None:
+        raise FrozenInstanceError(f"cannot delete field {name!r}: a FlatTopBeam is immutable")
 
     @property
     def iterations(self) -> int:

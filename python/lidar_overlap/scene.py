@@ -79,7 +79,7 @@ def _beam_profile(system, zmax):
         return width, lambda z: 2.0 / (np.pi * width(z) ** 2)
     zs = np.concatenate(([0.0], np.geomspace(zmax * 1e-3, zmax, 11)))
     fields = [beam.field] + [propagate(beam.field, zi) for zi in zs[1:]]
-    w = np.array([f.beam_radius() for f in fields])
+    w = np.array([f.beam_radius for f in fields])
     log_peak = np.log([f.intensity.max() / beam.field.power for f in fields])
     return lambda z: np.interp(z, zs, w), lambda z: np.exp(np.interp(z, zs, log_peak))
 
@@ -87,9 +87,7 @@ def _beam_profile(system, zmax):
 def _planes(pv, plotter, meshes, system, planes, result, scale, width):
     """Scattering-plane irradiance and detector-plane image at each range in ``planes``, as two panels
     stacked above the FOV cone (+x) at that range."""
-    tel, det = system.telescope, system.detector
-    f, radius = tel.focal_length, 0.5 * tel.diameter
-    d = f + det.defocus
+    det, d = system.detector, system.image_distance
     n = N_IMAGE
     grid = np.arange(n) - n / 2 + 0.5
     for z in planes:
@@ -106,10 +104,7 @@ def _planes(pv, plotter, meshes, system, planes, result, scale, width):
         meshes[f"fov_outline_{key}"] = _ring(pv, (*(scale * (s + lift)), z), scale * fov_r)
         # Detector plane, computed back-projected into the scattering plane (u = −x d/z): the beam
         # convolved with the circle of confusion (radius R|m|, less the on-axis obstruction shadow).
-        m = 1.0 + d / z - d / f
-        blur = radius * abs(m) * z / d
-        z_obs = tel.obstruction_distance
-        shadow = (abs(m) * tel.obstruction_radius * z / (z - z_obs) * z / d) if z > z_obs else 0.0
+        blur, shadow = system.confusion_radius(z) * z / d, system.shadow_radius(z) * z / d
         o_back, r_back = -np.asarray(det.offset) * z / d, det.radius * z / d
         dmid, dhalf = _window([(c, 2.5 * w + blur), (o_back, r_back)])
         h = 2 * dhalf / n
@@ -210,7 +205,7 @@ def scene(system: LidarSystem, ranges=None, *, result: OverlapResult | None = No
                                              and not os.environ.get("WAYLAND_DISPLAY"))
     plotter = pv.Plotter(off_screen=off_screen)
     tel, det = system.telescope, system.detector
-    radius, d = 0.5 * tel.diameter, tel.focal_length + det.defocus
+    radius, d = 0.5 * tel.diameter, system.image_distance
     extra = [z_full] if np.isfinite(z_full) and z_full <= zmax else []
     zt = np.unique(np.concatenate(([0.0], z[z <= zmax], np.linspace(0.0, zmax, 121), planes, extra)))
     width, peak = _beam_profile(system, zmax)

@@ -2,12 +2,20 @@
 
 Each dataclass is immutable and validated on construction by the C++ core, so an invalid system
 cannot reach a computation. Use :func:`dataclasses.replace` to vary one parameter.
+
+One rule across the public classes (these, :class:`Field`, :class:`FieldBeam`, :class:`FlatTopBeam`,
+:class:`Turbulence`, :class:`Aberrations`, :class:`DetectorImage`): a derived quantity that needs no
+argument is a property (``LidarSystem.fov``, ``Field.beam_radius``); one that needs an argument is a
+method (``Detector.fov(focal_length)``, ``GaussianBeam.radius(z)``). Arguments go wavelength first, then
+beam sizes, then path length or range: ``(wavelength, waist_radius, path_length)``.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Literal, Optional, Tuple
+
+import numpy as np
 
 from . import _checks, _core
 from .aberrations import Aberrations
@@ -173,3 +181,41 @@ class LidarSystem:
     def fov(self) -> float:
         """Full field of view (rad) of the receiver: 2 r_d / f."""
         return self.detector.fov(self.telescope.focal_length)
+
+    @property
+    def image_distance(self) -> float:
+        """d = f + defocus (m): distance from the lens to the detector plane."""
+        return self.telescope.focal_length + self.detector.defocus
+
+    @property
+    def diffraction_blur(self) -> float:
+        """λ d / D (m): the diffraction blur of a point image on the detector plane."""
+        return self.beam.wavelength * self.image_distance / self.telescope.diameter
+
+    @property
+    def airy_radius(self) -> float:
+        """1.22 λ d / D (m): first dark ring of a point image focused on the detector plane."""
+        return 1.22 * self.diffraction_blur
+
+    def confusion_radius(self, z):
+        """R |1 + d/z − d/f| (m) at range(s) z (m): the circle of confusion on the detector plane, the
+        geometric image of a point at range z through the whole aperture R = D/2 (no obstruction, no NA)."""
+        return 0.5 * self.telescope.diameter * _defocus_factor(self, z)
+
+    def shadow_radius(self, z):
+        """|1 + d/z − d/f| r_obs z / (z − z_obs) (m) at range(s) z (m): the obstruction's shadow inside the
+        circle of confusion of an on-axis point; 0 where z <= obstruction_distance."""
+        t, z = self.telescope, np.asarray(z, dtype=float)
+        behind = z > t.obstruction_distance
+        r = np.where(behind, t.obstruction_radius * z / np.where(behind, z - t.obstruction_distance, 1.0), 0.0)
+        return _scalar_or_array(_defocus_factor(self, z) * r)
+
+
+def _defocus_factor(system: LidarSystem, z):
+    """|1 + d/z − d/f| at range(s) z (m): the circle of confusion over the aperture radius."""
+    d, f = system.image_distance, system.telescope.focal_length
+    return _scalar_or_array(np.abs(1.0 + d / np.asarray(z, dtype=float) - d / f))
+
+
+def _scalar_or_array(a: np.ndarray):
+    return float(a) if a.ndim == 0 else a

@@ -35,8 +35,9 @@ from .result import OverlapResult
 MAX_CN2 = 1e-9
 
 
+@dataclass(frozen=True, init=False, repr=False)
 class Turbulence:
-    """Cn² along the path and the path geometry.
+    """Cn² along the path and the path geometry; immutable (:func:`dataclasses.replace` gives a variant).
 
     Parameters
     ----------
@@ -48,6 +49,15 @@ class Turbulence:
     outer_scale, inner_scale : m, L0 and l0 of the phase screens (inf and 0: Kolmogorov).
     hv_ground, hv_wind : the Hufnagel–Valley ground term A (m^-2/3) and rms wind (m/s) for ``"hv57"``.
     """
+
+    cn2: Union[float, str, Callable[[float], float]]
+    elevation: float
+    altitude: float
+    outer_scale: float
+    inner_scale: float
+    hv_ground: float
+    hv_wind: float
+    _native: object = dataclasses.field(init=False, repr=False, compare=False)
 
     def __init__(self, cn2: Union[float, str, Callable[[float], float]] = "hv57", *, elevation: float = math.pi / 2,
                  altitude: float = 0.0, outer_scale: float = math.inf, inner_scale: float = 0.0,
@@ -64,7 +74,12 @@ class Turbulence:
         native.outer_scale = _checks.real("outer_scale", outer_scale)
         native.inner_scale = _checks.real("inner_scale", inner_scale)
         native.validate()
-        self.cn2, self._native = cn2, native
+        hv = {"hv_ground": hv_ground, "hv_wind": hv_wind}
+        for name, value in (("cn2", cn2), ("elevation", native.elevation), ("altitude", native.altitude),
+                            ("outer_scale", native.outer_scale), ("inner_scale", native.inner_scale),
+                            *((k, _checks.real(k, v) if isinstance(cn2, str) else v) for k, v in hv.items()),
+                            ("_native", native)):
+            object.__setattr__(self, name, value)
 
     def cn2_at_range(self, z: float) -> float:
         """Cn² (m^-2/3) at range z (m), 0 <= z <= 1e10 m."""
@@ -87,25 +102,25 @@ class Turbulence:
         """θ0 (rad) seen from the lidar; wavelength and path_length in m."""
         return self._native.isoplanatic_angle(*_reals(wavelength=wavelength, path_length=path_length))
 
-    def beam_wander_variance(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+    def beam_wander_variance(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """Andrews & Phillips' beam-wander variance <r_c²> (m², 2-D) of a collimated Gaussian beam at
         path_length, 2.42 Cn² L³ W0^(-1/3) for a constant Cn². It is the large-scale part of their W_LT²
         (eddies filtered by exp(-κ² W0²)); the centroid of the irradiance-weighted tilt, which the FO
         screens reproduce, has 2^(-2/3) = 0.63 of it."""
-        return self._native.beam_wander_variance(
-            *_reals(waist_radius=waist_radius, wavelength=wavelength, path_length=path_length))
+        lam, w0, length = _reals(wavelength=wavelength, waist_radius=waist_radius, path_length=path_length)
+        return self._native.beam_wander_variance(waist_radius=w0, wavelength=lam, path_length=length)
 
-    def long_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+    def long_term_radius(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """W_LT (m): the 1/e² radius of the Gaussian core of the beam averaged over time (spread and wander),
         set by its mean irradiance on the axis. The second-moment radius of that mean irradiance is
         larger: scattered light makes its wings, unbounded for a zero inner scale."""
-        return self._native.long_term_radius(
-            *_reals(waist_radius=waist_radius, wavelength=wavelength, path_length=path_length))
+        lam, w0, length = _reals(wavelength=wavelength, waist_radius=waist_radius, path_length=path_length)
+        return self._native.long_term_radius(waist_radius=w0, wavelength=lam, path_length=length)
 
-    def short_term_radius(self, waist_radius: float, wavelength: float, path_length: float) -> float:
+    def short_term_radius(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """W_ST (m): the instantaneous beam's radius about its wandering centre, sqrt(W_LT² − <r_c²>)."""
-        return self._native.short_term_radius(
-            *_reals(waist_radius=waist_radius, wavelength=wavelength, path_length=path_length))
+        lam, w0, length = _reals(wavelength=wavelength, waist_radius=waist_radius, path_length=path_length)
+        return self._native.short_term_radius(waist_radius=w0, wavelength=lam, path_length=length)
 
     def __repr__(self) -> str:
         return f"Turbulence(cn2={self.cn2!r}, elevation={self._native.elevation:.4g} rad)"

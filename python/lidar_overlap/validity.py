@@ -25,8 +25,7 @@ RT_MODEL_ERROR_LIMIT = 0.01
 def rt_diffraction_error(system) -> float:
     """Fraction of a focused point image's power that diffraction moves beyond the detector edge,
     2 λ f / (π² D r_d): the geometric-optics error of RT where the overlap is full."""
-    t, d = system.telescope, system.detector
-    return 2.0 * system.beam.wavelength * (t.focal_length + d.defocus) / (math.pi**2 * t.diameter * d.radius)
+    return 2.0 * system.diffraction_blur / (math.pi**2 * system.detector.radius)
 
 
 def _arc_inside(p, c, rho):
@@ -54,7 +53,7 @@ def rt_error_bound(system, ranges: np.ndarray) -> np.ndarray:
     beam, tel, det = system.beam, system.telescope, system.detector
     z = np.asarray(ranges, dtype=float)
     lam, f, rd = beam.wavelength, tel.focal_length, det.radius
-    d = f + det.defocus
+    d = system.image_distance
     radius = 0.5 * tel.diameter
     dz = d / z
     m = np.abs(dz + (1.0 - d / f))
@@ -138,9 +137,8 @@ def warn_if_rt_invalid(system, ranges: np.ndarray, diffraction: bool = True) -> 
     paraxial check, for callers that have bounded the diffraction error themselves)."""
     airy_tail = rt_diffraction_error(system)
     if diffraction and airy_tail > RT_MODEL_ERROR_LIMIT:
-        airy = 1.22 * system.beam.wavelength * system.telescope.focal_length / system.telescope.diameter
-        warn(f"ray tracing outside its validity: the detector radius is {system.detector.radius / airy:.3g} Airy "
-             f"radii, and diffraction moves about {airy_tail:.2%} of the image power across its edge; "
+        warn(f"ray tracing outside its validity: the detector radius is {system.detector.radius / system.airy_radius:.3g} "
+             f"Airy radii, and diffraction moves about {airy_tail:.2%} of the image power across its edge; "
              "geometric optics ignores this. Use Fourier optics (method='fo') for this receiver.")
     paraxial = rt_paraxial_error(system, ranges)
     if paraxial > RT_MODEL_ERROR_LIMIT:
