@@ -162,8 +162,7 @@ def aberrated_rt_error(system, z: np.ndarray, tolerance: float = 1e-3, rt_option
     up, down = (np.asarray(_core.overlap_rt_aberrated(
         dataclasses.replace(system, detector=dataclasses.replace(system.detector, radius=r_d + s))._native, ab, zs,
         options).overlap) for s in (h, -h))
-    t = system.telescope
-    blur = system.beam.wavelength * (t.focal_length + system.detector.defocus) / t.diameter
+    blur = system.diffraction_blur
     log_z, log_zs = np.log(z), np.log(zs)
     edge = np.interp(log_z, log_zs, blur * np.abs(up - down) / (2.0 * h))
     g = np.interp(log_z, log_zs, 0.5 * (up + down))

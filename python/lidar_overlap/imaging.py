@@ -18,9 +18,8 @@ def point_image(system, z: float, n: int = 256, spacing: float | None = None) ->
     """
     n = _checks.count("n", n, 8)
     z = _checks.real("z", z)
-    t = system.telescope
-    ab = t.aberrations if t.aberrations is not None else Aberrations()
+    ab = system.telescope.aberrations if system.telescope.aberrations is not None else Aberrations()
     if spacing is None:
-        spacing = system.beam.wavelength * (t.focal_length + system.detector.defocus) / (2.0 * t.diameter)
+        spacing = 0.5 * system.diffraction_blur
     values = _core.point_image(system._native, ab._native, z, n, _checks.real("spacing", spacing))
     return Field(values, spacing, system.beam.wavelength)

@@ -409,7 +409,7 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
                      beam_edge_width_rad=float(beam.edge_width), beam_efficiency=float(beam.efficiency),
                      beam_uniformity_rms=float(beam.uniformity_rms))
         a.update(beam_grid_size=int(beam.field.n), beam_grid_spacing_m=float(beam.field.spacing),
-                 beam_second_moment_radius_m=float(beam.field.beam_radius()))
+                 beam_second_moment_radius_m=float(beam.field.beam_radius))
     a.update(_pair_attributes("beam_offset", beam.offset, "m"))
     a.update(_pair_attributes("beam_tilt", beam.tilt, "rad"))
     a.update(telescope_diameter_m=tel.diameter, telescope_focal_length_m=tel.focal_length,
