@@ -20,6 +20,7 @@ angle, and the beam wander and long-term spread of a collimated Gaussian beam (a
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Callable, Optional, Union
