@@ -122,12 +122,12 @@ def rt_paraxial_error(system, ranges: np.ndarray) -> float:
     return slope**2 / 3.0
 
 
-def warn_if_rt_unconverged(raw: dict, ranges: np.ndarray, tolerance: float, fix: str, stacklevel: int = 3) -> None:
+def warn_if_rt_unconverged(raw, ranges: np.ndarray, tolerance: float, fix: str, stacklevel: int = 3) -> None:
     """Warn when RT's adaptive quadrature stopped short of ``tolerance`` at some ranges; ``fix`` says what to
     change."""
-    converged = np.asarray(raw["converged"], dtype=bool)
+    converged = np.asarray(raw.converged, dtype=bool)
     if not converged.all():
-        worst = float(np.max(np.asarray(raw["error_estimate"])[~converged]))
+        worst = float(np.max(raw.error_estimate[~converged]))
         warnings.warn(f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of {ranges.size} "
                       f"ranges (largest error estimate {worst:.3g}); {fix}", RuntimeWarning, stacklevel=stacklevel)
 
