@@ -48,7 +48,7 @@ class Decision:
     rt_model_error: float            # estimated max |G_RT - G_exact| (NaN when RT cannot model the beam)
     rt_quadrature_tolerance: float
     reasons: List[str] = field(default_factory=list)
-    rt_raw: Optional[dict] = None   # the RT run when RT is chosen, reused by overlap()
+    rt_raw: Optional[_core.RtOverlap] = None   # the RT run when RT is chosen, reused by overlap()
 
     def __str__(self) -> str:
         model = "ray tracing" if self.method == "rt" else f"Fourier optics ({self.fo_path} path)"
@@ -115,14 +115,14 @@ def decide(system, ranges: np.ndarray, tolerance: float, threads: int = 0) -> De
     if quadrature >= QUADRATURE_SHARE * tolerance:
         reasons.append(f"{error:.2g} + quadrature {quadrature:.2g} <= tolerance {tolerance:g}: ray tracing "
                        f"({'radial' if system.is_axisymmetric else 'two-dimensional'} integrals) is enough")
-        raw = _core.overlap_rt(system._native, ranges, quadrature, threads, 4000)
+        raw = _core.overlap_rt(system._native, ranges, _core.RtOptions(tolerance=quadrature, threads=threads))
         return Decision("rt", "", error, quadrature, reasons, raw)
     if not radial_ok:   # a Gaussian beam on the linear width law: Fourier optics cannot model it
         reasons.append(f"{error:.2g} > tolerance {tolerance:g}, but width_law 'linear' (the paper's marginal ray) "
                        "exists only in ray tracing: RT, whose model error may exceed the tolerance")
         quadrature = QUADRATURE_SHARE * tolerance
-        return Decision("rt", "", error, quadrature, reasons,
-                        _core.overlap_rt(system._native, ranges, quadrature, threads, 4000))
+        raw = _core.overlap_rt(system._native, ranges, _core.RtOptions(tolerance=quadrature, threads=threads))
+        return Decision("rt", "", error, quadrature, reasons, raw)
     reasons.append(f"{error:.2g} > tolerance {tolerance:g}: diffraction matters, Fourier optics is needed")
     reasons.append("Gaussian beam: the radial FO path (one integral per range, the beam image's offset as J0)")
     if fo_accuracy > tolerance:

@@ -100,32 +100,36 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method: s
                          "own grid")
     if method == "fo" and field_beam:
         f = system.beam.field
-        raw = _core.overlap_fo_field(system._native, z, f.values, f.spacing, f.wavelength, max_spectrum_grid, threads)
+        raw = _core.overlap_fo_field(system._native, z, f.values, f.spacing, f.wavelength,
+                                     _core.FoOptions(max_spectrum_grid=max_spectrum_grid, threads=threads))
         return _fo_result(system, z, raw, "enlarge the field's grid (zero-pad it)")
     if method == "fo" and (fo_path == "radial" or (fo_path == "auto" and radial_fo_applies(system))):
         if beam_grid is not None or beam_window is not None:
             raise ValueError("beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'")
-        raw = _core.overlap_fo_radial(system._native, z, 8.0, threads)  # axisymmetry checked in the core
-        return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
+        # axisymmetry checked in the core
+        raw = _core.overlap_fo_radial(system._native, z, _core.RadialFoOptions(threads=threads))
+        return OverlapResult(ranges=z, overlap=raw.overlap, method="fo",
                              error_estimate=np.full(z.size, FO_RADIAL_ACCURACY), system=system,
                              tolerance=float("nan"))
     if method == "fo":
-        raw = _core.overlap_fo(system._native, z, _checks.count("beam_grid", 256 if beam_grid is None else beam_grid, 16),
-                               _checks.real("beam_window", 10.0 if beam_window is None else beam_window),
-                               max_spectrum_grid, threads)
+        options = _core.FoOptions(beam_grid=_checks.count("beam_grid", 256 if beam_grid is None else beam_grid, 16),
+                                  beam_window=_checks.real("beam_window", 10.0 if beam_window is None else beam_window),
+                                  max_spectrum_grid=max_spectrum_grid, threads=threads)
+        raw = _core.overlap_fo(system._native, z, options)
         return _fo_result(system, z, raw, "enlarge beam_window or beam_grid")
-    raw = _core.overlap_rt(system._native, z, tolerance, threads, max_segments)  # validates the ranges
+    raw = _core.overlap_rt(system._native, z, _core.RtOptions(tolerance=tolerance, threads=threads,
+                                                              max_segments=max_segments))  # validates the ranges
     return _rt_result(system, z, raw, tolerance)
 
 
-def _rt_result(system: LidarSystem, z: np.ndarray, raw: dict, tolerance: float,
+def _rt_result(system: LidarSystem, z: np.ndarray, raw: _core.RtOverlap, tolerance: float,
                diffraction_bounded: bool = False) -> OverlapResult:
     """The RT result from the core's output, with the validity and convergence warnings (not the diffraction
     one when auto has bounded RT's diffraction error within its tolerance)."""
     warn_if_rt_invalid(system, z, stacklevel=4, diffraction=not diffraction_bounded)
     warn_if_rt_unconverged(raw, z, tolerance, "raise max_segments or loosen tolerance", stacklevel=4)
-    return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
-                         error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
+    return OverlapResult(ranges=z, overlap=raw.overlap, method="rt",
+                         error_estimate=raw.error_estimate, system=system, tolerance=tolerance)
 
 
 def _overlap_turbulent(system, z, method, turbulence, realizations, seed, screens, tolerance, beam_grid,
@@ -156,8 +160,9 @@ def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads:
     decision = decide(system, z, tolerance, threads)
     if decision.method == "rt":
         raw = decision.rt_raw   # the RT curve the estimate was made from
-        if max_segments != 4000 or not np.all(raw["converged"]):
-            raw = _core.overlap_rt(system._native, z, decision.rt_quadrature_tolerance, threads, max_segments)
+        if max_segments != 4000 or not np.all(raw.converged):
+            raw = _core.overlap_rt(system._native, z, _core.RtOptions(tolerance=decision.rt_quadrature_tolerance,
+                                                                      threads=threads, max_segments=max_segments))
         res = _rt_result(system, z, raw, decision.rt_quadrature_tolerance, diffraction_bounded=True)
         error = res.error_estimate + decision.rt_model_error
     else:
@@ -167,14 +172,14 @@ def _overlap_auto(system: LidarSystem, z: np.ndarray, tolerance: float, threads:
                          tolerance=tolerance)
 
 
-def _fo_result(system: LidarSystem, z: np.ndarray, raw: dict, fix: str) -> OverlapResult:
-    for zi, report in zip(z, raw["beam_reports"]):
-        worst = max(report["output_edge_power"], report["input_edge_power"], report["band_limit_loss"])
+def _fo_result(system: LidarSystem, z: np.ndarray, raw: _core.FoOverlap, fix: str) -> OverlapResult:
+    for zi, report in zip(z, raw.beam_reports):
+        worst = max(report.output_edge_power, report.input_edge_power, report.band_limit_loss)
         if worst > EDGE_POWER_LIMIT:
             warnings.warn(f"overlap(fo): the transmitted field at {zi:.4g} m loses {worst:.2g} of its power to the "
                           f"window edge or the band limit; {fix}", SamplingWarning,
                           stacklevel=3)
-    return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
+    return OverlapResult(ranges=z, overlap=raw.overlap, method="fo",
                          error_estimate=np.full(z.size, FO_2D_ACCURACY), system=system, tolerance=float("nan"))
 
 
@@ -193,7 +198,7 @@ def emitter_coupling(system: LidarSystem, z: float, position: Sequence[float] = 
             raise ValueError("emitter_coupling(method='fo') with aberrations is not modelled: use method='rt' "
                              "(rays displaced by the wavefront slope) or lo.point_image for the image itself")
         return _core.emitter_coupling_rt_aberrated(system._native, system.telescope.aberrations._native, z,
-                                                   position, 96, 256)
+                                                   position)  # the core's finer point-coupling fan
     couple = _core.emitter_coupling_fo if method == "fo" else _core.emitter_coupling_rt
     return couple(system._native, z, position)
 

@@ -54,17 +54,18 @@ def overlap_aberrated(system, z: np.ndarray, method: str, tolerance: float, thre
                               f"here may reach {decision.rt_model_error:.2g} > tolerance {tolerance:g}",
                               RuntimeWarning, stacklevel=3)
             raw = _checked(system, z, decision.rt_raw, decision.rt_quadrature_tolerance, diffraction=False)
-            return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
-                                 error_estimate=np.asarray(raw["error_estimate"]) + decision.rt_model_error,
+            return OverlapResult(ranges=z, overlap=raw.overlap, method="rt",
+                                 error_estimate=raw.error_estimate + decision.rt_model_error,
                                  system=system, tolerance=tolerance)
         res = overlap_aberrated(system, z, "fo", tolerance, threads, max_grid, rings, ring_rays, tail_error)
         return dataclasses.replace(res, tolerance=tolerance)
     if method == "rt":
         raw = _checked(system, z, _rt(system, z, tolerance, threads, rings, ring_rays), tolerance, diffraction=True)
-        return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="rt",
-                             error_estimate=np.asarray(raw["error_estimate"]), system=system, tolerance=tolerance)
-    raw = _core.overlap_fo_aberrated(system._native, ab._native, z, max_grid, tail_error, threads)
-    return OverlapResult(ranges=z, overlap=np.asarray(raw["overlap"]), method="fo",
+        return OverlapResult(ranges=z, overlap=raw.overlap, method="rt",
+                             error_estimate=raw.error_estimate, system=system, tolerance=tolerance)
+    options = _core.FoAberratedOptions(max_grid=max_grid, tail_error=tail_error, threads=threads)
+    raw = _core.overlap_fo_aberrated(system._native, ab._native, z, options)
+    return OverlapResult(ranges=z, overlap=raw.overlap, method="fo",
                          error_estimate=np.full(z.size, FO_ABERRATED_ACCURACY), system=system,
                          tolerance=float("nan"))
 
@@ -78,7 +79,7 @@ def decide_aberrated(system, z: np.ndarray, tolerance: float, threads: int = 0, 
     # would only make the ray fan (the slow RT form) slower.
     quadrature = (0.1 if system.telescope.aberrations.field_dependent else 0.01) * tolerance
     raw = _rt(system, z, quadrature, threads, rings, ring_rays)
-    error = rt_diffraction_estimate(system, z, np.asarray(raw["overlap"]), threads, rings, ring_rays, tolerance)
+    error = rt_diffraction_estimate(system, z, raw.overlap, threads, rings, ring_rays, tolerance)
     reasons = [f"receiver aberrations: ray tracing displaces each ray by d grad W; its diffraction error here is up "
                f"to {error:.2g} (Airy tail plus edge blur from the aberrated RT curve, x {RT_ESTIMATE_SAFETY})"]
     if error + quadrature <= tolerance:
@@ -103,8 +104,8 @@ def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, 
     then errs by far less than the tolerance, and a loose tolerance does not pay for a tight derivative."""
     zs = z if z.size <= EDGE_SAMPLES else np.geomspace(z[0], z[-1], EDGE_SAMPLES)
     r_d, h = system.detector.radius, 1e-2 * system.detector.radius
-    up, down = (np.asarray(_rt(dataclasses.replace(system, detector=dataclasses.replace(system.detector, radius=r_d + s)),
-                               zs, max(1e-6, 1e-3 * tolerance), threads, rings, ring_rays, EDGE_MAX_SEGMENTS)["overlap"])
+    up, down = (_rt(dataclasses.replace(system, detector=dataclasses.replace(system.detector, radius=r_d + s)),
+                    zs, max(1e-6, 1e-3 * tolerance), threads, rings, ring_rays, EDGE_MAX_SEGMENTS).overlap
                   for s in (h, -h))
     t, d = system.telescope, system.detector
     blur = system.beam.wavelength * (t.focal_length + d.defocus) / t.diameter
@@ -112,16 +113,18 @@ def rt_diffraction_estimate(system, z: np.ndarray, g: np.ndarray, threads: int, 
     return RT_ESTIMATE_SAFETY * float(np.max(rt_diffraction_error(system) * g + edge))
 
 
-def _checked(system, z: np.ndarray, raw: dict, tolerance: float, diffraction: bool) -> dict:
+def _checked(system, z: np.ndarray, raw: _core.RtAberratedOverlap, tolerance: float,
+             diffraction: bool) -> _core.RtAberratedOverlap:
     """``raw`` after the warnings plain RT gives: outside its validity, or short of its tolerance."""
     warn_if_rt_invalid(system, z, stacklevel=5, diffraction=diffraction)
     warn_if_rt_unconverged(raw, z, tolerance, "loosen the tolerance", stacklevel=5)
     return raw
 
 
-def _rt(system, z, tolerance, threads, rings, ring_rays, max_segments=4000) -> dict:
-    return _core.overlap_rt_aberrated(system._native, system.telescope.aberrations._native, z, rings, ring_rays,
-                                      tolerance, 64, threads, max_segments)
+def _rt(system, z, tolerance, threads, rings, ring_rays, max_segments=4000) -> _core.RtAberratedOverlap:
+    options = _core.RtAberratedOptions(rings=rings, ring_rays=ring_rays, tolerance=tolerance, threads=threads,
+                                       max_segments=max_segments)
+    return _core.overlap_rt_aberrated(system._native, system.telescope.aberrations._native, z, options)
 
 
 def point_image(system, z: float, n: int = 256, spacing: float | None = None) -> Field:

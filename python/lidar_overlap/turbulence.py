@@ -216,6 +216,7 @@ def overlap_rt_turbulent(system, z: np.ndarray, turbulence: Turbulence, realizat
 def overlap_fo_turbulent(system, z: np.ndarray, turbulence: Turbulence, realizations: int, seed: int,
                          screens: int, beam_grid: int, beam_window: float, threads: int) -> TurbulentOverlapResult:
     """FO through phase screens (see the module docstring)."""
-    raw = _core.overlap_fo_turbulent(system._native, z, turbulence._native, realizations, screens, seed,
-                                     beam_grid, beam_window, threads)
-    return _statistics(system, z, np.asarray(raw["overlap"]), "fo", float("nan"))
+    options = _core.TurbulenceOptions(realizations=realizations, screens=screens, seed=seed, beam_grid=beam_grid,
+                                      beam_window=beam_window, threads=threads)
+    raw = _core.overlap_fo_turbulent(system._native, z, turbulence._native, options)
+    return _statistics(system, z, raw.overlap, "fo", float("nan"))
