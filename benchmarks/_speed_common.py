@@ -42,4 +42,4 @@ def airy_radius(system):
 TABLE1 = lo.paper_table1()
 
 def radial(system, z, periods, threads=THREADS):
-    return np.asarray(_core.overlap_fo_radial(system._native, z, float(periods), threads)["overlap"])
+    return _core.overlap_fo_radial(system._native, z, _core.RadialFoOptions(periods_per_panel=float(periods), threads=threads)).overlap

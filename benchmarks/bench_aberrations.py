@@ -215,22 +215,23 @@ def curve_section():
     fan = fan_system(system)
     t_rt, rt = best_time(lambda: lo.overlap(system, RANGES, "rt").overlap, 5)
     t_fo, fo = timed(lambda: lo.overlap(system, RANGES, "fo").overlap)
-    t_fo5, fo5 = timed(lambda: lo._core.overlap_fo_aberrated(system._native, ab._native, RANGES, 4096, 1e-5, 0))
+    t_fo5, fo5 = timed(lambda: lo._core.overlap_fo_aberrated(system._native, ab._native, RANGES,
+                                                             lo._core.FoAberratedOptions(tail_error=1e-5)))
     t_fan, fn = timed(lambda: lo.overlap(fan, RANGES, "rt").overlap)
     zr = RANGES[list(REFINED)]
-    t_ref, refined = timed(lambda: lo._core.overlap_rt_aberrated(fan._native, ab._native, zr, *REFINED_FAN, 1e-4,
-                                                                 DIRECTIONS, 0, 4000)["overlap"])
-    fo5_g, refined = np.asarray(fo5["overlap"]), np.asarray(refined)
+    refined_fan = lo._core.RtAberratedOptions(rings=REFINED_FAN[0], ring_rays=REFINED_FAN[1], directions=DIRECTIONS)
+    t_ref, refined = timed(lambda: lo._core.overlap_rt_aberrated(fan._native, ab._native, zr, refined_fan).overlap)
+    fo5_g = fo5.overlap
     worst = int(np.argmax(np.abs(fo - fo5_g)))     # one more decade there: is tail 1e-5 converged?
     t_fo6, fo6 = timed(lambda: lo._core.overlap_fo_aberrated(system._native, ab._native, RANGES[worst:worst + 1],
-                                                             8192, 1e-6, 0))
+                                                             lo._core.FoAberratedOptions(max_grid=8192, tail_error=1e-6)))
     ideal = lo.overlap(lo.paper_table1(), RANGES, "fo").overlap
     return {"ranges_m": RANGES.tolist(), "ideal_fo": ideal.tolist(), "rt": rt.tolist(), "fo": fo.tolist(),
-            "fan": fn.tolist(), "fo_tail_1e-5": fo5_g.tolist(), "fo_grid_tail_1e-5": list(fo5["grid"]),
+            "fan": fn.tolist(), "fo_tail_1e-5": fo5_g.tolist(), "fo_grid_tail_1e-5": fo5.grid.tolist(),
             "refined_ranges_m": zr.tolist(), "refined_fan": refined.tolist(),
             "fo_worst_range_m": RANGES[worst],
-            "fo_worst_tail_1e-4_1e-5_1e-6": [fo[worst], fo5_g[worst], fo6["overlap"][0]],
-            "fo_worst_grid_tail_1e-6": fo6["grid"][0],
+            "fo_worst_tail_1e-4_1e-5_1e-6": [fo[worst], fo5_g[worst], fo6.overlap[0]],
+            "fo_worst_grid_tail_1e-6": int(fo6.grid[0]),
             "s": {"rt": t_rt, "fo": t_fo, "fo_tail_1e-5": t_fo5, "fan": t_fan, "refined_fan": t_ref,
                   "fo_tail_1e-6_one_range": t_fo6},
             "rt_minus_fan_max": float(np.max(np.abs(rt - fn))),
@@ -246,10 +247,11 @@ def seidel_section():
     for label, ab in (("w131", lo.Aberrations(**SEIDEL)), ("w131+z6", lo.Aberrations(**SEIDEL, zernike={6: 0.3e-6}))):
         system = with_aberrations(lo.paper_table1(), ab)
         # which beam integral lo chose (radial or over directions), asked at the cheapest range
-        raw = lo._core.overlap_rt_aberrated(system._native, ab._native, RANGES[-1:], 48, 128, 1e-4, DIRECTIONS, 0, 4000)
+        raw = lo._core.overlap_rt_aberrated(system._native, ab._native, RANGES[-1:],
+                                            lo._core.RtAberratedOptions(directions=DIRECTIONS))
         curve = lambda: lo.overlap(system, RANGES, "rt").overlap  # noqa: E731
         t, g = best_time(curve, 3) if label == "w131" else timed(curve)     # ~0.5 s against ~18 s
-        out[label] = {"s": t, "s_per_range": t / RANGES.size, "radial": bool(raw["rotationally_symmetric"]),
+        out[label] = {"s": t, "s_per_range": t / RANGES.size, "radial": raw.rotationally_symmetric,
                       "overlap": g.tolist()}
     out["ideal_rt"] = lo.overlap(lo.paper_table1(), RANGES, "rt").overlap.tolist()
     return out

@@ -84,7 +84,7 @@ def main():
           f"load {load_average():.2f} | commit {source_commit()}")
     rows = {}
     for name, z in CURVES.items():
-        reference = lo._core.overlap_fo_radial(system._native, z, 2.0, 0)["overlap"]
+        reference = lo._core.overlap_fo_radial(system._native, z, lo._core.RadialFoOptions(periods_per_panel=2.0)).overlap
         for path in PATHS:
             t0 = time.perf_counter()
             lo.overlap(system, z, method="fo", fo_path=path)

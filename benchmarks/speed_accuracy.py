@@ -5,7 +5,7 @@ One process, SI units. Three parts, each with its own chart in benchmarks/result
 1. ``speed_accuracy.png``: wall time against the maximum |G - G_ref| over the curve, one panel per scene,
    each method a series whose points are its accuracy settings:
    - RT, ``lo.overlap(method="rt", tolerance=tol)`` for tol = 1e-2 ... 1e-9;
-   - FO radial, ``_core.overlap_fo_radial(system, z, periods_per_panel, threads)`` for periods per
+   - FO radial, ``_core.overlap_fo_radial(system, z, RadialFoOptions(periods_per_panel=p))`` for periods per
      panel 24, 16, 12, 8 (8 is what ``lo.overlap(method="fo")`` uses) and 4 (every Gaussian scene: the
      beam image's offset enters as J0);
    - FO 2-D, ``lo.overlap(method="fo", fo_path="2d", beam_grid=N)`` for N = 64 ... 512 (window 10 w0);

@@ -1,5 +1,5 @@
-// Receiver aberrations: the Zernike/Seidel model and the two aberrated overlap paths. GIL released around
-// the compute only.
+// Receiver aberrations: the Zernike/Seidel model and the two aberrated overlap paths, their options and results
+// as classes. GIL released around the compute only.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -7,8 +7,10 @@
 #include <array>
 #include <vector>
 
+#include "arrays.hpp"
 #include "bind_field.hpp"
 #include "interruptible.hpp"
+#include "options.hpp"
 #include "lidar_overlap/aberrations/aberrations.hpp"
 #include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
 #include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
@@ -63,47 +65,50 @@ void bind_aberrations(py::module_& m) {
       .def("field_dependent", &Aberrations::field_dependent)
       .def("none", &Aberrations::none);
 
+  bind_options(m, "FoAberratedOptions", "Options of overlap_fo_aberrated.",
+               option("max_grid", &FoAberratedOptions::max_grid, "Cap on the pupil transform's size per side."),
+               option("tail_error", &FoAberratedOptions::tail_error,
+                      "Sets the alias period: the aliases' tails put this on G before they cancel."),
+               option("threads", &FoAberratedOptions::threads, "OpenMP threads across ranges; 0: all cores."));
+  bind_options(m, "RtAberratedOptions", "Options of overlap_rt_aberrated and emitter_coupling_rt_aberrated.",
+               option("rings", &RtAberratedOptions::rings, "Rays per scatterer: rings equally spaced in rho^2 ..."),
+               option("ring_rays", &RtAberratedOptions::ring_rays, "... times rays per ring."),
+               option("tolerance", &RtAberratedOptions::tolerance, "Absolute, on G, for the beam integral."),
+               option("directions", &RtAberratedOptions::directions,
+                      "Cap on the directions of the beam integral when the scene is not rotationally symmetric."),
+               option("threads", &RtAberratedOptions::threads, "OpenMP threads across ranges; 0: all cores."),
+               option("max_segments", &RtAberratedOptions::max_segments,
+                      "Cap on subdivisions per adaptive integral; reaching it clears `converged`."));
+
+  py::class_<FoAberratedOverlap>(m, "FoAberratedOverlap", "Result of overlap_fo_aberrated: one entry per range.")
+      .def_property_readonly("overlap", [](const FoAberratedOverlap& r) { return to_array(r.overlap); })
+      .def_property_readonly("grid", [](const FoAberratedOverlap& r) { return to_array(r.grid); },
+                             "Transform size used at each range.");
+  py::class_<RtAberratedOverlap>(m, "RtAberratedOverlap", "Result of overlap_rt_aberrated: one entry per range.")
+      .def_property_readonly("overlap", [](const RtAberratedOverlap& r) { return to_array(r.overlap); })
+      .def_property_readonly("error_estimate", [](const RtAberratedOverlap& r) { return to_array(r.error_estimate); })
+      .def_property_readonly("converged", [](const RtAberratedOverlap& r) { return to_array(r.converged); })
+      .def_readonly("rotationally_symmetric", &RtAberratedOverlap::rotationally_symmetric,
+                    "One radial integral per range.")
+      .def_readonly("pupil_form", &RtAberratedOverlap::pupil_form, "Computed as one pupil integral per range.");
+
   m.def("overlap_fo_aberrated", [](const LidarSystem& system, const Aberrations& aberrations,
-                                   const std::vector<double>& ranges, std::size_t max_grid, double tail_error,
-                                   int threads) {
-    FoAberratedOverlap r;
-    {
-      Interruptible release;
-      r = overlap_fo_aberrated(system, aberrations, ranges, FoAberratedOptions{max_grid, tail_error, threads});
-    }
-    py::dict out;
-    out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
-    out["grid"] = r.grid;
-    return out;
-  }, py::arg("system"), py::arg("aberrations"), py::arg("ranges"), py::arg("max_grid"), py::arg("tail_error"),
-     py::arg("threads"));
+                                   const std::vector<double>& ranges, const FoAberratedOptions& options) {
+    Interruptible release;
+    return overlap_fo_aberrated(system, aberrations, ranges, options);
+  }, py::arg("system"), py::arg("aberrations"), py::arg("ranges"), py::arg("options") = FoAberratedOptions{});
 
   m.def("overlap_rt_aberrated", [](const LidarSystem& system, const Aberrations& aberrations,
-                                   const std::vector<double>& ranges, std::size_t rings, std::size_t ring_rays,
-                                   double tolerance, std::size_t directions, int threads, std::size_t max_segments) {
-    RtAberratedOverlap r;
-    {
-      Interruptible release;
-      r = overlap_rt_aberrated(system, aberrations, ranges,
-                               RtAberratedOptions{rings, ring_rays, tolerance, directions, threads, max_segments});
-    }
-    py::dict out;
-    out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
-    out["error_estimate"] = py::array_t<double>(r.error_estimate.size(), r.error_estimate.data());
-    out["converged"] = std::vector<bool>(r.converged.begin(), r.converged.end());
-    out["rotationally_symmetric"] = r.rotationally_symmetric;
-    return out;
-  }, py::arg("system"), py::arg("aberrations"), py::arg("ranges"), py::arg("rings"), py::arg("ring_rays"),
-     py::arg("tolerance"), py::arg("directions"), py::arg("threads"), py::arg("max_segments"));
+                                   const std::vector<double>& ranges, const RtAberratedOptions& options) {
+    Interruptible release;
+    return overlap_rt_aberrated(system, aberrations, ranges, options);
+  }, py::arg("system"), py::arg("aberrations"), py::arg("ranges"), py::arg("options") = RtAberratedOptions{});
 
   m.def("emitter_coupling_rt_aberrated", [](const LidarSystem& system, const Aberrations& aberrations, double z,
-                                            std::array<double, 2> position, std::size_t rings, std::size_t ring_rays) {
-    RtAberratedOptions o;
-    o.rings = rings;
-    o.ring_rays = ring_rays;
-    return emitter_coupling_rt_aberrated(system, aberrations, z, {position[0], position[1]}, o);
-  }, py::arg("system"), py::arg("aberrations"), py::arg("z"), py::arg("position"), py::arg("rings"),
-     py::arg("ring_rays"));
+                                            std::array<double, 2> position, const RtAberratedOptions& options) {
+    return emitter_coupling_rt_aberrated(system, aberrations, z, {position[0], position[1]}, options);
+  }, py::arg("system"), py::arg("aberrations"), py::arg("z"), py::arg("position"),
+     py::arg("options") = point_coupling_options());
 
   m.def("point_image", [](const LidarSystem& system, const Aberrations& aberrations, double z, std::size_t n,
                           double spacing) {

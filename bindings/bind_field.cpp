@@ -25,31 +25,6 @@ Field field_from_array(const ComplexArray& values, double spacing, double wavele
   return f;
 }
 
-namespace {
-const char* method_name(PropagationMethod m) {
-  switch (m) {
-    case PropagationMethod::angular_spectrum: return "angular_spectrum";
-    case PropagationMethod::fresnel: return "fresnel";
-    case PropagationMethod::fraunhofer: return "fraunhofer";
-    default: return "auto";
-  }
-}
-}  // namespace
-
-py::dict report_dict(const PropagationReport& r) {
-  py::dict d;
-  d["method"] = method_name(r.method);
-  d["critical_distance"] = r.critical_distance;
-  d["band_limit_loss"] = r.band_limit_loss;
-  d["input_edge_power"] = r.input_edge_power;
-  d["output_edge_power"] = r.output_edge_power;
-  d["scaled_output"] = r.scaled_output;
-  d["chirp_phase_step"] = r.chirp_phase_step;
-  d["fresnel_phase_error"] = r.fresnel_phase_error;
-  d["fraunhofer_phase"] = r.fraunhofer_phase;
-  return d;
-}
-
 ComplexArray array_from_field(const Field& f) {
   ComplexArray out({f.n, f.n});
   std::memcpy(out.mutable_data(), f.values.data(), f.n * f.n * sizeof(Complex));

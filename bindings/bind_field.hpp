@@ -7,15 +7,11 @@
 #include <pybind11/pybind11.h>
 
 #include "lidar_overlap/fourier/field.hpp"
-#include "lidar_overlap/fourier/propagate.hpp"
 
 using ComplexArray = pybind11::array_t<std::complex<double>, pybind11::array::c_style | pybind11::array::forcecast>;
 
 lidar_overlap::Field field_from_array(const ComplexArray& values, double spacing, double wavelength);
 ComplexArray array_from_field(const lidar_overlap::Field& f);
-
-// A propagation's report (method, sampling checks) as a dict, for propagate and the FO overlap.
-pybind11::dict report_dict(const lidar_overlap::PropagationReport& r);
 
 // An n x n row-major real image (phase plate, screen, far field) as a NumPy array.
 pybind11::array_t<double> square_array(const std::vector<double>& values, std::size_t n);

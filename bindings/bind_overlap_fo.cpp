@@ -1,4 +1,4 @@
-// Fourier-optics overlap: the GIL is released around the compute only.
+// Fourier-optics overlap: options and results as classes; the GIL is released around the compute only.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -6,74 +6,65 @@
 #include <array>
 #include <vector>
 
+#include "arrays.hpp"
 #include "bind_field.hpp"
 #include "interruptible.hpp"
+#include "options.hpp"
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "lidar_overlap/fourier/overlap_fo_radial.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;
 
-namespace {
-py::dict to_dict(const FoOverlap& r) {
-  py::list reports;
-  for (const PropagationReport& p : r.beam_reports) reports.append(report_dict(p));
-  py::dict out;
-  out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
-  out["spectrum_grid"] = r.spectrum_grid;
-  out["beam_reports"] = reports;
-  return out;
-}
-}  // namespace
-
 void bind_overlap_fo(py::module_& m) {
+  bind_options(m, "FoOptions", "Options of overlap_fo and overlap_fo_field (which uses the last two only).",
+               option("beam_grid", &FoOptions::beam_grid, "Samples per side of the TEM00 field."),
+               option("beam_window", &FoOptions::beam_window, "Its window, in waist radii."),
+               option("max_spectrum_grid", &FoOptions::max_spectrum_grid, "Cap on the zero-padded beam spectrum."),
+               option("threads", &FoOptions::threads, "OpenMP threads across ranges; 0: all cores."));
+  bind_options(m, "RadialFoOptions", "Options of overlap_fo_radial.",
+               option("periods_per_panel", &RadialFoOptions::periods_per_panel,
+                      "Panel length in periods of the fastest oscillation (24 nodes each)."),
+               option("threads", &RadialFoOptions::threads, "OpenMP threads across ranges; 0: all cores."));
+
+  py::class_<FoOverlap>(m, "FoOverlap", "Result of overlap_fo and overlap_fo_field: one entry per range.")
+      .def_property_readonly("overlap", [](const FoOverlap& r) { return to_array(r.overlap); })
+      .def_property_readonly("beam_reports", [](const FoOverlap& r) { return r.beam_reports; },
+                             "The transmitted field's propagation to each range.")
+      .def_property_readonly("spectrum_grid", [](const FoOverlap& r) { return to_array(r.spectrum_grid); },
+                             "Padded spectrum size used at each range.");
+  py::class_<RadialFoOverlap>(m, "RadialFoOverlap", "Result of overlap_fo_radial: one entry per range.")
+      .def_property_readonly("overlap", [](const RadialFoOverlap& r) { return to_array(r.overlap); })
+      .def_property_readonly("evaluations", [](const RadialFoOverlap& r) { return to_array(r.evaluations); },
+                             "OTF evaluations per range.");
+
   m.def(
       "overlap_fo",
-      [](const LidarSystem& system, const std::vector<double>& ranges, std::size_t beam_grid, double beam_window,
-         std::size_t max_spectrum_grid, int threads) {
-        FoOverlap r;
-        {
-          Interruptible release;
-          r = overlap_fo(system, ranges, FoOptions{beam_grid, beam_window, max_spectrum_grid, threads});
-        }
-        return to_dict(r);
+      [](const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
+        Interruptible release;
+        return overlap_fo(system, ranges, options);
       },
-      py::arg("system"), py::arg("ranges"), py::arg("beam_grid"), py::arg("beam_window"),
-      py::arg("max_spectrum_grid"), py::arg("threads"));
+      py::arg("system"), py::arg("ranges"), py::arg("options") = FoOptions{});
 
   // Any transmitted field (flat-top, annular, vortex, ...): the field's own grid replaces beam_grid.
   m.def(
       "overlap_fo_field",
       [](const LidarSystem& system, const std::vector<double>& ranges, const ComplexArray& values, double spacing,
-         double wavelength, std::size_t max_spectrum_grid, int threads) {
+         double wavelength, const FoOptions& options) {
         const Field transmitted = field_from_array(values, spacing, wavelength);
-        FoOverlap r;
-        {
-          Interruptible release;
-          FoOptions options;
-          options.max_spectrum_grid = max_spectrum_grid;
-          options.threads = threads;
-          r = overlap_fo(system, ranges, transmitted, options);
-        }
-        return to_dict(r);
+        Interruptible release;
+        return overlap_fo(system, ranges, transmitted, options);
       },
       py::arg("system"), py::arg("ranges"), py::arg("values"), py::arg("spacing"), py::arg("wavelength"),
-      py::arg("max_spectrum_grid"), py::arg("threads"));
+      py::arg("options") = FoOptions{});
 
   m.def(
       "overlap_fo_radial",
-      [](const LidarSystem& system, const std::vector<double>& ranges, double periods_per_panel, int threads) {
-        RadialFoOverlap r;
-        {
-          Interruptible release;
-          r = overlap_fo_radial(system, ranges, RadialFoOptions{periods_per_panel, threads});
-        }
-        py::dict out;
-        out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
-        out["evaluations"] = r.evaluations;
-        return out;
+      [](const LidarSystem& system, const std::vector<double>& ranges, const RadialFoOptions& options) {
+        Interruptible release;
+        return overlap_fo_radial(system, ranges, options);
       },
-      py::arg("system"), py::arg("ranges"), py::arg("periods_per_panel"), py::arg("threads"));
+      py::arg("system"), py::arg("ranges"), py::arg("options") = RadialFoOptions{});
 
   m.def(
       "emitter_coupling_fo",

@@ -1,4 +1,4 @@
-// Ray-tracing overlap: the GIL is released around the compute only.
+// Ray-tracing overlap: options and result as classes; the GIL is released around the compute only.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -6,7 +6,9 @@
 #include <array>
 #include <vector>
 
+#include "arrays.hpp"
 #include "interruptible.hpp"
+#include "options.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 #include "lidar_overlap/geometry/receiver.hpp"
 
@@ -14,25 +16,35 @@ namespace py = pybind11;
 using namespace lidar_overlap;
 
 void bind_overlap_rt(py::module_& m) {
+  bind_options(m, "RtOptions", "Options of overlap_rt and overlap_rt_batch.",
+               option("tolerance", &RtOptions::tolerance, "Absolute error allowed on G at each range, in (0, 1)."),
+               option("threads", &RtOptions::threads, "OpenMP threads across ranges; 0: all cores."),
+               option("max_segments", &RtOptions::max_segments,
+                      "Cap on subdivisions per adaptive integral; reaching it clears `converged`."));
+
+  py::class_<RtOverlap>(m, "RtOverlap", "Result of overlap_rt: one entry per range.")
+      .def_property_readonly("overlap", [](const RtOverlap& r) { return to_array(r.overlap); })
+      .def_property_readonly("error_estimate", [](const RtOverlap& r) { return to_array(r.error_estimate); })
+      .def_property_readonly("converged", [](const RtOverlap& r) { return to_array(r.converged); })
+      .def_readonly("evaluations", &RtOverlap::evaluations, "Scatterer couplings computed, all ranges.")
+      .def_readonly("axisymmetric", &RtOverlap::axisymmetric, "Beam and receiver share the telescope axis.");
+
   m.def(
       "overlap_rt",
-      [](const LidarSystem& system, const std::vector<double>& ranges, double tolerance, int threads,
-         std::size_t max_segments) {
-        RtOverlap r;
-        {
-          Interruptible release;
-          r = overlap_rt(system, ranges, RtOptions{tolerance, threads, max_segments});
-        }
-        py::dict out;
-        out["overlap"] = py::array_t<double>(r.overlap.size(), r.overlap.data());
-        out["error_estimate"] = py::array_t<double>(r.error_estimate.size(), r.error_estimate.data());
-        out["converged"] = std::vector<bool>(r.converged.begin(), r.converged.end());
-        out["evaluations"] = r.evaluations;
-        out["axisymmetric"] = r.axisymmetric;
-        return out;
+      [](const LidarSystem& system, const std::vector<double>& ranges, const RtOptions& options) {
+        Interruptible release;
+        return overlap_rt(system, ranges, options);
       },
-      py::arg("system"), py::arg("ranges"), py::arg("tolerance"), py::arg("threads"),
-      py::arg("max_segments"));
+      py::arg("system"), py::arg("ranges"), py::arg("options") = RtOptions{});
+
+  m.def(
+      "overlap_rt_batch",
+      [](const std::vector<LidarSystem>& systems, const std::vector<double>& ranges, const RtOptions& options) {
+        Interruptible release;
+        return overlap_rt_batch(systems, ranges, options);
+      },
+      py::arg("systems"), py::arg("ranges"), py::arg("options") = RtOptions{},
+      "Entry i: G of systems[i] at ranges[i], bit for bit overlap_rt(systems[i], [ranges[i]], options).");
 
   m.def(
       "emitter_coupling_rt",

@@ -1,4 +1,4 @@
-// Propagation: the GIL is released around the FFT work; the report comes back as a dict.
+// Propagation: the GIL is released around the FFT work; the report comes back as a PropagationReport.
 #include <pybind11/stl.h>
 
 #include <stdexcept>
@@ -22,9 +22,36 @@ PropagationMethod method_from(const std::string& name) {
   throw std::invalid_argument("method = '" + name +
                               "' is invalid: expected 'auto', 'angular_spectrum', 'fresnel' or 'fraunhofer'");
 }
+
+const char* method_name(PropagationMethod m) {
+  switch (m) {
+    case PropagationMethod::angular_spectrum: return "angular_spectrum";
+    case PropagationMethod::fresnel: return "fresnel";
+    case PropagationMethod::fraunhofer: return "fraunhofer";
+    default: return "auto";
+  }
+}
 }  // namespace
 
 void bind_propagate(py::module_& m) {
+  py::class_<PropagationReport>(m, "PropagationReport", "How a field was propagated, and its sampling checks.")
+      .def_property_readonly("method", [](const PropagationReport& r) { return method_name(r.method); },
+                             "The method actually used.")
+      .def_readonly("critical_distance", &PropagationReport::critical_distance, "m, n dx^2 / lambda.")
+      .def_readonly("band_limit_loss", &PropagationReport::band_limit_loss,
+                    "Angular spectrum: fraction of power outside the band-limited transfer function.")
+      .def_readonly("input_edge_power", &PropagationReport::input_edge_power,
+                    "Fraction of the input power in the outer n/16 of the window.")
+      .def_readonly("output_edge_power", &PropagationReport::output_edge_power, "The same for the output.")
+      .def_readonly("scaled_output", &PropagationReport::scaled_output,
+                    "Fresnel/Fraunhofer by chirp-z to a chosen spacing.")
+      .def_readonly("chirp_phase_step", &PropagationReport::chirp_phase_step,
+                    "rad, Fresnel: input chirp phase step at the field's edge.")
+      .def_readonly("fresnel_phase_error", &PropagationReport::fresnel_phase_error,
+                    "rad, Fresnel: phase neglected by the approximation (A3).")
+      .def_readonly("fraunhofer_phase", &PropagationReport::fraunhofer_phase,
+                    "rad, Fraunhofer: neglected input phase (A6).");
+
   m.def(
       "propagate",
       // grid_size: 0 keeps the field's grid, -1 lets choose_grid pick it, n > 0 zero-pads to n.
@@ -44,7 +71,7 @@ void bind_propagate(py::module_& m) {
           }
           p = propagate(std::move(in), distance, pm, output_spacing);
         }
-        return py::make_tuple(array_from_field(p.field), p.field.spacing, report_dict(p.report));
+        return py::make_tuple(array_from_field(p.field), p.field.spacing, p.report);
       },
       py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"), py::arg("method"),
       py::arg("output_spacing"), py::arg("grid_size"));

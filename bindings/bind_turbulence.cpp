@@ -1,11 +1,14 @@
-// The turbulent atmosphere (Cn^2 profiles and their path integrals) and the turbulent FO overlap.
+// The turbulent atmosphere (Cn^2 profiles and their path integrals) and the turbulent FO overlap, its options
+// and result as classes.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "arrays.hpp"
 #include "bind_field.hpp"
 #include "interruptible.hpp"
+#include "options.hpp"
 #include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
 #include "lidar_overlap/atmosphere/phase_screen.hpp"
 #include "lidar_overlap/atmosphere/turbulence.hpp"
@@ -52,33 +55,32 @@ void bind_turbulence(py::module_& m) {
       py::arg("n"), py::arg("spacing"), py::arg("r0"), py::arg("outer_scale"), py::arg("inner_scale"), py::arg("seed"),
       py::arg("index"));
 
+  bind_options(m, "TurbulenceOptions", "Options of overlap_fo_turbulent.",
+               option("realizations", &TurbulenceOptions::realizations, "Random draws of the atmosphere."),
+               option("screens", &TurbulenceOptions::screens, "Phase screens over [0, last range]."),
+               option("seed", &TurbulenceOptions::seed, "Same seed, same screens, whatever the thread count."),
+               option("beam_grid", &TurbulenceOptions::beam_grid, "Samples per side of the propagated field."),
+               option("beam_window", &TurbulenceOptions::beam_window,
+                      "Window in long-term radii (plus 8 rms wander) at every plane."),
+               option("max_spectrum_grid", &TurbulenceOptions::max_spectrum_grid,
+                      "Cap on the zero-padded beam spectrum."),
+               option("threads", &TurbulenceOptions::threads, "OpenMP threads across realisations; 0: all cores."));
+
+  py::class_<TurbulentOverlap>(m, "TurbulentOverlap", "Result of overlap_fo_turbulent.")
+      .def_property_readonly("overlap", [](const TurbulentOverlap& r) { return to_array(r.overlap); },
+                             "G, realisations x ranges.")
+      .def_property_readonly("wander_x", [](const TurbulentOverlap& r) { return to_array(r.wander_x); },
+                             "m, beam centroid at the last range, per realisation.")
+      .def_property_readonly("wander_y", [](const TurbulentOverlap& r) { return to_array(r.wander_y); })
+      .def_property_readonly("radius_last", [](const TurbulentOverlap& r) { return to_array(r.radius_last); },
+                             "m, second-moment radius at the last range, per realisation.");
+
   m.def(
       "overlap_fo_turbulent",
       [](const LidarSystem& system, const std::vector<double>& ranges, const Cn2Profile& atmosphere,
-         std::size_t realizations, std::size_t screens, std::uint64_t seed, std::size_t beam_grid, double beam_window,
-         int threads) {
-        TurbulentOverlap r;
-        TurbulenceOptions o;
-        o.realizations = realizations;
-        o.screens = screens;
-        o.seed = seed;
-        o.beam_grid = beam_grid;
-        o.beam_window = beam_window;
-        o.threads = threads;
-        {
-          Interruptible release;  // a custom profile re-acquires it through pybind11's wrapper
-          r = overlap_fo_turbulent(system, ranges, atmosphere, o);
-        }
-        py::array_t<double> g({r.overlap.size(), ranges.size()});
-        for (std::size_t k = 0; k < r.overlap.size(); ++k)
-          std::copy(r.overlap[k].begin(), r.overlap[k].end(), g.mutable_data() + k * ranges.size());
-        py::dict out;
-        out["overlap"] = g;
-        out["wander_x"] = r.wander_x;
-        out["wander_y"] = r.wander_y;
-        out["radius_last"] = r.radius_last;
-        return out;
+         const TurbulenceOptions& options) {
+        Interruptible release;  // a custom profile re-acquires it through pybind11's wrapper
+        return overlap_fo_turbulent(system, ranges, atmosphere, options);
       },
-      py::arg("system"), py::arg("ranges"), py::arg("atmosphere"), py::arg("realizations"), py::arg("screens"),
-      py::arg("seed"), py::arg("beam_grid"), py::arg("beam_window"), py::arg("threads"));
+      py::arg("system"), py::arg("ranges"), py::arg("atmosphere"), py::arg("options") = TurbulenceOptions{});
 }

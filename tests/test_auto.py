@@ -20,7 +20,7 @@ Z = np.geomspace(10.0, 3000.0, 60)
 def reference(system):
     """Converged FO: the radial path (any Gaussian pointing) with 4x its nodes; the 2-D path on a finer beam
     grid agrees with it to 3e-7 on the biaxial scene (tests/test_overlap_fo.py)."""
-    return np.asarray(_core.overlap_fo_radial(system._native, Z, 2.0, 0)["overlap"])
+    return _core.overlap_fo_radial(system._native, Z, _core.RadialFoOptions(periods_per_panel=2.0)).overlap
 
 
 base = lo.paper_table1()

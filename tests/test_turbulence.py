@@ -61,8 +61,9 @@ def test_no_turbulence_is_the_turbulence_free_result(method):
 
 def test_split_step_without_screens_follows_d1():
     s = lo.paper_table1(wavelength=LAM, waist_radius=5e-3)
-    raw = _core.overlap_fo_turbulent(s._native, [300.0, 1000.0], lo.Turbulence(0.0)._native, 1, 10, 0, 128, 8.0, 0)
-    assert abs(raw["radius_last"][0] / s.beam.radius(1000.0) - 1) < D1_RTOL
+    raw = _core.overlap_fo_turbulent(s._native, [300.0, 1000.0], lo.Turbulence(0.0)._native,
+                                     _core.TurbulenceOptions(realizations=1, screens=10, seed=0, beam_grid=128, beam_window=8.0, threads=0))
+    assert abs(raw.radius_last[0] / s.beam.radius(1000.0) - 1) < D1_RTOL
 
 
 def test_rt_mean_is_the_long_term_beam():
@@ -80,8 +81,9 @@ def test_rt_mean_is_the_long_term_beam():
 
 def test_split_step_without_screens_gives_the_fo_overlap():
     s, z = lo.paper_table1(), np.geomspace(50, 2000, 12)
-    raw = _core.overlap_fo_turbulent(s._native, z, lo.Turbulence(0.0)._native, 1, 10, 0, 128, 8.0, 0)
-    assert np.max(np.abs(np.asarray(raw["overlap"])[0] - lo.overlap(s, z, "fo").overlap)) < SPLIT_STEP_ATOL
+    raw = _core.overlap_fo_turbulent(s._native, z, lo.Turbulence(0.0)._native,
+                                     _core.TurbulenceOptions(realizations=1, screens=10, seed=0, beam_grid=128, beam_window=8.0, threads=0))
+    assert np.max(np.abs(raw.overlap[0] - lo.overlap(s, z, "fo").overlap)) < SPLIT_STEP_ATOL
 
 
 def gradient_law(cn2, L, width2, inner_scale):
@@ -104,8 +106,8 @@ def test_fo_screens_wander_and_spread_a_collimated_beam():
     large-scale part of that W_LT^2: 2^(2/3) = 1.59 times the centroid variance."""
     w0, L, cn2, l0 = 5e-2, 1000.0, 1e-14, 0.02
     s, t = lo.paper_table1(wavelength=LAM, waist_radius=w0), lo.Turbulence(cn2, inner_scale=l0)
-    raw = _core.overlap_fo_turbulent(s._native, [L], t._native, STATS_REALIZATIONS, 10, 1, 128, 8.0, 0)
-    wx, wy, r = (np.asarray(raw[k]) for k in ("wander_x", "wander_y", "radius_last"))
+    raw = _core.overlap_fo_turbulent(s._native, [L], t._native, _core.TurbulenceOptions(realizations=STATS_REALIZATIONS, screens=10, seed=1, beam_grid=128, beam_window=8.0, threads=0))
+    wx, wy, r = raw.wander_x, raw.wander_y, raw.radius_last
     wander = np.mean(wx**2 + wy**2)
     spread = np.mean(r**2 + 2 * (wx**2 + wy**2)) - s.beam.radius(L) ** 2
     assert abs(wander / gradient_law(cn2, L, w0**2, l0) - 1) < WANDER_RTOL

@@ -192,37 +192,37 @@ def _grid_size_code(grid_size: Union[None, int, str], n: int) -> int:
     return size
 
 
-def _warn_outside_validity(r: dict, distance: float) -> None:
-    used = r["method"]
+def _warn_outside_validity(r: _core.PropagationReport, distance: float) -> None:
+    used = r.method
     problems = []
-    if r["input_edge_power"] > EDGE_POWER_LIMIT:
-        problems.append(f"the input field reaches the window edge ({r['input_edge_power']:.2g} of its power in the "
+    if r.input_edge_power > EDGE_POWER_LIMIT:
+        problems.append(f"the input field reaches the window edge ({r.input_edge_power:.2g} of its power in the "
                         "outer n/16): enlarge the grid (n) so that the field is not clipped")
     # A scaled (chirp-z) output is a window chosen by the caller: what lies outside it is not computed,
     # nothing wraps around, so it is not a sampling problem.
-    if r["output_edge_power"] > EDGE_POWER_LIMIT and not r["scaled_output"]:
+    if r.output_edge_power > EDGE_POWER_LIMIT and not r.scaled_output:
         if used == "angular_spectrum":
-            problems.append(f"the propagated field reaches the window edge ({r['output_edge_power']:.2g} of its power "
+            problems.append(f"the propagated field reaches the window edge ({r.output_edge_power:.2g} of its power "
                             "in the outer n/16) and wraps around: enlarge the grid (grid_size='auto' picks it), or use "
                             "method='fresnel', "
                             "whose output grid grows with distance")
         else:
-            problems.append(f"{r['output_edge_power']:.2g} of the power lands in the outer n/16 of the output window "
+            problems.append(f"{r.output_edge_power:.2g} of the power lands in the outer n/16 of the output window "
                             "λz/dx, which holds the input's spatial frequencies up to its Nyquist limit: the input "
                             "is undersampled there and that power is aliased (hard edges do this); sample the input "
                             "more finely, soften its edges, or choose output_spacing")
-    if used == "angular_spectrum" and r["band_limit_loss"] > BAND_LIMIT_LOSS_LIMIT:
-        problems.append(f"the band-limited transfer function removes {r['band_limit_loss']:.2g} of the power: "
+    if used == "angular_spectrum" and r.band_limit_loss > BAND_LIMIT_LOSS_LIMIT:
+        problems.append(f"the band-limited transfer function removes {r.band_limit_loss:.2g} of the power: "
                         f"{abs(distance):.4g} m is too far for this grid (critical distance "
-                        f"{r['critical_distance']:.4g} m); use method='fresnel' or grid_size='auto'")
-    if used == "fresnel" and r["chirp_phase_step"] > np.pi:
-        problems.append(f"the Fresnel input chirp is undersampled (phase step {r['chirp_phase_step']:.3g} rad > π at "
+                        f"{r.critical_distance:.4g} m); use method='fresnel' or grid_size='auto'")
+    if used == "fresnel" and r.chirp_phase_step > np.pi:
+        problems.append(f"the Fresnel input chirp is undersampled (phase step {r.chirp_phase_step:.3g} rad > π at "
                         "the field's edge): the distance is too short for this grid; use method='angular_spectrum'")
-    if used == "fresnel" and r["fresnel_phase_error"] > APPROXIMATION_PHASE_LIMIT:
-        problems.append(f"the Fresnel approximation (A3) neglects up to {r['fresnel_phase_error']:.3g} rad of phase "
+    if used == "fresnel" and r.fresnel_phase_error > APPROXIMATION_PHASE_LIMIT:
+        problems.append(f"the Fresnel approximation (A3) neglects up to {r.fresnel_phase_error:.3g} rad of phase "
                         "at this distance: use method='angular_spectrum'")
-    if used == "fraunhofer" and r["fraunhofer_phase"] > APPROXIMATION_PHASE_LIMIT:
+    if used == "fraunhofer" and r.fraunhofer_phase > APPROXIMATION_PHASE_LIMIT:
         problems.append(f"Fraunhofer in the near field: the neglected input phase π a²/(λz) is "
-                        f"{r['fraunhofer_phase']:.3g} rad (A6); use method='fresnel'")
+                        f"{r.fraunhofer_phase:.3g} rad (A6); use method='fresnel'")
     for p in problems:
         warnings.warn(f"propagate({used}, {distance:.4g} m): {p}", SamplingWarning, stacklevel=3)

@@ -60,21 +60,21 @@ class FlatTopBeam(FieldBeam):
                                   _checks.count("max_iterations", max_iterations, 1),
                                   _checks.real("tolerance", tolerance), _checks.real("max_error", max_error),
                                   power)
-        super().__init__(Field._from_core(d["field"], d["spacing"], wavelength), offset, tilt)
+        super().__init__(Field._from_core(d.field, d.spacing, wavelength), offset, tilt)
         self.waist_radius = float(waist_radius)
         self.angular_diameter = float(angular_diameter)
-        self.phase: np.ndarray = d["phase"]
-        self.target: np.ndarray = d["target"]
-        self.far_field: np.ndarray = d["far_field"]
-        self.angular_spacing: float = d["angular_spacing"]
-        self.edge_width_target: float = d["edge_width_target"]
-        self.history: np.ndarray = d["history"]
-        self.stop: str = d["stop"]
-        self.monotone: bool = d["monotone"]
-        self.efficiency: float = d["efficiency"]
-        self.uniformity_rms: float = d["uniformity_rms"]
-        self.uniformity_pv: float = d["uniformity_pv"]
-        self.edge_width: float = d["edge_width"]
+        self.phase: np.ndarray = d.phase
+        self.target: np.ndarray = d.target
+        self.far_field: np.ndarray = d.far_field
+        self.angular_spacing: float = d.angular_spacing
+        self.edge_width_target: float = d.edge_width_target
+        self.history: np.ndarray = d.history
+        self.stop: str = d.stop
+        self.monotone: bool = d.monotone
+        self.efficiency: float = d.efficiency
+        self.uniformity_rms: float = d.uniformity_rms
+        self.uniformity_pv: float = d.uniformity_pv
+        self.edge_width: float = d.edge_width
         for array in (self.phase, self.target, self.far_field, self.history):
             array.flags.writeable = False
         object.__setattr__(self, "_sealed", True)

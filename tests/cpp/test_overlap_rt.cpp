@@ -75,5 +75,41 @@ int main() {
   tilted.beam.tilt = {0.2e-3, 0.0};
   const RtOverlap t1 = overlap_rt(tilted, z, one), t2 = overlap_rt(tilted, z, two);
   test::that("thread count does not change results", t1.overlap == t2.overlap);
+  // A batch entry is the single-system call, bit for bit, whatever the other entries and the thread count.
+  std::vector<LidarSystem> batch;
+  std::vector<double> batch_ranges;
+  const Vec2 tilts[] = {{0, 0}, {0.2e-3, 0}, {-0.1e-3, 0.05e-3}, {0, 0.3e-3}};
+  const Vec2 offsets[] = {{0, 0}, {0.05, 0}, {0, -0.02}, {0.01, 0.01}};
+  for (std::size_t k = 0; k < 4; ++k)
+    for (double zr : {40.0, 150.0, 900.0}) {
+      LidarSystem b;
+      b.beam.tilt = tilts[k];
+      b.beam.offset = offsets[k];
+      if (k == 2) {
+        b.telescope.obstruction_radius = 0.02;
+        b.telescope.obstruction_distance = 0.7;
+      }
+      batch.push_back(b);
+      batch_ranges.push_back(zr);
+    }
+  const RtOverlap all = overlap_rt_batch(batch, batch_ranges, {1e-6, 2, 4000});
+  bool same = all.overlap.size() == batch.size();
+  std::size_t evaluations = 0;
+  for (std::size_t i = 0; same && i < batch.size(); ++i) {
+    const RtOverlap one = overlap_rt(batch[i], {batch_ranges[i]}, {1e-6, 1, 4000});
+    same = one.overlap[0] == all.overlap[i] && one.error_estimate[0] == all.error_estimate[i] &&
+           one.converged[0] == all.converged[i];
+    evaluations += one.evaluations;
+  }
+  test::that("batch entries equal single calls bit for bit", same && evaluations == all.evaluations);
+  test::that("a batch with tilted beams is not axisymmetric", !all.axisymmetric);
+  test::that("a batch of axisymmetric systems is", overlap_rt_batch({LidarSystem{}}, {300.0}).axisymmetric);
+  test::throws("batch sizes differ", [&] { overlap_rt_batch(batch, {100.0}); }, "ranges");
+  std::vector<LidarSystem> bad = batch;
+  bad[5].telescope.diameter = -1.0;
+  test::throws("invalid batch system", [&] { overlap_rt_batch(bad, batch_ranges); }, "systems[5]: telescope.diameter");
+  std::vector<double> short_ranges = batch_ranges;
+  short_ranges[7] = 0.0;
+  test::throws("invalid batch range", [&] { overlap_rt_batch(batch, short_ranges); }, "ranges[7]");
   return test::report("test_overlap_rt");
 }

@@ -113,8 +113,13 @@ void memory(const std::string& parameter, double value, double bytes, const std:
 
 void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, double slack,
                     const std::string& method, const std::function<std::string(std::size_t)>& cause) {
+  overlap_values(overlap, ranges, std::vector<double>(overlap.size(), slack), method, cause);
+}
+
+void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, const std::vector<double>& slacks,
+                    const std::string& method, const std::function<std::string(std::size_t)>& cause) {
   for (std::size_t i = 0; i < overlap.size(); ++i) {
-    const double g = overlap[i];
+    const double g = overlap[i], slack = slacks[i];
     if (g >= -slack && g <= 1.0 + slack) {
       overlap[i] = std::clamp(g, 0.0, 1.0);
       continue;

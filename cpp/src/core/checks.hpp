@@ -52,5 +52,8 @@ void memory(const std::string& parameter, double value, double bytes, const std:
 // into [0, 1]. `cause`, if given, adds what went wrong at range i (e.g. a sampling loss and its fix).
 void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, double slack,
                     const std::string& method, const std::function<std::string(std::size_t)>& cause = nullptr);
+// The same with a slack per value (a batch of independent computations, each with its own accuracy).
+void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, const std::vector<double>& slack,
+                    const std::string& method, const std::function<std::string(std::size_t)>& cause = nullptr);
 
 }  // namespace lidar_overlap::checks

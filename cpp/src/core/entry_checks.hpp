@@ -17,4 +17,9 @@ std::string range_name(std::size_t i);
 // named ranges[i]); returns the OpenMP team size for the call.
 int checked_threads_and_ranges(const LidarSystem& system, const std::vector<double>& ranges, int threads);
 
+// The same for a batch where ranges[i] belongs to systems[i] (sizes checked by the caller); each system is
+// validated first, its errors prefixed with "systems[i]: ".
+int checked_threads_and_ranges(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
+                               int threads);
+
 }  // namespace lidar_overlap::detail

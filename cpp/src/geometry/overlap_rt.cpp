@@ -193,6 +193,44 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
   return out;
 }
 
+RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
+                           const RtOptions& options) {
+  const std::size_t n = systems.size();
+  if (ranges.size() != n)
+    checks::fail("ranges", static_cast<double>(ranges.size()),
+                 "one range per system: expected " + std::to_string(n) + " ranges (the size of systems)");
+  if (n > kMaxBatchEntries)
+    checks::fail("systems", static_cast<double>(n), "at most " + std::to_string(kMaxBatchEntries) + " entries");
+  checks::in_open_unit("tolerance", options.tolerance);
+  const int threads = detail::checked_threads_and_ranges(systems, ranges, options.threads);
+  if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
+  checks::memory("systems", static_cast<double>(n), static_cast<double>(n) * (sizeof(RangeResult) + 3 * sizeof(double) + 1),
+                 "split the batch");
+
+  // Each receiver is built inside the region (its system and range are valid, so it does not throw; were it
+  // to, parallel_for carries the exception out): a batch keeps no table of receivers.
+  std::vector<RangeResult> results(n);
+  detail::parallel_for(n, threads, [&](std::size_t i) {
+    results[i] = overlap_at(systems[i], Receiver(systems[i], ranges[i]), options);
+  });
+  RtOverlap out;
+  out.overlap.resize(n);
+  out.error_estimate.resize(n);
+  out.converged.resize(n);
+  out.axisymmetric = true;
+  std::vector<double> slack(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.overlap[i] = results[i].value;
+    out.error_estimate[i] = results[i].error;
+    out.converged[i] = results[i].converged;
+    out.evaluations += results[i].evaluations;
+    out.axisymmetric = out.axisymmetric && systems[i].is_axisymmetric();
+    slack[i] = std::max(options.tolerance, results[i].error);  // as overlap_rt on this entry alone
+  }
+  checks::overlap_values(out.overlap, ranges, slack, "overlap_rt_batch");
+  return out;
+}
+
 double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position) {
   checks::coordinate("position", position);
   std::vector<double> g{Receiver(system, z).coupling(position)};

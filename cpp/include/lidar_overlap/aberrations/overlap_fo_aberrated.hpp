@@ -24,7 +24,7 @@ namespace lidar_overlap {
 
 struct FoAberratedOptions {
   std::size_t max_grid = 4096;  // cap on the pupil transform's size per side
-  double tail_error = 1e-5;     // sets the alias period: the aliases' tails put this on G before they cancel
+  double tail_error = 1e-4;     // sets the alias period: the aliases' tails put this on G before they cancel
   int threads = 0;              // OpenMP threads across ranges; 0: all cores, per call. Callers that run
                                 // calls from several threads pass 1 (or their share): core/limits.hpp
 };

@@ -17,7 +17,7 @@
 namespace lidar_overlap {
 
 struct RadialFoOptions {
-  double periods_per_panel = 4.0;  // panel length in periods of the fastest oscillation (24 nodes each)
+  double periods_per_panel = 8.0;  // panel length in periods of the fastest oscillation (24 nodes each)
   int threads = 0;                 // OpenMP threads across ranges; 0: all cores, per call. Callers that run
                                    // calls from several threads pass 1 (or their share): core/limits.hpp
 };

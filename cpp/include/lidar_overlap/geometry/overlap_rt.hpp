@@ -30,6 +30,16 @@ struct RtOverlap {
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
                      const RtOptions& options = {});
 
+// Most entries one overlap_rt_batch call takes (each costs an adaptive integral, ~0.1-10 ms).
+inline constexpr std::size_t kMaxBatchEntries = 10000000;
+
+// Entry i is G of systems[i] at ranges[i] (m), bit for bit what overlap_rt(systems[i], {ranges[i]}, options)
+// gives, computed in parallel over entries: many systems (e.g. wandering beams) in one call. `axisymmetric`
+// is true when every system is. Throws std::invalid_argument for sizes that differ or exceed
+// kMaxBatchEntries, and for an invalid system (naming systems[i]), range (ranges[i]) or option.
+RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
+                           const RtOptions& options = {});
+
 // Coupling of one point scatterer at (position, z) (m): power reaching the detector over the power
 // it sends into the full, unobstructed aperture.
 double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position);
