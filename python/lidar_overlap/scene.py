@@ -19,7 +19,7 @@ from . import _checks
 from .detector_image import _blur, _fov, _irradiance, _window
 from .field_beam import FieldBeam
 from .fields import propagate
-from .overlap import overlap
+from .compute import overlap
 from .result import OverlapResult
 from .system import LidarSystem
 
