@@ -257,12 +257,12 @@ def test_a_nan_curve_is_a_failure_not_a_file(tmp_path, capsys, monkeypatch):
     refuses it on construction, and nothing is written."""
     from lidar_overlap import scenario as scenario_module
 
-    def nan_overlap(system, ranges, method, **options):
-        z = np.asarray(ranges, dtype=float)
+    def nan_overlap(plan):
+        z = plan.ranges
         return lo.OverlapResult(ranges=z, overlap=np.full(z.size, np.nan), method="rt",
-                                error_estimate=np.zeros(z.size), system=system, tolerance=1e-4)
+                                error_estimate=np.zeros(z.size), system=plan.system, tolerance=1e-4)
 
-    monkeypatch.setattr(scenario_module._overlap, "overlap", nan_overlap)
+    monkeypatch.setattr(scenario_module, "run", nan_overlap)
     path = _small_scenario(tmp_path, outputs=("csv", "netcdf", "plot"))
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"]) == 1
     out, err = capsys.readouterr()
@@ -332,7 +332,7 @@ def test_every_failure_is_one_line(tmp_path, capsys, monkeypatch, raised, code, 
     def fail(*args, **kwargs):
         raise raised
 
-    monkeypatch.setattr(scenario_module._overlap, "overlap", fail)
+    monkeypatch.setattr(scenario_module, "run", fail)
     assert main(["run", str(_small_scenario(tmp_path)), "--out", str(tmp_path / "out"), "--quiet"]) == code
     _one_error_line(capsys.readouterr().err, words)
     assert not (tmp_path / "out").exists()
