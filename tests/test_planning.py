@@ -187,3 +187,7 @@ def test_method_objects_are_immutable():
 def test_run_refuses_what_is_not_a_plan():
     with pytest.raises(ValueError, match="^plan = 'rt' is invalid"):
         lo.run("rt")
+    with pytest.raises(ValueError, match="^plan.backend = 'gpu' is invalid"):
+        lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), backend="gpu"))
+    with pytest.raises(ValueError, match=r"^ranges\[0\] = -1 is invalid"):   # the core checks what it is given
+        lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), ranges=np.array([-1.0, 2.0])))

@@ -22,6 +22,9 @@ RUNNERS = {
 def run(plan) -> OverlapResult:
     """Compute ``plan``: its warnings, then its backend (a turbulent plan along a path without turbulence runs
     the plain backend and repeats its curve for every draw)."""
+    if plan.backend not in RUNNERS:      # a Plan built by hand
+        raise ValueError(f"plan.backend = {_checks.shown(plan.backend)} is invalid: expected one of "
+                         f"{', '.join(map(repr, RUNNERS))} (make plans with lidar_overlap.plan)")
     for message in plan.warnings:
         _checks.warn(message)
     result = RUNNERS[plan.backend](plan)
