@@ -174,6 +174,43 @@ def overlap_call(draw, kind: str, max_ranges: int = 6, low: float = 2.0):
     return call("overlap", sys_, z, options.pop("method"), **options)
 
 
+METHOD_HOSTILITY = {"tolerance": hostile_real, "max_segments": hostile_count, "rings": hostile_count,
+                    "ring_rays": hostile_count, "path": hostile_choice, "beam_grid": hostile_count,
+                    "beam_window": hostile_real, "max_spectrum_grid": hostile_count}
+
+
+@st.composite
+def overlap_method_object(draw):
+    """overlap(system, ranges, <RT | FO | Auto object>), the hostile values in the method object's options
+    (aberrated systems have their own probe: their ray fans cost seconds)."""
+    count = draw(corruptions)
+    sys_ = draw(system(bad=0))
+    z = draw(ranges(low=20.0, bad=0, max_size=3))
+    r = draw(sanes)
+    kind = r.choice(("RT", "FO", "Auto"))
+    sane = {"RT": {"tolerance": tolerance(r), "max_segments": r.choice((4000, 200)), "rings": r.choice((8, 48)),
+                   "ring_rays": r.choice((16, 128))},
+            "FO": {"path": r.choice(("auto", "radial", "2d")), "max_spectrum_grid": r.choice((256, 1024))},
+            "Auto": {"tolerance": tolerance(r)}}[kind]
+    if kind == "FO" and sane["path"] == "2d":
+        sane.update(beam_grid=r.choice((32, 64)), beam_window=r.choice((6.0, 10.0)))
+    return call("overlap", sys_, z, call(kind, **corrupt(draw, sane, METHOD_HOSTILITY, count)))
+
+
+PARAMETER_PATHS = ("beam.tilt[0]", "beam.offset[1]", "beam.divergence", "beam.waist_radius", "detector.defocus",
+                   "detector.radius", "detector.offset[0]", "telescope.diameter", "telescope.obstruction_radius",
+                   "telescope.aberrations.zernike[11]", "telescope.aberrations.w131")
+
+
+@st.composite
+def parameter_replace(draw):
+    """parameters.replace(system, {path: value}) with a hostile path or value."""
+    count, r = draw(corruptions), draw(sanes)
+    path = draw(hostile_choice) if count and draw(_booleans) else r.choice(PARAMETER_PATHS)
+    value = draw(hostile_real) if count else r.real(-1e-4, 1e-4)
+    return call("parameters.replace", draw(system(bad=0)), {path: value})
+
+
 COUPLING_HOSTILITY = {"z": hostile_real, "position": hostile_pair, "method": hostile_choice}
 
 
@@ -266,7 +303,7 @@ def optimal_focus(draw):
     return call("optimal_focus_range", **corrupt(draw, sane, FOCUS_HOSTILITY))
 
 
-#: Every entry point's probe strategy, and its examples in a run of the test suite (2,220 in all; a
+#: Every entry point's probe strategy, and its examples in a run of the test suite (2,360 in all; a
 #: campaign shares its probes in the same proportions). Paths that draw valid Fourier-optics work get fewer.
 PROBES = {
     "GaussianBeam": (gaussian_beam(), 100),
@@ -288,6 +325,8 @@ PROBES = {
     "overlap_field_beam": (overlap_call("field_beam", max_ranges=3, low=20.0), 50),
     "overlap_turbulent": (overlap_call("turbulent", max_ranges=3), 60),
     "overlap_aberrated": (overlap_call("aberrated", max_ranges=2, low=20.0), 40),
+    "overlap_method_object": (overlap_method_object(), 80),
+    "parameters.replace": (parameter_replace(), 60),
     "emitter_coupling_rt": (emitter_coupling("rt"), 80),
     "emitter_coupling_fo": (emitter_coupling("fo"), 40),
     "explain": (explain(), 80),

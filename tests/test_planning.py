@@ -98,7 +98,7 @@ def test_the_cli_with_auto_computes_each_range_once(calls, tmp_path):
     assert sum(len(v) for name, v in calls.items() if name != "overlap_rt") == 0
 
 
-@pytest.mark.parametrize("method", ["rt", "fo", lo.FO(path="2d", grid=128), lo.Auto(1e-3)])
+@pytest.mark.parametrize("method", ["rt", "fo", lo.FO(path="2d", beam_grid=128), lo.Auto(1e-3)])
 def test_a_plan_run_in_parts_equals_the_plan_run_whole(method):
     p = lo.plan(TABLE1, Z[:12], method)
     whole = lo.run(p)
@@ -108,7 +108,7 @@ def test_a_plan_run_in_parts_equals_the_plan_run_whole(method):
 
 @pytest.mark.parametrize("shortcut, options, method", [
     ("rt", dict(tolerance=1e-6), lo.RT(tolerance=1e-6)),
-    ("fo", dict(fo_path="2d", beam_grid=128), lo.FO(path="2d", grid=128)),
+    ("fo", dict(fo_path="2d", beam_grid=128), lo.FO(path="2d", beam_grid=128)),
     ("auto", dict(tolerance=1e-3), lo.Auto(tolerance=1e-3)),
     ("rt", dict(turbulence=lo.Turbulence(1e-14), realizations=2, seed=1),
      lo.Turbulent(lo.Turbulence(1e-14), lo.RT(), realizations=2, seed=1)),
@@ -156,10 +156,10 @@ def test_bad_methods_and_options_beside_a_method_object_are_refused_by_name(meth
     (lambda: lo.RT(tolerance=float("nan")), "^tolerance = nan is invalid"),
     (lambda: lo.RT(max_segments=0), "^max_segments = 0 is invalid"),
     (lambda: lo.RT(rings=2**63), "^rings = .* is invalid"),
-    (lambda: lo.FO(path="3d"), "^fo_path = '3d' is invalid"),
-    (lambda: lo.FO(grid=8), "^beam_grid = 8 is invalid"),
-    (lambda: lo.FO(path="radial", grid=128), "apply to the 2-D FO path only"),
-    (lambda: lo.FO(window=float("inf")), None),
+    (lambda: lo.FO(path="3d"), "^path = '3d' is invalid"),
+    (lambda: lo.FO(beam_grid=8), "^beam_grid = 8 is invalid"),
+    (lambda: lo.FO(path="radial", beam_grid=128), "apply to the 2-D FO path only"),
+    (lambda: lo.FO(beam_window=float("inf")), None),
     (lambda: lo.Auto(tolerance=1.0), "^tolerance = 1.0 is invalid"),
     (lambda: lo.Auto(rt="rt"), "^rt = 'rt' is invalid"),
     (lambda: lo.Turbulent(1e-14), "^turbulence = 1e-14 is invalid"),

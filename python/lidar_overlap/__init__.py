@@ -1,5 +1,6 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
+from . import parameters
 from ._core import __version__, max_memory, max_threads, set_max_memory
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
@@ -56,6 +57,7 @@ __all__ = [
     "optimal_focus_range",
     "overlap",
     "paper_table1",
+    "parameters",
     "phase_screen",
     "max_memory",
     "max_threads",

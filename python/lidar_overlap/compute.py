@@ -32,7 +32,7 @@ def overlap(system: LidarSystem, ranges: Sequence[float] | np.ndarray, method="r
 
         - ``lo.RT(tolerance=1e-4, max_segments=...)`` / ``"rt"``: paraxial ray tracing (paper Appendix B) with
           exact circle geometry, to an absolute tolerance on G.
-        - ``lo.FO(path="auto"|"radial"|"2d", grid=, window=)`` / ``"fo"``: Fourier optics (Appendix C), with
+        - ``lo.FO(path="auto"|"radial"|"2d", beam_grid=, beam_window=)`` / ``"fo"``: Fourier optics (Appendix C), with
           diffraction at the receiver. A :class:`FieldBeam` or :class:`FlatTopBeam` needs it; a Gaussian beam
           with M² > 1 is taken as a Gaussian Schell-model beam.
         - ``lo.Auto(tolerance=...)`` / ``"auto"``: the cheapest model whose error stays within the tolerance

@@ -54,26 +54,26 @@ class FO:
 
     path : ``"radial"`` (Gaussian beams of any pointing: one integral per range, the beam image's offset as
         J0, no grids), ``"2d"`` (the sampled beam propagated on a grid) or ``"auto"`` (radial where it applies).
-    grid, window : 2-D path with a Gaussian beam: samples per side of the transmitted field and its window
-        (waist radii; long-term radii with turbulence). ``None``: the core's default. A FieldBeam brings
+    beam_grid, beam_window : 2-D path with a Gaussian beam: samples per side of the transmitted field and its
+        window (waist radii; long-term radii with turbulence). ``None``: the core's default. A FieldBeam brings
         its own grid.
     max_spectrum_grid : cap on the zero-padded beam spectrum (with aberrations, on the pupil transform); a
         range that needs more is refused naming it (use ray tracing there).
     """
 
     path: str = "auto"
-    grid: Optional[int] = None
-    window: Optional[float] = None
+    beam_grid: Optional[int] = None
+    beam_window: Optional[float] = None
     max_spectrum_grid: int = _FO.max_spectrum_grid
 
     def __post_init__(self) -> None:
-        _checks.choice("fo_path", self.path, FO_PATHS)
-        if self.grid is not None:
-            object.__setattr__(self, "grid", _checks.count("beam_grid", self.grid, 16))
-        if self.window is not None:
-            object.__setattr__(self, "window", _checks.real("beam_window", self.window))
+        _checks.choice("path", self.path, FO_PATHS)
+        if self.beam_grid is not None:
+            object.__setattr__(self, "beam_grid", _checks.count("beam_grid", self.beam_grid, 16))
+        if self.beam_window is not None:
+            object.__setattr__(self, "beam_window", _checks.real("beam_window", self.beam_window))
         object.__setattr__(self, "max_spectrum_grid", _checks.count("max_spectrum_grid", self.max_spectrum_grid, 16))
-        if self.path == "radial" and (self.grid is not None or self.window is not None):
+        if self.path == "radial" and (self.beam_grid is not None or self.beam_window is not None):
             raise ValueError("beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'")
 
 
@@ -82,7 +82,7 @@ class Auto:
     """The cheapest model whose error on G stays within ``tolerance`` (absolute, in (0, 1)): ray tracing when
     its estimated diffraction error leaves room for its quadrature, else Fourier optics. ``rt`` and ``fo`` set
     the models it may run (RT's tolerance is the share the model error leaves; FO's path is auto's choice, and
-    its grid and window apply where that is the 2-D path)."""
+    its beam_grid and beam_window apply where that is the 2-D path)."""
 
     tolerance: float = _RT.tolerance
     rt: RT = RT()
@@ -152,8 +152,10 @@ def from_shortcuts(method, *, tolerance=None, max_segments=None, fo_path=None, b
                              "method object (lidar_overlap.RT, FO, Auto, Turbulent)")
         return method if isinstance(method, Turbulent) else model(method)
     _checks.choice("method", method, SHORTCUTS)
+    if fo_path is not None:
+        _checks.choice("fo_path", fo_path, FO_PATHS)     # named as the caller named it
     rt = RT(**_only(given, tolerance="tolerance", max_segments="max_segments"))
-    fo = FO(**_only(given, path="fo_path", grid="beam_grid", window="beam_window",
+    fo = FO(**_only(given, path="fo_path", beam_grid="beam_grid", beam_window="beam_window",
                     max_spectrum_grid="max_spectrum_grid"))
     chosen = {"rt": rt, "fo": fo, "auto": Auto(tolerance=rt.tolerance, rt=rt, fo=fo)}[method]
     if turbulence is None:

@@ -131,7 +131,7 @@ def _plain(system, z, model, request, threads) -> Plan:
 def _fo(base, system, model: FO, threads, field_beam) -> Plan:
     common = dict(base, method="fo", error_kind="nominal", tolerance=float("nan"))
     if field_beam:
-        if model.grid is not None or model.window is not None:
+        if model.beam_grid is not None or model.beam_window is not None:
             raise ValueError("beam_grid and beam_window apply to Gaussian beams only: a FieldBeam is propagated on "
                              "its own grid")
         options = _core.FoOptions()
@@ -139,17 +139,17 @@ def _fo(base, system, model: FO, threads, field_beam) -> Plan:
         return Plan(**common, fo_path="2d", backend="fo_field", options=options,
                     reasons=(f"Fourier optics on the {type(system.beam).__name__}'s own grid",))
     if model.path == "radial" or (model.path == "auto" and auto.radial_fo_applies(system)):
-        if model.grid is not None or model.window is not None:
+        if model.beam_grid is not None or model.beam_window is not None:
             raise ValueError("beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'")
         options = _core.RadialFoOptions()
         options.threads = threads
         return Plan(**common, fo_path="radial", backend="fo_radial", options=options,
                     reasons=("Gaussian beam: Fourier optics on the radial path (one integral per range)",))
     options = _core.FoOptions()
-    if model.grid is not None:
-        options.beam_grid = model.grid
-    if model.window is not None:
-        options.beam_window = model.window
+    if model.beam_grid is not None:
+        options.beam_grid = model.beam_grid
+    if model.beam_window is not None:
+        options.beam_window = model.beam_window
     options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
     return Plan(**common, fo_path="2d", backend="fo_2d", options=options,
                 reasons=(f"Fourier optics on the 2d path: the beam sampled on {options.beam_grid}^2 over "
@@ -203,10 +203,10 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
                     reasons=(f"{request.realizations} draws of the beam wander, ray traced to {model.tolerance:g}",))
     options = _core.TurbulenceOptions()
     options.realizations, options.screens, options.seed = request.realizations, request.screens, request.seed
-    if model.grid is not None:
-        options.beam_grid = _checks.count("beam_grid", model.grid, MIN_TURBULENT_GRID)
-    if model.window is not None:
-        options.beam_window = model.window
+    if model.beam_grid is not None:
+        options.beam_grid = _checks.count("beam_grid", model.beam_grid, MIN_TURBULENT_GRID)
+    if model.beam_window is not None:
+        options.beam_window = model.beam_window
     options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
     return Plan(**common, method="fo", fo_path="2d", backend="fo_turbulent", tolerance=float("nan"), options=options,
                 reasons=(f"{request.realizations} draws of {request.screens} phase screens, the beam on "
