@@ -140,8 +140,8 @@ def signal(result: OverlapResult, atmosphere: Atmosphere = Atmosphere(), *, puls
     wavelength = result.system.beam.wavelength
     photons_per_pulse = energy * wavelength / (PLANCK * LIGHT_SPEED)
     area = math.pi * result.system.telescope.diameter ** 2 / 4
+    t2 = atmosphere.transmission(wavelength, z) ** 2   # first: it refuses ranges beyond the model by name
     beta = atmosphere.backscatter(wavelength, atmosphere.height(z))
-    t2 = atmosphere.transmission(wavelength, z) ** 2
     full = photons_per_pulse * dz * area * efficiency * beta * t2   # P z² with G = 1
     photons = full * g / z**2
     std = np.sqrt((photons + bg) / shots)
@@ -213,7 +213,7 @@ def correct(ranges, signal, overlap, *, min_overlap: float = 0.1, signal_std=Non
     use = ~mask
     values = np.full(z.size, np.nan)
     std = np.full(z.size, np.nan)
-    with np.errstate(over="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):   # inf · 0: refused just below
         values[use] = s[use] / g[use]
         std[use] = np.hypot(sigma_s[use] / g[use], values[use] * sigma_g[use] / g[use])
     overflow = use & ~(np.isfinite(values) & np.isfinite(std))
