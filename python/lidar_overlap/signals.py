@@ -64,9 +64,7 @@ class LidarSignal:
     wavelength: float
 
     def __post_init__(self) -> None:
-        for value in vars(self).values():
-            if isinstance(value, np.ndarray):
-                value.flags.writeable = False
+        _freeze(self)
 
     def plot(self, ax=None):
         """The dynamic-range view on log axes: expected photons per bin and shot with and without the overlap,
@@ -94,7 +92,13 @@ class CorrectedSignal:
     mask: np.ndarray
 
     def __post_init__(self) -> None:
-        for value in vars(self).values():
+        _freeze(self)
+
+
+def _freeze(obj) -> None:
+    """Make the arrays of a result read-only (each its own copy, so no caller's array is touched)."""
+    for value in vars(obj).values():
+        if isinstance(value, np.ndarray):
             value.flags.writeable = False
 
 
@@ -146,7 +150,7 @@ def signal(result: OverlapResult, atmosphere: Atmosphere = Atmosphere(), *, puls
     photons = full * g / z**2
     std = np.sqrt((photons + bg) / shots)
     noisy = _draw(photons + bg, shots, seed) - bg if noise else None
-    return LidarSignal(ranges=z, overlap=g, photons=photons, range_corrected=full * g,
+    return LidarSignal(ranges=z.copy(), overlap=g.copy(), photons=photons, range_corrected=full * g,
                        range_corrected_full_overlap=full, std=std, noisy=noisy, background=bg, shots=shots,
                        wavelength=wavelength)
 
@@ -221,7 +225,7 @@ def correct(ranges, signal, overlap, *, min_overlap: float = 0.1, signal_std=Non
         i = int(np.argmax(overflow))
         raise ValueError(f"signal[{i}] = {s[i]!r} with G = {g[i]!r} overflows the corrected signal or its "
                          "uncertainty beyond double range: expected a signal of smaller magnitude (rescale it)")
-    return CorrectedSignal(ranges=z, values=values, std=std, mask=mask)
+    return CorrectedSignal(ranges=z.copy(), values=values, std=std, mask=mask)
 
 
 def _profile(name: str, value, size: int) -> np.ndarray:
