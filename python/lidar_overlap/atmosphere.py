@@ -89,7 +89,7 @@ def _heights(value, name: str = "height") -> np.ndarray:
         raise ValueError(f"{name} is invalid: expected heights in m ({exc})") from None
     bad = ~((h >= MIN_HEIGHT) & (h <= MAX_HEIGHT))   # NaN is bad too
     if bad.any():
-        raise ValueError(f"{name} = {h[bad].flat[0]!r} is invalid: expected a height from {MIN_HEIGHT:g} m to "
+        raise ValueError(f"{name} = {float(h[bad].flat[0])!r} is invalid: expected a height from {MIN_HEIGHT:g} m to "
                          f"{MAX_HEIGHT:g} m (the US Standard Atmosphere 1976 model)")
     return h
 
@@ -183,7 +183,10 @@ class Atmosphere:
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         set_(self, "altitude", float(_heights(_checks.real("altitude", self.altitude), "altitude")))
-        set_(self, "elevation", _bounded("elevation", self.elevation, 0.0, math.pi / 2))
+        elevation = _checks.real("elevation", self.elevation)
+        if not 0.0 <= elevation <= math.pi / 2:
+            raise ValueError(f"elevation = {elevation!r} is invalid: expected 0 (horizontal) to π/2 rad (zenith)")
+        set_(self, "elevation", elevation)
         for name in ("layer_backscatter", "boundary_layer_backscatter"):
             set_(self, name, _bounded(name, getattr(self, name), 0.0, MAX_BACKSCATTER))
         for name in ("layer_lidar_ratio", "boundary_layer_lidar_ratio"):
@@ -203,10 +206,10 @@ class Atmosphere:
         z = _checks.ranges("ranges", ranges)
         if not (z[0] > 0 and z[-1] <= MAX_RANGE):
             i = 0 if not z[0] > 0 else len(z) - 1
-            raise ValueError(f"ranges[{i}] = {z[i]!r} is invalid: expected a range > 0 and <= {MAX_RANGE:g} m")
+            raise ValueError(f"ranges[{i}] = {float(z[i])!r} is invalid: expected a range > 0 and <= {MAX_RANGE:g} m")
         top = float(self.height(z[-1]))
         if top > MAX_HEIGHT:
-            raise ValueError(f"ranges[{len(z) - 1}] = {z[-1]!r} m reaches {top:.6g} m above sea level: expected "
+            raise ValueError(f"ranges[{len(z) - 1}] = {float(z[-1])!r} m reaches {top:.6g} m above sea level: expected "
                              f"ranges up to {(MAX_HEIGHT - self.altitude) / math.sin(self.elevation):.6g} m, where "
                              f"the line of sight leaves the model's atmosphere ({MAX_HEIGHT:g} m)")
         return z
