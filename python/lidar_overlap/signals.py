@@ -45,7 +45,8 @@ class LidarSignal:
     range_corrected : photons · z² (photons m²), the range-corrected signal.
     range_corrected_full_overlap : the same with G = 1 (what an overlap correction should recover).
     std : photons per bin and shot, the standard deviation of the shot-averaged, background-subtracted signal:
-        sqrt((photons + background) / shots) (Poisson counts summed over the shots).
+        sqrt((photons + background) / shots) (Poisson counts summed over the shots; the background is taken as
+        known exactly, so subtracting it adds no variance).
     noisy : one such shot-averaged, background-subtracted realisation (photons per bin and shot), or None.
     background : photons per bin and shot (sky light and dark counts), subtracted from ``noisy``.
     shots : number of shots averaged.
