@@ -35,6 +35,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/scene_table1.py
 	cd $(OUT) && ../$(PY) ../examples/turbulence_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/signal_correction.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup

@@ -2,6 +2,7 @@
 
 from . import parameters
 from ._core import __version__, max_memory, max_threads, set_max_memory
+from .atmosphere import Atmosphere
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -17,12 +18,16 @@ from .phase_screen import phase_screen
 from .presets import paper_table1
 from .result import OverlapResult
 from .scene import save_scene, scene
+from .signals import CorrectedSignal, LidarSignal, correct, signal
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
 
 __all__ = [
     "__version__",
     "Aberrations",
+    "Atmosphere",
+    "CorrectedSignal",
+    "LidarSignal",
     "Auto",
     "FO",
     "Plan",
@@ -65,4 +70,6 @@ __all__ = [
     "propagate",
     "save_scene",
     "scene",
+    "correct",
+    "signal",
 ]

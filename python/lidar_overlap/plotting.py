@@ -54,3 +54,28 @@ def plot_detector_image(system, z, ax=None, n=192):
     ax.set_ylabel("detector plane y (mm)")
     ax.set_title(f"z = {z:g} m: {img.fraction:.3f} of the image on the detector")
     return ax
+
+
+def plot_signal(sig, ax=None):
+    """The dynamic-range view of a :class:`LidarSignal` on log axes: expected photons per bin and shot with the
+    overlap and without it (G = 1), the background, the noise level (its standard deviation over the shots) and,
+    where positive, the noisy realisation. Returns the Axes."""
+    plt = _pyplot()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+    z = sig.ranges
+    if sig.noisy is not None:
+        shown = np.where(sig.noisy > 0, sig.noisy, np.nan)   # a log axis cannot show the negative draws
+        ax.plot(z, shown, color="0.6", linewidth=0.6, label=f"noisy, {sig.shots} shots (background subtracted)")
+    ax.plot(z, sig.range_corrected_full_overlap / z**2, "--", color="tab:blue", label="without overlap (G = 1)")
+    ax.plot(z, sig.photons, color="tab:blue", label="with overlap G(z)")
+    ax.plot(z, sig.std, color="tab:red", linewidth=1, label="noise standard deviation")
+    if sig.background > 0:
+        ax.axhline(sig.background, color="tab:green", linestyle=":", label="background")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("range z (m)")
+    ax.set_ylabel("photons per bin and shot")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
