@@ -20,8 +20,11 @@ def test_stub_ships_next_to_the_module():
     assert (PACKAGE / "_core.pyi").is_file() and (PACKAGE / "py.typed").is_file()
 
 
-def test_stub_matches_the_module():
-    root = str(PACKAGE.parent)   # stub and module from the same tree
+def test_stub_matches_the_module(tmp_path):
+    # Stub and module from the same tree, seen alone: from an installed package's site-packages mypy would also
+    # see every other module there (and refuse those that shadow its own library).
+    (tmp_path / "lidar_overlap").symlink_to(PACKAGE, target_is_directory=True)
+    root = str(tmp_path)
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [root, os.environ.get("PYTHONPATH")]))}
     run = subprocess.run([sys.executable, "-m", "mypy.stubtest", "lidar_overlap._core", "--mypy-config-file",
                           str(CONFIG)], cwd=root, env=env, capture_output=True,
