@@ -16,6 +16,7 @@ from .phase_screen import phase_screen
 from .presets import paper_table1
 from .result import OverlapResult
 from .scene import save_scene, scene
+from .studies import tolerance_study
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
 
@@ -60,6 +61,7 @@ __all__ = [
     "max_memory",
     "max_threads",
     "set_max_memory",
+    "tolerance_study",
     "propagate",
     "save_scene",
     "scene",
