@@ -20,7 +20,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io]"
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask]"
 	touch $@
 
 demo: setup
@@ -35,6 +35,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/scene_table1.py
 	cd $(OUT) && ../$(PY) ../examples/turbulence_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/tolerance_study.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
