@@ -58,8 +58,8 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
     percentiles : in [0, 100], of G over the members at each range (``numpy.percentile``, linear).
     seed : of the one ``numpy.random.Generator`` every draw comes from.
     client : a ``dask.distributed.Client`` to run on; None runs in this process (see the module).
-    chunk : members per task; None: as many as run for :data:`TASK_SECONDS` (timed on member 0), but no more
-        than spreads the members over every worker.
+    chunk : members per task; None: as many as run for :data:`TASK_SECONDS` (timed on the first members, which
+        run here), but no more than spreads the members over every worker.
     threads : cores used in this process, 0 for all; ignored with a client (its workers' threads decide).
 
     Returns an ``xarray.Dataset``: ``overlap`` (member x range), ``value`` (member x parameter: the drawn
@@ -88,16 +88,14 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
     paths = [p for p, _, _ in specs]
     members = [_member(system, paths, values[i], i) for i in range(n)]   # every member checked before any runs
 
-    start = time.perf_counter()
-    first = _overlaps(members[:1], z, request, 1, 0)
-    seconds = time.perf_counter() - start
-    workers = _workers(client, threads)
+    head, seconds = _head(members, z, request)
+    done, workers = len(head), _workers(client, threads)
     if chunk is None:
-        chunk = min(max(1, math.ceil(TASK_SECONDS / max(seconds, 1e-9))), max(1, math.ceil((n - 1) / workers)))
-    bounds = [(s, min(s + chunk, n)) for s in range(1, n, chunk)]
+        chunk = min(max(1, math.ceil(TASK_SECONDS / max(seconds, 1e-9))), max(1, math.ceil((n - done) / workers)))
+    bounds = [(s, min(s + chunk, n)) for s in range(done, n, chunk)]
     loop_threads = threads if seconds >= TASK_SECONDS else 1
     parts = _compute(engine, client, bounds, system, members, paths, values, z, request, loop_threads, workers)
-    g = np.concatenate([first] + parts) if parts else first
+    g = np.concatenate([head] + parts)
 
     method_text = repr(request)
     return xr.Dataset(
@@ -143,6 +141,15 @@ def _valid(system, values) -> bool:
     except ValueError:
         return False
     return True
+
+
+def _head(members, z, request):
+    """G of the first members, run here one by one for TASK_SECONDS / 10 (at least one, at most 16), and the
+    time per member that sizes the chunks: one call alone is too noisy a measure on a busy machine."""
+    rows, start = [], time.perf_counter()
+    while len(rows) < min(16, len(members)) and (not rows or time.perf_counter() - start < TASK_SECONDS / 10):
+        rows.append(_overlaps(members[len(rows):len(rows) + 1], z, request, 1, len(rows))[0])
+    return np.array(rows), (time.perf_counter() - start) / len(rows)
 
 
 def _overlaps(members, z, request, threads: int, start: int) -> np.ndarray:
