@@ -66,6 +66,7 @@ bench: setup
 	$(PY) benchmarks/bench_phase_screen.py
 	$(PY) benchmarks/bench_turbulent_overlap.py
 	$(PY) benchmarks/bench_aberrations.py
+	$(PY) benchmarks/bench_studies.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)
