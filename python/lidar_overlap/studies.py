@@ -32,6 +32,7 @@ import numpy as np
 from . import _checks, parameters
 from .compute import run
 from .distributions import draw, normalized, text
+from .field_beam import FieldBeam
 from .methods import Turbulent
 from .planning import plan
 from .result import _xarray
@@ -86,15 +87,16 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
 
     values = draw(specs, n, np.random.default_rng(seed))
     paths = [p for p, _, _ in specs]
-    members = [_member(system, paths, values[i], i) for i in range(n)]   # every member checked before any runs
+    for i in range(n):      # every member checked before any runs; not kept (~1 KB each): built where it runs
+        _member(system, paths, values[i], i)
 
-    head, seconds = _head(members, z, request)
+    head, seconds = _head(system, paths, values, z, request)
     done, workers = len(head), _workers(client, threads)
     if chunk is None:
         chunk = min(max(1, math.ceil(TASK_SECONDS / max(seconds, 1e-9))), max(1, math.ceil((n - done) / workers)))
     bounds = [(s, min(s + chunk, n)) for s in range(done, n, chunk)]
     loop_threads = threads if seconds >= TASK_SECONDS else 1
-    parts = _compute(engine, client, bounds, system, members, paths, values, z, request, loop_threads, workers)
+    parts = _compute(engine, client, bounds, system, paths, values, z, request, loop_threads, workers)
     g = np.concatenate([head] + parts)
 
     method_text = repr(request)
@@ -143,19 +145,23 @@ def _valid(system, values) -> bool:
     return True
 
 
-def _head(members, z, request):
+def _head(system, paths, values, z, request):
     """G of the first members, run here one by one for TASK_SECONDS / 10 (at least one, at most 16), and the
     time per member that sizes the chunks: one call alone is too noisy a measure on a busy machine."""
     rows, start = [], time.perf_counter()
-    while len(rows) < min(16, len(members)) and (not rows or time.perf_counter() - start < TASK_SECONDS / 10):
-        rows.append(_overlaps(members[len(rows):len(rows) + 1], z, request, 1, len(rows))[0])
+    while len(rows) < min(16, len(values)) and (not rows or time.perf_counter() - start < TASK_SECONDS / 10):
+        k = len(rows)
+        rows.append(_chunk(system, paths, values[k:k + 1], z, request, 1, k)[0])
     return np.array(rows), (time.perf_counter() - start) / len(rows)
 
 
-def _overlaps(members, z, request, threads: int, start: int) -> np.ndarray:
-    """G of each member (rows), each planned from its own system; an error names the member."""
-    out = np.empty((len(members), z.size))
-    for k, member in enumerate(members):
+def _chunk(system, paths, values, z, request, threads: int, start: int) -> np.ndarray:
+    """G of members ``start, start + 1, ...`` (rows), each built from ``system`` (or its recipe, on a cluster) and
+    its draw, and planned from its own system; an error names the member."""
+    system = _rebuild(system)
+    out = np.empty((len(values), z.size))
+    for k, row in enumerate(values):
+        member = _member(system, paths, row, start + k)
         try:
             out[k] = run(plan(member, z, request, threads=threads)).overlap
         except ValueError as exc:
@@ -187,26 +193,19 @@ def _workers(client, threads: int) -> int:
     return threads or os.cpu_count() or 1
 
 
-def _compute(engine, client, bounds, system, members, paths, values, z, request, loop_threads, workers) -> list:
+def _compute(engine, client, bounds, system, paths, values, z, request, loop_threads, workers) -> list:
     if engine == "loop":
-        return [_overlaps(members[s:e], z, request, loop_threads, s) for s, e in bounds]
-    if engine == "distributed":  # systems hold native objects: ship the recipe and the draws, rebuild there
+        return [_chunk(system, paths, values[s:e], z, request, loop_threads, s) for s, e in bounds]
+    if engine == "distributed":  # systems hold native objects that do not pickle: ship the recipe
         recipe = client.scatter(_recipe(system), broadcast=True)
-        futures = [client.submit(_remote_chunk, recipe, paths, values[s:e], z, request, s, pure=False)
+        futures = [client.submit(_chunk, recipe, paths, values[s:e], z, request, 1, s, pure=False)
                    for s, e in bounds]
         return client.gather(futures)
     import dask
-    tasks = [dask.delayed(functools.partial(_overlaps, members[s:e], z, request, 1, s), pure=False)()
+    tasks = [dask.delayed(functools.partial(_chunk, system, paths, values[s:e], z, request, 1, s), pure=False)()
              for s, e in bounds]
     scheduler = "threads" if workers > 1 else "sync"
     return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
-
-
-def _remote_chunk(recipe, paths, values, z, request, start) -> np.ndarray:
-    """One task on a cluster: the members ``start, start + 1, ...`` rebuilt from the system and their draws."""
-    system = _rebuild(recipe)
-    members = [_member(system, paths, row, start + k) for k, row in enumerate(values)]
-    return _overlaps(members, z, request, 1, start)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -218,7 +217,9 @@ class _Recipe:
 
 def _recipe(obj):
     if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        return _Recipe(type(obj), {f.name: _recipe(getattr(obj, f.name)) for f in dataclasses.fields(obj) if f.init})
+        # a FlatTopBeam (own __init__: it designs its plate) is rebuilt as the FieldBeam of its designed field
+        cls = FieldBeam if isinstance(obj, FieldBeam) else type(obj)
+        return _Recipe(cls, {f.name: _recipe(getattr(obj, f.name)) for f in dataclasses.fields(cls) if f.init})
     return obj
 
 
