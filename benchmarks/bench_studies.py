@@ -72,8 +72,8 @@ def main():
     for name, (t, r) in rows.items():
         print(f"{name:8s} {t:6.2f} s  {MEMBERS / t:6.0f} members/s  {r.attrs['members_per_task']:4d} members per task "
               f"({r.attrs['engine']})")
-    print(f"cluster start {t_start:.1f} s (not timed above); cluster / local = {ratio:.2f} (target <= {TARGET_RATIO}); "
-          f"results equal bit for bit: {same}")
+    print(f"cluster start {t_start:.1f} s (not timed above); cluster / local = {ratio:.2f} "
+          f"(target <= {TARGET_RATIO}); results equal bit for bit: {same}")
     out = Path(__file__).resolve().parent / "results" / "bench_studies.json"
     out.write_text(json.dumps({
         "meta": {"measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "commit": source_commit(),
