@@ -77,7 +77,8 @@ def main():
     out = Path(__file__).resolve().parent / "results" / "bench_studies.json"
     out.write_text(json.dumps({
         "meta": {"measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "commit": source_commit(),
-                 "load_average_1min": load, "load_average_1min_end": load_average(), "cores": os.cpu_count(), "members": MEMBERS,
+                 "load_average_1min": load, "load_average_1min_end": load_average(), "cores": os.cpu_count(),
+                 "members": MEMBERS,
                  "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)], "method": repr(METHOD),
                  "repeats": REPEATS, "cluster": "LocalCluster(n_workers=2, threads_per_worker=1, processes=True)"},
         "result": {**{f"{name}_s": t for name, (t, _) in rows.items()},
