@@ -20,7 +20,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io]"
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask]"
 	touch $@
 
 demo: setup
@@ -36,6 +36,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/turbulence_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/signal_correction.py
+	cd $(OUT) && ../$(PY) ../examples/tolerance_study.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
@@ -66,6 +67,7 @@ bench: setup
 	$(PY) benchmarks/bench_phase_screen.py
 	$(PY) benchmarks/bench_turbulent_overlap.py
 	$(PY) benchmarks/bench_aberrations.py
+	$(PY) benchmarks/bench_studies.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)

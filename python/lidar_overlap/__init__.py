@@ -19,6 +19,7 @@ from .presets import paper_table1
 from .result import OverlapResult
 from .scene import save_scene, scene
 from .signals import CorrectedSignal, LidarSignal, correct, signal
+from .studies import tolerance_study
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
 
@@ -67,6 +68,7 @@ __all__ = [
     "max_memory",
     "max_threads",
     "set_max_memory",
+    "tolerance_study",
     "propagate",
     "save_scene",
     "scene",
