@@ -31,9 +31,6 @@ double arc_half_angle(double r, double r_other, double d) {
   return 2.0 * std::asin(std::sqrt(std::clamp(t / (2.0 * r), 0.0, 1.0)));
 }
 
-// Area between a chord and the arc of half-angle `half` of a circle of radius r.
-double segment_area(double r, double half) { return 0.5 * r * r * x_minus_sin(2.0 * half); }
-
 // Angular intervals on a circle, kept as [start, end] with 0 <= start < end <= 2*pi relative to a
 // reference angle. At most one interval per constraint plus one split, so a small fixed array does.
 struct ArcSet {
@@ -59,6 +56,8 @@ void intersect_arc(ArcSet& set, double a, double len) {
 }
 
 }  // namespace
+
+double segment_area(double r, double half) { return 0.5 * r * r * x_minus_sin(2.0 * half); }
 
 double lens_area(const Disc& a, const Disc& b) {
   const double d = norm(a.center - b.center);

@@ -14,6 +14,10 @@ struct Disc {
   double radius;  // m, >= 0
 };
 
+// Area (m^2) between a chord and the arc of half-angle `half` (rad) of a circle of radius r (m), without
+// cancellation for thin segments.
+double segment_area(double r, double half);
+
 // Area (m^2) of the intersection of two discs, Eq. (B19) in a cancellation-free form.
 double lens_area(const Disc& a, const Disc& b);
 

@@ -1,6 +1,7 @@
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -9,134 +10,16 @@
 #include "core/constants.hpp"
 #include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
-#include "core/quadrature.hpp"
-#include "core/special_functions.hpp"
+#include "geometry/beam_integral.hpp"
 #include "geometry/receiver_coupling.hpp"
+#include "geometry/rt_ranges.hpp"
 
 namespace lidar_overlap {
 
 namespace {
 
-constexpr std::size_t kMaxKinks = 16;  // 4 moving discs: 12 tangency circles; 2 gates
-
-struct RangeResult {
-  double value = 0.0, error = 0.0;
-  std::size_t evaluations = 0;
-  bool converged = true;
-  void add(const RangeResult& o) {
-    value += o.value;
-    error += o.error;
-    evaluations += o.evaluations;
-    converged = converged && o.converged;
-  }
-};
-
-// Circles in the scatterer plane across which a term has a kink (CouplingTerm::kink_circles).
-struct Kinks {
-  Disc circles[kMaxKinks];
-  std::size_t n = 0;
-  explicit Kinks(const CouplingTerm& t) : n(t.kink_circles(circles, kMaxKinks)) {}
-};
-
-// Distances t > 0 at which the ray center + t dir (|dir| = 1) crosses a kink circle.
-std::size_t crossings(const Kinks& k, Vec2 center, Vec2 dir, double* out) {
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < k.n; ++i) {
-    const Vec2 q = center - k.circles[i].center;
-    const double half_b = dot(q, dir), c = dot(q, q) - k.circles[i].radius * k.circles[i].radius;
-    const double disc = half_b * half_b - c;
-    if (disc < 0.0) continue;
-    const double h = -(half_b + std::copysign(std::sqrt(disc), half_b));  // stable roots h and c/h
-    for (double t : {h, h != 0.0 ? c / h : 0.0})
-      if (t > 0.0 && std::isfinite(t)) out[n++] = t;
-  }
-  return n;
-}
-
-// Sorted breakpoints: lo, the crossings inside (lo, hi), hi.
-std::size_t breakpoints(const Kinks& k, Vec2 center, Vec2 dir, double lo, double hi, double* points) {
-  double radii[2 * kMaxKinks];
-  const std::size_t nk = crossings(k, center, dir, radii);
-  std::size_t n = 0;
-  points[n++] = lo;
-  for (std::size_t i = 0; i < nk; ++i) {
-    if (radii[i] > lo && radii[i] < hi) points[n++] = radii[i];
-  }
-  points[n++] = hi;
-  std::sort(points, points + n);
-  return n;
-}
-
-// int term(origin + rho dir) p(rho) d rho, with p the density of the distance from `origin` of a
-// point of the Gaussian beam (1/e^2 radius w, so sigma = w/2) centred `nu` away: the Rice density,
-// Rayleigh for nu = 0. For a term symmetric about `origin` this is its beam-weighted mean whatever
-// the beam offset; with nu = 0 and the origin at the beam centre it is the mean along `dir`.
-RangeResult radial_integral(const CouplingTerm& term, const Kinks& kinks, Vec2 origin, double nu, double w,
-                            Vec2 dir, double tolerance, std::size_t max_segments) {
-  const double var = 0.25 * w * w;
-  // Beyond 10 sigma = 5 w from nu the density is below exp(-50) of its peak.
-  const double lo = std::max(0.0, nu - 5.0 * w), hi = nu + 5.0 * w;
-  double points[2 * kMaxKinks + 2];
-  const std::size_t n = breakpoints(kinks, origin, dir, lo, hi, points);
-  auto integrand = [&](double rho) {
-    const double d = rho - nu;
-    const double density = rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
-    return density == 0.0 ? 0.0 : density * term(origin + rho * dir);
-  };
-  const QuadratureResult q = integrate(integrand, points, n, tolerance, max_segments);
-  return {q.value, q.error, q.evaluations, q.converged};
-}
-
-// A term with no centre of symmetry: the mean over directions of the radial mean. When the term is
-// mirror-symmetric about the line through the beam centre and the origin (all disc shifts along it),
-// half the directions suffice.
-RangeResult planar_mean(const CouplingTerm& term, const Kinks& kinks, Vec2 center, double w,
-                        double tolerance, std::size_t max_segments) {
-  bool mirror = true;
-  for (std::size_t i = 0; i < term.n_discs; ++i) {
-    const Vec2 b = term.discs[i].shift;
-    mirror = mirror && (b.x * center.y - b.y * center.x) == 0.0;
-  }
-  for (std::size_t g = 0; g < term.n_gates; ++g) {
-    const Vec2 b = term.gates[g].shift;
-    mirror = mirror && (b.x * center.y - b.y * center.x) == 0.0;
-  }
-  const double phi0 = (center.x != 0.0 || center.y != 0.0) ? std::atan2(center.y, center.x) : 0.0;
-  const double span = mirror ? kPi : 2.0 * kPi;
-
-  // The radial mean is not smooth in direction where a ray from the beam centre grazes a kink
-  // circle: those tangent directions become breakpoints of the angular integral.
-  double breaks[2 * kMaxKinks + 3];
-  std::size_t nb = 0;
-  for (double f : {0.0, 0.5, 1.0}) breaks[nb++] = f * span;
-  for (std::size_t i = 0; i < kinks.n; ++i) {
-    const Vec2 q = kinks.circles[i].center - center;
-    const double d = norm(q), rho = kinks.circles[i].radius;
-    if (!(d > rho)) continue;
-    const double mid = std::atan2(q.y, q.x) - phi0, half = std::asin(rho / d);
-    for (double phi : {mid - half, mid + half}) {
-      phi = std::remainder(phi, 2.0 * kPi);  // (-pi, pi]
-      if (mirror) phi = std::abs(phi);      // the lower half mirrors the upper one
-      else if (phi < 0.0) phi += 2.0 * kPi;
-      if (phi > 0.0 && phi < span) breaks[nb++] = phi;
-    }
-  }
-  std::sort(breaks, breaks + nb);
-
-  RangeResult inner;
-  double inner_error = 0.0;
-  auto mean_over_direction = [&](double phi) {
-    const double a = phi0 + phi;
-    const RangeResult r = radial_integral(term, kinks, center, 0.0, w, {std::cos(a), std::sin(a)},
-                                          0.25 * tolerance, max_segments);
-    inner.evaluations += r.evaluations;
-    inner.converged = inner.converged && r.converged;
-    inner_error = std::max(inner_error, r.error);
-    return r.value / span;
-  };
-  const QuadratureResult q = integrate(mean_over_direction, breaks, nb, 0.75 * tolerance, max_segments);
-  return {q.value, q.error + inner_error, inner.evaluations, inner.converged && q.converged};
-}
+using beam_integral::Kinks;
+using beam_integral::RangeResult;
 
 RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
   const double z = rx.range();
@@ -151,18 +34,21 @@ RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOp
     const Kinks kinks(terms[t]);
     const std::optional<Vec2> s = terms[t].symmetry_center();
     if (s)
-      total.add(radial_integral(terms[t], kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
+      total.add(beam_integral::radial_integral(terms[t], kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
                                 opt.max_segments));
     else
-      total.add(planar_mean(terms[t], kinks, center, w, tolerance, opt.max_segments));
+      total.add(beam_integral::planar_mean(terms[t], kinks, center, w, beam_integral::mirror_symmetric(terms[t], center),
+                                            tolerance, opt.max_segments));
   }
   return total;
 }
 
 }  // namespace
 
-RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
-                     const RtOptions& options) {
+namespace detail {
+
+RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& ranges, const RtOptions& options,
+                         const std::function<RangeResult(const Receiver&)>& at, const std::string& name) {
   system.validate();
   checks::in_open_unit("tolerance", options.tolerance);
   const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
@@ -180,7 +66,7 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
   out.converged.assign(n, true);
   out.axisymmetric = system.is_axisymmetric();
   std::vector<RangeResult> results(n);
-  detail::parallel_for(n, threads, [&](std::size_t i) { results[i] = overlap_at(system, receivers[i], options); });
+  detail::parallel_for(n, threads, [&](std::size_t i) { results[i] = at(receivers[i]); });
   for (std::size_t i = 0; i < n; ++i) {
     out.overlap[i] = results[i].value;
     out.error_estimate[i] = results[i].error;
@@ -189,8 +75,16 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
   }
   double slack = options.tolerance;
   for (double e : out.error_estimate) slack = std::max(slack, e);
-  checks::overlap_values(out.overlap, ranges, slack, "overlap_rt");
+  checks::overlap_values(out.overlap, ranges, slack, name);
   return out;
+}
+
+}  // namespace detail
+
+RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
+                     const RtOptions& options) {
+  return detail::rt_over_ranges(
+      system, ranges, options, [&](const Receiver& rx) { return overlap_at(system, rx, options); }, "overlap_rt");
 }
 
 RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
