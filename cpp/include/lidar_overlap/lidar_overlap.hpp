@@ -24,6 +24,7 @@
 #include "lidar_overlap/core/system.hpp"
 #include "lidar_overlap/core/vec2.hpp"
 
+#include "lidar_overlap/geometry/aperture_mask.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 #include "lidar_overlap/geometry/receiver.hpp"
 

@@ -1,0 +1,194 @@
+#include "lidar_overlap/geometry/aperture_mask.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "core/checks.hpp"
+#include "core/constants.hpp"
+#include "geometry/beam_integral.hpp"
+#include "geometry/receiver_coupling.hpp"
+#include "geometry/rt_ranges.hpp"
+#include "geometry/sector_area.hpp"
+
+namespace lidar_overlap {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * kPi;
+// Angles beyond this (rad) are refused: their remainder modulo 2 pi would lose digits.
+constexpr double kMaxMaskAngle = 1e3;
+// Sectors may touch: quadrants built as rotation + k pi/2 meet to within rounding.
+constexpr double kTouch = 1e-9;
+
+std::string sector_name(std::size_t i) { return "mask.sectors[" + std::to_string(i) + "]"; }
+
+AnnularSector annular(const Sector& s, double aperture_radius) {
+  return {s.start_angle, std::min(s.stop_angle - s.start_angle, kTwoPi), s.inner_radius,
+          s.outer_radius.value_or(aperture_radius)};
+}
+
+// Angular overlap (rad) of two sectors, modulo 2 pi.
+double angular_overlap(const AnnularSector& a, const AnnularSector& b) {
+  double start_a = std::fmod(a.start, kTwoPi), start_b = std::fmod(b.start, kTwoPi);
+  if (start_a < 0.0) start_a += kTwoPi;
+  if (start_b < 0.0) start_b += kTwoPi;
+  double most = 0.0;
+  for (double k : {-1.0, 0.0, 1.0}) {
+    const double lo = std::max(start_a, start_b + k * kTwoPi);
+    const double hi = std::min(start_a + a.span, start_b + b.span + k * kTwoPi);
+    most = std::max(most, hi - lo);
+  }
+  return most;
+}
+
+// A coupling term restricted to the mask: its disc intersection measured inside each sector.
+struct MaskedTerm {
+  const CouplingTerm& term;
+  const std::vector<AnnularSector>& sectors;
+  double operator()(Vec2 p) const {
+    for (std::size_t g = 0; g < term.n_gates; ++g)
+      if (!term.gates[g].open(p)) return 0.0;
+    Disc at[CouplingTerm::kMaxMoving];
+    for (std::size_t i = 0; i < term.n_discs; ++i) at[i] = term.discs[i].at(p);
+    double area = 0.0;
+    for (const AnnularSector& s : sectors) area += sector_intersection_area(at, term.n_discs, s);
+    return term.weight * area;
+  }
+};
+
+// The term's kinks plus the mask's: a disc circle tangent to a sector's arcs, or passing through a corner
+// (all circles in the scatterer plane). Tangencies with the straight edges are lines, left to the
+// adaptive subdivision (the area is C1 there).
+beam_integral::Kinks masked_kinks(const CouplingTerm& term, const std::vector<AnnularSector>& sectors) {
+  beam_integral::Kinks k(term);
+  auto add = [&](Vec2 center, double radius) {
+    if (k.n < beam_integral::kMaxKinks) k.circles[k.n++] = {center, radius};
+  };
+  for (std::size_t i = 0; i < term.n_discs; ++i) {
+    const MovingDisc& d = term.discs[i];
+    if (d.scale == 0.0) continue;
+    const double a = std::abs(d.scale);
+    const Vec2 c = (-1.0 / d.scale) * d.shift;  // |scale P + shift - x| = rho: centre (x - shift)/scale
+    for (const AnnularSector& s : sectors) {
+      for (double arc : {s.outer, s.inner}) {
+        if (arc == 0.0) continue;
+        add(c, (d.radius + arc) / a);
+        add(c, std::abs(d.radius - arc) / a);
+      }
+      if (s.span >= kTwoPi) continue;
+      if (s.inner == 0.0) add(c, d.radius / a);
+      for (double angle : {s.start, s.start + s.span})
+        for (double radius : {s.inner, s.outer})
+          if (radius > 0.0) add(c + (radius / d.scale) * Vec2{std::cos(angle), std::sin(angle)}, d.radius / a);
+    }
+  }
+  return k;
+}
+
+// Rings (full-turn sectors) keep the rotation about the aperture centre: the term then has a centre of
+// symmetry if it has one together with a disc fixed at that centre.
+std::optional<Vec2> ring_symmetry_center(const CouplingTerm& term, const std::vector<AnnularSector>& sectors) {
+  for (const AnnularSector& s : sectors)
+    if (s.span < kTwoPi) return std::nullopt;
+  if (term.n_discs >= CouplingTerm::kMaxMoving) return std::nullopt;
+  CouplingTerm anchored = term;
+  anchored.add(MovingDisc{0.0, {}, 1.0});
+  return anchored.symmetry_center();
+}
+
+beam_integral::RangeResult masked_overlap_at(const LidarSystem& system, const Receiver& rx,
+                                             const std::vector<AnnularSector>& sectors, const RtOptions& opt) {
+  const double z = rx.range();
+  const double w = system.beam.radius(z);
+  const Vec2 center = system.beam.center(z);
+  CouplingTerm terms[2];
+  const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);  // 10 sigma: beyond, below exp(-50)
+  const double tolerance = opt.tolerance / static_cast<double>(n_terms);
+  beam_integral::RangeResult total;
+  for (std::size_t t = 0; t < n_terms; ++t) {
+    const MaskedTerm term{terms[t], sectors};
+    const beam_integral::Kinks kinks = masked_kinks(terms[t], sectors);
+    if (const std::optional<Vec2> s = ring_symmetry_center(terms[t], sectors))
+      total.add(beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
+                                               opt.max_segments));
+    else
+      total.add(beam_integral::planar_mean(term, kinks, center, w, false, tolerance, opt.max_segments));
+  }
+  return total;
+}
+
+std::vector<AnnularSector> checked_sectors(const LidarSystem& system, const ApertureMask& mask) {
+  system.validate();
+  mask.validate(system.telescope);
+  std::vector<AnnularSector> out;
+  for (const Sector& s : mask.sectors) out.push_back(annular(s, 0.5 * system.telescope.diameter));
+  return out;
+}
+
+}  // namespace
+
+void ApertureMask::validate(const Telescope& telescope) const {
+  if (sectors.empty()) checks::fail("mask.sectors", 0, "at least one sector (an empty mask leaves nothing)");
+  if (sectors.size() > kMaxMaskSectors)
+    checks::fail("mask.sectors", static_cast<double>(sectors.size()),
+                 "at most " + std::to_string(kMaxMaskSectors) + " sectors");
+  const double aperture = 0.5 * telescope.diameter;
+  std::vector<AnnularSector> checked;
+  for (std::size_t i = 0; i < sectors.size(); ++i) {
+    const Sector& s = sectors[i];
+    const std::string name = sector_name(i);
+    for (auto [what, angle] : {std::pair{".start_angle", s.start_angle}, std::pair{".stop_angle", s.stop_angle}})
+      if (!(std::abs(angle) <= kMaxMaskAngle))
+        checks::fail(name + what, angle, "a finite angle (rad) within +-1000");
+    const double span = s.stop_angle - s.start_angle;
+    if (!(span > 0.0) || span > kTwoPi * (1.0 + 1e-12))
+      checks::fail(name + ".stop_angle", s.stop_angle,
+                   "an angle beyond start_angle = " + checks::number(s.start_angle) + " by at most 2 pi");
+    const double outer = s.outer_radius.value_or(aperture);
+    if (!(outer > 0.0) || outer > aperture)
+      checks::fail(name + ".outer_radius", outer,
+                   "a radius in (0, D/2 = " + checks::number(aperture) + "] m (None: the aperture's edge)");
+    if (!(outer > telescope.obstruction_radius))
+      checks::fail(name + ".outer_radius", outer,
+                   "a radius beyond the obstruction's radius " + checks::number(telescope.obstruction_radius) +
+                       " m (a sector inside the obstruction leaves nothing)");
+    if (!(s.inner_radius >= 0.0) || !(s.inner_radius < outer))
+      checks::fail(name + ".inner_radius", s.inner_radius,
+                   "a radius in [0, outer_radius = " + checks::number(outer) + ") m");
+    const AnnularSector a = annular(s, aperture);
+    for (std::size_t j = 0; j < checked.size(); ++j) {
+      const AnnularSector& b = checked[j];
+      const double radial = std::min(a.outer, b.outer) - std::max(a.inner, b.inner);
+      if (radial > kTouch * aperture && angular_overlap(a, b) > kTouch)
+        checks::fail(name, static_cast<double>(i),
+                     "a sector that does not overlap " + sector_name(j) +
+                         " (a mask is a union of disjoint sectors; merge them or split the angles)");
+    }
+    checked.push_back(a);
+  }
+}
+
+RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
+                     const RtOptions& options) {
+  const std::vector<AnnularSector> sectors = checked_sectors(system, mask);
+  return detail::rt_over_ranges(
+      system, ranges, options,
+      [&](const Receiver& rx) { return masked_overlap_at(system, rx, sectors, options); }, "overlap_rt (masked)");
+}
+
+double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position, const ApertureMask& mask) {
+  checks::coordinate("position", position);
+  const std::vector<AnnularSector> sectors = checked_sectors(system, mask);
+  const Receiver rx(system, z);
+  CouplingTerm terms[2];
+  const std::size_t n_terms = rx.terms(position, 0.0, terms);
+  double c = 0.0;
+  for (std::size_t t = 0; t < n_terms; ++t) c += MaskedTerm{terms[t], sectors}(position);
+  std::vector<double> g{std::max(0.0, c)};
+  checks::overlap_values(g, {z}, 1e-9, "emitter_coupling_rt (masked)");  // exact geometry: round-off only
+  return g[0];
+}
+
+}  // namespace lidar_overlap

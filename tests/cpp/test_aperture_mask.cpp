@@ -1,0 +1,117 @@
+// Aperture masks: the exact sector areas against closed forms and a grid count, partitions that add up to
+// the full aperture (per scatterer and for G), and the mask's checks.
+#include <random>
+#include <stdexcept>
+
+#include "check.hpp"
+#include "geometry/sector_area.hpp"
+#include "lidar_overlap/geometry/aperture_mask.hpp"
+
+using namespace lidar_overlap;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// The area of the discs inside the sector, counted on a fine grid over the sector's bounding square.
+double grid_area(const Disc* d, std::size_t n, const AnnularSector& s, int cells) {
+  const double h = 2.0 * s.outer / cells;
+  long inside = 0;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j) {
+      const Vec2 p{-s.outer + (i + 0.5) * h, -s.outer + (j + 0.5) * h};
+      const double rho = norm(p);
+      double t = std::atan2(p.y, p.x) - s.start;
+      t -= 2.0 * kPi * std::floor(t / (2.0 * kPi));
+      bool in = rho >= s.inner && rho <= s.outer && t <= s.span;
+      for (std::size_t k = 0; k < n && in; ++k) in = norm(p - d[k].center) <= d[k].radius;
+      inside += in;
+    }
+  return inside * h * h;
+}
+
+ApertureMask quadrant(int k, double rotation = 0.0) {
+  return {{Sector{rotation + k * 0.5 * kPi, rotation + (k + 1) * 0.5 * kPi}}};
+}
+}  // namespace
+
+int main() {
+  // Closed forms: a disc centred at the origin over a quarter annulus; the full annulus.
+  const Disc big{{0.0, 0.0}, 2.0};
+  test::near("quarter annulus", sector_intersection_area(&big, 1, {0.3, 0.5 * kPi, 0.5, 1.0}),
+             0.25 * kPi * (1.0 - 0.25), 1e-14);
+  const Disc off{{0.4, -0.2}, 0.5};
+  test::near("full turn = lens", sector_intersection_area(&off, 1, {1.0, 2.0 * kPi, 0.0, 1.0}),
+             lens_area(off, {{0.0, 0.0}, 1.0}), 1e-14);
+
+  // Random discs and sectors against a grid count (its error ~ perimeter x cell).
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 30; ++trial) {
+    Disc d[3];
+    for (Disc& x : d) x = {{0.8 * u(rng), 0.8 * u(rng)}, 0.4 + 0.5 * std::abs(u(rng))};
+    const AnnularSector s{3.0 * u(rng), 0.2 + 3.0 * std::abs(u(rng)), 0.2 * std::abs(u(rng)), 1.0};
+    test::near("random sector vs grid " + std::to_string(trial), sector_intersection_area(d, 3, s),
+               grid_area(d, 3, s, 1200), 2e-4);
+  }
+
+  // Quadrants (and a rotated set) partition the scatterer's coupling and G: a tilted, offset, obstructed,
+  // defocused system with an NA and a detector offset.
+  LidarSystem sys;
+  sys.beam.tilt = {20e-6, -50e-6};
+  sys.beam.offset = {0.01, 0.0};
+  sys.telescope.obstruction_radius = 0.02;
+  sys.telescope.obstruction_distance = 0.3;
+  sys.detector.defocus = 2e-3;
+  sys.detector.numerical_aperture = 0.22;
+  sys.detector.offset = {5e-5, 0.0};
+  for (double z : {30.0, 150.0}) {
+    const Vec2 p{0.012, -0.004};
+    double sum = 0.0, rotated = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      sum += emitter_coupling_rt(sys, z, p, quadrant(k));
+      rotated += emitter_coupling_rt(sys, z, p, quadrant(k, 0.3));
+    }
+    const double full = emitter_coupling_rt(sys, z, p);
+    test::near("quadrant couplings add up at z = " + std::to_string(z), sum, full, 1e-13);
+    test::near("rotated quadrant couplings add up", rotated, full, 1e-13);
+  }
+  const std::vector<double> ranges{40.0, 120.0, 400.0};
+  RtOptions opt;
+  opt.tolerance = 1e-4;
+  const RtOverlap full = overlap_rt(sys, ranges, opt);
+  std::vector<double> sum(ranges.size(), 0.0);
+  for (int k = 0; k < 4; ++k) {
+    const RtOverlap q = overlap_rt(sys, ranges, quadrant(k), opt);
+    for (std::size_t i = 0; i < ranges.size(); ++i) sum[i] += q.overlap[i];
+  }
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    test::near("quadrants add up to G at " + std::to_string(ranges[i]), sum[i], full.overlap[i], 4e-4);
+
+  // Rings keep the radial integral and add up too.
+  const ApertureMask inner{{Sector{0.0, 2.0 * kPi, 0.0, 0.04}}}, outer{{Sector{0.0, 2.0 * kPi, 0.04}}};
+  const RtOverlap a = overlap_rt(sys, ranges, inner, opt), b = overlap_rt(sys, ranges, outer, opt);
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    test::near("rings add up", a.overlap[i] + b.overlap[i], full.overlap[i], 2e-4);
+
+  // Checks.
+  const Telescope& t = sys.telescope;
+  test::throws("empty mask", [&] { ApertureMask{}.validate(t); }, "mask.sectors");
+  test::throws("NaN angle", [&] { ApertureMask{{Sector{std::nan(""), 1.0}}}.validate(t); },
+               "mask.sectors[0].start_angle");
+  test::throws("reversed", [&] { ApertureMask{{Sector{1.0, 0.5}}}.validate(t); }, "mask.sectors[0].stop_angle");
+  test::throws("more than a turn", [&] { ApertureMask{{Sector{0.0, 7.0}}}.validate(t); }, "stop_angle");
+  test::throws("beyond the aperture", [&] { ApertureMask{{Sector{0.0, 1.0, 0.0, 0.2}}}.validate(t); },
+               "outer_radius");
+  test::throws("inside the obstruction", [&] { ApertureMask{{Sector{0.0, 1.0, 0.0, 0.01}}}.validate(t); },
+               "obstruction");
+  test::throws("inner beyond outer", [&] { ApertureMask{{Sector{0.0, 1.0, 0.05, 0.04}}}.validate(t); },
+               "inner_radius");
+  test::throws("overlap", [&] { ApertureMask{{Sector{0.0, 2.0}, Sector{1.0, 3.0}}}.validate(t); },
+               "mask.sectors[1]");
+  test::throws("overlap across 2 pi", [&] { ApertureMask{{Sector{-0.5, 0.5}, Sector{6.0, 6.2}}}.validate(t); },
+               "mask.sectors[1]");
+  ApertureMask{{Sector{0.0, 1.0}, Sector{1.0, 2.0}, Sector{2.0, 3.0, 0.0, 0.05}, Sector{2.0, 3.0, 0.05}}}
+      .validate(t);  // touching sectors are fine
+  test::throws("bad range", [&] { overlap_rt(sys, {-1.0}, quadrant(0), opt); }, "ranges[0]");
+  return test::report("test_aperture_mask");
+}
