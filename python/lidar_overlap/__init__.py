@@ -3,6 +3,7 @@
 from . import parameters
 from ._core import __version__, max_memory, max_threads, set_max_memory
 from .atmosphere import Atmosphere
+from .aperture_mask import ApertureMask, Sector
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -20,6 +21,7 @@ from .result import OverlapResult
 from .scene import save_scene, scene
 from .signals import CorrectedSignal, LidarSignal, correct, signal
 from .studies import tolerance_study
+from .telecover import TelecoverResult, telecover
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
 

@@ -15,12 +15,18 @@ def emitter_coupling(system: LidarSystem, z: float, position: Sequence[float] = 
     """Coupling of one point scatterer at transverse ``position`` (x, y in m) and range ``z`` (m): power reaching
     the detector over the power it sends into the full, unobstructed aperture. ``method="rt"``: geometric (a
     uniform circle of confusion; with aberrations, a ray fan displaced by d ∇W, finer than the overlap's since
-    one scatterer is not averaged over a beam); ``"fo"``: with diffraction (for an in-focus point, the Airy
+    one scatterer is not averaged over a beam; with ``telescope.mask``, the part through the mask); ``"fo"``: with diffraction (for an in-focus point, the Airy
     encircled energy within the detector)."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {system!r} is invalid: expected a LidarSystem")
     _checks.choice("method", method, METHODS + ("auto",))
     z, position = _checks.real("z", z), _checks.pair("position", position)
+    mask = system.telescope.mask
+    if mask is not None:
+        if method != "rt" or system.aberrated:
+            raise ValueError("emitter_coupling with telescope.mask is modelled by ray tracing without aberrations "
+                             "only: use method='rt' and telescope.aberrations=None")
+        return _core.emitter_coupling_rt_masked(system._native, z, position, mask._native)
     if system.aberrated:
         if method == "fo":
             raise ValueError("emitter_coupling(method='fo') with aberrations is not modelled: use method='rt' "

@@ -25,6 +25,7 @@ from .system import LidarSystem
 BACKENDS = {
     "rt": "ray tracing",
     "rt_aberrated": "ray tracing through the aberrated pupil",
+    "rt_masked": "ray tracing through the aperture mask",
     "fo_radial": "Fourier optics (radial path)",
     "fo_2d": "Fourier optics (2d path)",
     "fo_field": "Fourier optics (2d path, the field's own grid)",
@@ -103,6 +104,8 @@ def explain(system, ranges, method="auto", *, threads: int = 0, **shortcuts) -> 
 def _plain(system, z, model, request, threads) -> Plan:
     """The plan of ``model`` (RT, FO or Auto) without turbulence; ``request`` is what the caller asked for."""
     base = dict(system=system, ranges=z, request=request)
+    if system.telescope.mask is not None:
+        return _masked(base, system, model, threads)
     if system.aberrated:
         if isinstance(system.beam, FieldBeam):
             raise ValueError("aberrations with a FieldBeam are not modelled: expected a GaussianBeam (the aberrated "
@@ -156,6 +159,25 @@ def _fo(base, system, model: FO, threads, field_beam) -> Plan:
                          f"{options.beam_window:g} waist radii",))
 
 
+def _masked(base, system, model, threads) -> Plan:
+    """An aperture mask (telecover): ray tracing with each scatterer's coupling restricted to the mask."""
+    if not isinstance(model, RT):
+        name = "auto" if isinstance(model, Auto) else "fo"
+        raise ValueError(f"method = {name!r} is invalid with telescope.mask: aperture masks are modelled by ray "
+                         "tracing only (the Fourier-optics path has no masked pupil yet); use method='rt'")
+    if system.aberrated:
+        raise ValueError("telescope.mask with aberrations is not modelled: set telescope.aberrations or "
+                         "telescope.mask to None")
+    if isinstance(system.beam, FieldBeam):
+        raise ValueError(f"telescope.mask is invalid for a {type(system.beam).__name__}: ray tracing models "
+                         "Gaussian beams only")
+    names = ", ".join(system.telescope.mask.names)
+    return Plan(**base, method="rt", fo_path="", backend="rt_masked", error_kind="bound", tolerance=model.tolerance,
+                options=_rt_options(model, model.tolerance, threads), rt_quadrature_tolerance=model.tolerance,
+                reasons=(f"ray tracing through the aperture mask ({names}), to {model.tolerance:g} on G; G is "
+                         "normalised to the full aperture",))
+
+
 def _aberrated(base, system, z, model, threads) -> Plan:
     ab = system.telescope.aberrations
     if isinstance(model, Auto):
@@ -181,6 +203,8 @@ def _aberrated(base, system, z, model, threads) -> Plan:
 
 
 def _turbulent(system, z, request: Turbulent, threads) -> Plan:
+    if system.telescope.mask is not None:
+        raise ValueError("turbulence with telescope.mask is not modelled: set telescope.mask or turbulence to None")
     if system.aberrated:
         raise ValueError("turbulence with receiver aberrations is not modelled yet: set telescope.aberrations "
                          "to None or turbulence to None")

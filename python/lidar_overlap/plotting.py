@@ -79,3 +79,34 @@ def plot_signal(sig, ax=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     return ax
+
+
+def plot_telecover(result, band=0.05, axes=None):
+    """The conventional telecover figure of a :class:`TelecoverResult`: top, the range-corrected signal of
+    each sector (∝ its G, the atmosphere being common) and the full aperture's over 4 (the mean of four
+    quadrants); bottom, the normalised deviations G_i / mean G - 1 in % with the ±``band`` lines. Returns the
+    two Axes."""
+    plt = _pyplot()
+    if axes is None:
+        _, axes = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, constrained_layout=True)
+    top, bottom = axes
+    n = len(result.names)
+    for name, g, dev in zip(result.names, result.overlap, result.deviation):
+        line, = top.plot(result.ranges, g, label=name)
+        bottom.plot(result.ranges, 100.0 * dev, color=line.get_color(), label=name)
+    top.plot(result.ranges, result.full.overlap / n, color="black", linestyle="--", linewidth=0.8,
+             label=f"full aperture / {n}")
+    top.set_ylabel("range-corrected signal ∝ G (a.u.)")
+    top.legend(fontsize="small")
+    for sign in (-1.0, 1.0):
+        bottom.axhline(100.0 * sign * band, color="grey", linestyle=":", linewidth=1)
+    bottom.axhline(0.0, color="black", linewidth=0.6)
+    bottom.set_ylabel("normalised deviation (%)")
+    bottom.set_xlabel("range z (m)")
+    finite = result.deviation[np.isfinite(result.deviation)]
+    limit = 100.0 * max(2.0 * band, float(np.max(np.abs(finite))) if finite.size else 0.0)
+    bottom.set_ylim(-min(limit, 100.0), min(limit, 100.0))
+    for ax in axes:
+        ax.set_xscale("log")
+        ax.grid(True, which="both", alpha=0.3)
+    return axes

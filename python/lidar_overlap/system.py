@@ -19,6 +19,7 @@ import numpy as np
 
 from . import _checks, _core
 from .aberrations import Aberrations
+from .aperture_mask import ApertureMask
 from .field_beam import FieldBeam
 
 Pair = Tuple[float, float]
@@ -83,6 +84,8 @@ class Telescope:
     obstruction_radius : m, radius of the opaque central obstruction (secondary mirror), < D/2.
     obstruction_distance : m, its distance in front of the aperture stop, towards the sky.
     aberrations : :class:`Aberrations` of the receiver (Zernike and Seidel terms), or ``None`` (ideal lens).
+    mask : :class:`ApertureMask`, the open part of the aperture stop (the telecover test), or ``None`` (all of
+        it). G stays normalised to the full aperture; ray tracing only.
     """
 
     diameter: float = 0.15
@@ -90,9 +93,12 @@ class Telescope:
     obstruction_radius: float = 0.0
     obstruction_distance: float = 0.0
     aberrations: Optional[Aberrations] = None
+    mask: Optional[ApertureMask] = None
     _native: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        if self.mask is not None and not isinstance(self.mask, ApertureMask):
+            raise ValueError(f"telescope.mask = {self.mask!r} is invalid: expected an ApertureMask or None")
         if self.aberrations is not None and not isinstance(self.aberrations, Aberrations):
             raise ValueError(f"telescope.aberrations = {self.aberrations!r} is invalid: expected an Aberrations "
                              "or None")
@@ -101,6 +107,8 @@ class Telescope:
         object.__setattr__(self, "_native", _core.Telescope(self.diameter, self.focal_length,
                                                             self.obstruction_radius,
                                                             self.obstruction_distance))
+        if self.mask is not None:
+            self.mask._native.validate(self._native)
 
 
 @dataclass(frozen=True)

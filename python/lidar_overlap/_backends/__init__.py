@@ -5,11 +5,12 @@ from __future__ import annotations
 
 from .. import _checks
 from ..result import OverlapResult
-from . import aberrated, fo, rt, turbulent
+from . import aberrated, fo, masked, rt, turbulent
 
 RUNNERS = {
     "rt": rt.run,
     "rt_aberrated": aberrated.run_rt,
+    "rt_masked": masked.run,
     "fo_radial": fo.run_radial,
     "fo_2d": fo.run_2d,
     "fo_field": fo.run_field,

@@ -1,0 +1,110 @@
+"""The telecover test (EARLINET quality assurance; Freudenthaler et al., 2018, Atmos. Meas. Tech. 11, 4713).
+
+The receiver's aperture is covered but for one sector at a time (classically four quadrants); the
+range-corrected signals of the sectors are compared through their normalised deviations
+S_i(z) / mean_j S_j(z) - 1. The atmosphere is the same for every sector, so the signals differ only through
+the overlap: S_i ∝ G_i, and the deviations are ratios of G's. :func:`telecover` computes each sector's G
+(one plan per sector, through the planner's masked ray-tracing path) and the full-aperture G.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Tuple
+
+import numpy as np
+
+from . import _checks
+from .aperture_mask import ApertureMask
+from .compute import run
+from .planning import plan
+from .result import OverlapResult
+from .system import LidarSystem
+
+#: The ``sectors`` strings :func:`telecover` knows.
+SECTOR_SETS = ("quadrants",)
+
+
+@dataclass(frozen=True, eq=False)
+class TelecoverResult:
+    """Per-sector overlaps and their normalised deviations.
+
+    ranges : m. names : the sectors' names. sectors : one :class:`OverlapResult` per sector (G normalised to
+    the full aperture), in the order of ``names``. full : the full-aperture :class:`OverlapResult`.
+    """
+
+    ranges: np.ndarray
+    names: Tuple[str, ...]
+    sectors: Tuple[OverlapResult, ...]
+    full: OverlapResult
+
+    @property
+    def overlap(self) -> np.ndarray:
+        """G of each sector (sector x range)."""
+        return np.array([r.overlap for r in self.sectors])
+
+    @property
+    def error_estimate(self) -> np.ndarray:
+        """Stated error of each sector's G (sector x range)."""
+        return np.array([r.error_estimate for r in self.sectors])
+
+    @property
+    def deviation(self) -> np.ndarray:
+        """Normalised deviations G_i / mean_j G_j - 1 (sector x range): the telecover's S_i / mean S - 1, since
+        the sectors see the same atmosphere. NaN where no sector receives anything."""
+        g = self.overlap
+        mean = g.mean(axis=0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(mean > 0.0, g / np.where(mean > 0.0, mean, 1.0) - 1.0, np.nan)
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` (sector x range): ``overlap``, ``error_estimate``, ``deviation`` and
+        ``full_overlap`` (range), with units and the method in the attributes (needs the ``io`` extra)."""
+        from .result import _xarray
+
+        xr = _xarray()
+        dims = ("sector", "range")
+        return xr.Dataset(
+            {"overlap": (dims, self.overlap, {"long_name": "overlap through the sector (of the full aperture)"}),
+             "error_estimate": (dims, self.error_estimate, {"long_name": "stated error of overlap"}),
+             "deviation": (dims, self.deviation, {"long_name": "normalised deviation G_i / mean G - 1"}),
+             "full_overlap": (("range",), self.full.overlap, {"long_name": "overlap of the full aperture"})},
+            coords={"sector": list(self.names), "range": ("range", self.ranges, {"units": "m"})},
+            attrs={"method": self.full.method, "tolerance": float(self.full.tolerance),
+                   "reference": "Freudenthaler et al. (2018), Atmos. Meas. Tech. 11, 4713"})
+
+    def plot(self, band: float = 0.05, axes=None):
+        """The conventional telecover figure: range-corrected signals per sector (∝ G_i) and the normalised
+        deviations with the ±``band`` lines. Returns the two Axes (needs ``pip install lidar-overlap[plot]``)."""
+        from .plotting import plot_telecover
+
+        return plot_telecover(self, band=band, axes=axes)
+
+
+def telecover(system: LidarSystem, ranges, sectors="quadrants", method="rt", tolerance: float = 1e-4, *,
+              threads: int = 0) -> TelecoverResult:
+    """The telecover test of ``system`` at ``ranges`` (m). ``sectors``: ``"quadrants"`` (north = +y, east = +x:
+    :meth:`ApertureMask.quadrants`) or an :class:`ApertureMask` whose sectors are measured one at a time.
+    ``method``: ``"rt"`` or an :class:`RT` (aperture masks are modelled by ray tracing). G of each sector stays
+    normalised to the full aperture, so the sectors of a partition add up to the full G."""
+    if not isinstance(system, LidarSystem):
+        raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
+    if system.telescope.mask is not None:
+        raise ValueError("system.telescope.mask is invalid for telecover: expected None (telecover sets each "
+                         "sector's mask itself; pass the mask as sectors=)")
+    if isinstance(sectors, str):
+        _checks.choice("sectors", sectors, SECTOR_SETS)
+        mask = ApertureMask.quadrants()
+    elif isinstance(sectors, ApertureMask):
+        mask = sectors
+    else:
+        raise ValueError(f"sectors = {_checks.shown(sectors)} is invalid: expected 'quadrants' or an ApertureMask")
+    mask.validate(system.telescope.diameter, system.telescope.obstruction_radius)
+    options = dict(tolerance=tolerance, threads=threads) if isinstance(method, str) else dict(threads=threads)
+    full = run(plan(system, ranges, method, **options))
+    parts = []
+    for part in mask.split():
+        masked = dataclasses.replace(system, telescope=dataclasses.replace(system.telescope, mask=part))
+        parts.append(run(plan(masked, full.ranges, method, **options)))
+    return TelecoverResult(ranges=full.ranges, names=mask.names, sectors=tuple(parts), full=full)
