@@ -1,0 +1,180 @@
+"""Aperture masks and the telecover test: partitions add up to the full aperture, sector couplings against an
+independent Monte-Carlo ray trace, symmetry and the sign and size of a tilt's north-south asymmetry, the
+planner's choices and bad input."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import lidar_overlap as lo
+
+TOL = 1e-4
+
+
+def awkward_system(mask=None):
+    """Tilted, offset, obstructed, defocused, with an NA and a detector offset."""
+    return lo.LidarSystem(
+        beam=lo.GaussianBeam(waist_radius=1e-3, divergence=0.2e-3, offset=(0.01, -0.005), tilt=(20e-6, -40e-6)),
+        telescope=lo.Telescope(diameter=0.15, focal_length=1.0, obstruction_radius=0.02,
+                               obstruction_distance=0.4, mask=mask),
+        detector=lo.Detector(radius=0.45e-3, defocus=2e-3, offset=(4e-5, 0.0), numerical_aperture=0.22))
+
+
+def tilted_table1(tilt_y=50e-6):
+    s = lo.paper_table1()
+    return dataclasses.replace(s, beam=dataclasses.replace(s.beam, tilt=(0.0, tilt_y)))
+
+
+def in_sector(points, sector: lo.Sector, aperture_radius):
+    rho = np.hypot(points[:, 0], points[:, 1])
+    t = np.mod(np.arctan2(points[:, 1], points[:, 0]) - sector.start_angle, 2 * np.pi)
+    outer = aperture_radius if sector.outer_radius is None else sector.outer_radius
+    return (t <= sector.span) & (rho >= sector.inner_radius) & (rho <= outer)
+
+
+def sector_points(rng, sector, aperture_radius, n):
+    """Uniform points over the annular sector, and its area."""
+    outer = aperture_radius if sector.outer_radius is None else sector.outer_radius
+    r2 = sector.inner_radius ** 2 + (outer ** 2 - sector.inner_radius ** 2) * rng.random(n)
+    phi = sector.start_angle + sector.span * rng.random(n)
+    area = 0.5 * sector.span * (outer ** 2 - sector.inner_radius ** 2)
+    return np.sqrt(r2)[:, None] * np.column_stack((np.cos(phi), np.sin(phi))), area
+
+
+def rays_counted(system, z, scatterers, apertures):
+    """The paraxial ray P -> A of docs/rt_method.md: past the obstruction, onto the detector, within the NA."""
+    tel, det = system.telescope, system.detector
+    f, d = tel.focal_length, tel.focal_length + det.defocus
+    ok = np.ones(len(apertures), bool)
+    if tel.obstruction_radius > 0:
+        at_obstruction = apertures + (scatterers - apertures) * tel.obstruction_distance / z
+        ok &= np.hypot(*at_obstruction.T) >= tel.obstruction_radius
+    slope = (apertures - scatterers) / z - apertures / f
+    landing = apertures + d * slope - np.asarray(det.offset)
+    ok &= np.hypot(*landing.T) <= det.radius
+    if det.numerical_aperture is not None:
+        ok &= np.hypot(*slope.T) <= math.tan(math.asin(det.numerical_aperture))
+    return ok
+
+
+def test_quadrants_add_up_to_the_full_aperture():
+    s = awkward_system()
+    z = np.array([30.0, 80.0, 250.0, 900.0])
+    r = lo.telecover(s, z, "quadrants", tolerance=TOL)
+    assert r.names == ("north", "east", "south", "west")
+    assert np.all(r.full.overlap > 0.01)
+    np.testing.assert_allclose(r.overlap.sum(axis=0), r.full.overlap, rtol=0, atol=4 * TOL)
+    # a rotated set of six sectors too, through the same system carrying the mask itself
+    six = lo.ApertureMask.sectors(6, rotation=0.4)
+    parts = [lo.overlap(awkward_system(m), z[:2], "rt", tolerance=TOL).overlap for m in six.split()]
+    np.testing.assert_allclose(np.sum(parts, axis=0), r.full.overlap[:2], rtol=0, atol=6 * TOL)
+
+
+@pytest.mark.parametrize("sector", [lo.Sector(0.3, 1.9), lo.Sector(-2.0, 0.5, 0.03, 0.07),
+                                    lo.Sector(2.5, 2.5 + 2 * np.pi, 0.05)])
+def test_sector_coupling_against_monte_carlo(sector):
+    s = awkward_system()
+    R = 0.5 * s.telescope.diameter
+    mask = lo.ApertureMask((sector,))
+    masked = awkward_system(mask)
+    rng = np.random.default_rng(7)
+    n = 200_000
+    # scatterers near the field of view's edge, where the sector is partly seen (couplings 0.01-0.4)
+    for z, p in ((40.0, (0.015, 0.01)), (100.0, (0.04, -0.02)), (300.0, (0.13, 0.03)), (1000.0, (-0.44, 0.1))):
+        a, area = sector_points(rng, sector, R, n)
+        hits = rays_counted(s, z, np.broadcast_to(p, a.shape), a)
+        frac = hits.mean()
+        mc = frac * area / (np.pi * R ** 2)
+        se = math.sqrt(max(frac * (1 - frac), 1.0 / n) / n) * area / (np.pi * R ** 2)
+        exact = lo.emitter_coupling(masked, z, p)
+        assert abs(exact - mc) <= 4 * se, (z, p, exact, mc, se)
+
+
+def test_symmetric_system_gives_equal_sectors():
+    s = lo.paper_table1(obstruction_radius=0.02, defocus=2e-3)
+    z = np.geomspace(10, 2000, 8)
+    r = lo.telecover(s, z, tolerance=TOL)
+    assert np.all(np.abs(r.overlap - r.full.overlap / 4) <= 2 * TOL)
+    assert np.all(np.abs(np.nan_to_num(r.deviation) * r.full.overlap / 4) <= 2 * TOL)
+
+
+def test_tilt_north_south_asymmetry_sign_and_size():
+    s = tilted_table1(50e-6)
+    z = np.array([60.0, 120.0])
+    r = lo.telecover(s, z, tolerance=TOL)
+    north, east, south, west = r.overlap
+    assert np.all(north > south + 10 * TOL)                  # tilted towards +y: north sees more
+    np.testing.assert_allclose(east, west, atol=2 * TOL)      # mirror symmetry about the y axis
+    # size: an independent Monte-Carlo of the beam-averaged north and south G at 60 m
+    rng = np.random.default_rng(11)
+    z0, n = 60.0, 400_000
+    w = s.beam.radius(z0)
+    R = 0.5 * s.telescope.diameter
+    for k, name in ((0, "north"), (2, "south")):
+        sector = lo.ApertureMask.quadrants().sectors[k]
+        p = np.array(s.beam.center(z0)) + 0.5 * w * rng.standard_normal((n, 2))
+        a, area = sector_points(rng, sector, R, n)
+        frac = rays_counted(s, z0, p, a).mean()
+        mc, se = frac * area / (np.pi * R ** 2), math.sqrt(frac * (1 - frac) / n) * area / (np.pi * R ** 2)
+        assert abs(r.overlap[k, 0] - mc) <= 4 * se + TOL, (name, r.overlap[k, 0], mc, se)
+    # and the deviation has the tilt's sign, opposite for north and south
+    assert r.deviation[0, 0] > 0.05 and r.deviation[2, 0] < -0.05
+
+
+def test_rings_partition_and_keep_radial_speed():
+    s = awkward_system()
+    z = np.array([50.0, 400.0])
+    rings = lo.ApertureMask.rings([0.0, 0.04, None])
+    full = lo.overlap(s, z, "rt", tolerance=TOL).overlap
+    parts = [lo.overlap(awkward_system(m), z, "rt", tolerance=TOL).overlap for m in rings.split()]
+    np.testing.assert_allclose(np.sum(parts, axis=0), full, atol=4 * TOL)
+
+
+def test_planner_and_result():
+    s = awkward_system(lo.ApertureMask.quadrants().split()[0])
+    p = lo.plan(s, [100.0], "rt")
+    assert p.backend == "rt_masked" and "north" in str(p)
+    for method in ("fo", "auto"):
+        with pytest.raises(ValueError, match="ray tracing only"):
+            lo.plan(s, [100.0], method)
+    with pytest.raises(ValueError, match="turbulence"):
+        lo.plan(s, [100.0], lo.Turbulent(lo.Turbulence(cn2=1e-15), "rt"))
+    r = lo.telecover(tilted_table1(), [100.0, 300.0], tolerance=1e-3)
+    ds = r.to_xarray()
+    assert ds.overlap.dims == ("sector", "range") and list(ds.sector.values) == list(r.names)
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    top, bottom = r.plot(band=0.1)
+    assert len(top.lines) == 5 and len(bottom.lines) == 4 + 3
+    matplotlib.pyplot.close("all")
+
+
+@pytest.mark.parametrize("make, match", [
+    (lambda: lo.Sector(float("nan"), 1.0), "sector.start_angle"),
+    (lambda: lo.Sector(0.0, float("inf")), "sector.stop_angle"),
+    (lambda: lo.Sector(1.0, 1.0), "sector.stop_angle"),
+    (lambda: lo.Sector(0.0, 7.0), "by at most 2 pi"),
+    (lambda: lo.Sector(0.0, 1.0, -0.01), "sector.inner_radius"),
+    (lambda: lo.Sector(0.0, 1.0, 0.05, 0.04), "sector.outer_radius"),
+    (lambda: lo.ApertureMask(()), "at least one Sector"),
+    (lambda: lo.ApertureMask((lo.Sector(0.0, 2.0), lo.Sector(1.5, 3.0))), r"mask.sectors\[1\].*mask.sectors\[0\]"),
+    (lambda: lo.ApertureMask((lo.Sector(-0.5, 0.5), lo.Sector(6.0, 6.2))), "does not overlap"),
+    (lambda: lo.ApertureMask(lo.Sector(0.0, 1.0)), "tuple of Sector"),
+    (lambda: lo.ApertureMask.rings([0.04]), "at least two radii"),
+    (lambda: lo.ApertureMask.sectors(0), "n = 0"),
+    (lambda: lo.Telescope(mask=lo.ApertureMask((lo.Sector(0.0, 1.0, 0.0, 0.2),))), "outer_radius"),
+    (lambda: lo.Telescope(obstruction_radius=0.02, mask=lo.ApertureMask((lo.Sector(0.0, 1.0, 0.0, 0.015),))),
+     "obstruction"),
+    (lambda: lo.Telescope(mask="north"), "telescope.mask"),
+    (lambda: lo.telecover(lo.paper_table1(), [100.0], sectors="octants"), "sectors"),
+    (lambda: lo.telecover(lo.paper_table1(), [100.0], sectors=4), "sectors"),
+    (lambda: lo.telecover(lo.paper_table1(), [100.0], method="fo"), "ray tracing only"),
+    (lambda: lo.telecover(awkward_system(lo.ApertureMask.quadrants()), [100.0]), "system.telescope.mask"),
+    (lambda: lo.telecover(lo.paper_table1(), [100.0], sectors=lo.ApertureMask((lo.Sector(0, 1, 0, 0.1),))),
+     "outer_radius"),
+])
+def test_bad_input(make, match):
+    with pytest.raises(ValueError, match=match):
+        make()
