@@ -104,7 +104,7 @@ def plot_telecover(result, band=0.05, axes=None):
     bottom.set_ylabel("normalised deviation (%)")
     bottom.set_xlabel("range z (m)")
     finite = result.deviation[np.isfinite(result.deviation)]
-    limit = 100.0 * max(2.0 * band, float(np.max(np.abs(finite))) if finite.size else 0.0)
+    limit = 110.0 * max(2.0 * band, float(np.max(np.abs(finite))) if finite.size else 0.0)
     bottom.set_ylim(-min(limit, 100.0), min(limit, 100.0))
     for ax in axes:
         ax.set_xscale("log")
