@@ -178,3 +178,21 @@ def test_planner_and_result():
 def test_bad_input(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def test_result_files_keep_the_mask(tmp_path):
+    pytest.importorskip("xarray")
+    mask = lo.ApertureMask((lo.Sector(0.1, 1.2, 0.01, 0.05), lo.Sector(2.0, 3.0)), ("a", "b"))
+    r = lo.overlap(lo.LidarSystem(telescope=lo.Telescope(mask=mask)), [100.0, 300.0], "rt", tolerance=1e-3)
+    r.to_csv(tmp_path / "r.csv")
+    assert lo.OverlapResult.from_csv(tmp_path / "r.csv") == r
+    back = lo.OverlapResult.from_netcdf(_netcdf(r, tmp_path / "r.nc"))
+    assert back == r and back.system.telescope.mask == mask
+
+
+def _netcdf(result, path):
+    try:
+        result.to_netcdf(path)
+    except ImportError as exc:      # no netCDF engine
+        pytest.skip(str(exc))
+    return path

@@ -7,6 +7,7 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from .aberrations import SEIDEL_TERMS, Aberrations
+from .aperture_mask import ApertureMask, Sector
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 
@@ -51,6 +52,13 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
                   if getattr(tel.aberrations, name) != 0.0})
         if tel.aberrations.field_radius:
             a["aberration_field_radius_rad"] = tel.aberrations.field_radius
+    if tel.mask is not None:
+        for i, (sector, name) in enumerate(zip(tel.mask.sectors, tel.mask.names)):
+            a.update({f"mask_sector_{i}_name": name, f"mask_sector_{i}_start_angle_rad": sector.start_angle,
+                      f"mask_sector_{i}_stop_angle_rad": sector.stop_angle,
+                      f"mask_sector_{i}_inner_radius_m": sector.inner_radius})
+            if sector.outer_radius is not None:
+                a[f"mask_sector_{i}_outer_radius_m"] = sector.outer_radius
     return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in a.items()}
 
 
@@ -60,6 +68,16 @@ def _aberrations_from_attributes(attrs: Dict[str, Any]) -> Optional[Aberrations]
     zernike = {int(k.split("_")[2]): v for k, v in attrs.items() if k.startswith("aberration_zernike_")}
     seidel = {name: attrs.get(f"aberration_{name}_m", 0.0) for name in SEIDEL_TERMS}
     return Aberrations(zernike=zernike, field_radius=attrs.get("aberration_field_radius_rad", 0.0), **seidel)
+
+
+def _mask_from_attributes(attrs: Dict[str, Any]) -> Optional[ApertureMask]:
+    n = sum(1 for k in attrs if k.startswith("mask_sector_") and k.endswith("_start_angle_rad"))
+    if n == 0:
+        return None
+    keys = [f"mask_sector_{i}_" for i in range(n)]
+    return ApertureMask(tuple(Sector(attrs[k + "start_angle_rad"], attrs[k + "stop_angle_rad"],
+                                     attrs[k + "inner_radius_m"], attrs.get(k + "outer_radius_m")) for k in keys),
+                        tuple(str(attrs[k + "name"]) for k in keys))
 
 
 def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
@@ -78,7 +96,7 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
         telescope = Telescope(diameter=attrs["telescope_diameter_m"], focal_length=attrs["telescope_focal_length_m"],
                               obstruction_radius=attrs["telescope_obstruction_radius_m"],
                               obstruction_distance=attrs["telescope_obstruction_distance_m"],
-                              aberrations=_aberrations_from_attributes(attrs))
+                              aberrations=_aberrations_from_attributes(attrs), mask=_mask_from_attributes(attrs))
         detector = Detector(radius=attrs["detector_radius_m"], defocus=attrs["detector_defocus_m"],
                             offset=pair("detector_offset", "m"),
                             numerical_aperture=attrs.get("detector_numerical_aperture"))
