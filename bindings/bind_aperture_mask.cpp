@@ -37,6 +37,16 @@ void bind_aperture_mask(py::module_& m) {
       "G through the masked aperture, normalised to the full aperture.");
 
   m.def(
+      "overlap_fo_masked",
+      [](const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
+         const FoAberratedOptions& options) {
+        Interruptible release;
+        return overlap_fo(system, ranges, mask, options);
+      },
+      py::arg("system"), py::arg("ranges"), py::arg("mask"), py::arg("options") = FoAberratedOptions{},
+      "Fourier-optics G through the masked aperture (the sampled pupil), normalised to the full aperture.");
+
+  m.def(
       "emitter_coupling_rt_masked",
       [](const LidarSystem& system, double z, std::array<double, 2> position, const ApertureMask& mask) {
         return emitter_coupling_rt(system, z, {position[0], position[1]}, mask);

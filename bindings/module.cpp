@@ -22,11 +22,11 @@ PYBIND11_MODULE(_core, m) {
   bind_limits(m);
   bind_system(m);
   bind_overlap_rt(m);
-  bind_aperture_mask(m);
   bind_field(m);
   bind_propagate(m);
   bind_overlap_fo(m);
   bind_flat_top(m);
   bind_turbulence(m);
   bind_aberrations(m);
+  bind_aperture_mask(m);  // after bind_aberrations: its FO entry defaults to FoAberratedOptions
 }

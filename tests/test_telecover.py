@@ -136,9 +136,11 @@ def test_planner_and_result():
     s = awkward_system(lo.ApertureMask.quadrants().split()[0])
     p = lo.plan(s, [100.0], "rt")
     assert p.backend == "rt_masked" and "north" in str(p)
-    for method in ("fo", "auto"):
-        with pytest.raises(ValueError, match="ray tracing only"):
-            lo.plan(s, [100.0], method)
+    assert lo.plan(s, [100.0], "fo").backend == "fo_masked"
+    assert lo.plan(s, [100.0], "auto", tolerance=0.5).backend == "rt_masked"
+    assert lo.plan(s, [100.0], "auto", tolerance=1e-4).backend == "fo_masked"
+    with pytest.raises(ValueError, match="do not apply with telescope.mask"):
+        lo.plan(s, [100.0], "fo", fo_path="2d")
     with pytest.raises(ValueError, match="turbulence"):
         lo.plan(s, [100.0], lo.Turbulent(lo.Turbulence(cn2=1e-15), "rt"))
     r = lo.telecover(tilted_table1(), [100.0, 300.0], tolerance=1e-3)
@@ -170,7 +172,7 @@ def test_planner_and_result():
     (lambda: lo.Telescope(mask="north"), "telescope.mask"),
     (lambda: lo.telecover(lo.paper_table1(), [100.0], sectors="octants"), "sectors"),
     (lambda: lo.telecover(lo.paper_table1(), [100.0], sectors=4), "sectors"),
-    (lambda: lo.telecover(lo.paper_table1(), [100.0], method="fo"), "ray tracing only"),
+    (lambda: lo.telecover(lo.paper_table1(), [100.0], method="turbulent"), "method"),
     (lambda: lo.telecover(awkward_system(lo.ApertureMask.quadrants()), [100.0]), "system.telescope.mask"),
     (lambda: lo.telecover(lo.paper_table1(), [100.0], sectors=lo.ApertureMask((lo.Sector(0, 1, 0, 0.1),))),
      "outer_radius"),
@@ -178,6 +180,22 @@ def test_planner_and_result():
 def test_bad_input(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def test_fourier_optics_quadrants_against_the_full_curve_and_rt():
+    s = lo.paper_table1(defocus=2e-3)
+    s = dataclasses.replace(s, beam=dataclasses.replace(s.beam, tilt=(0.0, 50e-6)))
+    z = np.array([200.0, 1000.0])
+    fo = lo.telecover(s, z, method="fo")
+    rt = lo.telecover(s, z, method="rt", tolerance=TOL)
+    diffraction = lo.plan(s, z, "auto", tolerance=0.5).rt_model_error     # RT's estimated diffraction error
+    assert 5e-4 < diffraction < 5e-3
+    # the sectors' edges diffract light off the detector: the quadrants fall short of the full FO curve by about
+    # RT's diffraction error, never by more
+    shortfall = fo.full.overlap - fo.overlap.sum(axis=0)
+    assert np.all(shortfall > 0) and np.all(shortfall <= diffraction)
+    np.testing.assert_allclose(fo.overlap, rt.overlap, atol=diffraction / 2)
+    assert fo.overlap[0, 0] > fo.overlap[2, 0]              # north sees more, as in RT
 
 
 def test_result_files_keep_the_mask(tmp_path):

@@ -26,6 +26,7 @@ BACKENDS = {
     "rt": "ray tracing",
     "rt_aberrated": "ray tracing through the aberrated pupil",
     "rt_masked": "ray tracing through the aperture mask",
+    "fo_masked": "Fourier optics through the aperture mask (sampled pupil)",
     "fo_radial": "Fourier optics (radial path)",
     "fo_2d": "Fourier optics (2d path)",
     "fo_field": "Fourier optics (2d path, the field's own grid)",
@@ -42,8 +43,8 @@ class Plan:
     """One overlap computation, decided.
 
     method : the model that computes G, ``"rt"`` or ``"fo"``; fo_path : ``"radial"``, ``"2d"``,
-    ``"aberrated"`` or ``""`` (RT). backend : the key of the code that runs (:data:`BACKENDS`); options :
-    the core's options for it (``_core.RtOptions`` and its kin). tolerance : what the result states (NaN for
+    ``"aberrated"``, ``"masked"`` or ``""`` (RT). backend : the key of the code that runs (:data:`BACKENDS`);
+    options : the core's options for it (``_core.RtOptions`` and its kin). tolerance : what the result states (NaN for
     plain FO). error_kind : ``"bound"`` (RT: quadrature bound, plus the model error auto estimated),
     ``"nominal"`` (FO: the path's measured accuracy) or ``"standard_error"`` (turbulence: of the mean).
     rt_model_error : auto's estimate of RT's diffraction error (0 when not estimated, NaN where RT cannot
@@ -105,7 +106,7 @@ def _plain(system, z, model, request, threads) -> Plan:
     """The plan of ``model`` (RT, FO or Auto) without turbulence; ``request`` is what the caller asked for."""
     base = dict(system=system, ranges=z, request=request)
     if system.telescope.mask is not None:
-        return _masked(base, system, model, threads)
+        return _masked(base, system, z, model, threads)
     if system.aberrated:
         if isinstance(system.beam, FieldBeam):
             raise ValueError("aberrations with a FieldBeam are not modelled: expected a GaussianBeam (the aberrated "
@@ -159,23 +160,39 @@ def _fo(base, system, model: FO, threads, field_beam) -> Plan:
                          f"{options.beam_window:g} waist radii",))
 
 
-def _masked(base, system, model, threads) -> Plan:
-    """An aperture mask (telecover): ray tracing with each scatterer's coupling restricted to the mask."""
-    if not isinstance(model, RT):
-        name = "auto" if isinstance(model, Auto) else "fo"
-        raise ValueError(f"method = {name!r} is invalid with telescope.mask: aperture masks are modelled by ray "
-                         "tracing only (the Fourier-optics path has no masked pupil yet); use method='rt'")
+def _masked(base, system, z, model, threads) -> Plan:
+    """An aperture mask (telecover): ray tracing with each scatterer's coupling restricted to the mask, or Fourier
+    optics through the sampled pupil cut to it; auto chooses by RT's diffraction estimate, as without a mask."""
     if system.aberrated:
         raise ValueError("telescope.mask with aberrations is not modelled: set telescope.aberrations or "
                          "telescope.mask to None")
     if isinstance(system.beam, FieldBeam):
-        raise ValueError(f"telescope.mask is invalid for a {type(system.beam).__name__}: ray tracing models "
+        raise ValueError(f"telescope.mask is invalid for a {type(system.beam).__name__}: the masked paths model "
                          "Gaussian beams only")
     names = ", ".join(system.telescope.mask.names)
-    return Plan(**base, method="rt", fo_path="", backend="rt_masked", error_kind="bound", tolerance=model.tolerance,
-                options=_rt_options(model, model.tolerance, threads), rt_quadrature_tolerance=model.tolerance,
-                reasons=(f"ray tracing through the aperture mask ({names}), to {model.tolerance:g} on G; G is "
-                         "normalised to the full aperture",))
+    if isinstance(model, Auto):
+        d = auto.decide(system, z, model.tolerance)
+        common = dict(base, tolerance=model.tolerance, rt_model_error=d.rt_model_error, reasons=tuple(d.reasons))
+        if d.method == "rt":
+            return Plan(**common, method="rt", fo_path="", backend="rt_masked", error_kind="bound",
+                        options=_rt_options(model.rt, d.rt_quadrature_tolerance, threads),
+                        rt_quadrature_tolerance=d.rt_quadrature_tolerance, rt_diffraction_warning=False)
+        return dataclasses.replace(_masked(base, system, z, model.fo, threads), **common)
+    if isinstance(model, RT):
+        return Plan(**base, method="rt", fo_path="", backend="rt_masked", error_kind="bound",
+                    tolerance=model.tolerance, options=_rt_options(model, model.tolerance, threads),
+                    rt_quadrature_tolerance=model.tolerance,
+                    reasons=(f"ray tracing through the aperture mask ({names}), to {model.tolerance:g} on G; G is "
+                             "normalised to the full aperture",))
+    if model.path != "auto" or model.beam_grid is not None or model.beam_window is not None:
+        raise ValueError("fo_path, beam_grid and beam_window do not apply with telescope.mask: the masked Fourier-"
+                         "optics path samples the pupil cut to the mask (leave them at their defaults)")
+    options = _core.FoAberratedOptions()
+    options.max_grid, options.threads = model.max_spectrum_grid, threads
+    return Plan(**base, method="fo", fo_path="masked", backend="fo_masked", error_kind="nominal",
+                tolerance=float("nan"), options=options,
+                reasons=(f"Fourier optics through the pupil cut to the aperture mask ({names}), sampled at each "
+                         "range; G is normalised to the full aperture",))
 
 
 def _aberrated(base, system, z, model, threads) -> Plan:

@@ -85,7 +85,7 @@ class Telescope:
     obstruction_distance : m, its distance in front of the aperture stop, towards the sky.
     aberrations : :class:`Aberrations` of the receiver (Zernike and Seidel terms), or ``None`` (ideal lens).
     mask : :class:`ApertureMask`, the open part of the aperture stop (the telecover test), or ``None`` (all of
-        it). G stays normalised to the full aperture; ray tracing only.
+        it). G stays normalised to the full aperture; ray tracing, or Fourier optics through the sampled pupil.
     """
 
     diameter: float = 0.15

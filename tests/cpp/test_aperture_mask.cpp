@@ -93,6 +93,21 @@ int main() {
   for (std::size_t i = 0; i < ranges.size(); ++i)
     test::near("rings add up", a.overlap[i] + b.overlap[i], full.overlap[i], 2e-4);
 
+  // Fourier optics through the quadrants of Table 1 at 1 km: each near a quarter of the full G, their sum short
+  // of it by the diffraction at the sectors' edges (~1e-3), and the sector geometry's point tests.
+  {
+    const LidarSystem table1;
+    const double full_fo = overlap_fo(table1, {1000.0}, ApertureMask{{Sector{0.0, 2.0 * kPi}}}).overlap[0];
+    double sum_fo = 0.0;
+    for (int k = 0; k < 4; ++k) sum_fo += overlap_fo(table1, {1000.0}, quadrant(k, 0.2)).overlap[0];
+    test::that("FO quadrants fall short of the full aperture by the edge diffraction",
+               full_fo - sum_fo > 2e-4 && full_fo - sum_fo < 3e-3);
+    const AnnularSector q{0.0, 0.5 * kPi, 0.01, 0.05};
+    test::that("contains", sector_contains(q, {0.02, 0.02}) && !sector_contains(q, {-0.02, 0.02}) &&
+                               !sector_contains(q, {0.005, 0.0}));
+    test::near("distance to an edge", sector_boundary_distance(q, {0.03, 0.001}), 0.001, 1e-15);
+  }
+
   // Checks.
   const Telescope& t = sys.telescope;
   test::throws("empty mask", [&] { ApertureMask{}.validate(t); }, "mask.sectors");

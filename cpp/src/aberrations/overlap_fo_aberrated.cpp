@@ -15,6 +15,7 @@
 #include "fourier/gaussian_image_overlap.hpp"
 #include "fourier/otf.hpp"
 #include "fourier/overlap_fo_detail.hpp"
+#include "aberrations/sampled_pupil_overlap.hpp"
 
 namespace lidar_overlap {
 
@@ -26,8 +27,21 @@ constexpr double kImageSpectrumReach = 2.5;
 // Writes P(a) exp(i psi |a|^2 + 2 pi i W(a / R) / lambda) into the centre of an n x n buffer at pupil spacing
 // `delta` (m). Edge pixels carry the annulus area they hold (8 x 8 sub-samples), so the sampled pupil keeps
 // the continuous one's area and low-frequency content.
+// With a mask (sectors, empty: none) the pupil is cut to it; pixels its boundary crosses are sub-sampled too.
 void sample_pupil(const FoReceiver& rx, const Aberrations& aberrations, const PupilPolynomial& poly,
-                  double telescope_radius, double wavelength, double delta, std::size_t n, ComplexBuffer& out) {
+                  double telescope_radius, double wavelength, double delta, std::size_t n,
+                  const std::vector<AnnularSector>& mask, ComplexBuffer& out) {
+  auto in_mask = [&](Vec2 a) {
+    if (mask.empty()) return true;
+    for (const AnnularSector& s : mask)
+      if (sector_contains(s, a)) return true;
+    return false;
+  };
+  auto near_mask_edge = [&](Vec2 a, double reach) {
+    for (const AnnularSector& s : mask)
+      if (sector_boundary_distance(s, a) < reach) return true;
+    return false;
+  };
   out.assign(n * n, Complex{});
   const AnnularPupil& pupil = rx.pupil();
   const double k = 2.0 * kPi / wavelength, half_diagonal = 0.7072 * delta;
@@ -40,12 +54,15 @@ void sample_pupil(const FoReceiver& rx, const Aberrations& aberrations, const Pu
       const double x = ix * delta, r = std::hypot(x, y);
       double area = 1.0;
       if (r - half_diagonal >= pupil.outer || r + half_diagonal <= pupil.inner) continue;
-      if (r + half_diagonal > pupil.outer || r - half_diagonal < pupil.inner) {
+      const bool mask_edge = near_mask_edge({x, y}, half_diagonal);
+      if (!mask_edge && !in_mask({x, y})) continue;
+      if (mask_edge || r + half_diagonal > pupil.outer || r - half_diagonal < pupil.inner) {
         int inside = 0;
         for (int sy = 0; sy < 8; ++sy)
           for (int sx = 0; sx < 8; ++sx) {
-            const double rs = std::hypot(x + (sx - 3.5) / 8.0 * delta, y + (sy - 3.5) / 8.0 * delta);
-            inside += rs < pupil.outer && rs >= pupil.inner;
+            const Vec2 a{x + (sx - 3.5) / 8.0 * delta, y + (sy - 3.5) / 8.0 * delta};
+            const double rs = std::hypot(a.x, a.y);  // as before masks: the same pixels for every pupil
+            inside += rs < pupil.outer && rs >= pupil.inner && (!mask_edge || in_mask(a));
           }
         area = inside / 64.0;
         if (area == 0.0) continue;
@@ -109,6 +126,15 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
     throw std::invalid_argument("aberrations with W131, W222, W220 or W311 vary across the field, which the Fourier-"
                                 "optics path (one point image for every scatterer) cannot model: use method 'rt', "
                                 "or their Zernike form at one field point");
+  return detail::overlap_fo_sampled(system, aberrations, {}, ranges, options, "overlap_fo_aberrated");
+}
+
+namespace detail {
+
+FoAberratedOverlap overlap_fo_sampled(const LidarSystem& system, const Aberrations& aberrations,
+                                      const std::vector<AnnularSector>& mask, const std::vector<double>& ranges,
+                                      const FoAberratedOptions& options, const std::string& name) {
+  system.validate();
   system.beam.validate_for_fourier_optics();
   if (aberrations.pupil_polynomial().degree < 0)
     checks::fail("aberrations.zernike (highest Noll index)", static_cast<double>(aberrations.zernike.size()),
@@ -141,8 +167,9 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
     // m delta), two transforms each. Their difference carries the aberrations; the sampling's own errors (edge
     // pixels, the aliases' tails) are nearly the same in both and cancel, and the aberration-free G is exact.
     ComplexBuffer aberrated, plain;
-    sample_pupil(rx, aberrations, poly, radius, system.beam.wavelength, p.delta, p.n, aberrated);
-    sample_pupil(rx, Aberrations{}, Aberrations{}.pupil_polynomial(), radius, system.beam.wavelength, p.delta, p.n, plain);
+    sample_pupil(rx, aberrations, poly, radius, system.beam.wavelength, p.delta, p.n, mask, aberrated);
+    sample_pupil(rx, Aberrations{}, Aberrations{}.pupil_polynomial(), radius, system.beam.wavelength, p.delta, p.n,
+                 {}, plain);
     for (ComplexBuffer* b : {&aberrated, &plain}) {
       fft2d(*b, p.n, FftDirection::forward, FftPlanning::estimate);
       for (Complex& v : *b) v = std::norm(v);
@@ -172,9 +199,11 @@ FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrat
     const double n2 = static_cast<double>(p.n) * static_cast<double>(p.n);
     out.overlap[i] = gaussian_image_overlap(system, z, 4.0, nullptr, detail::range_name(i)) + sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
   });
-  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo_aberrated");
+  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, name);
   return out;
 }
+
+}  // namespace detail
 
 Field point_image(const LidarSystem& system, const Aberrations& aberrations, double z, std::size_t n,
                   double spacing) {
@@ -193,7 +222,7 @@ Field point_image(const LidarSystem& system, const Aberrations& aberrations, dou
                  "at most lambda d / D (1 - 8/n) = " + std::to_string(lambda * d / (2.0 * rx.pupil().outer) * (1.0 - 8.0 / n)) +
                      " m, so that the pupil fits the n x n transform");
   ComplexBuffer buffer;
-  sample_pupil(rx, aberrations, aberrations.pupil_polynomial(), radius, lambda, delta, n, buffer);
+  sample_pupil(rx, aberrations, aberrations.pupil_polynomial(), radius, lambda, delta, n, {}, buffer);
   fft2d(buffer, n, FftDirection::forward);  // a size users call again: FFTW_MEASURE pays off
   Field f;
   f.n = n;

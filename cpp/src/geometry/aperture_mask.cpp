@@ -7,6 +7,7 @@
 
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "aberrations/sampled_pupil_overlap.hpp"
 #include "geometry/beam_integral.hpp"
 #include "geometry/receiver_coupling.hpp"
 #include "geometry/rt_ranges.hpp"
@@ -176,6 +177,12 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
   return detail::rt_over_ranges(
       system, ranges, options,
       [&](const Receiver& rx) { return masked_overlap_at(system, rx, sectors, options); }, "overlap_rt (masked)");
+}
+
+FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
+                              const FoAberratedOptions& options) {
+  return detail::overlap_fo_sampled(system, Aberrations{}, checked_sectors(system, mask), ranges, options,
+                                    "overlap_fo (masked)");
 }
 
 double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position, const ApertureMask& mask) {

@@ -144,4 +144,23 @@ double sector_intersection_area(const Disc* discs, std::size_t n, const AnnularS
   return std::max(area, 0.0);
 }
 
+bool sector_contains(const AnnularSector& s, Vec2 p) {
+  const double rho = norm(p);
+  if (rho < s.inner || rho > s.outer) return false;
+  return s.span >= kTwoPi || wrap(std::atan2(p.y, p.x), s.start) - s.start <= s.span;
+}
+
+double sector_boundary_distance(const AnnularSector& s, Vec2 p) {
+  const double rho = norm(p);
+  double d = std::abs(rho - s.outer);
+  if (s.inner > 0.0) d = std::min(d, std::abs(rho - s.inner));
+  if (s.span < kTwoPi)
+    for (double t : {s.start, s.start + s.span}) {  // the edge segments from inner to outer along angle t
+      const Vec2 u{std::cos(t), std::sin(t)};
+      const double along = std::clamp(dot(p, u), s.inner, s.outer);
+      d = std::min(d, norm(p - along * u));
+    }
+  return d;
+}
+
 }  // namespace lidar_overlap

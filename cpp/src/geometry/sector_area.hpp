@@ -21,4 +21,9 @@ struct AnnularSector {
 // triangle plus or minus a circular segment: exact to rounding, with no quadrature.
 double sector_intersection_area(const Disc* discs, std::size_t n, const AnnularSector& sector);
 
+// Whether p (m) lies in the sector, and a lower bound of its distance (m) to the sector's boundary (for
+// sampling a masked pupil: pixels nearer than their half-diagonal are sub-sampled).
+bool sector_contains(const AnnularSector& sector, Vec2 p);
+double sector_boundary_distance(const AnnularSector& sector, Vec2 p);
+
 }  // namespace lidar_overlap

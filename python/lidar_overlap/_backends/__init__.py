@@ -11,6 +11,7 @@ RUNNERS = {
     "rt": rt.run,
     "rt_aberrated": aberrated.run_rt,
     "rt_masked": masked.run,
+    "fo_masked": masked.run_fo,
     "fo_radial": fo.run_radial,
     "fo_2d": fo.run_2d,
     "fo_field": fo.run_field,

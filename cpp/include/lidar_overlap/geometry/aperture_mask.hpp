@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
 #include "lidar_overlap/core/system.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 
@@ -41,6 +42,13 @@ inline constexpr std::size_t kMaxMaskSectors = 64;
 // system, range, mask or option.
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
                      const RtOptions& options = {});
+
+// The Fourier-optics G through the mask (Gaussian beams): the sampled pupil of overlap_fo_aberrated cut to the
+// mask, its OTF by FFT, and G = G_0 + sum_q [OTF_masked(q) - OTF_full(q)] K^(q) dq^2 / (pi R^2) with G_0 the exact
+// radial full-aperture G. Diffraction couples the sectors: the parts of a partition add up to the full G only
+// to the diffraction at their edges. Throws std::invalid_argument as overlap_fo_aberrated, and for the mask.
+FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
+                              const FoAberratedOptions& options = {});
 
 // Coupling of one point scatterer at (position, z) (m) through the mask, over the power it sends into the
 // full, unobstructed aperture.
