@@ -4,7 +4,8 @@ A :class:`Sector` is an annular sector of the aperture plane (angles from +x tow
 aperture centre, the frame of the beam's ``offset`` and ``tilt``); an :class:`ApertureMask` is a union of
 disjoint sectors, attached to a receiver as ``Telescope(..., mask=mask)``. The overlap through a mask stays
 normalised to the full, unobstructed aperture, so the G's of the parts of a partition add up to the full G.
-Ray tracing computes it exactly per scatterer (``docs/telecover.md``).
+Ray tracing computes it exactly per scatterer, Fourier optics through the sampled pupil cut to the mask
+(``docs/telecover.md``).
 """
 
 from __future__ import annotations
