@@ -1,5 +1,5 @@
 // Concurrent calls from several threads (as an instrument's acquisition and display threads would make):
-// RT and FO overlap curves (plain and aberrated), propagations and a flat-top design run at once on shared
+// RT and FO overlap curves (plain, aberrated, RT through an aperture mask), propagations and a flat-top design run at once on shared
 // plan caches, and
 // each result is bit-for-bit the one computed alone.
 #include <thread>
@@ -12,7 +12,7 @@ using namespace lidar_overlap;
 
 namespace {
 struct Results {
-  std::vector<double> rt, fo, propagated, rt_aberrated, fo_aberrated;
+  std::vector<double> rt, fo, propagated, rt_aberrated, fo_aberrated, rt_masked;
   std::vector<double> plate;
 };
 
@@ -39,6 +39,7 @@ Results compute(int variant) {
   FoAberratedOptions foa;
   foa.threads = 1;
   r.fo_aberrated = overlap_fo_aberrated(s, ab, {1000.0}, foa).overlap;
+  r.rt_masked = overlap_rt(s, {100.0, 300.0}, ApertureMask{{Sector{0.3, 1.8}}}, {1e-4, 1, 4000}).overlap;
   return r;
 }
 }  // namespace
@@ -59,6 +60,7 @@ int main() {
       test::near("flat-top plate identical" + tag, together[v].plate == alone[v].plate ? 0.0 : 1.0, 0.0, 0.0);
       test::near("aberrated RT identical" + tag, together[v].rt_aberrated == alone[v].rt_aberrated ? 0.0 : 1.0, 0.0, 0.0);
       test::near("aberrated FO identical" + tag, together[v].fo_aberrated == alone[v].fo_aberrated ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("masked RT identical" + tag, together[v].rt_masked == alone[v].rt_masked ? 0.0 : 1.0, 0.0, 0.0);
     }
   }
   return test::report("test_thread_safety");
