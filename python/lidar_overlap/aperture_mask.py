@@ -20,6 +20,13 @@ from . import _checks, _core
 QUADRANTS = ("north", "east", "south", "west")
 
 
+def _finite(name: str, value) -> float:
+    v = _checks.real(name, value)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} = {v!r} is invalid: expected a finite number")
+    return v
+
+
 @dataclass(frozen=True)
 class Sector:
     """Aperture points at angle in [start_angle, stop_angle] (rad, from +x towards +y) and radius in
@@ -35,10 +42,7 @@ class Sector:
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         for name in ("start_angle", "stop_angle", "inner_radius"):
-            value = _checks.real(f"sector.{name}", getattr(self, name))
-            if not math.isfinite(value):
-                raise ValueError(f"sector.{name} = {value!r} is invalid: expected a finite number")
-            set_(self, name, value)
+            set_(self, name, _finite(f"sector.{name}", getattr(self, name)))
         set_(self, "outer_radius", _checks.optional_real("sector.outer_radius", self.outer_radius))
         span = self.stop_angle - self.start_angle
         if not (0.0 < span <= 2.0 * math.pi * (1.0 + 1e-12)):
@@ -102,7 +106,7 @@ class ApertureMask:
         """The telecover's quadrants north, east, south, west, with north = +y and east = +x of the aperture
         plane (as seen looking along the beam, towards the sky): north spans 45°-135° from +x, east -45°-45°,
         and so on; ``rotation`` (rad) turns all four from +x towards +y."""
-        rotation = _checks.real("rotation", rotation)
+        rotation = _finite("rotation", rotation)
         centres = {"north": 0.5 * math.pi, "east": 0.0, "south": -0.5 * math.pi, "west": math.pi}
         return cls(tuple(Sector(rotation + centres[n] - 0.25 * math.pi, rotation + centres[n] + 0.25 * math.pi)
                          for n in QUADRANTS), QUADRANTS)
@@ -121,8 +125,8 @@ class ApertureMask:
 
 def _equal_sectors(n: int, rotation: float = 0.0) -> ApertureMask:
     """``n`` equal sectors, the first from ``rotation`` (rad from +x towards +y) onwards."""
-    n = _checks.count("n", n, 1, 360)
-    rotation = _checks.real("rotation", rotation)
+    n = _checks.count("n", n, 1, 64)   # the core takes at most 64 sectors per mask
+    rotation = _finite("rotation", rotation)
     step = 2.0 * math.pi / n
     return ApertureMask(tuple(Sector(rotation + k * step, rotation + (k + 1) * step) for k in range(n)),
                         tuple(f"sector {k}" for k in range(n)))
