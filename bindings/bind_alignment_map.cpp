@@ -25,6 +25,7 @@ py::array_t<T> shaped(const std::vector<T>& v, const std::vector<std::size_t>& s
 }  // namespace
 
 void bind_alignment_map(py::module_& m) {
+  m.attr("MAX_ALIGNMENT_POINTS") = kMaxAlignmentPoints;
   py::class_<AlignmentMap>(m, "AlignmentMap", "Result of alignment_map: arrays shaped (axis sizes..., ranges).")
       .def_property_readonly("shape", [](const AlignmentMap& r) { return r.shape; })
       .def_property_readonly("overlap", [](const AlignmentMap& r) { return shaped(r.values.overlap, r.shape); })

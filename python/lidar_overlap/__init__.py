@@ -1,6 +1,7 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
 
 from ._core import __version__, max_memory, max_threads, set_max_memory
+from .alignment import alignment_map
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -27,6 +28,7 @@ __all__ = [
     "Plan",
     "RT",
     "Turbulent",
+    "alignment_map",
     "plan",
     "run",
     "with_aberrations",
