@@ -16,6 +16,7 @@ from .planning import Plan, explain, plan
 from .phase_screen import phase_screen
 from .presets import paper_table1
 from .result import OverlapResult
+from .sensitivity import sensitivity
 from .scene import save_scene, scene
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
@@ -29,6 +30,7 @@ __all__ = [
     "RT",
     "Turbulent",
     "alignment_map",
+    "sensitivity",
     "plan",
     "run",
     "with_aberrations",
