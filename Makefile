@@ -35,6 +35,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/scene_table1.py
 	cd $(OUT) && ../$(PY) ../examples/turbulence_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
@@ -65,6 +66,7 @@ bench: setup
 	$(PY) benchmarks/bench_phase_screen.py
 	$(PY) benchmarks/bench_turbulent_overlap.py
 	$(PY) benchmarks/bench_aberrations.py
+	$(PY) benchmarks/bench_alignment.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)
