@@ -94,7 +94,8 @@ def test_bad_parameters_are_refused_by_name(paths, message):
 
 def test_other_bad_input_is_refused():
     near_limit = parameters.replace(lo.paper_table1(), {"detector.defocus": -0.99999})
-    with pytest.raises(ValueError, match=r"detector.defocus = -0.99999 - 1 x step 0.000402, a point of the central difference, leaves"):
+    with pytest.raises(ValueError, match=r"detector.defocus = -0.99999 - 1 x step 0.000402, a point of the central "
+                                         r"difference, leaves"):
         lo.sensitivity(near_limit, [300.0], ["detector.defocus"])
     with pytest.raises(ValueError, match="not available"):
         lo.sensitivity(lo.paper_table1(), [300.0], ["detector.radius"], method="fo")

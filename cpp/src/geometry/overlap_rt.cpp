@@ -226,7 +226,8 @@ RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::v
     checks::fail("systems", static_cast<double>(n), "at most " + std::to_string(kMaxBatchEntries) + " entries");
   detail::check_rt_options(options);
   const int threads = detail::checked_threads_and_ranges(systems, ranges, options.threads);
-  checks::memory("systems", static_cast<double>(n), static_cast<double>(n) * (sizeof(RangeResult) + 3 * sizeof(double) + 1),
+  checks::memory("systems", static_cast<double>(n),
+                 static_cast<double>(n) * (sizeof(RangeResult) + 3 * sizeof(double) + 1),
                  "split the batch");
 
   // Each receiver is built inside the region (its system and range are valid, so it does not throw; were it
