@@ -34,6 +34,19 @@ def test_grid_points_equal_overlap_of_the_misaligned_system_bit_for_bit():
             assert np.array_equal(ds["error_estimate"].values[i, j], one.error_estimate)
 
 
+def test_fourier_optics_maps_are_lo_overlap_per_grid_point_and_agree_with_rt():
+    # RT's diffraction error here is bounded by 3.5e-3 (validity.rt_error_bound; the two differ by 2.4e-3):
+    # 1e-2 leaves room for the tilts.
+    z, tilt = np.array([150.0, 1000.0]), np.array([-3e-4, 0.0, 2e-4])
+    fo = lo.alignment_map(BIAXIAL, z, tilt_x=tilt, method="fo")
+    assert fo.attrs["method"] == "fo" and fo.attrs["fo_path"] == "radial" and np.isnan(fo.attrs["tolerance"])
+    for i, t in enumerate(tilt):
+        one = lo.overlap(misaligned(BIAXIAL, tilt_x=t), z, "fo")
+        assert np.array_equal(fo["overlap"].values[i], one.overlap)
+    rt = lo.alignment_map(BIAXIAL, z, tilt_x=tilt, tolerance=TOL)
+    np.testing.assert_allclose(fo["overlap"].values, rt["overlap"].values, rtol=0, atol=1e-2)
+
+
 def test_axes_add_to_the_systems_own_value():
     tilted = misaligned(BIAXIAL, tilt_x=1e-4)
     ds = lo.alignment_map(tilted, [300.0], tilt_x=[-1e-4, 0.0], tolerance=TOL)
@@ -83,7 +96,10 @@ def test_bad_axes_are_refused_naming_the_axis_and_value(axes, message):
 
 def test_other_bad_input_is_refused():
     with pytest.raises(ValueError, match="not available for alignment maps"):
-        lo.alignment_map(lo.paper_table1(), [300.0], tilt_x=[0.0], method="fo")
+        lo.alignment_map(lo.paper_table1(), [300.0], tilt_x=[0.0], method="auto")
+    with pytest.raises(ValueError, match="too many for method='fo'"):
+        lo.alignment_map(lo.paper_table1(), [300.0], tilt_x=np.arange(60) * 1e-6, tilt_y=np.arange(60) * 1e-6,
+                         method="fo")
     with pytest.raises(ValueError, match="ranges"):
         lo.alignment_map(lo.paper_table1(), [300.0, 100.0], tilt_x=[0.0])
     with pytest.raises(ValueError, match="tolerance"):

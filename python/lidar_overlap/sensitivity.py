@@ -22,7 +22,7 @@ import numpy as np
 from . import _checks, _core
 from . import parameters as _parameters
 from ._datasets import range_coordinate, xarray
-from .alignment import _rt
+from .alignment import ray_tracing, requested
 from .planning import plan
 from .validity import warn_if_rt_invalid, warn_if_rt_unconverged
 
@@ -57,8 +57,8 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     """dG/dp at each range for each parameter path (:mod:`lidar_overlap.parameters`; a bare pair such as
     ``"beam.tilt"`` stands for both components), by central differences of ray-traced G.
 
-    ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier optics is refused:
-    its curves carry no error estimate to difference against). tolerance : RT's absolute tolerance on each G;
+    ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier optics is
+    refused: its curves state no error to set the step and the derivative's error from). tolerance : RT's absolute tolerance on each G;
     the steps follow from it (module docstring). threads : OpenMP threads; 0 uses all cores.
 
     Returns an ``xarray.Dataset`` (``pip install 'lidar-overlap[io]'``) with dims (``parameter``, ``range``):
@@ -69,7 +69,9 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     if not paths:
         raise ValueError("parameters = [] is invalid: expected at least one parameter path")
     xr = xarray("sensitivity")
-    p = plan(system, ranges, _rt(method, tolerance), threads=threads)
+    model = ray_tracing(requested(method, tolerance), "for sensitivities: their steps and errors come from ray "
+                        "tracing's error estimates (Fourier optics states none); use method='rt'")
+    p = plan(system, ranges, model, threads=threads)
     if p.backend != "rt":
         raise ValueError(f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} "
                          "(receiver aberrations), which has no batch call yet")
