@@ -58,8 +58,9 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     ``"beam.tilt"`` stands for both components), by central differences of ray-traced G.
 
     ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier optics is
-    refused: its curves state no error to set the step and the derivative's error from). tolerance : RT's absolute tolerance on each G;
-    the steps follow from it (module docstring). threads : OpenMP threads; 0 uses all cores.
+    refused: its curves state no error to set the step and the derivative's error from). tolerance : RT's
+    absolute tolerance on each G; the steps follow from it (module docstring). threads : OpenMP threads; 0 uses
+    all cores.
 
     Returns an ``xarray.Dataset`` (``pip install 'lidar-overlap[io]'``) with dims (``parameter``, ``range``):
     ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its estimated absolute error),
