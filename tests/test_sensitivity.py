@@ -86,6 +86,7 @@ def test_axisymmetric_tilt_derivative_is_zero():
     ([], r"parameters = \[\] is invalid"),
     (["beam.tilt", "beam.tilt[0]"], "named twice"),
     (["telescope.obstruction_radius"], "telescope.obstruction_radius = 0 is at the edge"),
+    (["detector.defocus", "telescope.aberrations.zernike[11]"], r"zernike\[11\] is not available"),
 ])
 def test_bad_parameters_are_refused_by_name(paths, message):
     with pytest.raises(ValueError, match=message):

@@ -69,6 +69,10 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     paths = _parameters.expand(parameters)
     if not paths:
         raise ValueError("parameters = [] is invalid: expected at least one parameter path")
+    aberrations = [path for path in paths if path.startswith("telescope.aberrations.")]
+    if aberrations:
+        raise ValueError(f"parameters: {', '.join(aberrations)} is not available: sensitivities ray trace the plain "
+                         "receiver in one batch call, and the aberrated paths have none yet")
     xr = xarray("sensitivity")
     model = ray_tracing(requested(method, tolerance), "for sensitivities: their steps and errors come from ray "
                         "tracing's error estimates (Fourier optics states none); use method='rt'")
