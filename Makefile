@@ -37,6 +37,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/signal_correction.py
 	cd $(OUT) && ../$(PY) ../examples/tolerance_study.py
+	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
@@ -68,6 +69,7 @@ bench: setup
 	$(PY) benchmarks/bench_turbulent_overlap.py
 	$(PY) benchmarks/bench_aberrations.py
 	$(PY) benchmarks/bench_studies.py
+	$(PY) benchmarks/bench_alignment.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)
