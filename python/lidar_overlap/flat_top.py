@@ -114,8 +114,7 @@ def _restore(cls, state: dict) -> FlatTopBeam:
     beam = cls.__new__(cls)
     FieldBeam.__init__(beam, state.pop("field"), state.pop("offset"), state.pop("tilt"))
     for name, value in state.items():
-        if isinstance(value, np.ndarray):
-            value = value.copy()
+        if isinstance(value, np.ndarray):   # unpickled: a new array; copied (copy.copy): the same read-only one
             value.flags.writeable = False
         object.__setattr__(beam, name, value)
     object.__setattr__(beam, "_sealed", True)
