@@ -9,6 +9,7 @@ void bind_limits(py::module_& m);
 void bind_system(py::module_& m);
 void bind_overlap_rt(py::module_& m);
 void bind_aperture_mask(py::module_& m);
+void bind_alignment_map(py::module_& m);
 void bind_field(py::module_& m);
 void bind_propagate(py::module_& m);
 void bind_overlap_fo(py::module_& m);
@@ -22,6 +23,7 @@ PYBIND11_MODULE(_core, m) {
   bind_limits(m);
   bind_system(m);
   bind_overlap_rt(m);
+  bind_alignment_map(m);
   bind_field(m);
   bind_propagate(m);
   bind_overlap_fo(m);

@@ -132,23 +132,6 @@ def test_without_dask_a_loop_and_without_xarray_a_clear_message(no_dask, monkeyp
         study(n=3)
 
 
-@pytest.mark.parametrize("system, method", [
-    (lo.with_aberrations(SYSTEM, lo.Aberrations(zernike={11: 5e-8}, w222=1e-7, field_radius=1e-3)), METHOD),
-    (lo.LidarSystem(beam=lo.FieldBeam(lo.annular_field(355e-9, 2e-3, 0.5e-3, 128, 1e-4), tilt=(1e-5, 0.0)),
-                    telescope=SYSTEM.telescope, detector=SYSTEM.detector), "fo"),
-])
-@pytest.mark.filterwarnings("ignore::lidar_overlap.SamplingWarning")   # the annulus' hard edges: equality is the point
-def test_what_a_cluster_task_receives_rebuilds_the_same_system(system, method):
-    """Systems hold native objects that do not pickle: tasks get their constructor arguments."""
-    import pickle
-
-    from lidar_overlap import studies
-
-    rebuilt = studies._rebuild(pickle.loads(pickle.dumps(studies._recipe(system))))
-    np.testing.assert_array_equal(lo.overlap(rebuilt, RANGES[:3], method).overlap,
-                                  lo.overlap(system, RANGES[:3], method).overlap)
-
-
 class _Draws:
     def __init__(self, values):
         self.values = values

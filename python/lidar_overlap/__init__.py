@@ -4,6 +4,7 @@ from . import parameters
 from ._core import __version__, max_memory, max_threads, set_max_memory
 from .atmosphere import Atmosphere
 from .aperture_mask import ApertureMask, Sector
+from .alignment import alignment_map
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -18,6 +19,7 @@ from .planning import Plan, explain, plan
 from .phase_screen import phase_screen
 from .presets import paper_table1
 from .result import OverlapResult
+from .sensitivity import sensitivity
 from .scene import save_scene, scene
 from .signals import CorrectedSignal, LidarSignal, correct, signal
 from .studies import tolerance_study
@@ -37,6 +39,8 @@ __all__ = [
     "Plan",
     "RT",
     "Turbulent",
+    "alignment_map",
+    "sensitivity",
     "plan",
     "run",
     "with_aberrations",

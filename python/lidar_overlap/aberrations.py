@@ -24,6 +24,7 @@ from typing import Dict, Mapping, Tuple
 
 import numpy as np
 
+from ._pickling import ByArguments
 from . import _checks, _core
 
 SEIDEL_TERMS = ("w040", "w131", "w222", "w220", "w311")
@@ -33,7 +34,7 @@ MAX_NOLL_INDEX = 231
 
 
 @dataclass(frozen=True)
-class Aberrations:
+class Aberrations(ByArguments):
     """Wavefront aberrations of the receiver.
 
     Parameters

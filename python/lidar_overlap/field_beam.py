@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field as dataclass_field
 from typing import Optional, Tuple
 
+from ._pickling import ByArguments
 from . import _checks, _core
 from .fields import Field
 
@@ -19,7 +20,7 @@ MIN_BEAM_POWER = 1e-100
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class FieldBeam:
+class FieldBeam(ByArguments):
     """A transmitted beam given by its complex field at z = 0; immutable (:meth:`with_pointing` or
     :func:`dataclasses.replace` give a re-pointed copy).
 

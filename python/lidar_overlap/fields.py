@@ -14,6 +14,7 @@ from typing import Optional, Tuple, Union
 
 import numpy as np
 
+from ._pickling import ByArguments
 from . import _checks, _core
 
 PROPAGATION_METHODS = ("auto", "angular_spectrum", "fresnel", "fraunhofer")
@@ -35,7 +36,7 @@ class SamplingWarning(RuntimeWarning):
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Field:
+class Field(ByArguments):
     """Complex scalar field on an (n, n) grid; immutable (``values`` is a read-only copy). Use
     :func:`dataclasses.replace` for a field with other values, spacing or wavelength.
 

@@ -88,6 +88,11 @@ class FlatTopBeam(FieldBeam):
     def __delattr__(self, name: str) -> None:
         raise FrozenInstanceError(f"cannot delete field {name!r}: a FlatTopBeam is immutable")
 
+    def __reduce__(self):
+        # The design is kept, not redone: its results travel as they are, the field beam is checked again.
+        state = {k: v for k, v in self.__dict__.items() if k not in ("_native", "_sealed")}
+        return _restore, (type(self), state)
+
     @property
     def iterations(self) -> int:
         return int(self.history.size)
@@ -102,3 +107,15 @@ class FlatTopBeam(FieldBeam):
         return (f"FlatTopBeam(wavelength={self.wavelength:.4g} m, waist_radius={self.waist_radius:.4g} m, "
                 f"angular_diameter={self.angular_diameter:.4g} rad: {self.stop} after {self.iterations} iterations, "
                 f"efficiency {self.efficiency:.3f}, plateau rms {self.uniformity_rms:.3g})")
+
+
+def _restore(cls, state: dict) -> FlatTopBeam:
+    """An unpickled FlatTopBeam: the field beam built again from its field and pointing, the design's results set."""
+    beam = cls.__new__(cls)
+    FieldBeam.__init__(beam, state.pop("field"), state.pop("offset"), state.pop("tilt"))
+    for name, value in state.items():
+        if isinstance(value, np.ndarray):   # unpickled: a new array; copied (copy.copy): the same read-only one
+            value.flags.writeable = False
+        object.__setattr__(beam, name, value)
+    object.__setattr__(beam, "_sealed", True)
+    return beam

@@ -110,3 +110,45 @@ def plot_telecover(result, band=0.05, axes=None):
         ax.set_xscale("log")
         ax.grid(True, which="both", alpha=0.3)
     return axes
+
+_READABLE = {"rad": (1e3, "mrad"), "m": (1e3, "mm")}
+
+
+def plot_alignment_map(ds, range=None, ax=None, cmap="viridis"):
+    """Draw an alignment map (:func:`lidar_overlap.alignment_map`) at each chosen range (m; the nearest range of
+    the map, all of them when None): a heat map of G with a colorbar for two axes, G against the axis for one.
+    Axes are labelled with their names and units (angles in mrad, lengths in mm). Returns the Axes, or an array
+    of Axes (one per range) when several ranges are drawn."""
+    plt = _pyplot()
+    names = [d for d in ds["overlap"].dims if d != "range"]
+    chosen = ds["range"].values if range is None else np.atleast_1d(np.asarray(range, dtype=float))
+    if ax is not None and len(names) == 2 and chosen.size != 1:
+        raise ValueError(f"range = {range!r}: one Axes given, so choose one range")
+    if ax is None:
+        count = chosen.size if len(names) == 2 else 1
+        _, axes = plt.subplots(1, count, figsize=(4.2 * count, 3.6), constrained_layout=True, squeeze=False)
+        axes = axes[0]
+    else:
+        axes = np.array([ax])
+    scaled = []
+    for name in names:
+        factor, unit = _READABLE.get(ds[name].attrs.get("units", ""), (1.0, ds[name].attrs.get("units", "")))
+        scaled.append((ds[name].values * factor, f"{name} ({unit})"))
+    for i, z in enumerate(chosen):
+        g = ds["overlap"].sel(range=z, method="nearest")
+        z_shown = float(g["range"])
+        if len(names) == 2:
+            a = axes[i]
+            mesh = a.pcolormesh(scaled[1][0], scaled[0][0], g.values, shading="nearest", cmap=cmap)
+            a.figure.colorbar(mesh, ax=a, label="overlap G")
+            a.set_xlabel(scaled[1][1])
+            a.set_ylabel(scaled[0][1])
+            a.set_title(f"z = {z_shown:g} m")
+        else:
+            axes[0].plot(scaled[0][0], g.values, label=f"z = {z_shown:g} m")
+    if len(names) == 1:
+        axes[0].set_xlabel(scaled[0][1])
+        axes[0].set_ylabel("overlap G")
+        axes[0].legend()
+        return axes[0]
+    return axes[0] if axes.size == 1 else axes

@@ -20,7 +20,6 @@ cores). Results do not depend on it.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 import os
@@ -32,7 +31,6 @@ import numpy as np
 from . import _checks, parameters
 from .compute import run
 from .distributions import draw, normalized, text
-from .field_beam import FieldBeam
 from .methods import Turbulent
 from .planning import plan
 from .result import _xarray
@@ -157,9 +155,8 @@ def _head(system, paths, values, z, request):
 
 
 def _chunk(system, paths, values, z, request, threads: int, start: int) -> np.ndarray:
-    """G of members ``start, start + 1, ...`` (rows), each built from ``system`` (or its recipe, on a cluster) and
-    its draw, and planned from its own system; an error names the member."""
-    system = _rebuild(system)
+    """G of members ``start, start + 1, ...`` (rows), each built from ``system`` and its draw, and planned from its
+    own system; an error names the member."""
     out = np.empty((len(values), z.size))
     for k, row in enumerate(values):
         member = _member(system, paths, row, start + k)
@@ -197,9 +194,9 @@ def _workers(client, threads: int) -> int:
 def _compute(engine, client, bounds, system, paths, values, z, request, loop_threads, workers) -> list:
     if engine == "loop":
         return [_chunk(system, paths, values[s:e], z, request, loop_threads, s) for s, e in bounds]
-    if engine == "distributed":  # systems hold native objects that do not pickle: ship the recipe
-        recipe = client.scatter(_recipe(system), broadcast=True)
-        futures = [client.submit(_chunk, recipe, paths, values[s:e], z, request, 1, s, pure=False)
+    if engine == "distributed":  # the system pickles as its constructor arguments (lidar_overlap._pickling)
+        shared = client.scatter(system, broadcast=True)
+        futures = [client.submit(_chunk, shared, paths, values[s:e], z, request, 1, s, pure=False)
                    for s, e in bounds]
         return client.gather(futures)
     import dask
@@ -207,24 +204,3 @@ def _compute(engine, client, bounds, system, paths, values, z, request, loop_thr
              for s, e in bounds]
     scheduler = "threads" if workers > 1 else "sync"
     return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
-
-
-@dataclasses.dataclass(frozen=True)
-class _Recipe:
-    """A value type by its constructor arguments: picklable where the native object it holds is not."""
-    cls: type
-    kwargs: dict
-
-
-def _recipe(obj):
-    if dataclasses.is_dataclass(obj) and not isinstance(obj, type):
-        # a FlatTopBeam (own __init__: it designs its plate) is rebuilt as the FieldBeam of its designed field
-        cls = FieldBeam if isinstance(obj, FieldBeam) else type(obj)
-        return _Recipe(cls, {f.name: _recipe(getattr(obj, f.name)) for f in dataclasses.fields(cls) if f.init})
-    return obj
-
-
-def _rebuild(obj):
-    if isinstance(obj, _Recipe):
-        return obj.cls(**{k: _rebuild(v) for k, v in obj.kwargs.items()})
-    return obj

@@ -17,6 +17,7 @@ from typing import Literal, Optional, Tuple
 
 import numpy as np
 
+from ._pickling import ByArguments
 from . import _checks, _core
 from .aberrations import Aberrations
 from .aperture_mask import ApertureMask
@@ -26,7 +27,7 @@ Pair = Tuple[float, float]
 
 
 @dataclass(frozen=True)
-class GaussianBeam:
+class GaussianBeam(ByArguments):
     """Gaussian (TEM00-like) transmitted beam.
 
     Parameters
@@ -74,7 +75,7 @@ class GaussianBeam:
 
 
 @dataclass(frozen=True)
-class Telescope:
+class Telescope(ByArguments):
     """Receiving telescope: ideal thin lens at the aperture stop (z = 0).
 
     Parameters
@@ -112,7 +113,7 @@ class Telescope:
 
 
 @dataclass(frozen=True)
-class Detector:
+class Detector(ByArguments):
     """Detector (fibre core or field stop) in a plane f + defocus behind the lens.
 
     Parameters
@@ -156,7 +157,7 @@ class Detector:
 
 
 @dataclass(frozen=True)
-class LidarSystem:
+class LidarSystem(ByArguments):
     """A lidar: transmitted beam, receiving telescope and detector, validated together
     (obstruction inside the aperture, detector plane behind the lens). The beam is a
     :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier optics)."""

@@ -27,6 +27,7 @@ from typing import Callable, Optional, Union
 
 import numpy as np
 
+from ._pickling import ByArguments
 from . import _checks, _core
 from ._checks import choice
 from .result import OverlapResult
@@ -37,7 +38,7 @@ MAX_CN2 = 1e-9
 
 
 @dataclass(frozen=True, init=False, repr=False)
-class Turbulence:
+class Turbulence(ByArguments):
     """Cn² along the path and the path geometry; immutable (:func:`dataclasses.replace` gives a variant).
 
     Parameters

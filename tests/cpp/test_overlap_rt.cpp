@@ -5,6 +5,7 @@
 
 #include "check.hpp"
 #include "lidar_overlap/lidar_overlap.hpp"
+#include "core/special_functions.hpp"       // internal: the Rice density's exp(-x) I0(x)
 #include "geometry/receiver_coupling.hpp"  // internal: the coupling of single scatterers
 
 using namespace lidar_overlap;
@@ -111,5 +112,14 @@ int main() {
   std::vector<double> short_ranges = batch_ranges;
   short_ranges[7] = 0.0;
   test::throws("invalid batch range", [&] { overlap_rt_batch(batch, short_ranges); }, "ranges[7]");
+  // exp(-x) I0(x) by its Chebyshev series against the standard library (and Hankel's series far out).
+  double worst = 0.0;
+  for (double x = 0.0; x < 700.0; x += 0.0137)
+    worst = std::max(worst, std::abs(scaled_bessel_i0(x) / (std::cyl_bessel_i(0.0, x) * std::exp(-x)) - 1.0));
+  test::near("scaled_bessel_i0 relative error up to x = 700", worst, 0.0, 4e-15);
+  for (double x : {1e4, 1e6, 1e9}) {  // four terms: the fifth is below 1e-16 there
+    const double t = 1.0 / (8.0 * x), hankel = (1.0 + t * (1.0 + t * (4.5 + t * 37.5))) / std::sqrt(2.0 * kPi * x);
+    test::near("scaled_bessel_i0 far out, x=" + std::to_string(x), scaled_bessel_i0(x) / hankel, 1.0, 4e-15);
+  }
   return test::report("test_overlap_rt");
 }

@@ -5,9 +5,9 @@
 // (turbulence), aberrations/ (receiver wavefront errors). Internals (checks, quadrature, FFT plans, OTF,
 // circle geometry, loops) live in cpp/src and are not installed.
 //
-// Entry points: overlap_rt (ray tracing), overlap_fo (Fourier optics; Gaussian or any transmitted
-// Field), overlap_fo_radial, overlap_fo_turbulent, overlap_rt_aberrated / overlap_fo_aberrated,
-// emitter_coupling_rt/_fo, propagate (with choose_grid), design_flat_top. Invalid input throws
+// Entry points: overlap_rt (ray tracing; alignment_map over misalignment grids), overlap_fo (Fourier
+// optics; Gaussian or any transmitted Field), overlap_fo_radial, overlap_fo_turbulent, overlap_rt_aberrated /
+// overlap_fo_aberrated, emitter_coupling_rt/_fo, propagate (with choose_grid), design_flat_top. Invalid input throws
 // std::invalid_argument naming the parameter and its valid range. Every entry point is thread-safe:
 // FFTW planning is serialised and plans are shared through FFTW's new-array interface, so concurrent
 // calls from several threads give the results of the same calls made one at a time, bit for bit
@@ -25,6 +25,7 @@
 #include "lidar_overlap/core/vec2.hpp"
 
 #include "lidar_overlap/geometry/aperture_mask.hpp"
+#include "lidar_overlap/geometry/alignment_map.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 #include "lidar_overlap/geometry/receiver.hpp"
 

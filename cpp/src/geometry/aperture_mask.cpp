@@ -10,7 +10,7 @@
 #include "aberrations/sampled_pupil_overlap.hpp"
 #include "geometry/beam_integral.hpp"
 #include "geometry/receiver_coupling.hpp"
-#include "geometry/rt_ranges.hpp"
+#include "geometry/rt_entry.hpp"
 #include "geometry/sector_area.hpp"
 
 namespace lidar_overlap {

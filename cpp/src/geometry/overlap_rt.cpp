@@ -1,8 +1,9 @@
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -12,16 +13,18 @@
 #include "core/parallel.hpp"
 #include "geometry/beam_integral.hpp"
 #include "geometry/receiver_coupling.hpp"
-#include "geometry/rt_ranges.hpp"
+#include "geometry/rt_entry.hpp"
 
 namespace lidar_overlap {
 
-namespace {
+namespace detail {
 
-using beam_integral::Kinks;
-using beam_integral::RangeResult;
+void check_rt_options(const RtOptions& options) {
+  checks::in_open_unit("tolerance", options.tolerance);
+  if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
+}
 
-RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
+RtEntry overlap_rt_entry(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
   const double z = rx.range();
   const double w = system.beam.radius(z);
   const Vec2 center = system.beam.center(z);
@@ -29,30 +32,49 @@ RangeResult overlap_at(const LidarSystem& system, const Receiver& rx, const RtOp
   // 10 sigma = 5 w: the beam power beyond is below exp(-50).
   const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);
   const double tolerance = opt.tolerance / static_cast<double>(n_terms);
-  RangeResult total;
+  RtEntry total;
+  double magnitude = 0.0;
   for (std::size_t t = 0; t < n_terms; ++t) {
-    const Kinks kinks(terms[t]);
+    const beam_integral::Kinks kinks(terms[t]);
     const std::optional<Vec2> s = terms[t].symmetry_center();
-    if (s)
-      total.add(beam_integral::radial_integral(terms[t], kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
-                                opt.max_segments));
-    else
-      total.add(beam_integral::planar_mean(terms[t], kinks, center, w, beam_integral::mirror_symmetric(terms[t], center),
-                                            tolerance, opt.max_segments));
+    const RtEntry r =
+        s ? beam_integral::radial_integral(terms[t], kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
+                                           opt.max_segments)
+          : beam_integral::planar_mean(terms[t], kinks, center, w, beam_integral::mirror_symmetric(terms[t], center),
+                                       tolerance, opt.max_segments);
+    total.add(r);
+    magnitude += std::abs(r.value);
   }
+  // An obstruction's term cancels the unobstructed one where its shadow covers all the light that passes;
+  // integrated on different breakpoints, they then differ by round-off of either sign, which means G = 0.
+  if (std::abs(total.value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude) total.value = 0.0;
   return total;
 }
 
-}  // namespace
-
-namespace detail {
+RtOverlap collect_rt_entries(const std::vector<RtEntry>& entries, const std::vector<double>& ranges,
+                             double tolerance, const std::string& method) {
+  const std::size_t n = entries.size();
+  RtOverlap out;
+  out.overlap.resize(n);
+  out.error_estimate.resize(n);
+  out.converged.resize(n);
+  std::vector<double> slack(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.overlap[i] = entries[i].value;
+    out.error_estimate[i] = entries[i].error;
+    out.converged[i] = entries[i].converged;
+    out.evaluations += entries[i].evaluations;
+    slack[i] = std::max(tolerance, entries[i].error);  // as overlap_rt on this entry alone
+  }
+  checks::overlap_values(out.overlap, ranges, slack, method);
+  return out;
+}
 
 RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& ranges, const RtOptions& options,
-                         const std::function<RangeResult(const Receiver&)>& at, const std::string& name) {
+                         const std::function<RtEntry(const Receiver&)>& at, const std::string& name) {
   system.validate();
-  checks::in_open_unit("tolerance", options.tolerance);
-  const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
-  if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
+  check_rt_options(options);
+  const int threads = checked_threads_and_ranges(system, ranges, options.threads);
 
   // Receivers are built before the parallel region: nothing throws inside it.
   std::vector<Receiver> receivers;
@@ -65,8 +87,8 @@ RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& r
   out.error_estimate.assign(n, 0.0);
   out.converged.assign(n, true);
   out.axisymmetric = system.is_axisymmetric();
-  std::vector<RangeResult> results(n);
-  detail::parallel_for(n, threads, [&](std::size_t i) { results[i] = at(receivers[i]); });
+  std::vector<RtEntry> results(n);
+  parallel_for(n, threads, [&](std::size_t i) { results[i] = at(receivers[i]); });
   for (std::size_t i = 0; i < n; ++i) {
     out.overlap[i] = results[i].value;
     out.error_estimate[i] = results[i].error;
@@ -84,7 +106,8 @@ RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& r
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
                      const RtOptions& options) {
   return detail::rt_over_ranges(
-      system, ranges, options, [&](const Receiver& rx) { return overlap_at(system, rx, options); }, "overlap_rt");
+      system, ranges, options, [&](const Receiver& rx) { return detail::overlap_rt_entry(system, rx, options); },
+      "overlap_rt");
 }
 
 RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
@@ -95,33 +118,21 @@ RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::v
                  "one range per system: expected " + std::to_string(n) + " ranges (the size of systems)");
   if (n > kMaxBatchEntries)
     checks::fail("systems", static_cast<double>(n), "at most " + std::to_string(kMaxBatchEntries) + " entries");
-  checks::in_open_unit("tolerance", options.tolerance);
+  detail::check_rt_options(options);
   const int threads = detail::checked_threads_and_ranges(systems, ranges, options.threads);
-  if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
-  checks::memory("systems", static_cast<double>(n), static_cast<double>(n) * (sizeof(RangeResult) + 3 * sizeof(double) + 1),
+  checks::memory("systems", static_cast<double>(n),
+                 static_cast<double>(n) * (sizeof(detail::RtEntry) + 3 * sizeof(double) + 1),
                  "split the batch");
 
   // Each receiver is built inside the region (its system and range are valid, so it does not throw; were it
   // to, parallel_for carries the exception out): a batch keeps no table of receivers.
-  std::vector<RangeResult> results(n);
+  std::vector<detail::RtEntry> results(n);
   detail::parallel_for(n, threads, [&](std::size_t i) {
-    results[i] = overlap_at(systems[i], Receiver(systems[i], ranges[i]), options);
+    results[i] = detail::overlap_rt_entry(systems[i], Receiver(systems[i], ranges[i]), options);
   });
-  RtOverlap out;
-  out.overlap.resize(n);
-  out.error_estimate.resize(n);
-  out.converged.resize(n);
-  out.axisymmetric = true;
-  std::vector<double> slack(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    out.overlap[i] = results[i].value;
-    out.error_estimate[i] = results[i].error;
-    out.converged[i] = results[i].converged;
-    out.evaluations += results[i].evaluations;
-    out.axisymmetric = out.axisymmetric && systems[i].is_axisymmetric();
-    slack[i] = std::max(options.tolerance, results[i].error);  // as overlap_rt on this entry alone
-  }
-  checks::overlap_values(out.overlap, ranges, slack, "overlap_rt_batch");
+  RtOverlap out = detail::collect_rt_entries(results, ranges, options.tolerance, "overlap_rt_batch");
+  out.axisymmetric =
+      std::all_of(systems.begin(), systems.end(), [](const LidarSystem& s) { return s.is_axisymmetric(); });
   return out;
 }
 
