@@ -110,7 +110,9 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
     cov = covariance(j, chi_square / dof if sigma is None else 1.0)
     sd = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
-        corr = cov / np.outer(sd, sd)
+        # Singular J (infinite covariance): -cos of the angle between two columns is their correlation when
+        # only they are free, and +-1 names the pair that cannot be told apart.
+        corr = cov / np.outer(sd, sd) if np.all(np.isfinite(sd)) else -_cosines(j)
     pairs = tuple((paths[a], paths[b], float(corr[a, b])) for a in range(k) for b in range(a + 1, k)
                   if abs(corr[a, b]) > DEGENERATE_CORRELATION)
     if pairs:
@@ -119,7 +121,8 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
             DegeneracyWarning)
     if not np.all(np.isfinite(sd)):
         _checks.warn("fit: the Jacobian is singular at the solution, so the data do not constrain every free "
-                     "parameter (a tilt at exactly 0 in a coaxial lidar, where G is even in it); uncertainties "
+                     "parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or a beam tilt "
+                     "and a detector offset along one axis, which move the field of view alike); uncertainties "
                      "are infinite", DegeneracyWarning)
     noise = math.sqrt(chi_square / dof) if dof > 0 else float("nan")
     if sigma is None and math.isfinite(p.tolerance) and p.tolerance > TOLERANCE_FRACTION * noise:
@@ -135,6 +138,11 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
         degenerate_pairs=pairs, evaluations=counts["model"], jacobian_evaluations=counts["jacobian"],
         status=int(solution.status), message=str(solution.message), converged=bool(converged), loss=loss,
         plan=p, step_tolerance=h_tolerance)
+
+
+def _cosines(j: np.ndarray) -> np.ndarray:
+    norms = np.linalg.norm(j, axis=0)
+    return np.clip(j.T @ j / np.outer(norms, norms), -1.0, 1.0)
 
 
 def default_bounds(system, path: str, start: float):
