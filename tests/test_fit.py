@@ -114,11 +114,13 @@ def test_tilt_and_detector_offset_along_one_axis_are_one_parameter_to_ray_tracin
     """A detector offset dx moves the field of view as a beam tilt -dx / f does: the Jacobian is singular."""
     truth = {"beam.tilt[0]": -2e-4, "detector.offset[0]": 1e-4}
     g = _curve(TABLE1, truth, Z)
-    with pytest.warns(lo.DegeneracyWarning, match="singular") as caught:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         f = lo.fit(parameters.replace(TABLE1, {"beam.tilt[0]": -1e-4, "detector.offset[0]": 0.5e-4}), Z,
                    _noisy(g, np.random.default_rng(10)), sigma=SIGMA, free=list(truth), **FAST)
+    said = [str(w.message) for w in caught if issubclass(w.category, lo.DegeneracyWarning)]
+    assert any("singular" in m for m in said) and any("beam.tilt[0] and detector.offset[0]" in m for m in said)
     assert np.all(np.isinf(f.covariance)) and [p[:2] for p in f.degenerate_pairs] == [tuple(truth)]
-    assert any("beam.tilt[0] and detector.offset[0]" in str(w.message) for w in caught)
     assert np.max(np.abs(f.residuals)) < 4.0     # the curve is still fitted
 
 
@@ -159,6 +161,27 @@ def test_model_tolerance_above_the_noise_warns():
     with pytest.warns(RuntimeWarning, match="tolerance 0.01 exceeds 0.1 x the median sigma"):
         lo.fit(parameters.replace(TABLE1, START), Z, y, sigma=SIGMA, free=list(TRUE), method="rt", tolerance=1e-2,
                threads=1)
+    with pytest.warns(RuntimeWarning, match="exceeds 0.1 x the scatter of the residuals"):   # sigma=None
+        lo.fit(parameters.replace(TABLE1, START), Z, y, free=list(TRUE), method="rt", tolerance=1e-2, threads=1)
+
+
+def test_auto_is_planned_once_and_its_fourier_optics_choice_kept():
+    """Table 1 at 1e-4 is Fourier optics for auto: every evaluation and Jacobian runs that plan (no batch)."""
+    z = np.geomspace(60.0, 2000.0, 8)
+    f = lo.fit(parameters.replace(TABLE1, START), z, _noisy(_curve(TABLE1, TRUE, z), np.random.default_rng(11)),
+               sigma=SIGMA, free=list(TRUE), method="auto", tolerance=1e-4, threads=1)
+    assert f.plan.backend == "fo_radial" and f.result.method == "fo" and f.converged
+    for p, v in TRUE.items():
+        assert abs(f.parameters[p] - v) <= 3 * f.uncertainties[p], p
+
+
+def test_without_scipy_the_error_names_the_extra(monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "scipy", None)
+    monkeypatch.setitem(sys.modules, "scipy.optimize", None)
+    with pytest.raises(ImportError, match=r"pip install 'lidar-overlap\[fit\]'"):
+        lo.fit(TABLE1, Z, np.full(Z.size, 0.5))
 
 
 GOOD = dict(free=list(TRUE), **FAST)
