@@ -60,7 +60,8 @@ def test_known_parameters_recovered_within_their_uncertainties(system, truth, st
                sigma=SIGMA, free=list(truth), **FAST)
     assert f.converged and f.degrees_of_freedom == z.size - 2
     for p, v in truth.items():
-        assert np.isfinite(f.uncertainties[p]) and abs(f.parameters[p] - v) <= 3 * f.uncertainties[p], (p, f.parameters[p], f.uncertainties[p])
+        assert np.isfinite(f.uncertainties[p]) and abs(f.parameters[p] - v) <= 3 * f.uncertainties[p], \
+            (p, f.parameters[p], f.uncertainties[p])
     print(f"correlation {f.correlation[0, 1]:+.3f}, reduced chi-square {f.reduced_chi_square:.3f}")
     assert 0.2 < f.reduced_chi_square < 3.0 and not f.degenerate_pairs
     assert f.system == parameters.replace(system, f.parameters) and f.result.system == f.system

@@ -58,7 +58,8 @@ def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
                 value = float("nan")
             if not math.isfinite(value) or (key != "overlap" and value <= 0):
                 what = "a finite number" if key == "overlap" else "a finite number > 0"
-                raise ValueError(f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: expected {what}")
+                raise ValueError(f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: "
+                                 f"expected {what}")
             row.append(value)
         if rows and not row[0] > rows[-1][0]:
             raise ValueError(f"{name}: line {number}, column 1 (range_m): {row[0]:g} does not follow "

@@ -121,7 +121,8 @@ class FitResult:
 
     def table(self):
         """Rows (path, value, uncertainty, unit, start) for files."""
-        return [(path, v, self.uncertainties[path], unit(path), self.start[path]) for path, v in self.parameters.items()]
+        return [(path, v, self.uncertainties[path], unit(path), self.start[path])
+                for path, v in self.parameters.items()]
 
     def plot(self, ranges=None, fig=None):
         """Data with error bars, the fitted curve with its 1-sigma band over ``ranges`` (default: from a quarter
