@@ -39,6 +39,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/tolerance_study.py
 	cd $(OUT) && ../$(PY) ../examples/telecover.py
 	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
+	cd $(OUT) && ../$(PY) ../examples/fit_overlap.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
@@ -72,6 +73,7 @@ bench: setup
 	$(PY) benchmarks/bench_studies.py
 	$(PY) benchmarks/bench_telecover.py
 	$(PY) benchmarks/bench_alignment.py
+	$(PY) benchmarks/bench_fit.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)

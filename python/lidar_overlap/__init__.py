@@ -11,6 +11,8 @@ from .detector_image import DetectorImage, detector_image
 from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
 from .flat_top import FlatTopBeam
+from .fit import fit
+from .fit_result import DegeneracyWarning, FitResult, Prediction
 from .compute import overlap, run
 from .coupling import emitter_coupling, optimal_focus_range
 from .imaging import point_image
@@ -40,6 +42,10 @@ __all__ = [
     "RT",
     "Turbulent",
     "alignment_map",
+    "fit",
+    "DegeneracyWarning",
+    "FitResult",
+    "Prediction",
     "sensitivity",
     "plan",
     "run",

@@ -1,4 +1,5 @@
-"""Command line: ``lidar-overlap run SCENARIO.toml`` and ``lidar-overlap demo`` (see :mod:`.scenario`).
+"""Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see :mod:`.scenario`) and
+``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see :mod:`.cli_fit`).
 
 Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library refuses, a
 file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted (Ctrl-C). A
@@ -47,7 +48,7 @@ class _Parser(argparse.ArgumentParser):
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file.")
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit}")
     run = sub.add_parser("run", help="compute one scenario (TOML) and write its files",
                          description="Compute a scenario and write <name>.csv, <name>.nc, <name>_overlap.png and "
                                      "<name>_scene.png, as its [output] section asks.")
@@ -55,11 +56,20 @@ def _parser() -> argparse.ArgumentParser:
     demo = sub.add_parser("demo", help="the paper's Table 1 lidar, with r_obs = 20 mm and with 5 mm defocus",
                           description="Compute the paper's Table 1 scenario and its obstruction (20 mm) and defocus "
                                       "(5 mm) variants, built in, and write their files.")
-    for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/")):
+    fit = sub.add_parser("fit", help="fit system parameters of a scenario to a measured overlap (CSV)",
+                         description="Fit the --free parameters of the scenario's system (the start) to the "
+                                     "measured G in a CSV with the header range_m,overlap[,sigma]; write "
+                                     "<name>_fit.csv and <name>_fit.png and print the summary.")
+    fit.add_argument("scenario", help="scenario file (TOML): the starting system and the [run] model")
+    fit.add_argument("measurements", type=Path, help="CSV file with the header range_m,overlap[,sigma]")
+    fit.add_argument("--free", nargs="+", required=True, metavar="PATH",
+                     help="parameters to fit, e.g. beam.tilt detector.defocus (beam.tilt: both components)")
+    for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/"), (fit, "./<name>/")):
         p.add_argument("--out", type=Path, help=f"output directory (default: {default})")
         p.add_argument("--method", choices=METHODS,
                        help="override [run] method; auto: the cheapest model within the [run] tolerance")
-        p.add_argument("--quiet", action="store_true", help="no progress bar")
+        if p is not fit:
+            p.add_argument("--quiet", action="store_true", help="no progress bar")
     return parser
 
 
@@ -72,6 +82,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     except _UsageError as exc:
         return _fail(str(exc), 2)
     try:
+        if args.command == "fit":
+            return _fit(load_scenario(args.scenario), args)
         if args.command == "run":
             scenario = load_scenario(args.scenario)
             _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
@@ -92,6 +104,21 @@ def main(argv: Optional[List[str]] = None) -> int:
         return _fail("out of memory: ask for fewer ranges or smaller grids", 1)
     except Exception as exc:  # a defect: still one line and a failure, never a traceback
         return _fail(f"internal error: {type(exc).__name__}: {exc} (please report it with the scenario)", 1)
+    return 0
+
+
+def _fit(scenario: Scenario, args) -> int:
+    from .cli_fit import fit_scenario
+
+    try:
+        with _printed_warnings():   # printed only if the fit succeeds
+            result, files, note = fit_scenario(scenario, args.measurements, args.free,
+                                               args.out or Path(scenario.name), args.method)
+            _note((None, note))
+    except (RuntimeError, ImportError) as exc:   # not converged; scipy missing
+        return _fail(str(exc), 1)
+    print(f"{scenario.name}: {result.summary()}")
+    print(f"  files         {', '.join(files)}")
     return 0
 
 

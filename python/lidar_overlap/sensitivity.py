@@ -17,12 +17,15 @@ All 4 perturbed systems of every parameter go through one ``overlap_rt_batch`` c
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from . import _checks, _core
 from . import parameters as _parameters
 from ._datasets import range_coordinate, xarray
 from .alignment import ray_tracing, requested
+from .compute import run
 from .planning import plan
 from .validity import warn_if_rt_invalid, warn_if_rt_unconverged
 
@@ -80,19 +83,10 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     if p.backend != "rt":
         raise ValueError(f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} "
                          "(receiver aberrations), which has no batch call yet")
-    factor = (3.0 * p.rt_quadrature_tolerance) ** (1.0 / 3.0)
-    steps = np.array([step_scale(system, path) * factor for path in paths])
     values = np.array([_parameters.get(system, path) for path in paths])
-    natives = [_shifted(system, path, v, h, k)._native for path, v, h in zip(paths, values, steps)
-               for k in (1, -1, 2, -2)]
+    steps, g, e = central_differences(p, system, paths, (1, -1, 2, -2), p.rt_quadrature_tolerance)
+    factor = (3.0 * p.rt_quadrature_tolerance) ** (1.0 / 3.0)
     z = p.ranges
-    _checks.check_memory("parameters", paths, 64.0 * len(natives) * z.size, "vary fewer parameters or ranges")
-    raw = _core.overlap_rt_batch([s for s in natives for _ in z], np.tile(z, len(natives)), p.options)
-    warn_if_rt_invalid(system, z)
-    warn_if_rt_unconverged(raw, np.tile(z, len(natives)), p.tolerance, "raise max_segments or loosen tolerance")
-
-    g = raw.overlap.reshape(len(paths), 4, z.size)
-    e = raw.error_estimate.reshape(len(paths), 4, z.size)
     h = steps[:, None]
     d1 = (g[:, 0] - g[:, 1]) / (2 * h)
     d2 = (g[:, 2] - g[:, 3]) / (4 * h)
@@ -112,6 +106,37 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
         coords={"parameter": ("parameter", np.array(paths)), "range": range_coordinate(z)},
         attrs={"method": p.method, "tolerance": p.tolerance,
                "step_rule": f"h = s (3 tolerance)^(1/3) = {factor:.4g} s, s the parameter's natural scale"})
+
+
+def central_differences(p, system, paths, multiples, tolerance: float):
+    """G of ``system`` with each path shifted by k h for each k in ``multiples``, on the model of plan ``p``
+    (its backend, options and ranges): (steps h, G and its error estimate, each (path, k, range)).
+
+    h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). On the ray-tracing
+    backend all shifted systems go through one ``overlap_rt_batch`` call; on any other, each is a run of ``p``
+    with the shifted system (the plan's decisions kept)."""
+    factor = (3.0 * tolerance) ** (1.0 / 3.0)
+    steps = np.array([step_scale(system, path) * factor for path in paths])
+    values = [_parameters.get(system, path) for path in paths]
+    shifted = [_shifted(system, path, v, h, k) for path, v, h in zip(paths, values, steps) for k in multiples]
+    z = p.ranges
+    shape = (len(paths), len(multiples), z.size)
+    if p.backend != "rt":
+        results = [run(dataclasses.replace(p, system=s)) for s in shifted]
+        return (steps, np.array([r.overlap for r in results]).reshape(shape),
+                np.array([r.error_estimate for r in results]).reshape(shape))
+    _checks.check_memory("parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges")
+    raw = _core.overlap_rt_batch([s._native for s in shifted for _ in z], np.tile(z, len(shifted)), p.options)
+    warn_if_rt_invalid(system, z)
+    warn_if_rt_unconverged(raw, np.tile(z, len(shifted)), p.tolerance, "raise max_segments or loosen tolerance")
+    return steps, raw.overlap.reshape(shape), raw.error_estimate.reshape(shape)
+
+
+def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
+    """dG/dp of ``system`` on plan ``p``'s model and ranges, shape (range, path): central differences with
+    :func:`central_differences` (one core call on ray tracing)."""
+    steps, g, _ = central_differences(p, system, paths, (1, -1), tolerance)
+    return ((g[:, 0] - g[:, 1]) / (2.0 * steps[:, None])).T
 
 
 def _shifted(system, path: str, value: float, step: float, k: int):
