@@ -14,6 +14,8 @@ from .compute import overlap, run
 from .coupling import emitter_coupling, optimal_focus_range
 from .imaging import point_image
 from .methods import FO, RT, Auto, Turbulent
+from .objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
+from .optimize import OptimizeResult, optimize
 from .planning import Plan, explain, plan
 from .phase_screen import phase_screen
 from .presets import paper_table1
@@ -37,6 +39,11 @@ __all__ = [
     "RT",
     "Turbulent",
     "alignment_map",
+    "MaximumOverlapAt",
+    "Objective",
+    "OptimizeResult",
+    "SmallestFieldOfView",
+    "optimize",
     "sensitivity",
     "plan",
     "run",
