@@ -135,3 +135,28 @@ def test_a_nan_objective_and_missing_ranges_are_refused():
         lo.optimize(TABLE1, lo.Objective(lambda r: float("nan")), ["beam.tilt[0]"], [(-1e-3, 1e-3)], ranges=[100.0])
     with pytest.raises(ValueError, match="ranges is required"):
         lo.optimize(TABLE1, lo.Objective(lambda r: 0.0), ["beam.tilt[0]"], [(-1e-3, 1e-3)])
+
+
+NARROW = parameters.replace(TILTED, {"detector.radius": 0.2e-3})   # FOV 0.4 mrad: G(1 km) = 0.006 as misaligned
+SIGNAL = dict(pulse_energy=20e-6, receiver_efficiency=0.3, range_resolution=7.5)
+
+
+@pytest.mark.parametrize("search", ["raster", "gradient"])
+def test_align_brings_g_within_one_percent_of_its_best(search):
+    res = lo.align(NARROW, 1000.0, search=search, shots_per_step=100, signal=SIGNAL)
+    assert res.overlap[-1] >= 0.99 * res.best_overlap and res.shots_to_within is not None
+    assert res.shots_to_within <= res.shots[-1] == res.steps * 100
+    assert np.hypot(*res.best_tilt) < 2e-5      # the best tilt cancels the misalignment
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(search="spiral"), "search = 'spiral' is invalid"),
+    (dict(signal=None), "signal = None is invalid"),
+    (dict(shots_per_step=0), "shots_per_step = 0 is invalid"),
+    (dict(box=-1.0), "box = -1.0 is invalid"),
+])
+def test_align_refuses_bad_input(kwargs, match):
+    args = dict(search="raster", signal=SIGNAL)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        lo.align(NARROW, 1000.0, **args)

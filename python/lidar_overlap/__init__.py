@@ -4,6 +4,7 @@ from . import parameters
 from ._core import __version__, max_memory, max_threads, set_max_memory
 from .atmosphere import Atmosphere
 from .alignment import alignment_map
+from .autoalign import AlignResult, align
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -39,6 +40,8 @@ __all__ = [
     "RT",
     "Turbulent",
     "alignment_map",
+    "AlignResult",
+    "align",
     "MaximumOverlapAt",
     "Objective",
     "OptimizeResult",

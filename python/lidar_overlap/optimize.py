@@ -261,7 +261,7 @@ def _bounds(paths: List[str], bounds):
                              f"{'; ' if unknown and missing else ''}"
                              f"{'no bounds for ' + ', '.join(missing) if missing else ''}")
         pairs = [given[p] for p in paths]
-    elif isinstance(bounds, Sequence) and not isinstance(bounds, str) and len(bounds) == len(paths):
+    elif _listlike(bounds, len(paths)):
         pairs = list(bounds)
     else:
         raise ValueError(f"bounds = {_checks.shown(bounds)} is invalid: expected one (low, high) pair per free "
@@ -285,7 +285,7 @@ def _start(system, paths, x0, lower, upper) -> np.ndarray:
         unknown = [k for k in x0 if k not in paths]
         if unknown:
             raise ValueError(f"x0 is invalid: {', '.join(map(str, unknown))} is not a free parameter")
-    elif isinstance(x0, Sequence) and not isinstance(x0, str) and len(x0) == len(paths):
+    elif _listlike(x0, len(paths)):
         values = list(x0)
     else:
         raise ValueError(f"x0 = {_checks.shown(x0)} is invalid: expected one value per free parameter "
@@ -296,6 +296,12 @@ def _start(system, paths, x0, lower, upper) -> np.ndarray:
             raise ValueError(f"bounds[{p!r}] = ({lo:g}, {hi:g}) excludes the start {p} = {v:g} (x0, else the "
                              "system's value): widen the bounds or give x0 inside them")
     return out
+
+
+def _listlike(value, n: int) -> bool:
+    """A list, tuple or array of ``n`` items (a string is not)."""
+    return ((isinstance(value, Sequence) and not isinstance(value, str)) or
+            (isinstance(value, np.ndarray) and value.ndim >= 1)) and len(value) == n
 
 
 def _shown(paths: Sequence[str], x: np.ndarray) -> str:
