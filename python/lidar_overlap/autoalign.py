@@ -4,8 +4,9 @@ The lidar's own beam tilt is the unknown misalignment; the search sets the absol
 the shot-averaged, background-subtracted photon count in the range bin at ``range`` (``lo.signal(...,
 noise=True)``), which is proportional to G there plus photon noise. Two searches:
 
-- ``"raster"``: a 5 x 5 grid over the box, then boxes of one grid step about the brightest cell, each level a
-  finer grid (what an operator does by hand), until the step is below ``resolution``;
+- ``"raster"``: a 5 x 5 grid over the box about the lidar's own tilt, then boxes of one grid step about the
+  brightest cell, each level a finer grid (what an operator does by hand), until the step is below
+  ``resolution``;
 - ``"gradient"``: from the lidar's own tilt, central differences of the signal along x and y (4 measurements
   per step, probes one step apart: a probe much shorter than the peak's width would see only noise), a step of
   length ``step`` along the gradient, halved whenever the signal at the new tilt is not higher than at the old
@@ -54,7 +55,8 @@ class AlignResult:
 def align(system, range, *, search: str = "raster", box: float = 1e-3, shots_per_step: int = 100,
           signal: Mapping = None, resolution: float = 5e-6, step: float = 1e-4, max_steps: int = 2000,
           tolerance: float = 1e-4, seed: int = 0) -> AlignResult:
-    """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m) within tilts [-box, box]² (rad).
+    """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m), within ``box`` (rad) of its own
+    tilt in x and y (the actuator's travel about where it starts).
 
     signal : keywords of :func:`lidar_overlap.signal` (pulse_energy, receiver_efficiency, range_resolution,
     atmosphere, background), required. shots_per_step : shots averaged per measurement. resolution (rad):
@@ -69,9 +71,9 @@ def align(system, range, *, search: str = "raster", box: float = 1e-3, shots_per
     if not isinstance(signal, Mapping):
         raise ValueError(f"signal = {_checks.shown(signal)} is invalid: expected a mapping of lo.signal keywords "
                          "(pulse_energy, receiver_efficiency, range_resolution, ...)")
-    lower, upper = np.full(2, -box), np.full(2, box)
-    best = optimize(system, MaximumOverlapAt(range), TILT, [(-box, box)] * 2, tolerance=tolerance,
-                    x0=np.clip([system.beam.tilt[0], system.beam.tilt[1]], -box, box))
+    start = np.array(system.beam.tilt, dtype=float)
+    lower, upper = start - box, start + box
+    best = optimize(system, MaximumOverlapAt(range), TILT, np.column_stack([lower, upper]), tolerance=tolerance)
     problem = _Problem(system, MaximumOverlapAt(range), TILT, lower, upper, RT(tolerance=tolerance), [range])
     counter = iter(np.arange(seed, seed + 10**7))
 
@@ -81,7 +83,7 @@ def align(system, range, *, search: str = "raster", box: float = 1e-3, shots_per
                          for r in problem.results(np.clip(tilts, lower, upper))])
 
     run = _raster if search == "raster" else _gradient
-    tilts, measurements = run(measure, np.array(system.beam.tilt, float), box, resolution, step, max_steps)
+    tilts, measurements = run(measure, start, box, resolution, step, max_steps)
     tilts = np.clip(np.array(tilts), lower, upper)
     g = np.array([r.overlap[0] for r in problem.results(tilts)])
     shots = np.array(measurements) * shots_per_step
@@ -96,7 +98,7 @@ def align(system, range, *, search: str = "raster", box: float = 1e-3, shots_per
 
 def _raster(measure, start, box, resolution, step, max_steps):
     """Grids of RASTER_POINTS² about the brightest cell, each one grid step wide, down to ``resolution``."""
-    centre, half, tilts, counts, taken = np.zeros(2), box, [], [], 0
+    centre, half, tilts, counts, taken = start.copy(), box, [], [], 0
     while taken < max_steps:
         axis = np.linspace(-half, half, RASTER_POINTS)
         grid = centre + np.array([(x, y) for x in axis for y in axis])
@@ -129,5 +131,5 @@ def _gradient(measure, start, box, resolution, step, max_steps):
             direction = grad / norm if norm > 0 else np.zeros(2)
         tilts.append(x.copy())
         counts.append(taken)
-        x = np.clip(x + step * direction, -box, box)
+        x = np.clip(x + step * direction, start - box, start + box)
     return tilts, counts
