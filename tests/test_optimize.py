@@ -103,7 +103,7 @@ def test_unreachable_target_is_an_error_with_the_best_value():
     (dict(bounds=[(1e-3, 2e-3)]), "excludes the start detector.radius = 0.00045"),
     (dict(bounds={"detector.defocus": (0, 1)}), "no free parameter detector.defocus"),
     (dict(bounds=[(1e-4, 1e-3), (0, 1)]), "one .low, high. pair per free"),
-    (dict(x0=[float("nan")]), "excludes the start"),
+    (dict(x0=[float("nan")]), r"x0\['detector.radius'\] is invalid: expected a finite value"),
     (dict(x0=["a"]), r"x0\['detector.radius'\] = 'a' is invalid"),
     (dict(method="fo"), "not available for optimize"),
     (dict(tolerance=-1.0), "tolerance = -1.0 is invalid"),

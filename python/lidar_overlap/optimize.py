@@ -88,7 +88,6 @@ class _Problem:
             raw = _core.overlap_rt_batch([s._native for s in systems for _ in z], np.tile(z, len(x)), p.options)
             warn_if_rt_unconverged(raw, np.tile(z, len(x)), p.tolerance, "raise max_segments or loosen tolerance")
             g, e = raw.overlap.reshape(len(x), z.size), raw.error_estimate.reshape(len(x), z.size)
-        warn_if_rt_invalid(systems[0], z)
         self.evaluations += len(x)
         self.core_calls += 1
         return [_result(dataclasses.replace(p, system=s), gi, ei) for s, gi, ei in zip(systems, g, e)]
@@ -149,6 +148,8 @@ def optimize(system, objective, free, bounds, *, method="rt", tolerance: float =
                          f"candidate found, {_shown(paths, best)}, has constraints "
                          f"{_rounded(objective.constraint_values(best_result))} (each must be >= 0)")
     optimised = best_result.system
+    if ranges is None:   # candidates at the bounds may leave RT's validity; only the answer's is said
+        warn_if_rt_invalid(optimised, problem.plan.ranges)
     out = best_result if ranges is None else run(plan(optimised, ranges, model))
     return OptimizeResult(values=dict(zip(paths, map(float, best))), objective=objective.value(best_result),
                           unit=objective.unit, constraints=objective.constraint_values(best_result),
@@ -291,6 +292,9 @@ def _start(system, paths, x0, lower, upper) -> np.ndarray:
         raise ValueError(f"x0 = {_checks.shown(x0)} is invalid: expected one value per free parameter "
                          f"({', '.join(paths)}) or a mapping path -> value")
     out = np.array([_checks.real(f"x0[{p!r}]", v) for p, v in zip(paths, values)])
+    if not np.isfinite(out).all():
+        p = paths[int(np.argmin(np.isfinite(out)))]
+        raise ValueError(f"x0[{p!r}] is invalid: expected a finite value")
     for p, v, lo, hi in zip(paths, out, lower, upper):
         if not lo <= v <= hi:
             raise ValueError(f"bounds[{p!r}] = ({lo:g}, {hi:g}) excludes the start {p} = {v:g} (x0, else the "
