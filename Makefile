@@ -20,7 +20,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask]"
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask,fit]"
 	touch $@
 
 demo: setup
@@ -40,6 +40,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/telecover.py
 	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
 	cd $(OUT) && ../$(PY) ../examples/fit_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/optimize_design.py
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
@@ -74,6 +75,7 @@ bench: setup
 	$(PY) benchmarks/bench_telecover.py
 	$(PY) benchmarks/bench_alignment.py
 	$(PY) benchmarks/bench_fit.py
+	$(PY) benchmarks/bench_optimize.py
 
 clean:
 	rm -rf build $(VENV) $(OUT)

@@ -5,6 +5,7 @@ from ._core import __version__, max_memory, max_threads, set_max_memory
 from .atmosphere import Atmosphere
 from .aperture_mask import ApertureMask, Sector
 from .alignment import alignment_map
+from .autoalign import AlignResult, align
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 from .detector_image import DetectorImage, detector_image
@@ -17,6 +18,8 @@ from .compute import overlap, run
 from .coupling import emitter_coupling, optimal_focus_range
 from .imaging import point_image
 from .methods import FO, RT, Auto, Turbulent
+from .objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
+from .optimize import OptimizeResult, optimize
 from .planning import Plan, explain, plan
 from .phase_screen import phase_screen
 from .presets import paper_table1
@@ -46,6 +49,13 @@ __all__ = [
     "DegeneracyWarning",
     "FitResult",
     "Prediction",
+    "AlignResult",
+    "align",
+    "MaximumOverlapAt",
+    "Objective",
+    "OptimizeResult",
+    "SmallestFieldOfView",
+    "optimize",
     "sensitivity",
     "plan",
     "run",
