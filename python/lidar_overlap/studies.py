@@ -179,7 +179,7 @@ def _engine(client) -> str:
                              "or None")
         return "distributed"
     try:
-        import dask  # noqa: F401
+        import dask  # noqa: F401  (only whether it is there)
     except ImportError:
         return "loop"
     return "dask"
