@@ -168,16 +168,12 @@ def _scipy():
 
 def _free(free):
     try:
-        paths = _parameters.expand(free)
+        return _parameters.plain_paths(free, "free", "the fit is planned on the start, whose model may not include "
+                                       "aberrations; fit the alignment scalars")
     except ValueError as exc:
-        raise ValueError(f"free: {exc}; name parameters of the system") from None
-    if not paths:
-        raise ValueError("free = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']")
-    aberrations = [path for path in paths if path.startswith("telescope.aberrations.")]
-    if aberrations:
-        raise ValueError(f"free: {', '.join(aberrations)} is not available: the fit is planned on the start, "
-                         "whose model may not include aberrations; fit the alignment scalars")
-    return paths
+        if str(exc).startswith("parameter"):
+            raise ValueError(f"free: {exc}; name parameters of the system") from None
+        raise
 
 
 def _plan(system, ranges, method, tolerance, threads):

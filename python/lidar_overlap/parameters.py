@@ -57,6 +57,18 @@ def expand(paths: Iterable[str]) -> List[str]:
     return out
 
 
+def plain_paths(paths, name: str, why: str) -> List[str]:
+    """:func:`expand` of ``paths`` (the argument ``name``), refused when empty or naming aberration terms (``why``
+    says why the caller cannot vary them)."""
+    out = expand(paths)
+    if not out:
+        raise ValueError(f"{name} = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']")
+    aberrations = [path for path in out if path.startswith("telescope.aberrations.")]
+    if aberrations:
+        raise ValueError(f"{name}: {', '.join(aberrations)} is not available: {why}")
+    return out
+
+
 def get(system: LidarSystem, path: str) -> float:
     """The value of the scalar at ``path`` in ``system`` (SI units)."""
     kind, part, name, index = _parse(path)

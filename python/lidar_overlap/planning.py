@@ -117,9 +117,7 @@ def _plain(system, z, model, request, threads) -> Plan:
         d = auto.decide(system, z, model.tolerance)
         common = dict(base, tolerance=model.tolerance, rt_model_error=d.rt_model_error, reasons=tuple(d.reasons))
         if d.method == "rt":
-            return Plan(**common, method="rt", fo_path="", backend="rt", error_kind="bound",
-                        options=_rt_options(model.rt, d.rt_quadrature_tolerance, threads),
-                        rt_quadrature_tolerance=d.rt_quadrature_tolerance, rt_diffraction_warning=False)
+            return _auto_rt(common, "rt", _rt_options(model.rt, d.rt_quadrature_tolerance, threads), d)
         return dataclasses.replace(_fo(base, system, _auto_fo(model.fo, d.fo_path, field_beam), threads, field_beam),
                                    **common)
     if isinstance(model, RT):
@@ -174,9 +172,7 @@ def _masked(base, system, z, model, threads) -> Plan:
         d = auto.decide(system, z, model.tolerance)
         common = dict(base, tolerance=model.tolerance, rt_model_error=d.rt_model_error, reasons=tuple(d.reasons))
         if d.method == "rt":
-            return Plan(**common, method="rt", fo_path="", backend="rt_masked", error_kind="bound",
-                        options=_rt_options(model.rt, d.rt_quadrature_tolerance, threads),
-                        rt_quadrature_tolerance=d.rt_quadrature_tolerance, rt_diffraction_warning=False)
+            return _auto_rt(common, "rt_masked", _rt_options(model.rt, d.rt_quadrature_tolerance, threads), d)
         return dataclasses.replace(_masked(base, system, z, model.fo, threads), **common)
     if isinstance(model, RT):
         return Plan(**base, method="rt", fo_path="", backend="rt_masked", error_kind="bound",
@@ -202,9 +198,7 @@ def _aberrated(base, system, z, model, threads) -> Plan:
         common = dict(base, tolerance=model.tolerance, rt_model_error=d.rt_model_error, reasons=tuple(d.reasons),
                       warnings=(f"overlap(auto): {d.warning}",) if d.warning else ())
         if d.method == "rt":
-            return Plan(**common, method="rt", fo_path="", backend="rt_aberrated", error_kind="bound",
-                        options=_fan_options(model.rt, d.rt_quadrature_tolerance, threads),
-                        rt_quadrature_tolerance=d.rt_quadrature_tolerance, rt_diffraction_warning=False)
+            return _auto_rt(common, "rt_aberrated", _fan_options(model.rt, d.rt_quadrature_tolerance, threads), d)
         return dataclasses.replace(_aberrated(base, system, z, model.fo, threads), **common)
     if isinstance(model, RT):
         form = "a ray fan per scatterer" if ab.field_dependent else "the pupil form where it applies"
@@ -252,6 +246,13 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
     return Plan(**common, method="fo", fo_path="2d", backend="fo_turbulent", tolerance=float("nan"), options=options,
                 reasons=(f"{request.realizations} draws of {request.screens} phase screens, the beam on "
                          f"{options.beam_grid}^2",))
+
+
+def _auto_rt(common: dict, backend: str, options, d) -> Plan:
+    """Auto's choice of ray tracing: the quadrature gets what the model error leaves, whose diffraction is
+    bounded (no warning about it)."""
+    return Plan(**common, method="rt", fo_path="", backend=backend, error_kind="bound", options=options,
+                rt_quadrature_tolerance=d.rt_quadrature_tolerance, rt_diffraction_warning=False)
 
 
 def _auto_fo(fo: FO, path: str, field_beam: bool) -> FO:

@@ -69,13 +69,8 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its estimated absolute error),
     ``step`` (h per parameter, in its unit), ``value`` (the system's value) and ``unit`` (per parameter).
     """
-    paths = _parameters.expand(parameters)
-    if not paths:
-        raise ValueError("parameters = [] is invalid: expected at least one parameter path")
-    aberrations = [path for path in paths if path.startswith("telescope.aberrations.")]
-    if aberrations:
-        raise ValueError(f"parameters: {', '.join(aberrations)} is not available: sensitivities ray trace the plain "
-                         "receiver in one batch call, and the aberrated paths have none yet")
+    paths = _parameters.plain_paths(parameters, "parameters", "sensitivities ray trace the plain receiver in one "
+                                    "batch call, and the aberrated paths have none yet")
     xr = xarray("sensitivity")
     model = ray_tracing(requested(method, tolerance), "for sensitivities: their steps and errors come from ray "
                         "tracing's error estimates (Fourier optics states none); use method='rt'")
