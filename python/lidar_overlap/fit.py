@@ -73,25 +73,29 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
     y = _measured(measured, p.ranges)
     h_tolerance = step_tolerance(p, tolerance)
 
-    def evaluate(trial):
-        result = run(dataclasses.replace(p, system=trial))
-        return result, result.overlap
+    def result(trial):
+        curve = run(dataclasses.replace(p, system=trial))
+        return curve, curve.overlap
 
-    model = Model(evaluate, lambda trial: jacobian(p, trial, paths, h_tolerance), p, h_tolerance)
+    model = Model(lambda trial: result(trial)[1], lambda trial: jacobian(p, trial, paths, h_tolerance), result, p,
+                  h_tolerance, p.tolerance)
     return solve(system, paths, model, y, _sigma(sigma, y), sigma is not None, bounds, loss, max_evaluations,
                  allow_unconverged)
 
 
 @dataclass(frozen=True)
 class Model:
-    """What :func:`solve` fits: ``evaluate(system)`` -> (the result kept as ``FitResult.result``, the model
-    vector, one entry per measured point); ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit;
-    ``plan`` (its ``tolerance`` is the model's) and ``step_tolerance``, kept by the FitResult."""
+    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured point;
+    ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` -> (the result kept as
+    ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by the FitResult; ``tolerance``, the
+    model's error on the vector (compared with sigma)."""
 
     evaluate: Callable
     jacobian: Callable
+    result: Callable
     plan: Any
     step_tolerance: float
+    tolerance: float
 
 
 def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, max_evaluations,
@@ -111,7 +115,7 @@ def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, ma
     start = np.array([_parameters.get(system, path) for path in paths])
     low, high = _bounds(system, paths, start, bounds)
     scale = np.array([step_scale(system, path) for path in paths])
-    tolerance = model.plan.tolerance
+    tolerance = model.tolerance
     if sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * np.median(w):
         _checks.warn(f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
                      f"sigma ({np.median(w):.3g}): its error adds to the noise; lower tolerance")
@@ -122,7 +126,7 @@ def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, ma
 
     def residuals(u):
         counts["model"] += 1
-        return (model.evaluate(system_at(u))[1] - y) / w
+        return (model.evaluate(system_at(u)) - y) / w
 
     def normalised_jacobian(u):
         counts["jacobian"] += 1
@@ -135,7 +139,7 @@ def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, ma
         raise RuntimeError(f"fit did not converge: {solution.message} (status {solution.status}, "
                            f"{counts['model']} model evaluations, max_evaluations={max_evaluations}); raise "
                            "max_evaluations, start closer, or pass allow_unconverged=True to get the last point")
-    result, vector = model.evaluate(system_at(solution.x))
+    result, vector = model.result(system_at(solution.x))
     counts["model"] += 1
     r = (vector - y) / w
     j = normalised_jacobian(solution.x) / scale      # per SI unit of each parameter

@@ -56,6 +56,11 @@ class TelecoverResult:
         return deviations(self.overlap)
 
     @property
+    def method(self) -> str:
+        """The model of every curve."""
+        return self.full.method
+
+    @property
     def system(self) -> LidarSystem:
         """The system without a mask (the full aperture's)."""
         return self.full.system
