@@ -1,5 +1,6 @@
-"""The result of :func:`lidar_overlap.fit` (and :func:`lidar_overlap.fit_telecover`): the parameters, their covariance, the fitted curve, and the
-model's prediction at other ranges with its 1-sigma band (the covariance propagated through the Jacobian)."""
+"""The result of :func:`lidar_overlap.fit` (and :func:`lidar_overlap.fit_telecover`): the parameters, their
+covariance, the fitted curve, and the model's prediction at other ranges with its 1-sigma band (the covariance
+propagated through the Jacobian)."""
 
 from __future__ import annotations
 
