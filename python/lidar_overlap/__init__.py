@@ -13,6 +13,7 @@ from .field_beam import FieldBeam
 from .fields import Field, SamplingWarning, propagate
 from .flat_top import FlatTopBeam
 from .fit import fit
+from .fit_telecover import fit_telecover
 from .fit_result import DegeneracyWarning, FitResult, Prediction
 from .compute import overlap, run
 from .coupling import emitter_coupling, optimal_focus_range
@@ -46,6 +47,7 @@ __all__ = [
     "Turbulent",
     "alignment_map",
     "fit",
+    "fit_telecover",
     "DegeneracyWarning",
     "FitResult",
     "Prediction",

@@ -1,5 +1,6 @@
-"""Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see :mod:`.scenario`) and
-``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see :mod:`.cli_fit`).
+"""Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see :mod:`.scenario`),
+``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see :mod:`.cli_fit`) and
+``lidar-overlap telecover SCENARIO.toml [--measurements CSV --free PATH ...]`` (see :mod:`.cli_telecover`).
 
 Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library refuses, a
 file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted (Ctrl-C). A
@@ -48,7 +49,7 @@ class _Parser(argparse.ArgumentParser):
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file.")
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit,telecover}")
     run = sub.add_parser("run", help="compute one scenario (TOML) and write its files",
                          description="Compute a scenario and write <name>.csv, <name>.nc, <name>_overlap.png and "
                                      "<name>_scene.png, as its [output] section asks.")
@@ -64,12 +65,22 @@ def _parser() -> argparse.ArgumentParser:
     fit.add_argument("measurements", type=Path, help="CSV file with the header range_m,overlap[,sigma]")
     fit.add_argument("--free", nargs="+", required=True, metavar="PATH",
                      help="parameters to fit, e.g. beam.tilt detector.defocus (beam.tilt: both components)")
-    for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/"), (fit, "./<name>/")):
+    tc = sub.add_parser("telecover", help="the telecover test of a scenario, or a fit to measured deviations",
+                        description="Compute the telecover test of the scenario's system at its ranges and write "
+                                    "<name>_telecover.csv and .png; with --measurements (CSV: range_m, one deviation "
+                                    "column per sector, optional sigma), fit the --free parameters to it and write "
+                                    "<name>_telecover_fit.csv and .png.")
+    tc.add_argument("scenario", help="scenario file (TOML): the system, ranges and [run] model")
+    tc.add_argument("--sectors", type=_sectors, default="quadrants", metavar="quadrants|N",
+                    help="the quadrants north, east, south, west (default) or N equal sectors from +x")
+    tc.add_argument("--measurements", type=Path, help="CSV with the header range_m,<sector>,...[,sigma]")
+    tc.add_argument("--free", nargs="+", metavar="PATH", help="parameters to fit with --measurements, e.g. beam.tilt")
+    for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/"), (fit, "./<name>/"), (tc, "./<name>/")):
         p.add_argument("--out", type=Path, help=f"output directory (default: {default})")
         p.add_argument("--method", choices=METHODS,
                        help="override [run] method; auto: the cheapest model within the [run] tolerance")
         if p is not fit:
-            p.add_argument("--quiet", action="store_true", help="no progress bar")
+            p.add_argument("--quiet", action="store_true", help="no progress bar" if p is not tc else "no summary")
     return parser
 
 
@@ -84,6 +95,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     try:
         if args.command == "fit":
             return _fit(load_scenario(args.scenario), args)
+        if args.command == "telecover":
+            return _telecover(args)
         if args.command == "run":
             scenario = load_scenario(args.scenario)
             _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
@@ -119,6 +132,39 @@ def _fit(scenario: Scenario, args) -> int:
         return _fail(str(exc), 1)
     print(f"{scenario.name}: {result.summary()}")
     print(f"  files         {', '.join(files)}")
+    return 0
+
+
+def _sectors(text: str):
+    from .cli_telecover import sectors_argument
+
+    try:
+        return sectors_argument(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _telecover(args) -> int:
+    from . import cli_telecover
+
+    if (args.measurements is None) != (args.free is None):
+        return _fail("telecover: --measurements and --free go together (a fit needs both)", 2)
+    scenario = load_scenario(args.scenario)
+    out = args.out or Path(scenario.name)
+    try:
+        with _printed_warnings():
+            if args.measurements is None:
+                result, files, notes = cli_telecover.compute(scenario, args.sectors, out, args.method)
+                lines = cli_telecover.summary(scenario.name, result)
+            else:
+                result, files, notes = cli_telecover.fit(scenario, args.sectors, args.measurements, args.free, out)
+                lines = [f"{scenario.name}: telecover {result.summary()}"]
+            for note in notes:
+                _note((None, note))
+    except (RuntimeError, ImportError) as exc:   # not converged; scipy missing
+        return _fail(str(exc), 1)
+    if not args.quiet:
+        print("\n".join(lines + [f"  files         {', '.join(files)}"]))
     return 0
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import List, Tuple
+from typing import List, Sequence, Tuple
 
 import numpy as np
 
@@ -27,10 +27,18 @@ MAX_ROWS = 100_000
 
 def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
     """(ranges, overlap, sigma or None) from a measurements CSV; ValueError naming file, line and column."""
-    name = str(path)
+    data, sigma = read_table(path, COLUMNS[:2], signed=("overlap",))
+    return data[:, 0], data[:, 1], sigma
+
+
+def read_table(path, columns: Sequence[str], signed: Sequence[str] = ()) -> Tuple[np.ndarray, np.ndarray | None]:
+    """(rows x ``columns``, the optional last column ``sigma`` or None) from a CSV whose header is ``columns``
+    (the first ``range_m``, strictly increasing), optionally followed by ``sigma``. Values are finite, and > 0
+    but in the ``signed`` columns. ValueError naming file, line and column."""
+    name, header_text = str(path), ",".join(columns)
     try:
         with open(path, encoding="utf-8") as f:
-            lines = f.read(64 * MAX_ROWS).splitlines()
+            lines = f.read(64 * (len(columns) + 1) * MAX_ROWS).splitlines()
     except UnicodeDecodeError as exc:
         raise ValueError(f"{name}: not UTF-8 text (byte {exc.start})") from None
     except OSError as exc:
@@ -44,9 +52,9 @@ def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         cells = [c.strip() for c in text.split(",")]
         if header is None:
             header = tuple(cells)
-            if header not in (COLUMNS[:2], COLUMNS):
+            if header not in (tuple(columns), (*columns, "sigma")):
                 raise ValueError(f"{name}: line {number}: header {text!r} is invalid: expected "
-                                 f"'{','.join(COLUMNS[:2])}' or '{','.join(COLUMNS)}'")
+                                 f"'{header_text}' or '{header_text},sigma'")
             continue
         if len(cells) != len(header):
             raise ValueError(f"{name}: line {number}: {len(cells)} values, expected {len(header)} ({','.join(header)})")
@@ -56,8 +64,8 @@ def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
                 value = float(cell)
             except ValueError:
                 value = float("nan")
-            if not math.isfinite(value) or (key != "overlap" and value <= 0):
-                what = "a finite number" if key == "overlap" else "a finite number > 0"
+            if not math.isfinite(value) or (key not in signed and value <= 0):
+                what = "a finite number" if key in signed else "a finite number > 0"
                 raise ValueError(f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: "
                                  f"expected {what}")
             row.append(value)
@@ -69,9 +77,9 @@ def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
             raise ValueError(f"{name}: more than {MAX_ROWS} rows")
     if header is None or not rows:
         raise ValueError(f"{name}: no {'header' if header is None else 'data'}: expected a header "
-                         f"'{','.join(COLUMNS)}' (sigma optional) and one row per range")
+                         f"'{header_text},sigma' (sigma optional) and one row per range")
     data = np.array(rows)
-    return data[:, 0], data[:, 1], (data[:, 2] if data.shape[1] == 3 else None)
+    return data[:, :len(columns)], (data[:, -1] if len(header) > len(columns) else None)
 
 
 def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: Path, method=None):
@@ -81,14 +89,21 @@ def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: P
     threads = options.pop("threads", 0)
     model = from_shortcuts(scenario.resolved_method(method), **options)
     result = fit(scenario.system, z, g, sigma, free=free, method=model, threads=threads)
-    out.mkdir(parents=True, exist_ok=True)
-    stem = out / f"{scenario.name}_fit"
-    lines = [f"# scenario: {scenario.name}", f"# measurements: {measurements}",
-             f"# model: {result.result.method}, loss {result.loss}",
-             f"# chi_square: {result.chi_square!r}", f"# degrees_of_freedom: {result.degrees_of_freedom}",
-             f"# reduced_chi_square: {result.reduced_chi_square!r}",
-             f"# covariance_scaled_by_reduced_chi_square: {result.covariance_scaled}",
-             "parameter,value,uncertainty,unit,start"]
+    header = [f"# scenario: {scenario.name}", f"# measurements: {measurements}"]
+    files, note = write_fit(result, out / f"{scenario.name}_fit", header, f"{scenario.name}: fit to "
+                            f"{Path(measurements).name}")
+    return result, files, note
+
+
+def write_fit(result, stem: Path, header: List[str], title: str):
+    """``<stem>.csv`` (``header`` lines, the model and chi-square, then the parameters) and ``<stem>.png``
+    (the result's plot); returns (files, note about a plot not written, or None)."""
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    lines = header + [f"# model: {result.result.method}, loss {result.loss}",
+                      f"# chi_square: {result.chi_square!r}", f"# degrees_of_freedom: {result.degrees_of_freedom}",
+                      f"# reduced_chi_square: {result.reduced_chi_square!r}",
+                      f"# covariance_scaled_by_reduced_chi_square: {result.covariance_scaled}",
+                      "parameter,value,uncertainty,unit,start"]
     lines += [f"{p},{v!r},{u!r},{unit},{s!r}" for p, v, u, unit, s in result.table()]
     with _files.replacing(f"{stem}.csv", "w", encoding="utf-8", newline="\n") as f:
         f.write("\n".join(lines) + "\n")
@@ -98,8 +113,8 @@ def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: P
     except ImportError:
         note = f"{stem}.png not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'"
     else:
-        fig.suptitle(f"{scenario.name}: fit to {Path(measurements).name}", fontsize=9)
+        fig.suptitle(title, fontsize=9)
         with _files.replacing_path(Path(f"{stem}.png")) as temporary:
             fig.savefig(temporary, dpi=120)
         files.append(f"{stem}.png")
-    return result, files, note
+    return files, note

@@ -16,6 +16,10 @@ the points have unit weights and the covariance is scaled by the reduced chi-squ
 estimated from the scatter of the residuals. With a robust loss it is the same form with every point
 counted (outliers included): an approximation, on the large side.
 
+Driver. :func:`solve` is shared by the fits (:func:`fit` here, :func:`.fit_telecover`): each gives a
+:class:`Model` (its vector and Jacobian as functions of a trial system); the optimiser, covariance,
+degeneracy warnings and convergence error are the same.
+
 Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar whose
 beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
 ``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; any other
@@ -26,6 +30,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
+from typing import Any, Callable, Optional
 
 import numpy as np
 
@@ -62,24 +68,56 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each pair
     of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
-    optimize = _scipy()
     paths = _free(free)
     p = _plan(system, ranges, method, tolerance, threads)
-    z = p.ranges
-    y = _measured(measured, z)
-    w = _sigma(sigma, y)
+    y = _measured(measured, p.ranges)
+    h_tolerance = step_tolerance(p, tolerance)
+
+    def result(trial):
+        curve = run(dataclasses.replace(p, system=trial))
+        return curve, curve.overlap
+
+    model = Model(lambda trial: result(trial)[1], lambda trial: jacobian(p, trial, paths, h_tolerance), result, p,
+                  h_tolerance, p.tolerance)
+    return solve(system, paths, model, y, _sigma(sigma, y), sigma is not None, bounds, loss, max_evaluations,
+                 allow_unconverged)
+
+
+@dataclass(frozen=True)
+class Model:
+    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured point;
+    ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` -> (the result kept as
+    ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by the FitResult; ``tolerance``, the
+    model's error on the vector (compared with sigma)."""
+
+    evaluate: Callable
+    jacobian: Callable
+    result: Callable
+    plan: Any
+    step_tolerance: float
+    tolerance: float
+
+
+def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, max_evaluations,
+          allow_unconverged: bool, independent: Optional[int] = None) -> FitResult:
+    """The least-squares driver shared by the fits: the free ``paths`` of ``system`` (the start) so that
+    ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of independent points
+    (default ``y.size``), which sets the degrees of freedom. See :func:`fit` for the rest."""
+    optimize = _scipy()
     k = len(paths)
-    if y.size < k or (sigma is None and y.size == k):
-        raise ValueError(f"measured has {y.size} points for {k} free parameters: expected more points than "
+    n = y.size if independent is None else independent
+    if n < k or (not sigma_given and n == k):
+        kind = "" if independent is None else " independent"
+        raise ValueError(f"measured has {n}{kind} points for {k} free parameters: expected more points than "
                          "parameters (at least as many with sigma given); measure more ranges or free fewer")
     loss = _checks.choice("loss", loss, LOSSES)
     max_evaluations = _checks.count("max_evaluations", max_evaluations, 1)
     start = np.array([_parameters.get(system, path) for path in paths])
     low, high = _bounds(system, paths, start, bounds)
     scale = np.array([step_scale(system, path) for path in paths])
-    h_tolerance = step_tolerance(p, tolerance)
-    if sigma is not None and math.isfinite(p.tolerance) and p.tolerance > TOLERANCE_FRACTION * np.median(w):
-        _checks.warn(f"fit: the model's tolerance {p.tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
+    tolerance = model.tolerance
+    if sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * np.median(w):
+        _checks.warn(f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
                      f"sigma ({np.median(w):.3g}): its error adds to the noise; lower tolerance")
     counts = {"model": 0, "jacobian": 0}
 
@@ -88,11 +126,11 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
 
     def residuals(u):
         counts["model"] += 1
-        return (run(dataclasses.replace(p, system=system_at(u))).overlap - y) / w
+        return (model.evaluate(system_at(u)) - y) / w
 
     def normalised_jacobian(u):
         counts["jacobian"] += 1
-        return jacobian(p, system_at(u), paths, h_tolerance) * scale / w[:, None]
+        return model.jacobian(system_at(u)) * scale / w[:, None]
 
     solution = optimize.least_squares(residuals, start / scale, jac=normalised_jacobian, bounds=(low / scale,
                                       high / scale), method="trf", loss=loss, max_nfev=max_evaluations)
@@ -101,13 +139,12 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
         raise RuntimeError(f"fit did not converge: {solution.message} (status {solution.status}, "
                            f"{counts['model']} model evaluations, max_evaluations={max_evaluations}); raise "
                            "max_evaluations, start closer, or pass allow_unconverged=True to get the last point")
-    best = system_at(solution.x)
-    result = run(dataclasses.replace(p, system=best))
+    result, vector = model.result(system_at(solution.x))
     counts["model"] += 1
-    r = (result.overlap - y) / w
+    r = (vector - y) / w
     j = normalised_jacobian(solution.x) / scale      # per SI unit of each parameter
-    chi_square, dof = float(r @ r), y.size - k
-    cov = covariance(j, chi_square / dof if sigma is None else 1.0)
+    chi_square, dof = float(r @ r), n - k
+    cov = covariance(j, chi_square / dof if not sigma_given else 1.0)
     sd = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
         # Singular J (infinite covariance): -cos of the angle between two columns is their correlation when
@@ -125,8 +162,8 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
                      "and a detector offset along one axis, which move the field of view alike); uncertainties "
                      "are infinite", DegeneracyWarning)
     noise = math.sqrt(chi_square / dof) if dof > 0 else float("nan")
-    if sigma is None and math.isfinite(p.tolerance) and p.tolerance > TOLERANCE_FRACTION * noise:
-        _checks.warn(f"fit: the model's tolerance {p.tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the scatter of "
+    if not sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * noise:
+        _checks.warn(f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the scatter of "
                      f"the residuals ({noise:.3g}): its error adds to the noise; lower tolerance")
     return FitResult(
         parameters={path: float(v) for path, v in zip(paths, solution.x * scale)},
@@ -134,10 +171,10 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
         start={path: float(v) for path, v in zip(paths, start)},
         covariance=cov, correlation=corr, residuals=r, chi_square=chi_square,
         reduced_chi_square=chi_square / dof if dof > 0 else float("nan"), degrees_of_freedom=dof,
-        result=result, measured=y, sigma=w if sigma is not None else None, covariance_scaled=sigma is None,
+        result=result, measured=y, sigma=w if sigma_given else None, covariance_scaled=not sigma_given,
         degenerate_pairs=pairs, evaluations=counts["model"], jacobian_evaluations=counts["jacobian"],
         status=int(solution.status), message=str(solution.message), converged=bool(converged), loss=loss,
-        plan=p, step_tolerance=h_tolerance)
+        plan=model.plan, step_tolerance=model.step_tolerance)
 
 
 def _cosines(j: np.ndarray) -> np.ndarray:

@@ -1,5 +1,6 @@
-"""The result of :func:`lidar_overlap.fit`: the parameters, their covariance, the fitted curve, and the
-model's prediction at other ranges with its 1-sigma band (the covariance propagated through the Jacobian)."""
+"""The result of :func:`lidar_overlap.fit` (and :func:`lidar_overlap.fit_telecover`): the parameters, their
+covariance, the fitted curve, and the model's prediction at other ranges with its 1-sigma band (the covariance
+propagated through the Jacobian)."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from . import _checks
 from .compute import run
 from .result import OverlapResult
 from .sensitivity import jacobian, unit
+from .telecover import TelecoverResult
 
 #: Singular values of the normalised Jacobian below this fraction of the largest count as zero.
 RANK_TOLERANCE = 1e-10
@@ -127,9 +129,12 @@ class FitResult:
     def plot(self, ranges=None, fig=None):
         """Data with error bars, the fitted curve with its 1-sigma band over ``ranges`` (default: from a quarter
         of the first measured range, where valid, to the last) and the residuals below. Returns the matplotlib
-        Figure (needs ``pip install 'lidar-overlap[plot]'``)."""
+        Figure (needs ``pip install 'lidar-overlap[plot]'``). A telecover fit: the measured and fitted deviations
+        per sector (at the measured ranges) and the residuals."""
         from matplotlib.figure import Figure
 
+        if isinstance(self.result, TelecoverResult):
+            return _plot_telecover_fit(self, fig or Figure(figsize=(7.0, 5.6), constrained_layout=True))
         z = self.ranges
         if ranges is None:
             ranges = np.geomspace(z[0] / 4, z[-1], 200)
@@ -156,3 +161,28 @@ class FitResult:
         bottom.set_ylabel("residual / sigma" if self.sigma is not None else "residual")
         return fig
 
+
+
+def _plot_telecover_fit(fit: FitResult, fig):
+    """Measured deviations (with error bars) and the fitted ones per sector in %, residuals below."""
+    t = fit.result
+    z, shape = t.ranges, (len(t.names), t.ranges.size)
+    measured, residuals = fit.measured.reshape(shape), fit.residuals.reshape(shape)
+    err = (fit.sigma.reshape(shape) if fit.sigma is not None
+           else np.full(shape, math.sqrt(fit.reduced_chi_square)))
+    top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
+    for k, (name, d) in enumerate(zip(t.names, t.deviation)):
+        color = f"C{k % 10}"
+        top.errorbar(z, 100 * measured[k], yerr=100 * err[k], fmt=".", ms=3, lw=0.6, color=color)
+        top.plot(z, 100 * d, color=color, label=f"{name} (fitted)")
+        bottom.plot(z, residuals[k], ".", ms=3, color=color)
+    top.axhline(0.0, color="0.5", lw=0.6)
+    top.set_xscale("log")
+    top.set_ylabel("normalised deviation (%)")
+    top.legend(fontsize=8)
+    top.set_title("; ".join(f"{p} = {v:.4g} ± {fit.uncertainties[p]:.2g} {unit(p)}"
+                            for p, v in fit.parameters.items()), fontsize=8)
+    bottom.axhline(0.0, color="0.5", lw=0.6)
+    bottom.set_xlabel("range (m)")
+    bottom.set_ylabel("residual / sigma" if fit.sigma is not None else "residual")
+    return fig

@@ -53,10 +53,17 @@ class TelecoverResult:
     def deviation(self) -> np.ndarray:
         """Normalised deviations G_i / mean_j G_j - 1 (sector x range): the telecover's S_i / mean S - 1, since
         the sectors see the same atmosphere. NaN where no sector receives anything."""
-        g = self.overlap
-        mean = g.mean(axis=0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return np.where(mean > 0.0, g / np.where(mean > 0.0, mean, 1.0) - 1.0, np.nan)
+        return deviations(self.overlap)
+
+    @property
+    def method(self) -> str:
+        """The model of every curve."""
+        return self.full.method
+
+    @property
+    def system(self) -> LidarSystem:
+        """The system without a mask (the full aperture's)."""
+        return self.full.system
 
     def to_xarray(self):
         """An ``xarray.Dataset`` (sector x range): ``overlap``, ``error_estimate``, ``deviation`` and
@@ -90,6 +97,30 @@ def telecover(system: LidarSystem, ranges, sectors="quadrants", method="rt", tol
     ``"auto"``. G of each sector stays normalised to the full aperture: by ray tracing the sectors of a partition
     add up to the full G; in Fourier optics diffraction at the sectors' edges makes their sum fall short of it by
     about RT's diffraction error (1e-3 on Table 1)."""
+    mask = sector_mask(system, sectors)
+    options = dict(threads=threads)
+    if isinstance(method, str) and method != "fo":
+        options["tolerance"] = tolerance
+    full = run(plan(system, ranges, method, **options))
+    parts = tuple(run(plan(with_mask(system, part), full.ranges, method, **options)) for part in mask.split())
+    return TelecoverResult(ranges=full.ranges, names=mask.names, sectors=parts, full=full)
+
+
+def deviations(g: np.ndarray) -> np.ndarray:
+    """G_i / mean_j G_j - 1 of G (sector x ...); NaN where every sector's G is 0."""
+    mean = g.mean(axis=0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(mean > 0.0, g / np.where(mean > 0.0, mean, 1.0) - 1.0, np.nan)
+
+
+def with_mask(system: LidarSystem, mask: ApertureMask) -> LidarSystem:
+    """``system`` with ``mask`` on its receiver's aperture."""
+    return dataclasses.replace(system, telescope=dataclasses.replace(system.telescope, mask=mask))
+
+
+def sector_mask(system, sectors) -> ApertureMask:
+    """The mask of :func:`telecover`'s ``sectors`` (``"quadrants"`` or an :class:`ApertureMask`), checked against
+    ``system`` (a LidarSystem without a mask)."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     if system.telescope.mask is not None:
@@ -103,12 +134,4 @@ def telecover(system: LidarSystem, ranges, sectors="quadrants", method="rt", tol
     else:
         raise ValueError(f"sectors = {_checks.shown(sectors)} is invalid: expected 'quadrants' or an ApertureMask")
     mask.validate(system.telescope.diameter, system.telescope.obstruction_radius)
-    options = dict(threads=threads)
-    if isinstance(method, str) and method != "fo":
-        options["tolerance"] = tolerance
-    full = run(plan(system, ranges, method, **options))
-    parts = []
-    for part in mask.split():
-        masked = dataclasses.replace(system, telescope=dataclasses.replace(system.telescope, mask=part))
-        parts.append(run(plan(masked, full.ranges, method, **options)))
-    return TelecoverResult(ranges=full.ranges, names=mask.names, sectors=tuple(parts), full=full)
+    return mask
