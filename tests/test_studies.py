@@ -2,7 +2,6 @@
 chunking; percentiles and members as separate overlap calls give them; hostile input refused by name."""
 
 import math
-import os
 import sys
 
 import numpy as np
@@ -32,25 +31,6 @@ def assert_same_study(a, b):
     xr.testing.assert_identical(a.drop_attrs(), b.drop_attrs())
     ran = ("engine", "members_per_task")
     assert {k: v for k, v in a.attrs.items() if k not in ran} == {k: v for k, v in b.attrs.items() if k not in ran}
-
-
-@pytest.fixture(scope="module")
-def client():
-    distributed = pytest.importorskip("distributed")
-    package_root = os.path.dirname(os.path.dirname(os.path.abspath(lo.__file__)))
-    old = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = os.pathsep.join([package_root] + ([old] if old else []))  # the workers' import
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
-    c = distributed.Client(cluster)
-    try:
-        yield c
-    finally:
-        c.close()
-        cluster.close()
-        if old is None:
-            os.environ.pop("PYTHONPATH")
-        else:
-            os.environ["PYTHONPATH"] = old
 
 
 def hide_dask(monkeypatch):

@@ -4,7 +4,7 @@ from . import parameters
 from ._core import __version__, max_memory, max_threads, set_max_memory
 from .atmosphere import Atmosphere
 from .aperture_mask import ApertureMask, Sector
-from .alignment import alignment_map
+from .alignment import alignment_map, alignment_maps
 from .autoalign import AlignResult, align
 from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
 from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
@@ -46,6 +46,7 @@ __all__ = [
     "RT",
     "Turbulent",
     "alignment_map",
+    "alignment_maps",
     "fit",
     "fit_telecover",
     "DegeneracyWarning",

@@ -155,3 +155,52 @@ def _axis(name: str, values) -> np.ndarray:
         i = int(np.argmax(~(np.diff(arr) > 0))) + 1
         raise ValueError(f"{name} must be strictly increasing: {name}[{i}] = {arr[i]} follows {arr[i - 1]}")
     return arr
+
+
+def alignment_maps(systems, ranges, *, client=None, threads: int = 0, **axes_and_options):
+    """:func:`alignment_map` of each system in ``systems`` (a sequence of LidarSystems: a fleet of lidars, the
+    members of a study, design variants), one task per system, through Dask: on ``client`` (a
+    ``dask.distributed.Client``), else in dask's threaded scheduler here (``threads`` maps at once, each with one
+    core thread), else in a loop (dask not installed; then ``threads`` go to each map). The other keywords are
+    :func:`alignment_map`'s (the axes, ``method``, ``tolerance``). Each map is bit for bit the single call's.
+
+    Returns an ``xarray.Dataset`` with a leading ``system`` dimension (index into ``systems``): ``overlap`` and
+    ``error_estimate`` (system, axes..., range), ``system_value_<axis>`` (system: each system's own value of the
+    axis; the axis coordinates are offsets from it), and the attributes of the maps plus ``engine``.
+    """
+    from .system import LidarSystem
+    from ._engines import engine, run_tasks, workers
+
+    try:
+        systems = [] if isinstance(systems, (LidarSystem, str)) else list(systems)
+    except TypeError:
+        systems = []
+    if not systems or not all(isinstance(s, LidarSystem) for s in systems):
+        raise ValueError("systems is invalid: expected a non-empty sequence of LidarSystem")
+    unknown = sorted(set(axes_and_options) - set(AXES) - {"method", "tolerance"})
+    if unknown:
+        raise ValueError(f"{', '.join(unknown)} is invalid: expected the axes {', '.join(AXES)}, method or tolerance")
+    threads = _checks.threads(threads)
+    xr = xarray("alignment_maps")
+    kind = engine(client)
+    first = alignment_map(systems[0], ranges, threads=threads, **axes_and_options)   # checks every argument once
+    one = threads if kind == "loop" else 1
+    rest = run_tasks(kind, client, _map_of, None, [(s, ranges, one, axes_and_options) for s in systems[1:]],
+                     workers(client, threads))
+    maps = [first] + rest
+    names = [d for d in first["overlap"].dims if d != "range"]
+    values = {f"system_value_{n}": ("system", [m[n].attrs["system_value"] for m in maps],
+                                    {"units": first[n].attrs["units"],
+                                     "long_name": f"each system's own {AXES[n][0]}"}) for n in names}
+    out = xr.concat([m.drop_vars(names + ["range"]) for m in maps], dim="system")
+    out = out.assign_coords({n: first[n] for n in names + ["range"]}).assign(values)
+    for n in names:
+        out[n].attrs.pop("system_value", None)
+    out = out.assign_coords(system=np.arange(len(maps)))
+    out.attrs.update(first.attrs, engine=kind)
+    return out
+
+
+def _map_of(_, system, ranges, threads, options):
+    """One system's map (the task of :func:`alignment_maps`)."""
+    return alignment_map(system, ranges, threads=threads, **options)

@@ -20,15 +20,14 @@ cores). Results do not depend on it.
 
 from __future__ import annotations
 
-import functools
 import math
-import os
 import time
 from typing import Any, List, Mapping, Sequence
 
 import numpy as np
 
-from . import _checks, parameters
+from . import _checks, _engines as engines, parameters
+from ._engines import run_tasks
 from .compute import run
 from .distributions import draw, normalized, text
 from .methods import Turbulent
@@ -82,7 +81,7 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
     z, request = nominal_plan.ranges, nominal_plan.request
     # G three times at the peak (the chunks, their concatenation, numpy.percentile's sorted copy), draws twice
     _checks.check_memory("n", n, 8.0 * n * (3 * z.size + 2 * len(specs)), "lower n or the number of ranges")
-    engine = _engine(client)
+    engine = engines.engine(client)
 
     values = draw(specs, n, np.random.default_rng(seed))
     paths = [p for p, _, _ in specs]
@@ -90,7 +89,7 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
         _member(system, paths, values[i], i)
 
     head, seconds = _head(system, paths, values, z, request)
-    done, workers = len(head), _workers(client, threads)
+    done, workers = len(head), engines.workers(client, threads)
     if chunk is None:
         chunk = min(max(1, math.ceil(TASK_SECONDS / max(seconds, 1e-9))), max(1, math.ceil((n - done) / workers)))
     bounds = [(s, min(s + chunk, n)) for s in range(done, n, chunk)]
@@ -167,40 +166,7 @@ def _chunk(system, paths, values, z, request, threads: int, start: int) -> np.nd
     return out
 
 
-def _engine(client) -> str:
-    if client is not None:
-        try:
-            from distributed import Client
-        except ImportError:
-            raise ValueError("client is given but dask.distributed is not installed: pip install "
-                             "'lidar-overlap[dask]'") from None
-        if not isinstance(client, Client):
-            raise ValueError(f"client = {_checks.shown(client)} is invalid: expected a dask.distributed.Client "
-                             "or None")
-        return "distributed"
-    try:
-        import dask  # noqa: F401  (only whether it is there)
-    except ImportError:
-        return "loop"
-    return "dask"
-
-
-def _workers(client, threads: int) -> int:
-    if client is not None:
-        return max(1, sum(client.nthreads().values()))
-    return threads or os.cpu_count() or 1
-
-
-def _compute(engine, client, bounds, system, paths, values, z, request, loop_threads, workers) -> list:
-    if engine == "loop":
-        return [_chunk(system, paths, values[s:e], z, request, loop_threads, s) for s, e in bounds]
-    if engine == "distributed":  # the system pickles as its constructor arguments (lidar_overlap._pickling)
-        shared = client.scatter(system, broadcast=True)
-        futures = [client.submit(_chunk, shared, paths, values[s:e], z, request, 1, s, pure=False)
-                   for s, e in bounds]
-        return client.gather(futures)
-    import dask
-    tasks = [dask.delayed(functools.partial(_chunk, system, paths, values[s:e], z, request, 1, s), pure=False)()
-             for s, e in bounds]
-    scheduler = "threads" if workers > 1 else "sync"
-    return list(dask.compute(*tasks, scheduler=scheduler, num_workers=workers))
+def _compute(kind, client, bounds, system, paths, values, z, request, loop_threads, parallel) -> list:
+    threads = loop_threads if kind == "loop" else 1
+    return run_tasks(kind, client, _chunk, system, [(paths, values[s:e], z, request, threads, s) for s, e in bounds],
+                     parallel)

@@ -1,0 +1,51 @@
+"""Where many independent tasks run: on a ``dask.distributed.Client`` (``client=``), in dask's threaded
+scheduler in this process (dask installed, no set-up; the core releases the GIL), or in a plain loop (no dask).
+Tasks run at the same time each pass ``threads=1`` to the core (its threading contract: N callers with
+threads=0 start N teams of all cores); the results do not depend on where they ran."""
+
+from __future__ import annotations
+
+import functools
+import os
+from typing import Callable, Sequence
+
+from . import _checks
+
+
+def engine(client) -> str:
+    """``"distributed"``, ``"dask"`` or ``"loop"``; a client that is not a ``dask.distributed.Client`` is refused."""
+    if client is not None:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise ValueError("client is given but dask.distributed is not installed: pip install "
+                             "'lidar-overlap[dask]'") from None
+        if not isinstance(client, Client):
+            raise ValueError(f"client = {_checks.shown(client)} is invalid: expected a dask.distributed.Client "
+                             "or None")
+        return "distributed"
+    try:
+        import dask  # noqa: F401  (only whether it is there)
+    except ImportError:
+        return "loop"
+    return "dask"
+
+
+def workers(client, threads: int) -> int:
+    """Tasks that may run at once: the client's worker threads, else ``threads`` (0: the cores)."""
+    if client is not None:
+        return max(1, sum(client.nthreads().values()))
+    return threads or os.cpu_count() or 1
+
+
+def run_tasks(kind: str, client, function: Callable, shared, arguments: Sequence[tuple], parallel: int) -> list:
+    """``[function(shared, *args) for args in arguments]``, in order, on the engine ``kind``. ``shared`` (a system:
+    it pickles as its constructor arguments) goes to each cluster worker once."""
+    if kind == "loop":
+        return [function(shared, *args) for args in arguments]
+    if kind == "distributed":
+        scattered = client.scatter(shared, broadcast=True)
+        return client.gather([client.submit(function, scattered, *args, pure=False) for args in arguments])
+    import dask
+    tasks = [dask.delayed(functools.partial(function, shared, *args), pure=False)() for args in arguments]
+    return list(dask.compute(*tasks, scheduler="threads" if parallel > 1 else "sync", num_workers=parallel))
