@@ -1,4 +1,5 @@
-"""xarray, imported when a map or a sensitivity is built (the ``[io]`` extra), and the variables they share."""
+"""xarray, imported when a dataset is built (maps, sensitivities, studies, telecover; the ``[io]`` extra), and
+the variables they share."""
 
 from __future__ import annotations
 

@@ -32,7 +32,7 @@ from .compute import run
 from .distributions import draw, normalized, text
 from .methods import Turbulent
 from .planning import plan
-from .result import _xarray
+from ._datasets import xarray
 from .system import LidarSystem
 
 #: Most members a study may have (the draws alone are 8 bytes x n x parameters).
@@ -65,7 +65,7 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
     method, distributions (text), members_per_task and engine. A member whose draw makes an invalid system (or
     range) is an error naming the member and the parameter; none is dropped.
     """
-    xr = _xarray()                                   # before any work: the result needs it
+    xr = xarray("tolerance_study")                   # before any work: the result needs it
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     n = _checks.count("n", n, 1, MAX_MEMBERS)

@@ -16,6 +16,7 @@ from typing import Tuple
 import numpy as np
 
 from . import _checks
+from ._datasets import xarray
 from .aperture_mask import ApertureMask
 from .compute import run
 from .planning import plan
@@ -68,9 +69,7 @@ class TelecoverResult:
     def to_xarray(self):
         """An ``xarray.Dataset`` (sector x range): ``overlap``, ``error_estimate``, ``deviation`` and
         ``full_overlap`` (range), with units and the method in the attributes (needs the ``io`` extra)."""
-        from .result import _xarray
-
-        xr = _xarray()
+        xr = xarray("TelecoverResult.to_xarray")
         dims = ("sector", "range")
         return xr.Dataset(
             {"overlap": (dims, self.overlap, {"long_name": "overlap through the sector (of the full aperture)"}),

@@ -99,25 +99,17 @@ std::optional<Vec2> ring_symmetry_center(const CouplingTerm& term, const std::ve
   return anchored.symmetry_center();
 }
 
-beam_integral::RangeResult masked_overlap_at(const LidarSystem& system, const Receiver& rx,
-                                             const std::vector<AnnularSector>& sectors, const RtOptions& opt) {
-  const double z = rx.range();
-  const double w = system.beam.radius(z);
-  const Vec2 center = system.beam.center(z);
-  CouplingTerm terms[2];
-  const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);  // 10 sigma: beyond, below exp(-50)
-  const double tolerance = opt.tolerance / static_cast<double>(n_terms);
-  beam_integral::RangeResult total;
-  for (std::size_t t = 0; t < n_terms; ++t) {
-    const MaskedTerm term{terms[t], sectors};
-    const beam_integral::Kinks kinks = masked_kinks(terms[t], sectors);
-    if (const std::optional<Vec2> s = ring_symmetry_center(terms[t], sectors))
-      total.add(beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
-                                               opt.max_segments));
-    else
-      total.add(beam_integral::planar_mean(term, kinks, center, w, false, tolerance, opt.max_segments));
-  }
-  return total;
+detail::RtEntry masked_overlap_at(const LidarSystem& system, const Receiver& rx,
+                                  const std::vector<AnnularSector>& sectors, const RtOptions& opt) {
+  return detail::sum_over_terms(system, rx, opt.tolerance,
+                                [&](const CouplingTerm& plain, Vec2 center, double w, double tol) {
+    const MaskedTerm term{plain, sectors};
+    const beam_integral::Kinks kinks = masked_kinks(plain, sectors);
+    if (const std::optional<Vec2> s = ring_symmetry_center(plain, sectors))
+      return beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tol,
+                                            opt.max_segments);
+    return beam_integral::planar_mean(term, kinks, center, w, false, tol, opt.max_segments);
+  });
 }
 
 std::vector<AnnularSector> checked_sectors(const LidarSystem& system, const ApertureMask& mask) {

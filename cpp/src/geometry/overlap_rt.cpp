@@ -25,30 +25,14 @@ void check_rt_options(const RtOptions& options) {
 }
 
 RtEntry overlap_rt_entry(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
-  const double z = rx.range();
-  const double w = system.beam.radius(z);
-  const Vec2 center = system.beam.center(z);
-  CouplingTerm terms[2];
-  // 10 sigma = 5 w: the beam power beyond is below exp(-50).
-  const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);
-  const double tolerance = opt.tolerance / static_cast<double>(n_terms);
-  RtEntry total;
-  double magnitude = 0.0;
-  for (std::size_t t = 0; t < n_terms; ++t) {
-    const beam_integral::Kinks kinks(terms[t]);
-    const std::optional<Vec2> s = terms[t].symmetry_center();
-    const RtEntry r =
-        s ? beam_integral::radial_integral(terms[t], kinks, *s, norm(center - *s), w, {1.0, 0.0}, tolerance,
-                                           opt.max_segments)
-          : beam_integral::planar_mean(terms[t], kinks, center, w, beam_integral::mirror_symmetric(terms[t], center),
-                                       tolerance, opt.max_segments);
-    total.add(r);
-    magnitude += std::abs(r.value);
-  }
-  // An obstruction's term cancels the unobstructed one where its shadow covers all the light that passes;
-  // integrated on different breakpoints, they then differ by round-off of either sign, which means G = 0.
-  if (std::abs(total.value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude) total.value = 0.0;
-  return total;
+  return sum_over_terms(system, rx, opt.tolerance, [&](const CouplingTerm& term, Vec2 center, double w, double tol) {
+    const beam_integral::Kinks kinks(term);
+    const std::optional<Vec2> s = term.symmetry_center();
+    return s ? beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tol,
+                                              opt.max_segments)
+             : beam_integral::planar_mean(term, kinks, center, w, beam_integral::mirror_symmetric(term, center), tol,
+                                          opt.max_segments);
+  });
 }
 
 RtOverlap collect_rt_entries(const std::vector<RtEntry>& entries, const std::vector<double>& ranges,

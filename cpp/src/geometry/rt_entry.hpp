@@ -3,8 +3,10 @@
 // installed.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,30 @@ namespace lidar_overlap::detail {
 
 // One beam integral's value, error bound, evaluations and convergence.
 using RtEntry = beam_integral::RangeResult;
+
+// G of `system` at the receiver's range: the coupling split into the receiver's terms (at most two), each
+// integrated over the beam by `integrate(term, beam_center, w, tolerance)` with its share of `tolerance`, and
+// summed. An obstruction's term cancels the unobstructed one where its shadow covers all the light that passes;
+// integrated on different breakpoints they then differ by round-off of either sign, which means G = 0.
+template <class Integrate>
+RtEntry sum_over_terms(const LidarSystem& system, const Receiver& rx, double tolerance, Integrate integrate) {
+  const double z = rx.range();
+  const double w = system.beam.radius(z);
+  const Vec2 center = system.beam.center(z);
+  CouplingTerm terms[2];
+  // 10 sigma = 5 w: the beam power beyond is below exp(-50).
+  const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);
+  const double share = tolerance / static_cast<double>(n_terms);
+  RtEntry total;
+  double magnitude = 0.0;
+  for (std::size_t t = 0; t < n_terms; ++t) {
+    const RtEntry r = integrate(terms[t], center, w, share);
+    total.add(r);
+    magnitude += std::abs(r.value);
+  }
+  if (std::abs(total.value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude) total.value = 0.0;
+  return total;
+}
 
 // Checks the options every RT entry point shares (tolerance, max_segments); throws std::invalid_argument.
 void check_rt_options(const RtOptions& options);
