@@ -36,6 +36,29 @@ int main() {
   test::that("evaluations add up", evaluations == map.values.evaluations);
   test::that("an offset beam is not axisymmetric", !map.values.axisymmetric);
 
+  // Axes that only move the beam trace each distinct beam-centre distance once (a symmetric tilt grid of an
+  // obstructed coaxial lidar, -0 among the values): every point still equals its own overlap_rt bit for bit.
+  LidarSystem coaxial;
+  coaxial.telescope.obstruction_radius = 0.02;
+  coaxial.telescope.obstruction_distance = 0.3;
+  const std::vector<double> tilts{-3e-4, -1e-4, -0.0, 1e-4, 3e-4}, near_far{40.0, 300.0, 2000.0};
+  const AlignmentMap sym = alignment_map(
+      coaxial, {{AlignmentParameter::tilt_x, tilts}, {AlignmentParameter::beam_offset_y, {-2e-3, 0.0, 2e-3}}},
+      near_far, {1e-5, 2, 4000});
+  bool same_sym = true;
+  for (std::size_t i = 0; i < tilts.size(); ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      LidarSystem s = misaligned(coaxial, AlignmentParameter::tilt_x, tilts[i]);
+      s = misaligned(s, AlignmentParameter::beam_offset_y, (static_cast<double>(j) - 1.0) * 2e-3);
+      const RtOverlap one = overlap_rt(s, near_far, {1e-5, 1, 4000});
+      for (std::size_t k = 0; k < near_far.size(); ++k) {
+        const std::size_t e = (i * 3 + j) * near_far.size() + k;
+        same_sym = same_sym && one.overlap[k] == sym.values.overlap[e] &&
+                   one.error_estimate[k] == sym.values.error_estimate[e];
+      }
+    }
+  test::that("mirror-image grid points equal their own overlap_rt bit for bit", same_sym);
+
   LidarSystem shifted = misaligned(base, AlignmentParameter::defocus, 2e-3);
   test::near("misaligned adds to the system's value", shifted.detector.defocus, 2e-3, 0.0);
   const AlignmentMap one_axis = alignment_map(LidarSystem{}, {{AlignmentParameter::defocus, {0.0}}}, {300.0});

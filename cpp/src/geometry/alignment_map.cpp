@@ -1,11 +1,17 @@
 #include "lidar_overlap/geometry/alignment_map.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "core/checks.hpp"
 #include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
+#include "geometry/receiver_coupling.hpp"
 #include "geometry/rt_entry.hpp"
 
 namespace lidar_overlap {
@@ -42,6 +48,64 @@ void check_axis(const LidarSystem& system, const AlignmentAxis& axis) {
                                   e.what());
     }
   }
+}
+
+bool moves_beam_only(AlignmentParameter p) {
+  return p == AlignmentParameter::tilt_x || p == AlignmentParameter::tilt_y ||
+         p == AlignmentParameter::beam_offset_x || p == AlignmentParameter::beam_offset_y;
+}
+
+// For each entry (grid point e / n_ranges at range e % n_ranges), the first entry whose G is the same
+// computation, bit for bit: itself unless the axes only move the beam. The receiver (telescope, detector, range)
+// and the beam radius are then the same at every grid point of a range, and each coupling term's integral
+// depends on the beam centre c only through |c - S| when the term has a centre of symmetry S, through c
+// otherwise; the terms themselves depend on c only through whether the shadow disc is dropped. Grid points at
+// the same distance from S (the mirror images of a symmetric grid: a 41 x 41 tilt map of a coaxial lidar has
+// 231 distinct distances) are traced once.
+template <class PointSystem>
+std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std::vector<AlignmentAxis>& axes,
+                                            const std::vector<double>& ranges, const PointSystem& point_system) {
+  const std::size_t n_ranges = ranges.size(), points = [&] {
+    std::size_t p = 1;
+    for (const AlignmentAxis& a : axes) p *= a.values.size();
+    return p;
+  }();
+  std::vector<std::size_t> source(points * n_ranges);
+  for (std::size_t e = 0; e < source.size(); ++e) source[e] = e;
+  for (const AlignmentAxis& a : axes)
+    if (!moves_beam_only(a.parameter)) return source;
+  // Per term: its disc count and (|c - S|, inf) or (c.x, c.y), compared bit for bit (-0 is not 0 to atan2).
+  using Key = std::array<std::uint64_t, 6>;
+  auto bits = [](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  std::vector<Key> keys(points);
+  std::vector<std::size_t> order(points);
+  for (std::size_t z = 0; z < n_ranges; ++z) {
+    const Receiver rx(system, ranges[z]);  // the beam does not enter the receiver
+    const double w = system.beam.radius(ranges[z]);
+    for (std::size_t p = 0; p < points; ++p) {
+      const Vec2 c = point_system(p).beam.center(ranges[z]);
+      CouplingTerm terms[2];
+      const std::size_t n_terms = rx.terms(c, 5.0 * w, terms);  // as sum_over_terms
+      Key k{};
+      for (std::size_t t = 0; t < n_terms; ++t) {
+        const std::optional<Vec2> center = terms[t].symmetry_center();
+        k[3 * t] = terms[t].n_discs;
+        k[3 * t + 1] = bits(center ? norm(c - *center) : c.x);
+        k[3 * t + 2] = bits(center ? HUGE_VAL : c.y);
+      }
+      keys[p] = k;
+      order[p] = p;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+    for (std::size_t i = 1; i < points; ++i)
+      if (keys[order[i]] == keys[order[i - 1]])
+        source[order[i] * n_ranges + z] = source[order[i - 1] * n_ranges + z];
+  }
+  return source;
 }
 
 }  // namespace
@@ -113,10 +177,13 @@ AlignmentMap alignment_map(const LidarSystem& system, const std::vector<Alignmen
     return axes.size() == 2 ? misaligned(s, axes[1].parameter, axes[1].values[point % n1]) : s;
   };
   std::vector<detail::RtEntry> results(n);
+  const std::vector<std::size_t> source = equivalent_entries(system, axes, ranges, point_system);
   detail::parallel_for(n, threads, [&](std::size_t e) {
+    if (source[e] != e) return;
     const LidarSystem s = point_system(e / n_ranges);
     results[e] = detail::overlap_rt_entry(s, Receiver(s, ranges[e % n_ranges]), options);
   });
+  for (std::size_t e = 0; e < n; ++e) results[e] = results[source[e]];
   std::vector<double> entry_ranges(n);
   for (std::size_t e = 0; e < n; ++e) entry_ranges[e] = ranges[e % n_ranges];
 
