@@ -1,8 +1,9 @@
-"""Chebyshev coefficients of exp(-x) I0(x) for cpp/src/core/special_functions.hpp (standard library only).
+"""Chebyshev coefficients of exp(-x) I0(x) and exp(-x) I1(x) for cpp/src/core/special_functions.hpp (standard
+library only).
 
-Near, x in [0, 8]: f(t) = exp(-x) I0(x) with x = 4 (t + 1). Far, x in [8, inf): g(t) = sqrt(x) exp(-x) I0(x) with
+Near, x in [0, 8]: f(t) = exp(-x) In(x) / x^n with x = 4 (t + 1). Far, x in [8, inf): g(t) = sqrt(x) exp(-x) In(x) with
 x = 16 / (t + 1), analytic in 1/x. Each is interpolated at 40 Chebyshev nodes (computed, like everything here,
-to 50 digits: nodes rounded to doubles would alias the high coefficients to ~1e-15) with I0 from its power series
+to 50 digits: nodes rounded to doubles would alias the high coefficients to ~1e-15) with In from its power series
 of positive terms, and printed up to the last coefficient above 1e-18.
 """
 
@@ -22,11 +23,13 @@ def cos(t: Decimal) -> Decimal:
     return s
 
 
-def i0e(x: Decimal) -> Decimal:
-    q, term, s, k = x * x / 4, Decimal(1), Decimal(1), 0
+def ine(order: int, x: Decimal) -> Decimal:
+    """exp(-x) I_order(x), order 0 or 1: sum_k (x/2)^(2k + order) / (k! (k + order)!)."""
+    q, term, k = x * x / 4, (x / 2) ** order, 0
+    s = term
     while term >= s * Decimal(10) ** -45:
         k += 1
-        term = term * q / (k * k)
+        term = term * q / (k * (k + order))
         s += term
     return s * (-x).exp()
 
@@ -45,6 +48,8 @@ def chebyshev(f, n=NODES):
 
 
 if __name__ == "__main__":
-    for name, f in (("kI0eNear", lambda t: i0e(4 * (t + 1))),
-                    ("kI0eFar", lambda t: i0e(16 / (t + 1)) * (16 / (t + 1)).sqrt())):
-        print(name, ", ".join(f"{v:.17e}" for v in chebyshev(f)))
+    for order in (0, 1):
+        # I1 near 0 is x / 2: its series is of exp(-x) I1(x) / x, which keeps the relative error there.
+        for name, f in ((f"kI{order}eNear", lambda t: ine(order, 4 * (t + 1)) / (4 * (t + 1)) ** order),
+                        (f"kI{order}eFar", lambda t: ine(order, 16 / (t + 1)) * (16 / (t + 1)).sqrt())):
+            print(name, ", ".join(f"{v:.17e}" for v in chebyshev(f)))

@@ -121,5 +121,15 @@ int main() {
     const double t = 1.0 / (8.0 * x), hankel = (1.0 + t * (1.0 + t * (4.5 + t * 37.5))) / std::sqrt(2.0 * kPi * x);
     test::near("scaled_bessel_i0 far out, x=" + std::to_string(x), scaled_bessel_i0(x) / hankel, 1.0, 4e-15);
   }
+  // exp(-x) I1(x) likewise (relative error down to x near 0, where I1 ~ x / 2), Hankel's series far out.
+  worst = 0.0;
+  for (double x = 1e-6; x < 700.0; x += 0.0137)
+    worst = std::max(worst, std::abs(scaled_bessel_i1(x) / (std::cyl_bessel_i(1.0, x) * std::exp(-x)) - 1.0));
+  test::near("scaled_bessel_i1 relative error from x = 1e-6 to 700", worst, 0.0, 4e-15);
+  test::near("scaled_bessel_i1 at 0", scaled_bessel_i1(0.0), 0.0, 0.0);
+  for (double x : {1e4, 1e6, 1e9}) {
+    const double t = 1.0 / (8.0 * x), hankel = (1.0 - t * (3.0 + t * (7.5 + t * 52.5))) / std::sqrt(2.0 * kPi * x);
+    test::near("scaled_bessel_i1 far out, x=" + std::to_string(x), scaled_bessel_i1(x) / hankel, 1.0, 4e-15);
+  }
   return test::report("test_overlap_rt");
 }
