@@ -9,6 +9,7 @@
 #include "core/constants.hpp"
 #include "aberrations/sampled_pupil_overlap.hpp"
 #include "geometry/beam_integral.hpp"
+#include "geometry/moving_disc_integral.hpp"
 #include "geometry/receiver_coupling.hpp"
 #include "geometry/rt_entry.hpp"
 #include "geometry/sector_area.hpp"
@@ -103,6 +104,9 @@ detail::RtEntry masked_overlap_at(const LidarSystem& system, const Receiver& rx,
                                   const std::vector<AnnularSector>& sectors, const RtOptions& opt) {
   return detail::sum_over_terms(system, rx, opt.tolerance,
                                 [&](const CouplingTerm& plain, Vec2 center, double w, double tol) {
+    if (std::optional<detail::RtEntry> r =
+            beam_integral::moving_disc_integral(plain, sectors, center, w, tol, opt.max_segments))
+      return *r;
     const MaskedTerm term{plain, sectors};
     const beam_integral::Kinks kinks = masked_kinks(plain, sectors);
     if (const std::optional<Vec2> s = ring_symmetry_center(plain, sectors))
