@@ -37,6 +37,17 @@ void bind_aperture_mask(py::module_& m) {
       "G through the masked aperture, normalised to the full aperture.");
 
   m.def(
+      "overlap_rt_masks",
+      [](const LidarSystem& system, const std::vector<double>& ranges, const std::vector<ApertureMask>& masks,
+         const RtOptions& options) {
+        Interruptible release;
+        return overlap_rt(system, ranges, masks, options);
+      },
+      py::arg("system"), py::arg("ranges"), py::arg("masks"), py::arg("options") = RtOptions{},
+      "G through each mask (the sectors of a telecover test) in one pass, each normalised to the full aperture.");
+  m.attr("MAX_MASKS") = kMaxMasks;
+
+  m.def(
       "overlap_fo_masked",
       [](const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
          const FoAberratedOptions& options) {

@@ -40,17 +40,12 @@ struct Segment {
   bool operator<(const Segment& o) const { return error < o.error; }
 };
 
-// One 15-point rule on [a, b] with QUADPACK's error heuristic.
-template <class F>
-Segment rule(F& f, double a, double b) {
-  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
-  const double fc = f(c);
-  double fv1[7], fv2[7];
+// The 15-point rule on [a, b] from f at its centre (fc) and at c -+ h kX[j] (fv1[j], fv2[j]), with QUADPACK's
+// error heuristic.
+inline Segment from_values(double a, double b, double fc, const double* fv1, const double* fv2) {
+  const double h = 0.5 * (b - a);
   double resk = kWK[7] * fc, resg = kWG[3] * fc, resabs = std::abs(resk);
   for (int j = 0; j < 7; ++j) {
-    const double dx = h * kX[j];
-    fv1[j] = f(c - dx);
-    fv2[j] = f(c + dx);
     resk += kWK[j] * (fv1[j] + fv2[j]);
     resabs += kWK[j] * (std::abs(fv1[j]) + std::abs(fv2[j]));
     if (j % 2 == 1) resg += kWG[j / 2] * (fv1[j] + fv2[j]);
@@ -65,6 +60,19 @@ Segment rule(F& f, double a, double b) {
   if (resasc != 0.0 && err != 0.0) err = resasc * std::min(1.0, std::pow(200.0 * err / resasc, 1.5));
   err = std::max(err, 50.0 * 2.220446049250313e-16 * resabs);
   return {a, b, resk * h, err};
+}
+
+// One 15-point rule on [a, b].
+template <class F>
+Segment rule(F& f, double a, double b) {
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  const double fc = f(c);
+  double fv1[7], fv2[7];
+  for (int j = 0; j < 7; ++j) {
+    fv1[j] = f(c - h * kX[j]);
+    fv2[j] = f(c + h * kX[j]);
+  }
+  return from_values(a, b, fc, fv1, fv2);
 }
 }  // namespace gauss_kronrod
 
@@ -114,6 +122,72 @@ QuadratureResult integrate(F&& f, const double* points, std::size_t n, double to
   for (const Segment& s : heap) r.value += s.value;
   r.error = error;
   return r;
+}
+
+// The m integrals of f(x, out) (writing out[0..m)) over [points[0], points[n-1]] on one shared set of segments:
+// each evaluation serves all m (the sectors of a telecover test share the nodes and their geometry). Bisects the
+// segment with the largest error in the integral furthest over `tolerance` until each summed error estimate is
+// within it; stops at max_segments. result[k] is integral k; evaluations count the shared calls of f.
+template <class F>
+std::vector<QuadratureResult> integrate_many(F&& f, std::size_t m, const double* points, std::size_t n,
+                                             double tolerance, std::size_t max_segments) {
+  using gauss_kronrod::kX;
+  if (m == 0) return {};
+  struct Piece {
+    double a, b;
+    std::vector<double> value, error;
+  };
+  std::vector<double> nodes(15 * m);  // node j's m values at nodes[j * m]
+  std::size_t evaluations = 0;
+  auto rule = [&](double a, double b) {
+    const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+    f(c, &nodes[14 * m]);
+    for (int j = 0; j < 7; ++j) {
+      f(c - h * kX[j], &nodes[j * m]);
+      f(c + h * kX[j], &nodes[(7 + j) * m]);
+    }
+    evaluations += 15;
+    Piece p{a, b, std::vector<double>(m), std::vector<double>(m)};
+    double fv1[7], fv2[7];
+    for (std::size_t k = 0; k < m; ++k) {
+      for (int j = 0; j < 7; ++j) {
+        fv1[j] = nodes[j * m + k];
+        fv2[j] = nodes[(7 + j) * m + k];
+      }
+      const gauss_kronrod::Segment s = gauss_kronrod::from_values(a, b, nodes[14 * m + k], fv1, fv2);
+      p.value[k] = s.value;
+      p.error[k] = s.error;
+    }
+    return p;
+  };
+  std::vector<Piece> pieces;
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (points[i + 1] > points[i]) pieces.push_back(rule(points[i], points[i + 1]));
+  std::vector<QuadratureResult> out(m);
+  std::vector<double> error(m);
+  while (true) {
+    std::fill(error.begin(), error.end(), 0.0);
+    for (const Piece& p : pieces)
+      for (std::size_t k = 0; k < m; ++k) error[k] += p.error[k];
+    const std::size_t worst = static_cast<std::size_t>(std::max_element(error.begin(), error.end()) - error.begin());
+    if (pieces.empty() || error[worst] <= tolerance) break;
+    std::size_t split = 0;
+    for (std::size_t i = 1; i < pieces.size(); ++i)
+      if (pieces[i].error[worst] > pieces[split].error[worst]) split = i;
+    const double a = pieces[split].a, b = pieces[split].b, mid = 0.5 * (a + b);
+    if (pieces.size() >= max_segments || !(mid > a && mid < b)) {  // out of segments or of double precision
+      for (std::size_t k = 0; k < m; ++k) out[k].converged = error[k] <= tolerance;
+      break;
+    }
+    pieces[split] = rule(a, mid);
+    pieces.push_back(rule(mid, b));
+  }
+  for (std::size_t k = 0; k < m; ++k) {
+    for (const Piece& p : pieces) out[k].value += p.value[k];
+    out[k].error = error[k];
+    out[k].evaluations = evaluations;
+  }
+  return out;
 }
 
 // Gauss-Legendre rule with N nodes on [-1, 1] (Newton on P_N), made once per N.

@@ -7,6 +7,8 @@
 
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "core/entry_checks.hpp"
+#include "core/parallel.hpp"
 #include "aberrations/sampled_pupil_overlap.hpp"
 #include "geometry/beam_integral.hpp"
 #include "geometry/moving_disc_integral.hpp"
@@ -100,19 +102,28 @@ std::optional<Vec2> ring_symmetry_center(const CouplingTerm& term, const std::ve
   return anchored.symmetry_center();
 }
 
-detail::RtEntry masked_overlap_at(const LidarSystem& system, const Receiver& rx,
-                                  const std::vector<AnnularSector>& sectors, const RtOptions& opt) {
-  return detail::sum_over_terms(system, rx, opt.tolerance,
-                                [&](const CouplingTerm& plain, Vec2 center, double w, double tol) {
-    if (std::optional<detail::RtEntry> r =
-            beam_integral::moving_disc_integral(plain, sectors, center, w, tol, opt.max_segments))
+// G through each mask at the receiver's range: the 1-D integral of a term with one moving disc serves all the
+// masks at once; any other term is integrated in the scatterer plane, mask by mask.
+std::vector<detail::RtEntry> masked_overlaps_at(const LidarSystem& system, const Receiver& rx,
+                                                const std::vector<std::vector<AnnularSector>>& masks,
+                                                const RtOptions& opt) {
+  return detail::sum_over_terms_many(system, rx, opt.tolerance, masks.size(),
+                                     [&](const CouplingTerm& plain, Vec2 center, double w, double tol) {
+    if (std::optional<std::vector<detail::RtEntry>> r =
+            beam_integral::moving_disc_integral(plain, masks, center, w, tol, opt.max_segments))
       return *r;
-    const MaskedTerm term{plain, sectors};
-    const beam_integral::Kinks kinks = masked_kinks(plain, sectors);
-    if (const std::optional<Vec2> s = ring_symmetry_center(plain, sectors))
-      return beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tol,
-                                            opt.max_segments);
-    return beam_integral::planar_mean(term, kinks, center, w, false, tol, opt.max_segments);
+    const beam_integral::Kinks plain_kinks(plain);
+    std::vector<detail::RtEntry> out;
+    for (const std::vector<AnnularSector>& sectors : masks) {
+      const MaskedTerm term{plain, sectors};
+      const beam_integral::Kinks kinks = masked_kinks(plain, sectors);
+      if (const std::optional<Vec2> s = ring_symmetry_center(plain, sectors))
+        out.push_back(beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tol,
+                                                     opt.max_segments));
+      else
+        out.push_back(beam_integral::planar_mean(term, kinks, center, w, false, tol, opt.max_segments));
+    }
+    return out;
   });
 }
 
@@ -169,10 +180,42 @@ void ApertureMask::validate(const Telescope& telescope) const {
 
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
                      const RtOptions& options) {
-  const std::vector<AnnularSector> sectors = checked_sectors(system, mask);
+  const std::vector<std::vector<AnnularSector>> masks{checked_sectors(system, mask)};
   return detail::rt_over_ranges(
-      system, ranges, options,
-      [&](const Receiver& rx) { return masked_overlap_at(system, rx, sectors, options); }, "overlap_rt (masked)");
+      system, ranges, options, [&](const Receiver& rx) { return masked_overlaps_at(system, rx, masks, options)[0]; },
+      "overlap_rt (masked)");
+}
+
+std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
+                                  const std::vector<ApertureMask>& masks, const RtOptions& options) {
+  if (masks.empty() || masks.size() > kMaxMasks)
+    checks::fail("masks", static_cast<double>(masks.size()), "from 1 to " + std::to_string(kMaxMasks) + " masks");
+  std::vector<std::vector<AnnularSector>> sectors;
+  for (std::size_t i = 0; i < masks.size(); ++i) {
+    try {
+      sectors.push_back(checked_sectors(system, masks[i]));
+    } catch (const std::invalid_argument& e) {
+      if (std::string(e.what()).rfind("mask.", 0) != 0) throw;  // the system's own error
+      throw std::invalid_argument("masks[" + std::to_string(i) + "]" + std::string(e.what()).substr(4));
+    }
+  }
+  detail::check_rt_options(options);
+  const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
+  std::vector<Receiver> receivers;  // built before the parallel region: nothing throws inside it
+  receivers.reserve(ranges.size());
+  for (double z : ranges) receivers.emplace_back(system, z);
+  std::vector<std::vector<detail::RtEntry>> at(ranges.size());
+  detail::parallel_for(ranges.size(), threads,
+                       [&](std::size_t i) { at[i] = masked_overlaps_at(system, receivers[i], sectors, options); });
+  std::vector<RtOverlap> out;
+  for (std::size_t k = 0; k < masks.size(); ++k) {
+    std::vector<detail::RtEntry> entries(ranges.size());
+    for (std::size_t i = 0; i < ranges.size(); ++i) entries[i] = at[i][k];
+    out.push_back(detail::collect_rt_entries(entries, ranges, options.tolerance,
+                                             "overlap_rt (masks[" + std::to_string(k) + "])"));
+    out.back().axisymmetric = system.is_axisymmetric();
+  }
+  return out;
 }
 
 FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,

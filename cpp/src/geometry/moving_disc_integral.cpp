@@ -6,6 +6,7 @@
 #include "core/constants.hpp"
 #include "core/quadrature.hpp"
 #include "core/special_functions.hpp"
+#include "geometry/disc_sector_areas.hpp"
 
 namespace lidar_overlap::beam_integral {
 
@@ -43,8 +44,10 @@ std::vector<double> kink_radii(const Disc* fixed, std::size_t n_fixed, const std
 
 }  // namespace
 
-std::optional<RangeResult> moving_disc_integral(const CouplingTerm& term, const std::vector<AnnularSector>& sectors,
-                                                Vec2 center, double w, double tolerance, std::size_t max_segments) {
+std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm& term,
+                                                             const std::vector<std::vector<AnnularSector>>& masks,
+                                                             Vec2 center, double w, double tolerance,
+                                                             std::size_t max_segments) {
   if (term.n_gates != 0) return std::nullopt;
   Disc discs[kMaxDiscs];
   std::size_t n_fixed = 0;
@@ -67,9 +70,30 @@ std::optional<RangeResult> moving_disc_integral(const CouplingTerm& term, const 
   // q exp(-q^2 / 2 sigma^2) when r << sigma).
   const double lo = std::max(0.0, r - 10.0 * sigma), hi = r + 10.0 * sigma;
   std::vector<double> points{lo, hi};
-  for (double q : kink_radii(discs, n_fixed, sectors, mu))
-    if (q > lo && q < hi) points.push_back(q);
+  for (const std::vector<AnnularSector>& sectors : masks)
+    for (double q : kink_radii(discs, n_fixed, sectors, mu))
+      if (q > lo && q < hi) points.push_back(q);
   std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+
+  // Pieces in the kernel's tails whose whole contribution is bounded below a hundredth of the tolerance's share
+  // are left out, their bound added to the error: Lambda <= min(pi q^2, the masks' area), exp(-x) I1(x) <=
+  // min(1, x / 2), and the Gaussian factor is largest at the end nearest r.
+  double mask_area = 0.0;
+  for (const std::vector<AnnularSector>& sectors : masks)
+    for (const AnnularSector& s : sectors) mask_area += 0.5 * std::min(s.span, 2.0 * kPi) * (s.outer * s.outer - s.inner * s.inner);
+  auto piece_bound = [&](double a, double b) {
+    const double d = std::clamp(r, a, b) - r;
+    return std::abs(term.weight) * std::min(kPi * b * b, mask_area) * (r / var) * std::exp(-0.5 * d * d / var) *
+           std::min(1.0, 0.5 * b * r / var) * (b - a);
+  };
+  const double negligible = 0.01 * tolerance / static_cast<double>(points.size());
+  double trimmed = 0.0;
+  std::size_t first = 0, last = points.size() - 1;
+  while (last - first > 1 && piece_bound(points[first], points[first + 1]) < negligible)
+    trimmed += piece_bound(points[first], points[first + 1]), ++first;
+  while (last - first > 1 && piece_bound(points[last - 1], points[last]) < negligible)
+    trimmed += piece_bound(points[last - 1], points[last]), --last;
 
   // Fixed discs centred on the aperture's centre (the aperture, a shadow in its plane) only cut the sectors'
   // outer radius: Lambda is then one disc's area per sector, by Green's theorem.
@@ -79,29 +103,37 @@ std::optional<RangeResult> moving_disc_integral(const CouplingTerm& term, const 
     centred = centred && discs[i].center.x == 0.0 && discs[i].center.y == 0.0;
     cut = std::min(cut, discs[i].radius);
   }
-  std::vector<AnnularSector> cut_sectors;
-  if (centred)
-    for (AnnularSector s : sectors) {
-      s.outer = std::min(s.outer, cut);
-      if (s.outer > s.inner) cut_sectors.push_back(s);
+  // Every mask's sectors in one list (owner[i]: the mask of sector i), cut to the fixed discs when centred.
+  std::vector<AnnularSector> all;
+  std::vector<std::size_t> owner;
+  for (std::size_t k = 0; k < masks.size(); ++k)
+    for (AnnularSector s : masks[k]) {
+      if (centred) s.outer = std::min(s.outer, cut);
+      if (!centred || s.outer > s.inner) {
+        all.push_back(s);
+        owner.push_back(k);
+      }
     }
-  auto area_within = [&](double q) {
-    double area = 0.0;
+  DiscSectorAreas green(mu, centred ? all : std::vector<AnnularSector>{});
+  std::vector<double> areas(all.size());
+  auto integrand = [&](double q, double* out) {
+    std::fill(out, out + masks.size(), 0.0);
+    const double d = q - r, g = std::exp(-0.5 * d * d / var);
+    if (g == 0.0) return;
+    const double k = term.weight * (r / var * g * scaled_bessel_i1(q * r / var));
     if (centred) {
-      for (const AnnularSector& s : cut_sectors) area += disc_sector_area(mu, q, s);
+      green(q, areas.data());
     } else {
       discs[n_fixed] = {mu, q};
-      for (const AnnularSector& s : sectors) area += sector_intersection_area(discs, n_fixed + 1, s);
+      for (std::size_t i = 0; i < all.size(); ++i) areas[i] = sector_intersection_area(discs, n_fixed + 1, all[i]);
     }
-    return area;
+    for (std::size_t i = 0; i < all.size(); ++i) out[owner[i]] += k * areas[i];
   };
-  auto integrand = [&](double q) {
-    const double d = q - r, g = std::exp(-0.5 * d * d / var);
-    if (g == 0.0) return 0.0;
-    return term.weight * area_within(q) * (r / var * g * scaled_bessel_i1(q * r / var));
-  };
-  const QuadratureResult result = integrate(integrand, points.data(), points.size(), tolerance, max_segments);
-  return RangeResult{result.value, result.error, result.evaluations, result.converged};
+  const std::vector<QuadratureResult> results = integrate_many(integrand, masks.size(), points.data() + first,
+                                                              last - first + 1, tolerance - trimmed, max_segments);
+  std::vector<RangeResult> out;
+  for (const QuadratureResult& q : results) out.push_back({q.value, q.error + trimmed, q.evaluations, q.converged});
+  return out;
 }
 
 }  // namespace lidar_overlap::beam_integral

@@ -19,12 +19,14 @@ namespace lidar_overlap::detail {
 // One beam integral's value, error bound, evaluations and convergence.
 using RtEntry = beam_integral::RangeResult;
 
-// G of `system` at the receiver's range: the coupling split into the receiver's terms (at most two), each
-// integrated over the beam by `integrate(term, beam_center, w, tolerance)` with its share of `tolerance`, and
+// G of `system` at the receiver's range through m apertures at once (the full one, or the masks of a telecover
+// test): the coupling split into the receiver's terms (at most two), each integrated over the beam by
+// `integrate(term, beam_center, w, tolerance)` (m entries, one per aperture) with its share of `tolerance`, and
 // summed. An obstruction's term cancels the unobstructed one where its shadow covers all the light that passes;
 // integrated on different breakpoints they then differ by round-off of either sign, which means G = 0.
-template <class Integrate>
-RtEntry sum_over_terms(const LidarSystem& system, const Receiver& rx, double tolerance, Integrate integrate) {
+template <class IntegrateMany>
+std::vector<RtEntry> sum_over_terms_many(const LidarSystem& system, const Receiver& rx, double tolerance,
+                                         std::size_t m, IntegrateMany integrate) {
   const double z = rx.range();
   const double w = system.beam.radius(z);
   const Vec2 center = system.beam.center(z);
@@ -32,15 +34,27 @@ RtEntry sum_over_terms(const LidarSystem& system, const Receiver& rx, double tol
   // 10 sigma = 5 w: the beam power beyond is below exp(-50).
   const std::size_t n_terms = rx.terms(center, 5.0 * w, terms);
   const double share = tolerance / static_cast<double>(n_terms);
-  RtEntry total;
-  double magnitude = 0.0;
+  std::vector<RtEntry> total(m);
+  std::vector<double> magnitude(m, 0.0);
   for (std::size_t t = 0; t < n_terms; ++t) {
-    const RtEntry r = integrate(terms[t], center, w, share);
-    total.add(r);
-    magnitude += std::abs(r.value);
+    const std::vector<RtEntry> r = integrate(terms[t], center, w, share);
+    for (std::size_t k = 0; k < m; ++k) {
+      total[k].add(r[k]);
+      magnitude[k] += std::abs(r[k].value);
+    }
   }
-  if (std::abs(total.value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude) total.value = 0.0;
+  for (std::size_t k = 0; k < m; ++k)
+    if (std::abs(total[k].value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude[k]) total[k].value = 0.0;
   return total;
+}
+
+// The same through one aperture: `integrate` returns one RtEntry.
+template <class Integrate>
+RtEntry sum_over_terms(const LidarSystem& system, const Receiver& rx, double tolerance, Integrate integrate) {
+  return sum_over_terms_many(system, rx, tolerance, 1, [&](const CouplingTerm& term, Vec2 center, double w,
+                                                             double tol) {
+    return std::vector<RtEntry>{integrate(term, center, w, tol)};
+  })[0];
 }
 
 // Checks the options every RT entry point shares (tolerance, max_segments); throws std::invalid_argument.

@@ -21,13 +21,6 @@ struct AnnularSector {
 // triangle plus or minus a circular segment: exact to rounding, with no quadrature.
 double sector_intersection_area(const Disc* discs, std::size_t n, const AnnularSector& sector);
 
-// Area (m^2) of disc(mu, q) ∩ sector, the same as sector_intersection_area for that one disc but by Green's
-// theorem on the region's boundary: arcs of the sector's two circles (closed forms in their angle), arcs of the
-// disc's circle between the points where it crosses the sector's circles and edges, and pieces of the edges,
-// which add nothing (x dy - y dx = 0 along a ray from the origin). A few acos and atan2, no angular sweep:
-// the 1-D beam integral of a masked term evaluates it at every node.
-double disc_sector_area(Vec2 mu, double q, const AnnularSector& sector);
-
 // Whether p (m) lies in the sector, and a lower bound of its distance (m) to the sector's boundary (for
 // sampling a masked pupil: pixels nearer than their half-diagonal are sub-sampled).
 bool sector_contains(const AnnularSector& sector, Vec2 p);

@@ -43,6 +43,18 @@ inline constexpr std::size_t kMaxMaskSectors = 64;
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
                      const RtOptions& options = {});
 
+// Most masks one call of the many-mask overlap_rt may hold.
+inline constexpr std::size_t kMaxMasks = 64;
+
+// G through each of several masks (the sectors of a telecover test) at every range, in one pass: where the
+// receiver's coupling has one moving boundary (no NA cone, obstruction absent or in the aperture plane) the
+// masks share the beam integral's nodes and its kernel, at about the cost of two masks traced alone; otherwise
+// each mask is traced as above. Entry i is masks[i]'s G to the same tolerance (not bit for bit the one-mask
+// call: the nodes differ). Throws std::invalid_argument as above, naming masks[i], and for 0 or more than
+// kMaxMasks masks.
+std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
+                                  const std::vector<ApertureMask>& masks, const RtOptions& options = {});
+
 // The Fourier-optics G through the mask (Gaussian beams): the sampled pupil of overlap_fo_aberrated cut to the
 // mask, its OTF by FFT, and G = G_0 + sum_q [OTF_masked(q) - OTF_full(q)] K^(q) dq^2 / (pi R^2) with G_0 the exact
 // radial full-aperture G. Diffraction couples the sectors: the parts of a partition add up to the full G only
