@@ -4,7 +4,7 @@ The receiver's aperture is covered but for one sector at a time (classically fou
 range-corrected signals of the sectors are compared through their normalised deviations
 S_i(z) / mean_j S_j(z) - 1. The atmosphere is the same for every sector, so the signals differ only through
 the overlap: S_i ∝ G_i, and the deviations are ratios of G's. :func:`telecover` computes each sector's G
-(one plan per sector, through the planner's masked ray-tracing path) and the full-aperture G.
+(one plan per sector; by ray tracing all sectors in one core call sharing their nodes) and the full-aperture G.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import numpy as np
 from . import _checks
 from ._datasets import xarray
 from .aperture_mask import ApertureMask
+from ._backends import masked as masked_backend
 from .compute import run
 from .planning import plan
 from .result import OverlapResult
@@ -101,7 +102,8 @@ def telecover(system: LidarSystem, ranges, sectors="quadrants", method="rt", tol
     if isinstance(method, str) and method != "fo":
         options["tolerance"] = tolerance
     full = run(plan(system, ranges, method, **options))
-    parts = tuple(run(plan(with_mask(system, part), full.ranges, method, **options)) for part in mask.split())
+    plans = [plan(with_mask(system, part), full.ranges, method, **options) for part in mask.split()]
+    parts = tuple(masked_backend.run_together(plans) if masked_backend.together(plans) else map(run, plans))
     return TelecoverResult(ranges=full.ranges, names=mask.names, sectors=parts, full=full)
 
 

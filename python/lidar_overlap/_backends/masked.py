@@ -1,7 +1,11 @@
 """Aperture masks (the telecover test): ray tracing or Fourier optics through the masked aperture, one core call
-for all ranges."""
+for all ranges; the RT plans of one system through several masks (a telecover test's sectors) in one call."""
 
 from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
 
 from .. import _core
 from ..validity import warn_if_rt_invalid, warn_if_rt_unconverged
@@ -29,3 +33,30 @@ def run_fo(plan):
     mask = plan.system.telescope.mask
     raw = _core.overlap_fo_masked(plan.system._native, plan.ranges, mask._native, plan.options)
     return result(plan, raw.overlap, FO_MASKED_ACCURACY)
+
+
+def together(plans) -> bool:
+    """Whether ``plans`` are ray tracing of one system, ranges and options through different masks: what
+    :func:`run_together` takes."""
+    first = plans[0]
+    same_options = lambda p: (p.options.tolerance, p.options.max_segments, p.options.threads) == (  # noqa: E731
+        first.options.tolerance, first.options.max_segments, first.options.threads)
+    unmasked = lambda p: dataclasses.replace(p.system, telescope=dataclasses.replace(p.system.telescope, mask=None))  # noqa: E731
+    return all(p.backend == "rt_masked" and same_options(p) and np.array_equal(p.ranges, first.ranges)
+               and p.rt_model_error == first.rt_model_error and p.tolerance == first.tolerance
+               and p.rt_diffraction_warning == first.rt_diffraction_warning
+               and unmasked(p) == unmasked(first) for p in plans)
+
+
+def run_together(plans) -> list:
+    """:func:`run` of each plan (see :func:`together`), in one core call: the masks share the beam integral's
+    nodes (each G to the plans' tolerance, not bit for bit the one-mask call). The validity warnings, the same
+    for every mask, are given once."""
+    first = plans[0]
+    raws = _core.overlap_rt_masks(first.system._native, first.ranges,
+                                  [p.system.telescope.mask._native for p in plans], first.options)
+    warn_if_rt_invalid(first.system, first.ranges, diffraction=first.rt_diffraction_warning)
+    for raw in raws:
+        warn_if_rt_unconverged(raw, first.ranges, first.rt_quadrature_tolerance,
+                               "raise max_segments or loosen tolerance")
+    return [result(p, raw.overlap, raw.error_estimate + p.rt_model_error) for p, raw in zip(plans, raws)]
