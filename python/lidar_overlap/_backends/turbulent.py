@@ -53,7 +53,7 @@ def run_rt(plan) -> TurbulentOverlapResult:
     """The RT draws: one wandering beam per realisation and range, in one batched core call. A range where the
     turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or lengths) is refused
     naming ``ranges[i]`` and the turbulence."""
-    _check_rt_work(plan.ranges, plan.turbulence.realizations)
+    check_work(plan.ranges, plan.turbulence.realizations)
     short_term, offsets = wander(plan)
     g, converged, error = rt_rows(plan, short_term, offsets)
     warn_rt(plan, converged, error)
@@ -156,8 +156,9 @@ def beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
                                offset=offset, tilt=(0.0, 0.0))
 
 
-def _check_rt_work(z: np.ndarray, realizations: int) -> None:
-    """Refuse, naming ``realizations``, more draws than the FO path allows or draws beyond the memory budget."""
+def check_work(z: np.ndarray, realizations: int) -> None:
+    """Refuse, naming ``realizations``, more draws than the FO path allows or draws beyond the memory budget (RT:
+    the drawn systems and their results; a study of either path: the rows it gathers)."""
     if realizations > MAX_REALIZATIONS:
         raise ValueError(f"realizations = {realizations} is invalid: expected a count from 1 to {MAX_REALIZATIONS}")
     _checks.check_memory("realizations", realizations, BYTES_PER_DRAW * realizations * z.size,
