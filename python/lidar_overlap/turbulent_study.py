@@ -17,7 +17,7 @@ Where they run (:mod:`lidar_overlap._engines`, as for :func:`lidar_overlap.toler
 Task size: each core call makes its set-up once, then its realisations, each costing the same (the FO path's
 set-up, a coupling map per range and a screen generator per screen, takes as long as 3 to 20 realisations: 0.05 s
 for a 64² beam grid and 4 ranges, 0.5 s for 256² and 20 ranges, on one core). Unless ``chunk`` is given, the first
-realisation runs here (one core thread) and the others are spread evenly over the workers, one task each, in tasks
+realisation runs here (on ``threads``) and the others are spread evenly over the workers, one task each, in tasks
 of no less than :data:`~lidar_overlap._engines.TASK_SECONDS` at that realisation's time: the set-up is then made
 once per worker, as by one call per machine. (A tolerance study's members share no set-up: it cuts them into many
 tasks of ~0.1 s instead.) A smaller ``chunk`` balances the load on a cluster of unequal workers.
@@ -54,7 +54,8 @@ def turbulent_realizations(system: LidarSystem, ranges, method: Turbulent, *, cl
     client : a ``dask.distributed.Client`` to run on; None runs in this process (see the module).
     chunk : realisations per task, 1 to :data:`MAX_REALIZATIONS`; None: the realisations after the first, which
         runs here, spread evenly over the workers in tasks of at least 0.1 s (see the module).
-    threads : cores used in this process, 0 for all; ignored with a client (its workers' threads decide).
+    threads : cores used in this process, 0 for all; with a client only by the first realisation, timed here (the
+        workers' threads decide).
 
     Returns an ``xarray.Dataset``, bit for bit ``lo.overlap(system, ranges, method)``: ``overlap`` (realization x
     range, G of each draw of the atmosphere), and per range ``mean`` (the overlap G), ``standard_error`` (of the
@@ -112,9 +113,9 @@ def _rows(kind, client, system, p, wander, chunk, threads):
     if kind == "loop" and chunk is None:                 # one call: the core's threads over the realisations
         return [_part(system, z, request, threads, 0, k, _slice(wander, 0, k))], k
     head, done = [], 0
-    if chunk is None:                                    # time the first realisation, here
+    if chunk is None:          # time the first realisation, here (its set-up on this process's threads)
         start = time.perf_counter()
-        head, done = [_part(system, z, request, 1, 0, 1, _slice(wander, 0, 1))], 1
+        head, done = [_part(system, z, request, threads, 0, 1, _slice(wander, 0, 1))], 1
         seconds, parallel = time.perf_counter() - start, engines.workers(client, threads)
         chunk = max(1, math.ceil(engines.TASK_SECONDS / max(seconds, 1e-9)), math.ceil((k - done) / parallel))
     one = threads if kind == "loop" else 1
