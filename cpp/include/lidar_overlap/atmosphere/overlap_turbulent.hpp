@@ -27,7 +27,6 @@ inline constexpr std::size_t kMaxScreens = 1000;
 
 struct TurbulenceOptions {
   std::size_t realizations = 20;        // realisations computed: first_realization, first_realization + 1, ...
-  std::size_t first_realization = 0;    // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
   std::size_t screens = 10;             // phase screens over [0, last range]
   std::uint64_t seed = 0;               // same seed, same screens, whatever the thread count
   std::size_t beam_grid = 256;          // samples per side of the propagated field
@@ -35,6 +34,8 @@ struct TurbulenceOptions {
   std::size_t max_spectrum_grid = 4096;
   int threads = 0;                      // OpenMP threads across realisations; 0: all cores, per call. Callers that run
                                         // calls from several threads pass 1 (or their share): core/limits.hpp
+  std::size_t first_realization = 0;    // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
+                                        // (last, so that braced initialisers of the fields above keep their meaning)
 };
 
 struct TurbulentOverlap {
