@@ -72,6 +72,7 @@ bench: setup
 	$(PY) benchmarks/bench_turbulent_overlap.py
 	$(PY) benchmarks/bench_aberrations.py
 	$(PY) benchmarks/bench_studies.py
+	$(PY) benchmarks/bench_turbulent_study.py
 	$(PY) benchmarks/bench_telecover.py
 	$(PY) benchmarks/bench_alignment.py
 	$(PY) benchmarks/bench_fit.py

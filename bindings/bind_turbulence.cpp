@@ -56,7 +56,10 @@ void bind_turbulence(py::module_& m) {
       py::arg("index"));
 
   bind_options(m, "TurbulenceOptions", "Options of overlap_fo_turbulent.",
-               option("realizations", &TurbulenceOptions::realizations, "Random draws of the atmosphere."),
+               option("realizations", &TurbulenceOptions::realizations,
+                      "Random draws of the atmosphere computed: first_realization, first_realization + 1, ..."),
+               option("first_realization", &TurbulenceOptions::first_realization,
+                      "Index of the first draw in the run of seed: its rows equal those of the whole run."),
                option("screens", &TurbulenceOptions::screens, "Phase screens over [0, last range]."),
                option("seed", &TurbulenceOptions::seed, "Same seed, same screens, whatever the thread count."),
                option("beam_grid", &TurbulenceOptions::beam_grid, "Samples per side of the propagated field."),

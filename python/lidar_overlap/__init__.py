@@ -32,6 +32,7 @@ from .studies import tolerance_study
 from .telecover import TelecoverResult, telecover
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
+from .turbulent_study import turbulent_realizations
 
 __all__ = [
     "__version__",
@@ -98,6 +99,7 @@ __all__ = [
     "set_max_memory",
     "telecover",
     "tolerance_study",
+    "turbulent_realizations",
     "propagate",
     "save_scene",
     "scene",

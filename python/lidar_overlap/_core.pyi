@@ -243,18 +243,20 @@ class Cn2Profile(_MadeByTheCore):
 
 class TurbulenceOptions(metaclass=_pybind11_type):
     realizations: int
+    first_realization: int
     screens: int
     seed: int
     beam_grid: int
     beam_window: float
     max_spectrum_grid: int
     threads: int
-    def __init__(self, *, realizations: _Int = ..., screens: _Int = ..., seed: _Int = ..., beam_grid: _Int = ...,
-                 beam_window: _Float = ..., max_spectrum_grid: _Int = ..., threads: _Int = ...) -> None: ...
+    def __init__(self, *, realizations: _Int = ..., first_realization: _Int = ..., screens: _Int = ...,
+                 seed: _Int = ..., beam_grid: _Int = ..., beam_window: _Float = ..., max_spectrum_grid: _Int = ...,
+                 threads: _Int = ...) -> None: ...
 
 class TurbulentOverlap(_MadeByTheCore):
     @property
-    def overlap(self) -> _Reals: ...  # realisations x ranges
+    def overlap(self) -> _Reals: ...  # realisations (from first_realization) x ranges
     @property
     def wander_x(self) -> _Reals: ...
     @property

@@ -20,14 +20,13 @@ cores). Results do not depend on it.
 
 from __future__ import annotations
 
-import math
 import time
 from typing import Any, List, Mapping, Sequence
 
 import numpy as np
 
 from . import _checks, _engines as engines, parameters
-from ._engines import run_tasks
+from ._engines import TASK_SECONDS, run_tasks
 from .compute import run
 from .distributions import draw, normalized, text
 from .methods import Turbulent
@@ -37,9 +36,6 @@ from .system import LidarSystem
 
 #: Most members a study may have (the draws alone are 8 bytes x n x parameters).
 MAX_MEMBERS = 10**7
-#: Each task runs about this long at least (s) when the chunk is left to the study: scheduling a task costs
-#: ~1 ms on a local cluster, so this keeps the overhead near 1 %.
-TASK_SECONDS = 0.1
 
 
 def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: int, ranges, *, method="rt",
@@ -91,7 +87,7 @@ def tolerance_study(system: LidarSystem, distributions: Mapping[str, Any], n: in
     head, seconds = _head(system, paths, values, z, request)
     done, workers = len(head), engines.workers(client, threads)
     if chunk is None:
-        chunk = min(max(1, math.ceil(TASK_SECONDS / max(seconds, 1e-9))), max(1, math.ceil((n - done) / workers)))
+        chunk = engines.items_per_task(seconds, n - done, workers)
     bounds = [(s, min(s + chunk, n)) for s in range(done, n, chunk)]
     loop_threads = threads if seconds >= TASK_SECONDS else 1
     parts = _compute(engine, client, bounds, system, paths, values, z, request, loop_threads, workers)

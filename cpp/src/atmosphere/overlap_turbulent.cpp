@@ -162,6 +162,11 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
                  "None (a diffraction-limited TEM00 beam with the Gaussian width law) for the turbulent FO path");
   if (o.realizations < 1 || o.realizations > kMaxRealizations)
     checks::fail("realizations", static_cast<double>(o.realizations), "a count from 1 to 1000000");
+  // first + realizations <= kMaxRealizations, written so that no sum can wrap (realizations is checked above).
+  if (o.first_realization > kMaxRealizations - o.realizations)
+    checks::fail("first_realization", static_cast<double>(o.first_realization),
+                 "an index from 0 to " + std::to_string(kMaxRealizations - o.realizations) +
+                     " (first_realization + realizations <= 1000000)");
   if (o.screens < 1 || o.screens > kMaxScreens) checks::fail("screens", static_cast<double>(o.screens), "a count from 1 to 1000");
   if (o.beam_grid < 32 || o.beam_grid % 2) checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
   checks::grid("beam_grid", o.beam_grid, sizeof(Complex), 4);  // at least a field, a screen pair and a map
@@ -238,13 +243,17 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   out.wander_x.assign(o.realizations, 0.0);
   out.wander_y.assign(o.realizations, 0.0);
   out.radius_last.assign(o.realizations, 0.0);
-  // Screen j of realisation k is element k % 2 of pair k / 2 of screen j's stream (the seed mixed with
-  // j): one FFT makes both. With enough realisations to keep every thread busy, each task carries the
-  // two realisations of a pair side by side and uses both screens.
-  const std::size_t per_task = o.realizations >= 2 * static_cast<std::size_t>(threads) ? 2 : 1;
-  const std::size_t tasks = (o.realizations + per_task - 1) / per_task;
+  // Screen j of realisation k (k counted from the run's start: first_realization + row) is element k % 2 of
+  // pair k / 2 of screen j's stream (the seed mixed with j): one FFT makes both. With enough realisations to
+  // keep every thread busy, each task carries the realisations of one pair side by side and uses both
+  // screens; a part that starts or ends inside a pair takes its one member of it. Each realisation's field
+  // sees only its own screens, so its G is the same in any part and on any thread.
+  const std::size_t first = o.first_realization, end = first + o.realizations;
+  const bool by_pairs = o.realizations >= 2 * static_cast<std::size_t>(threads);
+  const std::size_t tasks = by_pairs ? (end - 1) / 2 - first / 2 + 1 : o.realizations;
   detail::parallel_for(tasks, threads, [&](std::size_t t) {
-    const std::size_t k0 = per_task * t, count = std::min(per_task, o.realizations - k0);
+    const std::size_t k0 = by_pairs ? std::max(first, 2 * (first / 2 + t)) : first + t;
+    const std::size_t count = by_pairs ? std::min(end, 2 * (first / 2 + t) + 2) - k0 : 1;
     std::vector<Field> fields(count, Field::gaussian(lambda, w0, n, spacing_at(0.0)));
     for (std::size_t s = 0; s < planes.size(); ++s) {
       const Plane& p = planes[s];
@@ -256,14 +265,14 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
         for (std::size_t c = 0; c < count; ++c) apply_phase_screen(fields[c], pair[(k0 + c) % 2]);
       }
       if (p.range >= 0)
-        for (std::size_t c = 0; c < count; ++c) out.overlap[k0 + c][p.range] = maps[p.range]->overlap(fields[c]);
+        for (std::size_t c = 0; c < count; ++c) out.overlap[k0 - first + c][p.range] = maps[p.range]->overlap(fields[c]);
     }
     for (std::size_t c = 0; c < count; ++c) {
       if (last_step) last_step->finish(fields[c]);
       const Vec2 centre = fields[c].centroid();
-      out.wander_x[k0 + c] = centre.x;
-      out.wander_y[k0 + c] = centre.y;
-      out.radius_last[k0 + c] = fields[c].beam_radius();
+      out.wander_x[k0 - first + c] = centre.x;
+      out.wander_y[k0 - first + c] = centre.y;
+      out.radius_last[k0 - first + c] = fields[c].beam_radius();
     }
   });
   for (std::vector<double>& g : out.overlap) checks::overlap_values(g, ranges, detail::kFoOverlapSlack, "overlap_fo_turbulent");

@@ -8,6 +8,9 @@
 // Each realisation is one random draw of the atmosphere (frozen during the pulse): the statistics over
 // realisations give the mean overlap and its spread. The return path is taken as unperturbed (the
 // receiver sees the scattering volume through the same turbulence, which mostly moves the image).
+// A run (seed, screens, grid) is a fixed sequence of realisations: realisation k's screens depend only on
+// (seed, k), never on the thread count or on the other realisations, so a call with first_realization = f and
+// realizations = c gives rows f .. f + c - 1 of the run, bit for bit: the run splits into parts on many machines.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +26,7 @@ inline constexpr std::size_t kMaxRealizations = 1000000;
 inline constexpr std::size_t kMaxScreens = 1000;
 
 struct TurbulenceOptions {
-  std::size_t realizations = 20;
+  std::size_t realizations = 20;        // realisations computed: first_realization, first_realization + 1, ...
   std::size_t screens = 10;             // phase screens over [0, last range]
   std::uint64_t seed = 0;               // same seed, same screens, whatever the thread count
   std::size_t beam_grid = 256;          // samples per side of the propagated field
@@ -31,10 +34,12 @@ struct TurbulenceOptions {
   std::size_t max_spectrum_grid = 4096;
   int threads = 0;                      // OpenMP threads across realisations; 0: all cores, per call. Callers that run
                                         // calls from several threads pass 1 (or their share): core/limits.hpp
+  std::size_t first_realization = 0;    // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
+                                        // (last, so that braced initialisers of the fields above keep their meaning)
 };
 
 struct TurbulentOverlap {
-  std::vector<std::vector<double>> overlap;  // [realisation][range]
+  std::vector<std::vector<double>> overlap;  // [realisation - first_realization][range]
   std::vector<double> wander_x, wander_y;    // m, beam centroid at the last range, per realisation
   std::vector<double> radius_last;           // m, second-moment radius at the last range, per realisation
 };
