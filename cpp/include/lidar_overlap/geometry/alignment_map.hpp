@@ -47,7 +47,10 @@ struct AlignmentMap {
 };
 
 // G at every grid point of `axes` (1 or 2 axes, distinct parameters) and range (m), each entry bit for bit
-// overlap_rt(misaligned system, {range}, options), in parallel over all entries. `values.axisymmetric` is
+// overlap_rt(misaligned system, {range}, options), in parallel over all entries; entries that are the same
+// computation (axes that only move the beam, its centre at the same distance from the receiver's centre of
+// symmetry: the mirror images of a symmetric grid) are made once and copied, and `values.evaluations` counts
+// each entry as made alone. `values.axisymmetric` is
 // true when every grid point's system is. Throws std::invalid_argument naming the axis (e.g.
 // "tilt_x[3]") for a non-finite or unsorted value or one that makes an invalid system, "axes" for their
 // count or a repeated parameter, and the size for grids beyond the caps or the memory budget.
