@@ -65,6 +65,19 @@ int main() {
                std::max(both, 0.0), area_tolerance);
   }
 
+  // Random crossing pairs of comparable discs (segments of every half-angle, through the switch from the series
+  // of x - sin x at 2h = 0.25 to the closed form) against the long-double acos form.
+  std::mt19937_64 pair_rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst_pair = 0.0;
+  for (int i = 0; i < 20000; ++i) {
+    const double r1 = 0.2 + unit(pair_rng), r2 = 0.2 + unit(pair_rng);
+    const double d = std::abs(r1 - r2) + (0.001 + 0.998 * unit(pair_rng)) * (r1 + r2 - std::abs(r1 - r2));
+    const double expected = static_cast<double>(lens_ld(r1, r2, d));
+    worst_pair = std::max(worst_pair, std::abs(lens_area({{0, 0}, r1}, {{d, 0}, r2}) - expected));
+  }
+  test::near("random crossing pairs against the long-double acos form", worst_pair, 0.0, 1e-14);
+
   // Random triples and quadruples against a 1000x1000 grid count (area error ~ perimeter * h).
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> pos(-1.0, 1.0), rad(0.3, 1.5);

@@ -64,7 +64,8 @@ bool moves_beam_only(AlignmentParameter p) {
 // 231 distinct distances) are traced once.
 template <class PointSystem>
 std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std::vector<AlignmentAxis>& axes,
-                                            const std::vector<double>& ranges, const PointSystem& point_system) {
+                                            const std::vector<double>& ranges, const PointSystem& point_system,
+                                            int threads) {
   const std::size_t n_ranges = ranges.size(), points = [&] {
     std::size_t p = 1;
     for (const AlignmentAxis& a : axes) p *= a.values.size();
@@ -81,11 +82,13 @@ std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std
     std::memcpy(&b, &x, sizeof b);
     return b;
   };
-  std::vector<Key> keys(points);
-  std::vector<std::size_t> order(points);
-  for (std::size_t z = 0; z < n_ranges; ++z) {
-    const Receiver rx(system, ranges[z]);  // the beam does not enter the receiver
+  std::vector<Receiver> receivers;  // built before the parallel region (the beam does not enter them)
+  for (double z : ranges) receivers.emplace_back(system, z);
+  detail::parallel_for(n_ranges, threads, [&](std::size_t z) {
+    const Receiver& rx = receivers[z];
     const double w = system.beam.radius(ranges[z]);
+    std::vector<Key> keys(points);
+    std::vector<std::size_t> order(points);
     for (std::size_t p = 0; p < points; ++p) {
       const Vec2 c = point_system(p).beam.center(ranges[z]);
       CouplingTerm terms[2];
@@ -104,7 +107,7 @@ std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std
     for (std::size_t i = 1; i < points; ++i)
       if (keys[order[i]] == keys[order[i - 1]])
         source[order[i] * n_ranges + z] = source[order[i - 1] * n_ranges + z];
-  }
+  });
   return source;
 }
 
@@ -177,7 +180,7 @@ AlignmentMap alignment_map(const LidarSystem& system, const std::vector<Alignmen
     return axes.size() == 2 ? misaligned(s, axes[1].parameter, axes[1].values[point % n1]) : s;
   };
   std::vector<detail::RtEntry> results(n);
-  const std::vector<std::size_t> source = equivalent_entries(system, axes, ranges, point_system);
+  const std::vector<std::size_t> source = equivalent_entries(system, axes, ranges, point_system, threads);
   detail::parallel_for(n, threads, [&](std::size_t e) {
     if (source[e] != e) return;
     const LidarSystem s = point_system(e / n_ranges);
