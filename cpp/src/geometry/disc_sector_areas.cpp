@@ -30,7 +30,10 @@ double angle_of(double c, double s) {
 }
 
 // acos(c) for c in [-1, 1], through angle_of ((1 - c)(1 + c) keeps the digits near +-1).
-double arc_cos(double c) { return angle_of(c, std::sqrt((1.0 - c) * (1.0 + c))); }
+double arc_cos(double c) {
+  if (c <= -1.0 || c >= 1.0) return c <= -1.0 ? kPi : 0.0;  // a full or an empty arc: no atan
+  return angle_of(c, std::sqrt((1.0 - c) * (1.0 + c)));
+}
 
 // The arc [start, start + length] (rad) of the circle of radius rho about the origin inside disc(mu, q).
 void circle_inside_disc(double rho, double m, double phi_mu, double q, double& start, double& length) {
@@ -54,10 +57,12 @@ void circle_inside_disc(double rho, double m, double phi_mu, double q, double& s
 DiscSectorAreas::DiscSectorAreas(Vec2 mu, const std::vector<AnnularSector>& sectors) : mu_(mu), m_(norm(mu)) {
   u_mu_ = m_ > 0.0 ? (1.0 / m_) * mu : Vec2{1.0, 0.0};
   phi_mu_ = m_ > 0.0 ? std::atan2(mu.y, mu.x) : 0.0;
+  // Edges within rounding of each other (a quadrant's stop at 5 pi / 4 and the next one's start at -3 pi / 4)
+  // are one ray: its crossings are found once, and the sectors on either side share it exactly.
   auto ray = [&](double angle) {
     const Vec2 u{std::cos(angle), std::sin(angle)};
     for (std::size_t i = 0; i < rays_.size(); ++i)
-      if (rays_[i].u.x == u.x && rays_[i].u.y == u.y) return i;
+      if (norm(rays_[i].u - u) <= 1e-15) return i;
     rays_.push_back({u, dot(u, mu), u.x * mu.y - u.y * mu.x});
     return rays_.size() - 1;
   };
@@ -75,20 +80,26 @@ DiscSectorAreas::DiscSectorAreas(Vec2 mu, const std::vector<AnnularSector>& sect
   annulus_state_.resize(annuli_.size());
   ray_state_.resize(rays_.size());
   pieces_.reserve(2 + 2 * rays_.size());
+  sides_.resize(rays_.size());
 }
 
-DiscSectorAreas::OnCircle DiscSectorAreas::on_circle(double delta, double cos_delta) const {
-  const double sin_delta = std::copysign(std::sqrt(std::max(0.0, 1.0 - cos_delta * cos_delta)), delta);
+DiscSectorAreas::OnCircle DiscSectorAreas::on_circle(double delta, double cos_delta, double sin_delta) const {
   return {delta, {cos_delta * u_mu_.x - sin_delta * u_mu_.y, cos_delta * u_mu_.y + sin_delta * u_mu_.x}};
+}
+
+// The sign of cross(u, mu + q sum / |sum|) (the side of the ray's line the piece's middle lies on) from |sum|^2:
+// cross(u, mu) |sum| + q cross(u, sum), its sign found without the square root.
+double DiscSectorAreas::side(const Ray& r, Vec2 sum, double length2, double q) const {
+  const double a = r.off, b = q * (r.u.x * sum.y - r.u.y * sum.x);
+  if ((a >= 0.0) == (b >= 0.0)) return a + b;
+  return a > 0.0 ? a * a * length2 - b * b : b * b - a * a * length2;
 }
 
 double DiscSectorAreas::arc_term(double q, const OnCircle& a, const OnCircle& b) const {
   return 0.5 * (q * q * (b.delta - a.delta) + q * (mu_.x * (b.e.y - a.e.y) - mu_.y * (b.e.x - a.e.x)));
 }
 
-bool DiscSectorAreas::in_wedge(const Wedge& w, Vec2 p) const {
-  const Vec2 u1 = rays_[w.first].u, u2 = rays_[w.second].u;
-  const double after_start = u1.x * p.y - u1.y * p.x, before_end = p.x * u2.y - p.y * u2.x;
+bool DiscSectorAreas::in_wedge(const Wedge& w, double after_start, double before_end) const {
   return w.span <= kPi ? (after_start >= 0.0 && before_end >= 0.0) : (after_start >= 0.0 || before_end >= 0.0);
 }
 
@@ -110,13 +121,14 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     const double c_a = (an.inner * an.inner - m_ * m_ - q * q) / (2.0 * m_ * q);
     if (c_b < -1.0 || c_a > 1.0) continue;
     const double cos_lo = std::min(1.0, c_b), cos_hi = std::max(-1.0, c_a);
-    const double lo = arc_cos(cos_lo), hi = arc_cos(cos_hi);
+    const double sin_lo = std::sqrt((1.0 - cos_lo) * (1.0 + cos_lo)), sin_hi = std::sqrt((1.0 - cos_hi) * (1.0 + cos_hi));
+    const double lo = cos_lo >= 1.0 ? 0.0 : angle_of(cos_lo, sin_lo), hi = cos_hi <= -1.0 ? kPi : angle_of(cos_hi, sin_hi);
     if (!(hi > lo)) continue;
     st.arcs = true;
-    st.ends[0][0] = on_circle(-hi, cos_hi);
-    st.ends[0][1] = on_circle(-lo, cos_lo);
-    st.ends[1][0] = on_circle(lo, cos_lo);
-    st.ends[1][1] = on_circle(hi, cos_hi);
+    st.ends[0][0] = on_circle(-hi, cos_hi, -sin_hi);
+    st.ends[0][1] = on_circle(-lo, cos_lo, -sin_lo);
+    st.ends[1][0] = on_circle(lo, cos_lo, sin_lo);
+    st.ends[1][1] = on_circle(hi, cos_hi, sin_hi);
   }
   // Where the disc's circle crosses each edge ray t u (t > 0).
   for (std::size_t i = 0; i < rays_.size() && m_ > 0.0; ++i) {
@@ -125,10 +137,10 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     rs.n = 0;
     const double h2 = q * q - r.off * r.off;
     if (!(h2 > 0.0)) continue;
-    const double h = std::sqrt(h2);
+    const double h = std::sqrt(h2), inv_q = 1.0 / q;
     for (double t : {r.along - h, r.along + h}) {
       if (!(t > 0.0)) continue;
-      const Vec2 e = (1.0 / q) * (t * r.u - mu_);
+      const Vec2 e = inv_q * (t * r.u - mu_);
       rs.at[rs.n++] = {angle_of(dot(u_mu_, e), u_mu_.x * e.y - u_mu_.y * e.x), e};
     }
   }
@@ -158,12 +170,21 @@ void DiscSectorAreas::operator()(double q, double* areas) {
       pieces_.push_back(arc[1]);
       for (std::size_t p = 0; p + 1 < pieces_.size(); ++p) {
         const double term = arc_term(q, pieces_[p], pieces_[p + 1]);
-        // The piece's middle: along the chord's midpoint (a piece spans at most pi), or by angle at pi.
+        // The piece's middle lies along the chord's midpoint (a piece spans at most pi): its side of each ray
+        // from the sum of the ends' directions; a piece of exactly pi by its middle angle.
         const Vec2 sum = pieces_[p].e + pieces_[p + 1].e;
-        const double length = norm(sum), mid = phi_mu_ + 0.5 * (pieces_[p].delta + pieces_[p + 1].delta);
-        const Vec2 middle = mu_ + q * (length > 1e-6 ? (1.0 / length) * sum : Vec2{std::cos(mid), std::sin(mid)});
-        for (std::size_t k = 0; k < wedges_.size(); ++k)
-          if (wedges_[k].annulus == j && (wedges_[k].span >= kTwoPi || in_wedge(wedges_[k], middle))) areas[k] += term;
+        const double length2 = dot(sum, sum);
+        if (length2 > 1e-12) {
+          for (std::size_t i = 0; i < rays_.size(); ++i) sides_[i] = side(rays_[i], sum, length2, q);
+        } else {
+          const double mid = phi_mu_ + 0.5 * (pieces_[p].delta + pieces_[p + 1].delta);
+          const Vec2 middle = mu_ + q * Vec2{std::cos(mid), std::sin(mid)};
+          for (std::size_t i = 0; i < rays_.size(); ++i) sides_[i] = rays_[i].u.x * middle.y - rays_[i].u.y * middle.x;
+        }
+        for (std::size_t k = 0; k < wedges_.size(); ++k) {
+          const Wedge& w = wedges_[k];
+          if (w.annulus == j && (w.span >= kTwoPi || in_wedge(w, sides_[w.first], -sides_[w.second]))) areas[k] += term;
+        }
       }
     }
   }

@@ -51,9 +51,10 @@ class DiscSectorAreas {
     OnCircle at[2];
   };
 
-  OnCircle on_circle(double delta, double cos_delta) const;
+  OnCircle on_circle(double delta, double cos_delta, double sin_delta) const;
   double arc_term(double q, const OnCircle& a, const OnCircle& b) const;
-  bool in_wedge(const Wedge& w, Vec2 p) const;
+  double side(const Ray& r, Vec2 sum, double length2, double q) const;
+  bool in_wedge(const Wedge& w, double after_start, double before_end) const;
 
   Vec2 mu_, u_mu_;
   double m_, phi_mu_;
@@ -63,6 +64,7 @@ class DiscSectorAreas {
   std::vector<AnnulusState> annulus_state_;
   std::vector<RayState> ray_state_;
   std::vector<OnCircle> pieces_;
+  std::vector<double> sides_;  // per ray: the sign of cross(u, the piece's middle)
 };
 
 // The area of disc(mu, q) ∩ sector for one disc and sector (DiscSectorAreas of one sector).

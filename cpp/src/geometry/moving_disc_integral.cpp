@@ -69,7 +69,10 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
   // The kernel is below exp(-50) of its peak beyond 10 sigma from r (a Gaussian in q about r when r >> sigma,
   // q exp(-q^2 / 2 sigma^2) when r << sigma).
   const double lo = std::max(0.0, r - 10.0 * sigma), hi = r + 10.0 * sigma;
-  std::vector<double> points{lo, hi};
+  // The kernel's bump (width sigma about r when r >> sigma) gets its own pieces: one rule each, no bisection.
+  std::vector<double> points{lo, hi, r - 5.0 * sigma, r, r + 5.0 * sigma};
+  points.erase(std::remove_if(points.begin() + 2, points.end(), [&](double q) { return !(q > lo && q < hi); }),
+               points.end());
   for (const std::vector<AnnularSector>& sectors : masks)
     for (double q : kink_radii(discs, n_fixed, sectors, mu))
       if (q > lo && q < hi) points.push_back(q);
