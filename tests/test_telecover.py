@@ -4,6 +4,7 @@ planner's choices and bad input."""
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -162,6 +163,26 @@ def test_stated_errors_bound_the_actual_ones_through_masks():
             for tol in (1e-3, 1e-4):
                 g = lo.overlap(m, z, "rt", tolerance=tol)
                 assert np.all(np.abs(g.overlap - ref) <= g.error_estimate + 1e-12)
+
+
+@pytest.mark.parametrize("tilt, offset, waist", [(0.0, 0.0, 1e-6), (5e-3, 0.07, 1e-3), (1e-6, 0.5, 0.05),
+                                                  (5e-3, 0.5, 1e-6)])
+def test_extreme_beams_through_the_sectors_give_finite_g_in_0_1(tilt, offset, waist):
+    # Beams far off the aperture, tilted out of the field of view, point-like or wide, from 0.5 m to 1000 km:
+    # the 1-D path and the sectors-together call stay finite and within [0, 1] (or refuse by name).
+    s = lo.paper_table1()
+    s = dataclasses.replace(s, beam=dataclasses.replace(s.beam, tilt=(tilt, 0.0), offset=(0.0, offset),
+                                                        waist_radius=waist))
+    z = np.array([0.5, 1.0, 10.0, 1e3, 1e6])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")                     # RT outside its validity near the lidar: said, not tested
+        tele = lo.telecover(s, z)
+    g = np.array([p.overlap for p in tele.sectors])
+    assert np.all(np.isfinite(g)) and np.all((g >= -TOL) & (g <= 1 + TOL))
+    with pytest.raises(ValueError, match=r"ranges\[0\]"):
+        lo._core.overlap_rt_masks(s._native, [float("nan")], [lo.ApertureMask.quadrants()._native])
+    with pytest.raises(ValueError, match="masks = 0"):
+        lo._core.overlap_rt_masks(s._native, [100.0], [])
 
 
 def test_telecover_traces_the_sectors_together_as_one_at_a_time():
