@@ -19,6 +19,19 @@ def best_time(fn, repeats, setup=None):
     return best, result
 
 
+def alternated_best(runs, repeats):
+    """Each callable of ``runs`` (name -> function) run ``repeats`` + 1 times in turn, so that all see the same
+    load, the first round untimed. Returns ({name: best time in s}, {name: last result})."""
+    times, last = {name: [] for name in runs}, {}
+    for i in range(repeats + 1):
+        for name, fn in runs.items():
+            t1 = time.perf_counter()
+            last[name] = fn()
+            if i:
+                times[name].append(time.perf_counter() - t1)
+    return {name: min(t) for name, t in times.items()}, last
+
+
 def source_commit():
     """Commit of the source tree beside this script (the installed build may be older), or None."""
     try:

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 import lidar_overlap as lo
-from _common import best_time, load_average, source_commit
+from _common import alternated_best, best_time, load_average, source_commit
 
 MEMBERS = 1000
 RANGES = np.geomspace(10.0, 3000.0, 60)
@@ -52,14 +52,8 @@ def main():
             Client(cluster) as client:
         t_start = time.perf_counter() - t0
         runs = {"local": study, "cluster": lambda: study(client=client)}
-        times, last = {name: [] for name in runs}, {}
-        for i in range(REPEATS + 1):          # alternated, so both see the same load; the first is untimed
-            for name, fn in runs.items():
-                t1 = time.perf_counter()
-                last[name] = fn()
-                if i:
-                    times[name].append(time.perf_counter() - t1)
-    (t_local, local), (t_cluster, remote) = ((min(times[k]), last[k]) for k in runs)
+        best, last = alternated_best(runs, REPEATS)
+    (t_local, local), (t_cluster, remote) = ((best[k], last[k]) for k in runs)
     dask = sys.modules.pop("dask")
     sys.modules["dask"] = None                     # import dask now fails: the plain loop
     try:

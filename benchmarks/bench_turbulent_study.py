@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 import lidar_overlap as lo
-from _common import load_average, source_commit
+from _common import alternated_best, load_average, source_commit
 
 RANGES = np.geomspace(50.0, 2000.0, 20)
 CN2 = 1e-14              # m^-2/3
@@ -55,14 +55,7 @@ def main():
                 "cluster_chunk16": lambda: lo.turbulent_realizations(system, RANGES, METHOD, client=client,
                                                                      chunk=16),
                 "cluster_chunk4": lambda: lo.turbulent_realizations(system, RANGES, METHOD, client=client, chunk=4)}
-        times, last = {name: [] for name in runs}, {}
-        for i in range(REPEATS + 1):          # alternated, so all see the same load; the first is untimed
-            for name, fn in runs.items():
-                t1 = time.perf_counter()
-                last[name] = fn()
-                if i:
-                    times[name].append(time.perf_counter() - t1)
-    best = {name: min(t) for name, t in times.items()}
+        best, last = alternated_best(runs, REPEATS)
     ref = last["overlap"]
     same = all(np.array_equal(ds.overlap.values, ref.realizations) and np.array_equal(ds["mean"].values, ref.overlap)
                and np.array_equal(ds["std"].values, ref.std) for name, ds in last.items() if name != "overlap")

@@ -19,7 +19,6 @@ of 4 w0 fails there (the cut field's diffraction rings spill out of the field of
 import dataclasses
 import warnings
 
-import numpy as np
 import pytest
 
 import lidar_overlap as lo
