@@ -12,9 +12,10 @@ import math
 
 from hypothesis import strategies as st
 
+import _hostile_probes_analysis as analysis
 from _hostile_values import (INF, aberrations, corruptions, detector, detector_from_fov, gaussian_beam,
                              cached, corrupt, hostile_choice, hostile_count, hostile_object, hostile_pair, hostile_real, ranges,
-                             sanes, system, telescope)
+                             sanes, system, telescope, tolerance)
 from _probe_worker import Attr, call
 
 _booleans = st.booleans()
@@ -133,10 +134,6 @@ OPTION_HOSTILITY = {"method": hostile_choice, "tolerance": hostile_real, "thread
                     "turbulence": hostile_object | hostile_real, "realizations": hostile_count,
                     "seed": hostile_count, "screens": hostile_count}
 _rt_or_fo = st.sampled_from(("rt", "fo"))
-
-
-def tolerance(r) -> float:
-    return r.often(r.choice((1e-4, 1e-3, 1e-2)), lambda: r.log(1e-6, 0.5))
 
 
 @st.composite
@@ -303,7 +300,7 @@ def optimal_focus(draw):
     return call("optimal_focus_range", **corrupt(draw, sane, FOCUS_HOSTILITY))
 
 
-#: Every entry point's probe strategy, and its examples in a run of the test suite (2,360 in all; a
+#: Every entry point's probe strategy, and its examples in a run of the test suite (2,560 in all; a
 #: campaign shares its probes in the same proportions). Paths that draw valid Fourier-optics work get fewer.
 PROBES = {
     "GaussianBeam": (gaussian_beam(), 100),
@@ -336,4 +333,8 @@ PROBES = {
     "detector_image": (detector_image(), 60),
     "Turbulence_methods": (turbulence_method(), 80),
     "optimal_focus_range": (optimal_focus(), 60),
+    "alignment_map": (analysis.alignment_map(), 60),
+    "telecover": (analysis.telecover(), 60),
+    "sensitivity": (analysis.sensitivity(), 40),
+    "correct": (analysis.correct(), 40),
 }

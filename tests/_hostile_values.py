@@ -87,6 +87,11 @@ class Sane(random.Random):
 sanes = st.integers(0, 2**32 - 1).map(Sane)
 
 
+def tolerance(r) -> float:
+    """A sane RT tolerance: 1e-4, 1e-3 or 1e-2, or log-uniform in [1e-6, 0.5]."""
+    return r.often(r.choice((1e-4, 1e-3, 1e-2)), lambda: r.log(1e-6, 0.5))
+
+
 def cached(factory):
     """One strategy object per set of arguments: hypothesis validates each new object on its first draw."""
     return functools.lru_cache(maxsize=None)(factory)

@@ -214,6 +214,24 @@ def judge_result(result, node, built) -> tuple:
         fieldbeam = isinstance(getattr(built[0], "beam", None), lo.FieldBeam) if built else False
         _finite_number("rt_model_error", result.rt_model_error, problems, 0.0, allow_nan=fieldbeam)
         summary["method"], summary["fo_path"] = result.method, result.fo_path
+    elif isinstance(result, lo.TelecoverResult):
+        _finite_array("sectors' overlap", result.overlap, problems, 0.0, 1.0)
+        _finite_array("full.overlap", result.full.overlap, problems, 0.0, 1.0)
+        dev = np.asarray(result.deviation, dtype=float)   # NaN is documented where every sector's G is 0
+        if np.any(np.isinf(dev)) or np.any(np.isnan(dev) & (np.asarray(result.overlap).sum(axis=0) > 0)):
+            problems.append("deviation holds an infinite value, or NaN where the sectors see light")
+        summary["overlap"] = np.asarray(result.overlap).tolist()
+    elif isinstance(result, lo.CorrectedSignal):
+        mask = np.asarray(result.mask, dtype=bool)
+        for name in ("values", "std"):                    # NaN is documented where masked
+            _finite_array(name, np.asarray(getattr(result, name), dtype=float)[~mask], problems)
+        summary["masked"] = int(mask.sum())
+    elif type(result).__name__ == "Dataset":              # alignment maps and sensitivities (xarray)
+        for name, var in result.data_vars.items():
+            if var.dtype.kind in "biuf":                  # units and labels are strings
+                low, high = (0.0, 1.0) if name == "overlap" else (None, None)
+                _finite_array(name, var.values, problems, low, high)
+        summary["variables"] = sorted(result.data_vars)
     elif isinstance(result, lo.GaussianBeam):
         _finite_number("half_angle_divergence", result.half_angle_divergence, problems, 0.0)
     elif isinstance(result, lo.Detector):
