@@ -197,10 +197,20 @@ int main() {
     test::near("quadrants together add up to G at " + std::to_string(tele_ranges[i]), parts,
                table1_full.overlap[i], 4e-4);
   }
-  const std::vector<RtOverlap> with_na = overlap_rt(sys, ranges, {quadrant(0), quadrant(2)}, opt);
-  const RtOverlap alone_na = overlap_rt(sys, ranges, quadrant(2), opt);
-  test::that("NA: each mask traced alone, bit for bit", with_na[1].overlap == alone_na.overlap &&
-                                                            with_na[1].error_estimate == alone_na.error_estimate);
+  LidarSystem narrow_na = sys;  // an NA cone narrower than the telescope's: a second moving boundary
+  narrow_na.detector.numerical_aperture = 0.05;
+  const std::vector<RtOverlap> with_na = overlap_rt(narrow_na, ranges, {quadrant(0), quadrant(2)}, opt);
+  const RtOverlap alone_na = overlap_rt(narrow_na, ranges, quadrant(2), opt);
+  test::that("narrow NA: each mask traced alone, bit for bit",
+             with_na[1].overlap == alone_na.overlap && with_na[1].error_estimate == alone_na.error_estimate);
+  // An NA cone wider than the telescope's bounds nothing: left out, it gives the G of the system without an NA.
+  LidarSystem wide_na = table1;
+  wide_na.detector.numerical_aperture = 0.22;
+  const std::vector<RtOverlap> wide = overlap_rt(wide_na, tele_ranges, quadrants, opt);
+  for (int k = 0; k < 4; ++k)
+    for (std::size_t i = 0; i < tele_ranges.size(); ++i)
+      test::near("wide NA = no NA, quadrant " + std::to_string(k) + " at " + std::to_string(tele_ranges[i]),
+                 wide[k].overlap[i], together[k].overlap[i], 1e-12);
   test::throws("no masks", [&] { overlap_rt(sys, ranges, std::vector<ApertureMask>{}, opt); }, "masks");
   test::throws("a bad mask among several", [&] { overlap_rt(sys, ranges, {quadrant(0), ApertureMask{}}, opt); },
                "masks[1].sectors");

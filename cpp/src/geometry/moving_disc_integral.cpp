@@ -51,21 +51,37 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
   if (term.n_gates != 0) return std::nullopt;
   Disc discs[kMaxDiscs];
   std::size_t n_fixed = 0;
-  const MovingDisc* moving = nullptr;
+  const MovingDisc* moving[CouplingTerm::kMaxMoving];
+  std::size_t n_moving = 0;
   for (std::size_t i = 0; i < term.n_discs; ++i) {
     const MovingDisc& d = term.discs[i];
     if (d.scale != 0.0) {
-      if (moving) return std::nullopt;
-      moving = &d;
+      moving[n_moving++] = &d;
     } else {
       if (n_fixed + 1 >= kMaxDiscs) return std::nullopt;
       discs[n_fixed++] = {d.shift, d.radius};
     }
   }
-  if (!moving) return std::nullopt;
+  // A moving disc that holds a fixed disc (and so the whole region) for every scatterer within the beam's
+  // support, 5 w of its centre (the beam power beyond is below exp(-50), as in sum_over_terms), bounds nothing
+  // there: left out. A fibre whose NA exceeds the telescope's is such a disc at all but the nearest ranges.
+  auto holds_the_region = [&](const MovingDisc& d) {
+    for (std::size_t i = 0; i < n_fixed; ++i)
+      if (norm(d.scale * center + d.shift - discs[i].center) + std::abs(d.scale) * 5.0 * w + discs[i].radius <= d.radius)
+        return true;
+    return false;
+  };
+  const MovingDisc* bounding = nullptr;
+  for (std::size_t i = 0; i < n_moving; ++i) {
+    if (holds_the_region(*moving[i])) continue;
+    if (bounding) return std::nullopt;  // two boundaries that move at different rates
+    bounding = moving[i];
+  }
+  if (!bounding) return std::nullopt;
+  const MovingDisc* const disc = bounding;
 
-  const Vec2 mu = moving->scale * center + moving->shift;
-  const double sigma = 0.5 * std::abs(moving->scale) * w, var = sigma * sigma, r = moving->radius;
+  const Vec2 mu = disc->scale * center + disc->shift;
+  const double sigma = 0.5 * std::abs(disc->scale) * w, var = sigma * sigma, r = disc->radius;
   // The kernel is below exp(-50) of its peak beyond 10 sigma from r (a Gaussian in q about r when r >> sigma,
   // q exp(-q^2 / 2 sigma^2) when r << sigma).
   const double lo = std::max(0.0, r - 10.0 * sigma), hi = r + 10.0 * sigma;

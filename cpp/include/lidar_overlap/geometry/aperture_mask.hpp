@@ -36,11 +36,12 @@ inline constexpr std::size_t kMaxMaskSectors = 64;
 
 // G of the masked receiver at every range (m): the exact coupling of each scatterer restricted to the mask
 // (the area of the aperture points whose rays reach the detector, pass the obstruction and the NA cone, and
-// lie in the mask, over pi R^2), integrated over the Gaussian beam. Where the detector disc is the only boundary
-// that moves with the scatterer (no NA cone, obstruction absent or in the aperture plane), one 1-D integral of
-// exact areas against the Marcum-Q kernel per range (docs/telecover.md); otherwise the beam integral of
-// overlap_rt, radial for full rings about a centre of symmetry, over directions too for sectors (tens of times
-// the couplings). Thread-safe; throws std::invalid_argument for an invalid system, range, mask or option.
+// lie in the mask, over pi R^2), integrated over the Gaussian beam. Where the detector disc is the only
+// boundary that moves with the scatterer (an NA cone that bounds nothing, obstruction absent or in the
+// aperture plane), one 1-D integral of exact areas against the Marcum-Q kernel per range
+// (docs/telecover.md); otherwise the beam integral of overlap_rt, radial for full rings about a centre of
+// symmetry, over directions too for sectors (tens of times the couplings). Thread-safe; throws
+// std::invalid_argument for an invalid system, range, mask or option.
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
                      const RtOptions& options = {});
 
@@ -48,11 +49,10 @@ RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& range
 inline constexpr std::size_t kMaxMasks = 64;
 
 // G through each of several masks (the sectors of a telecover test) at every range, in one pass: where the
-// receiver's coupling has one moving boundary (no NA cone, obstruction absent or in the aperture plane) the
-// masks share the beam integral's nodes, kernel and geometry (Table 1's four quadrants: 3.8 full curves); otherwise
-// each mask is traced as above. Entry i is masks[i]'s G to the same tolerance (not bit for bit the one-mask
-// call: the nodes differ). Throws std::invalid_argument as above, naming masks[i], and for 0 or more than
-// kMaxMasks masks.
+// detector disc is the only moving boundary (as above) the masks share the beam integral's nodes, kernel and
+// geometry (Table 1's four quadrants: 3.8 full curves); otherwise each mask is traced as above. Entry i is
+// masks[i]'s G to the same tolerance (not bit for bit the one-mask call: the nodes differ). Throws
+// std::invalid_argument as above, naming masks[i], and for 0 or more than kMaxMasks masks.
 std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
                                   const std::vector<ApertureMask>& masks, const RtOptions& options = {});
 
