@@ -67,10 +67,31 @@ double Receiver::coupling(Vec2 p) const {
   return std::max(0.0, passing + blocked_(p));
 }
 
+namespace {
+
+// Leaves out of `term` (which starts with the aperture disc) every moving disc that holds the whole aperture for
+// all |P - center| <= support: it bounds nothing there. A fibre whose NA exceeds the telescope's is such a disc at
+// all but the nearest ranges; kept, its centre moves at another rate than the detector's and takes the term's
+// centre of symmetry away (a detector offset then costs the beam integral 40 times the couplings).
+void drop_discs_holding_the_aperture(CouplingTerm& term, Vec2 center, double support, double aperture_radius) {
+  std::size_t kept = 1;
+  for (std::size_t i = 1; i < term.n_discs; ++i) {
+    const MovingDisc& d = term.discs[i];
+    const bool holds = d.scale != 0.0 && norm(d.scale * center + d.shift) + std::abs(d.scale) * support +
+                                             aperture_radius <= d.radius;
+    if (!holds) term.discs[kept++] = d;
+  }
+  term.n_discs = kept;
+}
+
+}  // namespace
+
 std::size_t Receiver::terms(Vec2 center, double support, CouplingTerm* out) const {
   out[0] = passing_;
+  drop_discs_holding_the_aperture(out[0], center, support, aperture_radius_);
   if (!has_shadow_) return 1;
   out[1] = blocked_;
+  drop_discs_holding_the_aperture(out[1], center, support, aperture_radius_);
   // The shadow disc |A - scale P| <= r lies inside the aperture for all |P - center| <= support.
   if (std::abs(shadow_.scale) * (norm(center) + support) + shadow_.radius <= aperture_radius_) {
     for (std::size_t i = 1; i < out[1].n_discs; ++i) out[1].discs[i - 1] = out[1].discs[i];
