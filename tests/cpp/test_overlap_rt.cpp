@@ -112,6 +112,23 @@ int main() {
   std::vector<double> short_ranges = batch_ranges;
   short_ranges[7] = 0.0;
   test::throws("invalid batch range", [&] { overlap_rt_batch(batch, short_ranges); }, "ranges[7]");
+  // A fibre NA wider than the telescope's holds the whole aperture for every scatterer in the beam: left out of
+  // the terms, it gives the system without an NA bit for bit (with a detector offset that would otherwise break
+  // the terms' centre of symmetry), at the same cost.
+  LidarSystem offset_detector;
+  offset_detector.beam.tilt = {0.0, 50e-6};
+  offset_detector.detector.offset = {2e-5, 0.0};
+  LidarSystem wide_na = offset_detector;
+  wide_na.detector.numerical_aperture = 0.22;
+  const std::vector<double> na_ranges{20.0, 150.0, 1000.0, 3000.0};
+  const RtOverlap with_wide_na = overlap_rt(wide_na, na_ranges), without_na = overlap_rt(offset_detector, na_ranges);
+  test::that("wide NA = no NA, bit for bit and at the same cost",
+             with_wide_na.overlap == without_na.overlap && with_wide_na.evaluations == without_na.evaluations);
+  LidarSystem narrow_na = offset_detector;
+  narrow_na.detector.numerical_aperture = 0.03;
+  const RtOverlap with_narrow_na = overlap_rt(narrow_na, na_ranges);
+  test::that("a narrow NA still cuts the light", with_narrow_na.overlap[3] < 0.9 * without_na.overlap[3]);
+
   // exp(-x) I0(x) by its Chebyshev series against the standard library (and Hankel's series far out).
   double worst = 0.0;
   for (double x = 0.0; x < 700.0; x += 0.0137)
