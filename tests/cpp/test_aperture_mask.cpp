@@ -170,13 +170,15 @@ int main() {
     const auto planar = beam_integral::planar_mean(masked, kinks, k.center, k.w, false, 1e-8, 20000);
     test::that("one moving disc takes the 1-D form, case " + std::to_string(c), one_d.has_value());
     if (one_d)
-      test::near("1-D form = scatterer-plane integral, case " + std::to_string(c), (*one_d)[0].value, planar.value, 1e-8);
+      test::near("1-D form = scatterer-plane integral, case " + std::to_string(c), (*one_d)[0].value, planar.value,
+                 1e-8);
   }
   CouplingTerm two_moving;
   two_moving.add(MovingDisc{1.0, {}, 0.01});
   two_moving.add(MovingDisc{0.5, {}, 0.01});
   test::that("two moving discs fall back to the scatterer plane",
-             !beam_integral::moving_disc_integral(two_moving, {{AnnularSector{0.0, 1.0, 0.0, 0.075}}}, {}, 0.01, 1e-6, 100));
+             !beam_integral::moving_disc_integral(two_moving, {{AnnularSector{0.0, 1.0, 0.0, 0.075}}}, {}, 0.01, 1e-6,
+                                                  100));
 
   // Several masks in one call: the quadrants of a tilted Table 1 lidar share the 1-D integral's nodes and agree
   // with one call per quadrant to the tolerance; with an NA each mask is traced alone, bit for bit.

@@ -121,8 +121,10 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     const double c_a = (an.inner * an.inner - m_ * m_ - q * q) / (2.0 * m_ * q);
     if (c_b < -1.0 || c_a > 1.0) continue;
     const double cos_lo = std::min(1.0, c_b), cos_hi = std::max(-1.0, c_a);
-    const double sin_lo = std::sqrt((1.0 - cos_lo) * (1.0 + cos_lo)), sin_hi = std::sqrt((1.0 - cos_hi) * (1.0 + cos_hi));
-    const double lo = cos_lo >= 1.0 ? 0.0 : angle_of(cos_lo, sin_lo), hi = cos_hi <= -1.0 ? kPi : angle_of(cos_hi, sin_hi);
+    const double sin_lo = std::sqrt((1.0 - cos_lo) * (1.0 + cos_lo));
+    const double sin_hi = std::sqrt((1.0 - cos_hi) * (1.0 + cos_hi));
+    const double lo = cos_lo >= 1.0 ? 0.0 : angle_of(cos_lo, sin_lo);
+    const double hi = cos_hi <= -1.0 ? kPi : angle_of(cos_hi, sin_hi);
     if (!(hi > lo)) continue;
     st.arcs = true;
     st.ends[0][0] = on_circle(-hi, cos_hi, -sin_hi);
@@ -151,7 +153,8 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     const Annulus& an = annuli_[w.annulus];
     const AnnulusState& st = annulus_state_[w.annulus];
     double area = 0.5 * an.outer * an.outer * arc_overlap(st.outer_start, st.outer_length, w.start, w.span);
-    if (an.inner > 0.0) area -= 0.5 * an.inner * an.inner * arc_overlap(st.inner_start, st.inner_length, w.start, w.span);
+    if (an.inner > 0.0)
+      area -= 0.5 * an.inner * an.inner * arc_overlap(st.inner_start, st.inner_length, w.start, w.span);
     if (m_ == 0.0 && an.inner <= q && q <= an.outer) area += 0.5 * q * q * w.span;
     areas[k] = area;
   }
@@ -166,7 +169,8 @@ void DiscSectorAreas::operator()(double q, double* areas) {
           const OnCircle& p = ray_state_[i].at[c];
           if (p.delta > arc[0].delta && p.delta < arc[1].delta) pieces_.push_back(p);
         }
-      std::sort(pieces_.begin() + 1, pieces_.end(), [](const OnCircle& a, const OnCircle& b) { return a.delta < b.delta; });
+      std::sort(pieces_.begin() + 1, pieces_.end(),
+                [](const OnCircle& a, const OnCircle& b) { return a.delta < b.delta; });
       pieces_.push_back(arc[1]);
       for (std::size_t p = 0; p + 1 < pieces_.size(); ++p) {
         const double term = arc_term(q, pieces_[p], pieces_[p + 1]);

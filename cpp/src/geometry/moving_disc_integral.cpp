@@ -67,7 +67,8 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
   // there: left out. A fibre whose NA exceeds the telescope's is such a disc at all but the nearest ranges.
   auto holds_the_region = [&](const MovingDisc& d) {
     for (std::size_t i = 0; i < n_fixed; ++i)
-      if (norm(d.scale * center + d.shift - discs[i].center) + std::abs(d.scale) * 5.0 * w + discs[i].radius <= d.radius)
+      if (norm(d.scale * center + d.shift - discs[i].center) + std::abs(d.scale) * 5.0 * w + discs[i].radius <=
+          d.radius)
         return true;
     return false;
   };
@@ -100,7 +101,8 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
   // min(1, x / 2), and the Gaussian factor is largest at the end nearest r.
   double mask_area = 0.0;
   for (const std::vector<AnnularSector>& sectors : masks)
-    for (const AnnularSector& s : sectors) mask_area += 0.5 * std::min(s.span, 2.0 * kPi) * (s.outer * s.outer - s.inner * s.inner);
+    for (const AnnularSector& s : sectors)
+      mask_area += 0.5 * std::min(s.span, 2.0 * kPi) * (s.outer * s.outer - s.inner * s.inner);
   auto piece_bound = [&](double a, double b) {
     const double d = std::clamp(r, a, b) - r;
     return std::abs(term.weight) * std::min(kPi * b * b, mask_area) * (r / var) * std::exp(-0.5 * d * d / var) *

@@ -39,13 +39,18 @@ def together(plans) -> bool:
     """Whether ``plans`` are ray tracing of one system, ranges and options through different masks: what
     :func:`run_together` takes."""
     first = plans[0]
-    same_options = lambda p: (p.options.tolerance, p.options.max_segments, p.options.threads) == (  # noqa: E731
-        first.options.tolerance, first.options.max_segments, first.options.threads)
-    unmasked = lambda p: dataclasses.replace(p.system, telescope=dataclasses.replace(p.system.telescope, mask=None))  # noqa: E731
-    return all(p.backend == "rt_masked" and same_options(p) and np.array_equal(p.ranges, first.ranges)
+    return all(p.backend == "rt_masked" and _options(p) == _options(first) and np.array_equal(p.ranges, first.ranges)
                and p.rt_model_error == first.rt_model_error and p.tolerance == first.tolerance
                and p.rt_diffraction_warning == first.rt_diffraction_warning
-               and unmasked(p) == unmasked(first) for p in plans)
+               and _unmasked(p.system) == _unmasked(first.system) for p in plans)
+
+
+def _options(plan) -> tuple:
+    return plan.options.tolerance, plan.options.max_segments, plan.options.threads
+
+
+def _unmasked(system):
+    return dataclasses.replace(system, telescope=dataclasses.replace(system.telescope, mask=None))
 
 
 def run_together(plans) -> list:
