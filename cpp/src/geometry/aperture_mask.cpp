@@ -112,7 +112,6 @@ std::vector<detail::RtEntry> masked_overlaps_at(const LidarSystem& system, const
     if (std::optional<std::vector<detail::RtEntry>> r =
             beam_integral::moving_disc_integral(plain, masks, center, w, tol, opt.max_segments))
       return *r;
-    const beam_integral::Kinks plain_kinks(plain);
     std::vector<detail::RtEntry> out;
     for (const std::vector<AnnularSector>& sectors : masks) {
       const MaskedTerm term{plain, sectors};

@@ -29,10 +29,13 @@ double angle_of(double c, double s) {
   return s > 0.0 ? 0.5 * kPi - a : -0.5 * kPi - a;
 }
 
-// acos(c) for c in [-1, 1], through angle_of ((1 - c)(1 + c) keeps the digits near +-1).
-double arc_cos(double c) {
-  if (c <= -1.0 || c >= 1.0) return c <= -1.0 ? kPi : 0.0;  // a full or an empty arc: no atan
-  return angle_of(c, std::sqrt((1.0 - c) * (1.0 + c)));
+// sqrt(1 - c^2) for c in [-1, 1], as sqrt((1 - c)(1 + c)), which keeps the digits near +-1.
+double sine_of(double c) { return std::sqrt((1.0 - c) * (1.0 + c)); }
+
+// acos(c) for c in [-1, 1], from c and s = sine_of(c) through angle_of; no atan at the ends.
+double arc_cos(double c, double s) {
+  if (c <= -1.0 || c >= 1.0) return c <= -1.0 ? kPi : 0.0;
+  return angle_of(c, s);
 }
 
 // The arc [start, start + length] (rad) of the circle of radius rho about the origin inside disc(mu, q).
@@ -47,7 +50,7 @@ void circle_inside_disc(double rho, double m, double phi_mu, double q, double& s
     length = c <= -1.0 ? kTwoPi : 0.0;
     return;
   }
-  const double half = arc_cos(c);
+  const double half = arc_cos(c, sine_of(c));
   start = phi_mu - half;
   length = 2.0 * half;
 }
@@ -121,10 +124,8 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     const double c_a = (an.inner * an.inner - m_ * m_ - q * q) / (2.0 * m_ * q);
     if (c_b < -1.0 || c_a > 1.0) continue;
     const double cos_lo = std::min(1.0, c_b), cos_hi = std::max(-1.0, c_a);
-    const double sin_lo = std::sqrt((1.0 - cos_lo) * (1.0 + cos_lo));
-    const double sin_hi = std::sqrt((1.0 - cos_hi) * (1.0 + cos_hi));
-    const double lo = cos_lo >= 1.0 ? 0.0 : angle_of(cos_lo, sin_lo);
-    const double hi = cos_hi <= -1.0 ? kPi : angle_of(cos_hi, sin_hi);
+    const double sin_lo = sine_of(cos_lo), sin_hi = sine_of(cos_hi);
+    const double lo = arc_cos(cos_lo, sin_lo), hi = arc_cos(cos_hi, sin_hi);
     if (!(hi > lo)) continue;
     st.arcs = true;
     st.ends[0][0] = on_circle(-hi, cos_hi, -sin_hi);

@@ -51,35 +51,18 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
   if (term.n_gates != 0) return std::nullopt;
   Disc discs[kMaxDiscs];
   std::size_t n_fixed = 0;
-  const MovingDisc* moving[CouplingTerm::kMaxMoving];
-  std::size_t n_moving = 0;
+  const MovingDisc* disc = nullptr;
   for (std::size_t i = 0; i < term.n_discs; ++i) {
     const MovingDisc& d = term.discs[i];
     if (d.scale != 0.0) {
-      moving[n_moving++] = &d;
+      if (disc) return std::nullopt;  // two boundaries that move at different rates
+      disc = &d;
     } else {
       if (n_fixed + 1 >= kMaxDiscs) return std::nullopt;
       discs[n_fixed++] = {d.shift, d.radius};
     }
   }
-  // A moving disc that holds a fixed disc (and so the whole region) for every scatterer within the beam's
-  // support, 5 w of its centre (the beam power beyond is below exp(-50), as in sum_over_terms), bounds nothing
-  // there: left out. A fibre whose NA exceeds the telescope's is such a disc at all but the nearest ranges.
-  auto holds_the_region = [&](const MovingDisc& d) {
-    for (std::size_t i = 0; i < n_fixed; ++i)
-      if (norm(d.scale * center + d.shift - discs[i].center) + std::abs(d.scale) * 5.0 * w + discs[i].radius <=
-          d.radius)
-        return true;
-    return false;
-  };
-  const MovingDisc* bounding = nullptr;
-  for (std::size_t i = 0; i < n_moving; ++i) {
-    if (holds_the_region(*moving[i])) continue;
-    if (bounding) return std::nullopt;  // two boundaries that move at different rates
-    bounding = moving[i];
-  }
-  if (!bounding) return std::nullopt;
-  const MovingDisc* const disc = bounding;
+  if (!disc) return std::nullopt;
 
   const Vec2 mu = disc->scale * center + disc->shift;
   const double sigma = 0.5 * std::abs(disc->scale) * w, var = sigma * sigma, r = disc->radius;

@@ -22,10 +22,10 @@
 namespace lidar_overlap::beam_integral {
 
 // The term's beam mean through each mask (a union of sectors) by the 1-D form above, each to `tolerance`
-// (absolute), the masks sharing the nodes. Moving discs that hold the fixed region for every scatterer within the
-// beam's support (a fibre's NA cone, mostly) are left out; nullopt when not exactly one moving disc remains,
-// or the term has a gate (a boundary that depends on the scatterer only), or more fixed discs than
-// sector_intersection_area takes: the caller then integrates in the scatterer plane.
+// (absolute), the masks sharing the nodes; nullopt when the term does not have exactly one moving disc (the
+// receiver's terms already leave out a disc that holds the whole aperture, such as a wide NA cone), or has a
+// gate (a boundary that depends on the scatterer only), or more fixed discs than sector_intersection_area
+// takes: the caller then integrates in the scatterer plane.
 std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm& term,
                                                              const std::vector<std::vector<AnnularSector>>& masks,
                                                              Vec2 center, double w, double tolerance,
