@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 import lidar_overlap as lo
-from lidar_overlap.alignment import misaligned
+from lidar_overlap.analysis.alignment import misaligned
 from _common import best_time, load_average, source_commit
 
 TILTS = np.linspace(-1e-3, 1e-3, 41)     # rad

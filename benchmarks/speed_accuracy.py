@@ -187,7 +187,7 @@ def run_scene(name, spec, with_direct):
         p = timed_point("auto", "tolerance", tol,
                         lambda th, tol=tol: lo.overlap(system, z, method="auto", tolerance=tol, threads=th).overlap,
                         g_ref)
-        decision = lo.auto.decide(system, z, tol)
+        decision = lo.forward.auto.decide(system, z, tol)
         p.update(chosen=decision.method + (f" ({decision.fo_path})" if decision.fo_path else ""),
                  rt_model_error_estimate=decision.rt_model_error, meets_tolerance=p["max_error"] <= tol)
         auto.append(p)

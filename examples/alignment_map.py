@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import lidar_overlap as lo  # noqa: E402
-from lidar_overlap.plotting import plot_alignment_map  # noqa: E402
+from lidar_overlap.views.plotting import plot_alignment_map  # noqa: E402
 
 TILTS = np.linspace(-1.2e-3, 1.2e-3, 41)   # rad
 RANGES = [150.0, 2000.0]                    # m: near (G still rising) and far

@@ -69,8 +69,8 @@ a2.loglog(ratios, np.abs(1 - point_rt / point_fo), "C0-", lw=2, label="in-focus 
 a2.loglog(ratios, rt_error, "C3-o", ms=3, label="Table 1 beam at 1000 m (extended source)")
 a2.loglog(ratios, 2 / (np.pi * np.pi * diameter * ratios * r_airy / (lam * f)), "k:",
           label=r"Airy tail $2/(\pi v)$")
-a2.axhline(lo.validity.RT_MODEL_ERROR_LIMIT, color="grey", lw=1)
-a2.text(ratios[0], lo.validity.RT_MODEL_ERROR_LIMIT * 1.2, "RT warns above this", color="grey")
+a2.axhline(lo.forward.validity.RT_MODEL_ERROR_LIMIT, color="grey", lw=1)
+a2.text(ratios[0], lo.forward.validity.RT_MODEL_ERROR_LIMIT * 1.2, "RT warns above this", color="grey")
 r_table1 = base.detector.radius / r_airy
 a2.axvline(r_table1, color="C2", lw=1)
 a2.text(r_table1 * 1.05, 0.3, "Table 1 detector", color="C2", rotation=90, va="top")

@@ -20,7 +20,7 @@ import dataclasses
 import numpy as np
 
 import lidar_overlap as lo
-from lidar_overlap.scene import save_scene
+from lidar_overlap.views.scene import save_scene
 
 RANGES = np.geomspace(1.0, 1000.0, 200)     # m
 BEAM_OFFSET = (0.2, 0.0)                    # m, biaxial beam position at z = 0

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lidar_overlap as lo
-from lidar_overlap.alignment import misaligned
+from lidar_overlap.analysis.alignment import misaligned
 
 pytest.importorskip("xarray")
 
@@ -118,7 +118,7 @@ def test_plot_alignment_map_draws_a_heat_map_per_range():
     pytest.importorskip("matplotlib")
     import matplotlib
     matplotlib.use("Agg")
-    from lidar_overlap.plotting import plot_alignment_map
+    from lidar_overlap.views.plotting import plot_alignment_map
 
     t = np.linspace(-3e-4, 3e-4, 4)
     ds = lo.alignment_map(lo.paper_table1(), [100.0, 500.0], tilt_x=t, tilt_y=t, tolerance=1e-3)

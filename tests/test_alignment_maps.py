@@ -34,7 +34,7 @@ def test_a_cluster_threads_and_a_loop_give_the_same_bits(client, monkeypatch):
     here, there = maps(), maps(client=client)
     assert there.attrs["engine"] == "distributed" and here.attrs["engine"] in ("dask", "loop")
     xr.testing.assert_identical(here.drop_attrs(), there.drop_attrs())
-    import lidar_overlap._engines as engines
+    import lidar_overlap.analysis.engines as engines
     monkeypatch.setattr(engines, "engine", lambda client: "loop")
     xr.testing.assert_identical(maps().drop_attrs(), here.drop_attrs())
 

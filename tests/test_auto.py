@@ -12,7 +12,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import _core
-from lidar_overlap.auto import decide
+from lidar_overlap.forward.auto import decide
 
 Z = np.geomspace(10.0, 3000.0, 60)
 

@@ -19,7 +19,7 @@ import pytest
 from scipy.special import j1
 
 import lidar_overlap as lo
-from lidar_overlap.beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
+from lidar_overlap.optics.beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
 
 # The profiles are scaled by their sampled power: what is left is the rounding of a sum of n^2 <= 2.6e5 terms.
 POWER_RTOL = 1e-12

@@ -17,7 +17,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap.cli import main
-from lidar_overlap.scenario import load_scenario, table1_scenarios
+from lidar_overlap.io.scenario import load_scenario, table1_scenarios
 
 SCENARIOS = Path(__file__).resolve().parents[1] / "examples" / "scenarios"
 TABLE1 = SCENARIOS / "table1.toml"
@@ -26,7 +26,7 @@ TABLE1 = SCENARIOS / "table1.toml"
 @pytest.fixture(autouse=True)
 def no_scene(monkeypatch):
     """The 3-D scene (pyvista) is slow to render; its own tests cover it. Here: as if not installed."""
-    monkeypatch.setitem(sys.modules, "lidar_overlap.scene", None)
+    monkeypatch.setitem(sys.modules, "pyvista", None)
 
 
 def _csv_only(text):
@@ -192,14 +192,15 @@ def test_without_xarray_the_csv_is_still_written(tmp_path, capsys, monkeypatch):
     assert "pip install 'lidar-overlap[io]'" in capsys.readouterr().err
 
 
-def test_scene_is_written_through_the_scene_module(tmp_path, capsys, monkeypatch):
+def test_scene_is_written_through_save_scene(tmp_path, capsys, monkeypatch):
     calls = []
 
     def save_scene(system, filename, **kwargs):
         calls.append((system, kwargs))
         Path(filename).write_bytes(b"png")
 
-    monkeypatch.setitem(sys.modules, "lidar_overlap.scene", types.SimpleNamespace(save_scene=save_scene))
+    monkeypatch.delitem(sys.modules, "pyvista")   # installed (the fake below stands for its scene)
+    monkeypatch.setattr("lidar_overlap.cli.commands.save_scene", save_scene)
     text = TABLE1.read_text().replace("netcdf = true", "netcdf = false").replace("plot = true", "plot = false")
     (tmp_path / "s.toml").write_text(text)
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 0
@@ -255,7 +256,7 @@ def _one_error_line(err, *words):
 def test_a_nan_curve_is_a_failure_not_a_file(tmp_path, capsys, monkeypatch):
     """A computation that returns NaN (as the core once did for extreme inputs) ends in exit 1: the result
     refuses it on construction, and nothing is written."""
-    from lidar_overlap import scenario as scenario_module
+    from lidar_overlap.io import scenario as scenario_module
 
     def nan_overlap(plan):
         z = plan.ranges
@@ -327,7 +328,7 @@ def test_writing_through_a_link_to_dev_full(tmp_path, capsys):
     (ValueError("threads = 5 is invalid: expected at most 4"), 1, "[run] threads = 5 is invalid"),
 ])
 def test_every_failure_is_one_line(tmp_path, capsys, monkeypatch, raised, code, words):
-    from lidar_overlap import scenario as scenario_module
+    from lidar_overlap.io import scenario as scenario_module
 
     def fail(*args, **kwargs):
         raise raised

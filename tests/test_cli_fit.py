@@ -11,8 +11,8 @@ import pytest
 import lidar_overlap as lo
 from lidar_overlap import parameters
 from lidar_overlap.cli import main
-from lidar_overlap.cli_fit import read_measurements
-from lidar_overlap.scenario import load_scenario
+from lidar_overlap.cli.fit import read_measurements
+from lidar_overlap.io.scenario import load_scenario
 
 pytest.importorskip("scipy")
 TABLE1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
@@ -84,7 +84,7 @@ def test_library_refusals_and_non_convergence_fail_with_one_line(tmp_path, scena
     assert "free: parameter 'beam.tilted' is invalid" in capsys.readouterr().err
     assert main(["fit", str(scenario), str(tmp_path / "missing.csv"), "--free", "beam.tilt[0]"]) == 1
     assert "missing.csv: cannot read" in capsys.readouterr().err
-    import lidar_overlap.cli_fit as cli_fit
+    import lidar_overlap.cli.fit as cli_fit
     real = cli_fit.fit
     monkeypatch.setattr(cli_fit, "fit", lambda *a, **k: real(*a, **{**k, "max_evaluations": 1}))
     assert main(["fit", str(scenario), str(data), "--free", "beam.tilt[0]", "--out", str(tmp_path / "o")]) == 1

@@ -18,7 +18,7 @@ import pytest
 
 import lidar_overlap
 from lidar_overlap.cli import main
-from lidar_overlap.scenario import INTEGER_LIMITS, MAX_FILE_BYTES, MAX_RANGES
+from lidar_overlap.io.scenario import INTEGER_LIMITS, MAX_FILE_BYTES, MAX_RANGES
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE_PARENT = str(Path(lidar_overlap.__file__).resolve().parents[1])
@@ -31,7 +31,7 @@ PROBE_MEMORY_BYTES = 4 << 30
 
 @pytest.fixture(autouse=True)
 def no_scene(monkeypatch):
-    monkeypatch.setitem(sys.modules, "lidar_overlap.scene", None)
+    monkeypatch.setitem(sys.modules, "pyvista", None)
 
 
 def _small(text: str) -> str:

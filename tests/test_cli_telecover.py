@@ -10,7 +10,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap.cli import main
-from lidar_overlap.scenario import load_scenario
+from lidar_overlap.io.scenario import load_scenario
 
 TABLE1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
 TILT_Y = 5e-5

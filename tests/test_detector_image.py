@@ -35,7 +35,7 @@ def test_tilted_beam_images_opposite_its_centre():
 
 
 def test_plot_detector_image_draws(tmp_path):
-    from lidar_overlap.plotting import plot_detector_image
+    from lidar_overlap.views.plotting import plot_detector_image
     ax = plot_detector_image(lo.paper_table1(), 200.0)
     ax.figure.savefig(tmp_path / "image.png")
     assert "on the detector" in ax.get_title()
@@ -77,7 +77,7 @@ def test_memory_estimate_covers_the_arrays_built(field_beam):
     """The budget check's estimate is at least the peak NumPy allocation (tracemalloc) of a real call."""
     import tracemalloc
 
-    from lidar_overlap.detector_image import _bytes_needed
+    from lidar_overlap.optics.detector_image import _bytes_needed
 
     system = lo.paper_table1()
     if field_beam:

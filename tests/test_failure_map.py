@@ -70,7 +70,7 @@ def test_rt_fails_inside_the_band():
 def test_rt_passes_above_the_band_where_its_error_is_the_airy_tail():
     error = rt_error(RT_OUTSIDE_LARGE_AIRY)
     assert error < TOLERANCE / 2
-    tail = lo.validity.rt_diffraction_error(with_detector(RT_OUTSIDE_LARGE_AIRY))
+    tail = lo.forward.validity.rt_diffraction_error(with_detector(RT_OUTSIDE_LARGE_AIRY))
     assert error == pytest.approx(tail, rel=AIRY_TAIL_RTOL)
 
 

@@ -66,7 +66,7 @@ def test_aberrated_auto_runs_rt_once_beside_its_two_coarse_estimate_curves(calls
 def test_turbulent_rt_is_one_batched_core_call_equal_to_one_call_per_draw(calls):
     """K x N draws in one overlap_rt_batch call, each bit-identical to ray tracing that draw alone (the draws
     rebuilt here from the same seed with the documented wander law)."""
-    from lidar_overlap._backends.turbulent import beam_for
+    from lidar_overlap.forward.backends.turbulent import beam_for
 
     z, k, seed = np.array([300.0, 900.0]), 3, 7
     turbulence = lo.Turbulence(1e-13)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lidar_overlap as lo
-from lidar_overlap.result import FAR_SLOPE, ROUND_OFF
+from lidar_overlap.forward.result import FAR_SLOPE, ROUND_OFF
 
 Z = np.array([10.0, 20.0, 50.0, 100.0])
 

@@ -14,7 +14,7 @@ import pytest
 import lidar_overlap as lo
 
 pv = pytest.importorskip("pyvista")
-from lidar_overlap.scene import save_scene, scene  # noqa: E402
+from lidar_overlap.views.scene import save_scene, scene  # noqa: E402
 
 REL = 1e-9          # vertices are computed in float64 at exact ranges: rounding only
 IMAGE_ABS = 0.01    # detector image power inside the detector vs G: 192² pixels, disc edges
@@ -163,13 +163,13 @@ def test_default_ranges_end_at_twice_the_full_overlap_range():
 
 
 def test_package_imports_without_pyvista():
-    code = "import sys; sys.modules['pyvista'] = None; import lidar_overlap, lidar_overlap.scene"
+    code = "import sys; sys.modules['pyvista'] = None; import lidar_overlap, lidar_overlap.views.scene"
     assert subprocess.run([sys.executable, "-c", code], capture_output=True).returncode == 0
 
 
 def test_without_pyvista_both_functions_say_how_to_install(monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "pyvista", None)
-    message = re.escape("lidar_overlap.scene needs PyVista: pip install 'lidar-overlap[viz]' (or pip install pyvista)")
+    message = re.escape("the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' (or pip install pyvista)")
     with pytest.raises(ImportError, match=message):
         scene(lo.paper_table1())
     with pytest.raises(ImportError, match=message):

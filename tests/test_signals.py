@@ -13,7 +13,7 @@ import pytest  # noqa: E402
 from scipy import integrate  # noqa: E402
 
 import lidar_overlap as lo  # noqa: E402
-from lidar_overlap.atmosphere import molecular_lidar_ratio, rayleigh_cross_section, us76  # noqa: E402
+from lidar_overlap.model.atmosphere import molecular_lidar_ratio, rayleigh_cross_section, us76  # noqa: E402
 
 SYSTEM = lo.paper_table1(wavelength=532e-9)
 Z = np.geomspace(10.0, 15e3, 60)

@@ -221,7 +221,7 @@ def test_a_custom_constant_profile_is_the_constant():
 @pytest.mark.parametrize("law", ["gaussian", "linear"])
 def test_rt_realisation_beam_has_the_short_term_radius_on_either_width_law(law):
     """The beam each RT realisation traces has radius W_ST at its range, whatever the beam's width law."""
-    from lidar_overlap._backends.turbulent import beam_for
+    from lidar_overlap.forward.backends.turbulent import beam_for
 
     beam, z, radius = lo.GaussianBeam(width_law=law), 150.0, 0.06
     drawn = beam_for(beam, z, radius, (0.01, -0.02))

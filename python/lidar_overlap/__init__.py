@@ -1,38 +1,53 @@
-"""lidar_overlap: the overlap function of atmospheric lidars (SI units throughout)."""
+"""lidar_overlap: the overlap function of atmospheric lidars (SI units throughout).
 
-from . import parameters
+The package is built in layers, each importing only those below it (docs/architecture.md):
+``model`` (value types), ``optics`` (fields and their propagation), ``overlap`` (methods, plans, backends,
+results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, studies), ``io`` (scenario
+files), ``cli`` and ``views`` (plots, 3-D scenes). This namespace re-exports what users call.
+"""
+
 from ._core import __version__, max_memory, max_threads, set_max_memory
-from .atmosphere import Atmosphere
-from .aperture_mask import ApertureMask, Sector
-from .alignment import alignment_map, alignment_maps
-from .autoalign import AlignResult, align
-from .aberrations import Aberrations, noll_index, seidel_to_zernike, with_aberrations, zernike, zernike_to_seidel
-from .beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
-from .detector_image import DetectorImage, detector_image
-from .field_beam import FieldBeam
-from .fields import Field, SamplingWarning, propagate
-from .flat_top import FlatTopBeam
-from .fit import fit
-from .fit_telecover import fit_telecover
-from .fit_result import DegeneracyWarning, FitResult, Prediction
-from .compute import overlap, run
-from .coupling import emitter_coupling, optimal_focus_range
-from .imaging import point_image
-from .methods import FO, RT, Auto, Turbulent
-from .objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
-from .optimize import OptimizeResult, optimize
-from .planning import Plan, explain, plan
-from .phase_screen import phase_screen
-from .presets import paper_table1
-from .result import OverlapResult
-from .sensitivity import sensitivity
-from .scene import save_scene, scene
-from .signals import CorrectedSignal, LidarSignal, correct, signal
-from .studies import tolerance_study
-from .telecover import TelecoverResult, telecover
-from .system import Detector, GaussianBeam, LidarSystem, Telescope
-from .turbulence import Turbulence, TurbulentOverlapResult
-from .turbulent_study import turbulent_realizations
+from .model import parameters
+from .model.aberrations import (
+    Aberrations,
+    noll_index,
+    seidel_to_zernike,
+    with_aberrations,
+    zernike,
+    zernike_to_seidel,
+)
+from .model.aperture_mask import ApertureMask, Sector
+from .model.atmosphere import Atmosphere
+from .model.field import Field
+from .model.field_beam import FieldBeam
+from .model.flat_top import FlatTopBeam
+from .model.presets import paper_table1
+from .model.system import Detector, GaussianBeam, LidarSystem, Telescope
+from .model.turbulence import Turbulence
+from .optics.beam_fields import annular_field, laguerre_gauss_field, super_gaussian_field
+from .optics.detector_image import DetectorImage, detector_image
+from .optics.imaging import point_image
+from .optics.phase_screen import phase_screen
+from .optics.propagation import SamplingWarning, propagate
+from .forward.compute import overlap, run
+from .forward.coupling import emitter_coupling, optimal_focus_range
+from .forward.methods import FO, RT, Auto, Turbulent
+from .forward.planning import Plan, explain, plan
+from .forward.result import OverlapResult, TurbulentOverlapResult
+from .analysis.alignment import alignment_map, alignment_maps
+from .analysis.autoalign import AlignResult, align
+from .analysis.fit import fit
+from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
+from .analysis.fit_telecover import fit_telecover
+from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
+from .analysis.optimize import OptimizeResult, optimize
+from .analysis.sensitivity import sensitivity
+from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
+from .analysis.studies import tolerance_study
+from .analysis.telecover import TelecoverResult, telecover
+from .analysis.turbulent_study import turbulent_realizations
+from .views import plotting
+from .views.scene import save_scene, scene
 
 __all__ = [
     "__version__",
@@ -93,6 +108,7 @@ __all__ = [
     "overlap",
     "paper_table1",
     "parameters",
+    "plotting",
     "phase_screen",
     "max_memory",
     "max_threads",

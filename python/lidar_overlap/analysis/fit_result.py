@@ -1,0 +1,188 @@
+"""The result of :func:`lidar_overlap.analysis.fit` (and :func:`lidar_overlap.analysis.fit_telecover`): the parameters, their
+covariance, the fitted curve, and the model's prediction at other ranges with its 1-sigma band (the covariance
+propagated through the Jacobian)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+
+from .. import _checks
+from ..forward.compute import run
+from ..forward.result import OverlapResult
+from .sensitivity import jacobian, unit
+from .telecover import TelecoverResult
+
+#: Singular values of the normalised Jacobian below this fraction of the largest count as zero.
+RANK_TOLERANCE = 1e-10
+
+
+class DegeneracyWarning(RuntimeWarning):
+    """The data cannot tell some free parameters apart (|correlation| > 0.95, or a singular Jacobian)."""
+
+
+def covariance(j: np.ndarray, scale: float) -> np.ndarray:
+    """scale x (Jᵀ J)⁻¹ from the SVD of J (range, parameter); infinite where J is rank deficient."""
+    _, s, vt = np.linalg.svd(j, full_matrices=False)
+    if s.size == 0 or not s[-1] > RANK_TOLERANCE * s[0]:
+        return np.full((j.shape[1],) * 2, np.inf)
+    return scale * (vt.T / s**2) @ vt
+
+
+def step_tolerance(p, tolerance: float) -> float:
+    """The tolerance that sets the central-difference steps: RT's quadrature tolerance, else the fit's."""
+    return p.rt_quadrature_tolerance if p.backend == "rt" else tolerance
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """The fitted model at ``ranges`` (m): ``overlap`` and its 1-sigma band ``sigma`` (from the covariance)."""
+
+    ranges: np.ndarray
+    overlap: np.ndarray
+    sigma: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class FitResult:
+    """A fit of free parameters of a lidar system to a measured overlap (SI units).
+
+    parameters, uncertainties, start : path -> best value, its 1-sigma uncertainty, the start. covariance,
+    correlation : (k, k) in the order of ``parameters``. residuals : (model - measured) / sigma per range.
+    chi_square, reduced_chi_square, degrees_of_freedom : of those residuals (n - k). result : the fitted
+    :class:`OverlapResult`. measured, sigma : the data (sigma None when unit weights were used; then
+    ``covariance_scaled`` is True: the covariance is scaled by the reduced chi-square). degenerate_pairs :
+    (path, path, correlation) with |correlation| > 0.95. evaluations, jacobian_evaluations : model curves
+    and Jacobians computed (one core call each on ray tracing). status, message, converged : the optimiser's.
+    """
+
+    parameters: Dict[str, float]
+    uncertainties: Dict[str, float]
+    start: Dict[str, float]
+    covariance: np.ndarray
+    correlation: np.ndarray
+    residuals: np.ndarray
+    chi_square: float
+    reduced_chi_square: float
+    degrees_of_freedom: int
+    result: OverlapResult
+    measured: np.ndarray
+    sigma: Optional[np.ndarray]
+    covariance_scaled: bool
+    degenerate_pairs: Tuple[Tuple[str, str, float], ...]
+    evaluations: int
+    jacobian_evaluations: int
+    status: int
+    message: str
+    converged: bool
+    loss: str
+    plan: Any
+    step_tolerance: float
+
+    @property
+    def system(self):
+        """The fitted system."""
+        return self.result.system
+
+    @property
+    def ranges(self) -> np.ndarray:
+        return self.result.ranges
+
+    def predict(self, ranges) -> Prediction:
+        """The fitted model at ``ranges`` (m) and its 1-sigma band, sqrt(diag(J C Jᵀ)) with J = dG/dp there:
+        e.g. the near range of a curve measured only from 150 m. The fit's plan (model and options) is kept;
+        the band covers the parameters' uncertainty, not the model's own error (``result.error_estimate``)."""
+        z = _checks.ranges("ranges", ranges)
+        self.system._native.validate_ranges(z)
+        p = dataclasses.replace(self.plan, system=self.system, ranges=z)
+        g = run(p).overlap
+        j = jacobian(p, self.system, list(self.parameters), self.step_tolerance)
+        with np.errstate(invalid="ignore"):
+            band = np.sqrt(np.einsum("ij,jk,ik->i", j, self.covariance, j))
+        return Prediction(z, g, band)
+
+    def summary(self) -> str:
+        """The parameters with uncertainties, chi-square and degeneracies, one line each."""
+        lines = [f"fit ({self.result.method}, loss {self.loss}): {'converged' if self.converged else 'NOT converged'}"
+                 f" after {self.evaluations} model and {self.jacobian_evaluations} Jacobian evaluations"]
+        for path, value in self.parameters.items():
+            lines.append(f"  {path:<22} {value:+.6g} ± {self.uncertainties[path]:.3g} {unit(path)}"
+                         f"  (start {self.start[path]:+.6g})")
+        scaled = " (unit weights: covariance scaled by it)" if self.covariance_scaled else ""
+        lines.append(f"  chi-square {self.chi_square:.4g} for {self.degrees_of_freedom} degrees of freedom, "
+                     f"reduced {self.reduced_chi_square:.4g}{scaled}")
+        for a, b, c in self.degenerate_pairs:
+            lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
+        return "\n".join(lines)
+
+    __str__ = summary
+
+    def table(self):
+        """Rows (path, value, uncertainty, unit, start) for files."""
+        return [(path, v, self.uncertainties[path], unit(path), self.start[path])
+                for path, v in self.parameters.items()]
+
+    def plot(self, ranges=None, fig=None):
+        """Data with error bars, the fitted curve with its 1-sigma band over ``ranges`` (default: from a quarter
+        of the first measured range, where valid, to the last) and the residuals below. Returns the matplotlib
+        Figure (needs ``pip install 'lidar-overlap[plot]'``). A telecover fit: the measured and fitted deviations
+        per sector (at the measured ranges) and the residuals."""
+        from matplotlib.figure import Figure
+
+        if isinstance(self.result, TelecoverResult):
+            return _plot_telecover_fit(self, fig or Figure(figsize=(7.0, 5.6), constrained_layout=True))
+        z = self.ranges
+        if ranges is None:
+            ranges = np.geomspace(z[0] / 4, z[-1], 200)
+            try:
+                self.system._native.validate_ranges(ranges)
+            except ValueError:
+                ranges = np.geomspace(z[0], z[-1], 200)
+        pred = self.predict(ranges)
+        fig = fig or Figure(figsize=(7.0, 5.6), constrained_layout=True)
+        top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
+        err = self.sigma if self.sigma is not None else np.full(z.shape, math.sqrt(self.reduced_chi_square))
+        top.errorbar(z, self.measured, yerr=err, fmt=".", ms=3, lw=0.6, color="k", label="measured")
+        top.plot(pred.ranges, pred.overlap, color="C0", label="fitted model")
+        top.fill_between(pred.ranges, pred.overlap - pred.sigma, pred.overlap + pred.sigma, color="C0", alpha=0.3,
+                         label="1-sigma band (parameters)")
+        top.set_xscale("log")
+        top.set_ylabel("overlap G")
+        top.legend(fontsize=8, loc="lower right")
+        top.set_title("; ".join(f"{p} = {v:.4g} ± {self.uncertainties[p]:.2g} {unit(p)}"
+                                for p, v in self.parameters.items()), fontsize=8)
+        bottom.axhline(0.0, color="0.5", lw=0.6)
+        bottom.plot(z, self.residuals, ".", color="k", ms=3)
+        bottom.set_xlabel("range (m)")
+        bottom.set_ylabel("residual / sigma" if self.sigma is not None else "residual")
+        return fig
+
+
+
+def _plot_telecover_fit(fit: FitResult, fig):
+    """Measured deviations (with error bars) and the fitted ones per sector in %, residuals below."""
+    t = fit.result
+    z, shape = t.ranges, (len(t.names), t.ranges.size)
+    measured, residuals = fit.measured.reshape(shape), fit.residuals.reshape(shape)
+    err = (fit.sigma.reshape(shape) if fit.sigma is not None
+           else np.full(shape, math.sqrt(fit.reduced_chi_square)))
+    top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
+    for k, (name, d) in enumerate(zip(t.names, t.deviation)):
+        color = f"C{k % 10}"
+        top.errorbar(z, 100 * measured[k], yerr=100 * err[k], fmt=".", ms=3, lw=0.6, color=color)
+        top.plot(z, 100 * d, color=color, label=f"{name} (fitted)")
+        bottom.plot(z, residuals[k], ".", ms=3, color=color)
+    top.axhline(0.0, color="0.5", lw=0.6)
+    top.set_xscale("log")
+    top.set_ylabel("normalised deviation (%)")
+    top.legend(fontsize=8)
+    top.set_title("; ".join(f"{p} = {v:.4g} ± {fit.uncertainties[p]:.2g} {unit(p)}"
+                            for p, v in fit.parameters.items()), fontsize=8)
+    bottom.axhline(0.0, color="0.5", lw=0.6)
+    bottom.set_xlabel("range (m)")
+    bottom.set_ylabel("residual / sigma" if fit.sigma is not None else "residual")
+    return fig

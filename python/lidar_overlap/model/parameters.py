@@ -1,0 +1,159 @@
+"""Scalars of a :class:`LidarSystem` addressed by path, for maps, sensitivities, fits and studies (SI units).
+
+A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"beam.divergence"`` (rad, the
+1/e² half-angle; read as the actual divergence when the beam is diffraction-limited), ``"beam.waist_radius"``,
+``"beam.wavelength"``, ``"telescope.diameter"``, ``"telescope.focal_length"``, ``"telescope.obstruction_radius"``,
+``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``, ``"detector.offset[0]"``,
+``"detector.numerical_aperture"``, ``"telescope.aberrations.zernike[11]"`` (m RMS, Noll index) and
+``"telescope.aberrations.w040"`` (and the other Seidel terms). A pair without an index (``"beam.tilt"``)
+stands for both of its scalars where a list of parameters is asked for (:func:`expand`).
+
+Systems are immutable: :func:`replace` builds a new one, validated like any other, so a value outside the
+model's range is refused naming the path.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from typing import Dict, Iterable, List, Mapping, Tuple
+
+from .. import _checks
+from .aberrations import SEIDEL_TERMS, Aberrations
+from .field_beam import FieldBeam
+from .system import LidarSystem
+
+PAIRS = {"beam": ("offset", "tilt"), "detector": ("offset",)}
+SCALARS = {
+    "beam": ("wavelength", "waist_radius", "divergence"),
+    "telescope": ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"),
+    "detector": ("radius", "defocus", "numerical_aperture"),
+}
+_PATH = re.compile(r"^(beam|telescope|detector)\.(\w+)(?:\[(\d+)\])?$")
+_ABERRATION = re.compile(r"^telescope\.aberrations\.(?:zernike\[(\d+)\]|(\w+))$")
+
+
+def valid_paths() -> List[str]:
+    """Every path form :func:`get` and :func:`replace` accept (``zernike[j]`` for any Noll index j)."""
+    paths = [f"{part}.{name}" for part, names in SCALARS.items() for name in names]
+    paths += [f"{part}.{name}[{i}]" for part, names in PAIRS.items() for name in names for i in (0, 1)]
+    return paths + ["telescope.aberrations.zernike[j]"] + [f"telescope.aberrations.{t}" for t in SEIDEL_TERMS]
+
+
+def expand(paths: Iterable[str]) -> List[str]:
+    """``paths`` with each bare pair (``"beam.tilt"``) replaced by its two scalars; each path checked."""
+    if isinstance(paths, str):
+        paths = [paths]
+    out: List[str] = []
+    for path in paths:
+        m = _PATH.match(path) if isinstance(path, str) else None
+        if m and m.group(3) is None and m.group(2) in PAIRS.get(m.group(1), ()):
+            out += [f"{path}[0]", f"{path}[1]"]
+        else:
+            _parse(path)
+            out.append(path)
+    if len(set(out)) != len(out):
+        raise ValueError(f"parameters = {list(paths)!r} is invalid: a parameter is named twice")
+    return out
+
+
+def plain_paths(paths, name: str, why: str) -> List[str]:
+    """:func:`expand` of ``paths`` (the argument ``name``), refused when empty or naming aberration terms (``why``
+    says why the caller cannot vary them)."""
+    out = expand(paths)
+    if not out:
+        raise ValueError(f"{name} = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']")
+    aberrations = [path for path in out if path.startswith("telescope.aberrations.")]
+    if aberrations:
+        raise ValueError(f"{name}: {', '.join(aberrations)} is not available: {why}")
+    return out
+
+
+def get(system: LidarSystem, path: str) -> float:
+    """The value of the scalar at ``path`` in ``system`` (SI units)."""
+    kind, part, name, index = _parse(path)
+    if kind == "zernike":
+        ab = system.telescope.aberrations
+        return float(ab.zernike.get(index, 0.0)) if ab is not None else 0.0
+    if kind == "seidel":
+        ab = system.telescope.aberrations
+        return float(getattr(ab, name)) if ab is not None else 0.0
+    owner = getattr(system, part)
+    if part == "beam" and name == "divergence" and not isinstance(owner, FieldBeam):
+        return float(owner.half_angle_divergence)
+    _check_owner(owner, part, name, path)
+    value = getattr(owner, name)
+    if value is None:
+        raise ValueError(f"{path} is not set in this system (None): give it a value before varying it")
+    return float(value[index] if index is not None else value)
+
+
+def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
+    """A new system with each path in ``values`` set to its value (SI units); refused naming the path when a
+    value is not a real number or the system it makes is invalid."""
+    changes: Dict[str, Dict[str, object]] = {"beam": {}, "telescope": {}, "detector": {}}
+    aberrations: Dict[str, object] = {}
+    for path, value in values.items():
+        kind, part, name, index = _parse(path)
+        value = _checks.real(path, value)
+        if kind == "zernike":
+            current = aberrations.get("zernike", dict(_aberrations(system).zernike))
+            aberrations["zernike"] = {**current, index: value}
+        elif kind == "seidel":
+            aberrations[name] = value
+        elif index is not None:
+            pair = list(changes[part].get(name, getattr(getattr(system, part), name)))
+            pair[index] = value
+            changes[part][name] = tuple(pair)
+        else:
+            _check_owner(getattr(system, part), part, name, path)
+            changes[part][name] = value
+    try:
+        if aberrations:
+            changes["telescope"]["aberrations"] = dataclasses.replace(_aberrations(system), **aberrations)
+        parts = {part: _replaced(getattr(system, part), part, c) for part, c in changes.items()}
+        return LidarSystem(**parts)
+    except ValueError as exc:
+        raise ValueError(f"{', '.join(values)} = {_shown(values)} makes an invalid system: {exc}") from None
+
+
+def _parse(path) -> Tuple[str, str, str, object]:
+    """(kind, part, name, index) of a path: kind ``"plain"``, ``"zernike"`` or ``"seidel"``."""
+    if isinstance(path, str):
+        m = _ABERRATION.match(path)
+        if m and m.group(1) is not None:
+            j = int(m.group(1))
+            if 1 <= j <= 231:
+                return "zernike", "telescope", "zernike", j
+        elif m and m.group(2) in SEIDEL_TERMS + ("field_radius",):
+            return "seidel", "telescope", m.group(2), None
+        m = _PATH.match(path)
+        if m:
+            part, name, index = m.group(1), m.group(2), m.group(3)
+            if index is None and name in SCALARS[part]:
+                return "plain", part, name, None
+            if index is not None and name in PAIRS.get(part, ()) and int(index) in (0, 1):
+                return "plain", part, name, int(index)
+    raise ValueError(f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}")
+
+
+def _check_owner(owner, part: str, name: str, path: str) -> None:
+    if isinstance(owner, FieldBeam) and name not in ("offset", "tilt"):
+        raise ValueError(f"{path} is invalid for a {type(owner).__name__}: only its offset and tilt can vary "
+                         "(its field is given)")
+
+
+def _aberrations(system) -> Aberrations:
+    return system.telescope.aberrations if system.telescope.aberrations is not None else Aberrations()
+
+
+def _replaced(owner, part: str, changes: Dict[str, object]):
+    if not changes:
+        return owner
+    if isinstance(owner, FieldBeam):
+        return owner.with_pointing(changes.get("offset"), changes.get("tilt"))
+    return dataclasses.replace(owner, **changes)
+
+
+def _shown(values: Mapping[str, float]) -> str:
+    return ", ".join(repr(v) for v in values.values())
