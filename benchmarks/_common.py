@@ -20,7 +20,8 @@ def best_time(fn, repeats, setup=None):
 
 
 def alternated_best(runs, repeats):
-    """Each callable of ``runs`` (name -> function) run ``repeats`` + 1 times in turn, so that all see the same
+    """Each callable of ``runs`` (name -> function) run ``repeats`` + 1 times in turn, so that all
+    see the same
     load, the first round untimed. Returns ({name: best time in s}, {name: last result})."""
     times, last = {name: [] for name in runs}, {}
     for i in range(repeats + 1):
@@ -35,8 +36,13 @@ def alternated_best(runs, repeats):
 def source_commit():
     """Commit of the source tree beside this script (the installed build may be older), or None."""
     try:
-        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=Path(__file__).resolve().parent,
-                             capture_output=True, text=True, timeout=10)
+        out = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"],
+            cwd=Path(__file__).resolve().parent,
+            capture_output=True,
+            text=True,
+            timeout=10,
+        )
     except (OSError, subprocess.SubprocessError):
         return None
     return out.stdout.strip() or None

@@ -1,11 +1,11 @@
-"""Pieces shared by the speed-accuracy benchmarks (speed_accuracy.py, failure_map.py, scaling.py)."""
+"""Pieces shared by the speed-accuracy benchmarks (speed_accuracy.py, failure_map.py,
+scaling.py)."""
 
 from __future__ import annotations
 
 import dataclasses
 import sys
 from pathlib import Path
-
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -18,9 +18,9 @@ import lidar_overlap as lo  # noqa: E402
 from lidar_overlap import _core  # noqa: E402
 
 RESULTS = HERE / "results"
-REPEATS = 3                                     # best of 3 warm calls (one untimed call first)
-THREADS = 0                                     # all cores
-RADIAL_DEFAULT = 8.0                            # what lo.overlap(method="fo", fo_path="radial") uses
+REPEATS = 3  # best of 3 warm calls (one untimed call first)
+THREADS = 0  # all cores
+RADIAL_DEFAULT = 8.0  # what lo.overlap(method="fo", fo_path="radial") uses
 FO_2D_WINDOW = 10.0
 REFERENCE_RADIAL_PERIODS = 1.0
 
@@ -40,5 +40,8 @@ def airy_radius(system):
 
 TABLE1 = lo.paper_table1()
 
+
 def radial(system, z, periods, threads=THREADS):
-    return _core.overlap_fo_radial(system._native, z, _core.RadialFoOptions(periods_per_panel=float(periods), threads=threads)).overlap
+    return _core.overlap_fo_radial(
+        system._native, z, _core.RadialFoOptions(periods_per_panel=float(periods), threads=threads)
+    ).overlap

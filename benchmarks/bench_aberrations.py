@@ -1,14 +1,22 @@
-"""Receiver aberrations: the point image of an aberrated pupil against poppy, hcipy and LightPipes, the
-aberrated overlap curve by its three paths (RT pupil form, RT ray fan, FO), and field-dependent Seidel coma.
+"""Receiver aberrations: the point image of an aberrated pupil against poppy, hcipy and LightPipes,
+the
+aberrated overlap curve by its three paths (RT pupil form, RT ray fan, FO), and field-dependent
+Seidel coma.
 
-1. Point image: Table 1 telescope (D = 0.15 m, 355 nm) with 0.05, 0.03, 0.05 um RMS of Noll Z6, Z8, Z11,
-   the detector in the image plane (defocus 1 mm, z = z_opt), 512 x 512 samples at lambda d / (2D), 256
-   pupil samples across D. Time per PSF (warm, best of N), Strehl ratio (central intensity over the ideal
-   one's) against |<exp(2 pi i W / lambda)>|^2 by a polar Gauss rule, and the largest difference of the
+1. Point image: Table 1 telescope (D = 0.15 m, 355 nm) with 0.05, 0.03, 0.05 um RMS of Noll Z6, Z8,
+Z11,
+   the detector in the image plane (defocus 1 mm, z = z_opt), 512 x 512 samples at lambda d / (2D),
+   256
+   pupil samples across D. Time per PSF (warm, best of N), Strehl ratio (central intensity over the
+   ideal
+   one's) against |<exp(2 pi i W / lambda)>|^2 by a polar Gauss rule, and the largest difference of
+   the
    PSFs, each in units of its own ideal peak. Every peer's wavefront is checked against closed-form
-   Zernike polynomials on its own pupil samples, in lo's sign (exp(+2 pi i W / lambda), +Z2 images at +x).
+   Zernike polynomials on its own pupil samples, in lo's sign (exp(+2 pi i W / lambda), +Z2 images
+   at +x).
 2. Overlap curve, Table 1 with 0.5 um RMS each of Z6 and Z11, 20 ranges 150-3000 m.
-3. Seidel coma W131 (ray fan per scatterer), alone (radial) and with Z6 (a 2-D beam integral over directions).
+3. Seidel coma W131 (ray fan per scatterer), alone (radial) and with Z6 (a 2-D beam integral over
+directions).
 
 Runs in ~45 s on 2 cores at load 1.5, ~2 min at load 4 (most of it the FO and ray-fan curves).
 Writes results/bench_aberrations.json.
@@ -25,31 +33,39 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from _common import best_time, load_average, source_commit
 
 import lidar_overlap as lo
 from lidar_overlap import with_aberrations
-from _common import best_time, load_average, source_commit
 
 WAVELENGTH, D, F, DEFOCUS = 355e-9, 0.15, 1.0, 1e-3
-R, DIST = D / 2, F + DEFOCUS                 # pupil radius; lens-detector distance d
-N, ACROSS = 512, 256                         # image samples per side; pupil samples across D
-SPACING = WAVELENGTH * DIST / (2 * D)        # m on the detector: lambda d / (n delta) with delta = D / 256
-C = N // 2                                   # index of the axis (every code here puts 0 there)
-PSF_TERMS = {6: 0.05e-6, 8: 0.03e-6, 11: 0.05e-6}   # Noll j: m RMS
+R, DIST = D / 2, F + DEFOCUS  # pupil radius; lens-detector distance d
+N, ACROSS = 512, 256  # image samples per side; pupil samples across D
+SPACING = (
+    WAVELENGTH * DIST / (2 * D)
+)  # m on the detector: lambda d / (n delta) with delta = D / 256
+C = N // 2  # index of the axis (every code here puts 0 there)
+PSF_TERMS = {6: 0.05e-6, 8: 0.03e-6, 11: 0.05e-6}  # Noll j: m RMS
 CURVE_TERMS = {6: 0.5e-6, 11: 0.5e-6}
 RANGES = np.geomspace(150.0, 3000.0, 20)
-REFINED = (0, 3, 6)                          # ranges (indices) where the fan's ray count shows: 150, 240, 380 m
-REFINED_FAN = (96, 256)                      # rings x rays per ring (default 48 x 128)
+REFINED = (0, 3, 6)  # ranges (indices) where the fan's ray count shows: 150, 240, 380 m
+REFINED_FAN = (96, 256)  # rings x rays per ring (default 48 x 128)
 SEIDEL = dict(w131=0.2e-6, field_radius=0.45e-3)
-DIRECTIONS = 64      # lo's cap on the beam integral's directions (from 8, doubled until two trapezoid rules agree)
+# lo's cap on the beam integral's directions (from 8, doubled until two trapezoid rules agree)
+DIRECTIONS = 64
 
 
 # ---- closed forms (independent of every code compared) ----
 
+
 def noll_nm(j):
     n = int(math.sqrt(2 * j - 1) + 0.5) - 1
-    m = 2 * ((2 * j + 1 - n * (n + 1)) // 4) if n % 2 == 0 else 2 * ((2 * (j + 1) - n * (n + 1)) // 4) - 1
-    return n, (m if j % 2 == 0 else -m)       # Noll: even j cos, odd j sin
+    m = (
+        2 * ((2 * j + 1 - n * (n + 1)) // 4)
+        if n % 2 == 0
+        else 2 * ((2 * (j + 1) - n * (n + 1)) // 4) - 1
+    )
+    return n, (m if j % 2 == 0 else -m)  # Noll: even j cos, odd j sin
 
 
 def wavefront(terms, x, y):
@@ -59,8 +75,13 @@ def wavefront(terms, x, y):
     for j, c in terms.items():
         n, m = noll_nm(j)
         k = (n - abs(m)) // 2
-        radial = sum((-1) ** s * math.factorial(n - s) / (math.factorial(s) * math.factorial(n - k - s)
-                     * math.factorial(k - s)) * rho ** (n - 2 * s) for s in range(k + 1))
+        radial = sum(
+            (-1) ** s
+            * math.factorial(n - s)
+            / (math.factorial(s) * math.factorial(n - k - s) * math.factorial(k - s))
+            * rho ** (n - 2 * s)
+            for s in range(k + 1)
+        )
         ang = 1.0 if m == 0 else math.sqrt(2) * (np.cos(m * theta) if m > 0 else np.sin(-m * theta))
         w += c * math.sqrt(n + 1) * radial * ang
     return w
@@ -83,13 +104,14 @@ def convention_error(w_peer, x, y, terms):
 
 # ---- the point image by each code: (ideal PSF, aberrated PSF builder, W check) ----
 
+
 def lo_psf():
     system = lo.paper_table1(defocus=DEFOCUS)
     z = lo.optimal_focus_range(F, DEFOCUS)
     aberrated = with_aberrations(system, lo.Aberrations(zernike=PSF_TERMS))
     psf = lambda s: np.abs(lo.point_image(s, z, n=N, spacing=SPACING).values) ** 2  # noqa: E731
     delta = D / ACROSS
-    y, x = np.mgrid[-ACROSS // 2:ACROSS // 2 + 1, -ACROSS // 2:ACROSS // 2 + 1] * delta
+    y, x = np.mgrid[-ACROSS // 2 : ACROSS // 2 + 1, -ACROSS // 2 : ACROSS // 2 + 1] * delta
     w = lo.Aberrations(zernike=PSF_TERMS).wavefront(x / R, y / R)
     return psf(system), lambda: psf(aberrated), convention_error(w, x, y, PSF_TERMS)
 
@@ -102,18 +124,24 @@ def poppy_psf(hard_edge):
     coeffs = np.zeros(max(PSF_TERMS))
     for j, c in PSF_TERMS.items():
         coeffs[j - 1] = -c
-    pixelscale = math.degrees(WAVELENGTH / (2 * D)) * 3600 * u.arcsec / u.pix   # = SPACING / d
+    pixelscale = math.degrees(WAVELENGTH / (2 * D)) * 3600 * u.arcsec / u.pix  # = SPACING / d
 
     def build(c):
         osys = poppy.OpticalSystem(npix=ACROSS, pupil_diameter=D * u.m, verbose=False)
         if not hard_edge:
-            osys.add_pupil(poppy.CircularAperture(radius=R * u.m))         # gray (area-weighted) edge pixels
-        zwfe = osys.add_pupil(poppy.ZernikeWFE(coefficients=c * u.m, radius=R * u.m, aperture_stop=hard_edge))
-        osys.add_detector(pixelscale=pixelscale, fov_pixels=N + 1, oversample=1)   # odd: a pixel on the axis
+            osys.add_pupil(
+                poppy.CircularAperture(radius=R * u.m)
+            )  # gray (area-weighted) edge pixels
+        zwfe = osys.add_pupil(
+            poppy.ZernikeWFE(coefficients=c * u.m, radius=R * u.m, aperture_stop=hard_edge)
+        )
+        osys.add_detector(
+            pixelscale=pixelscale, fov_pixels=N + 1, oversample=1
+        )  # odd: a pixel on the axis
         return osys, zwfe
 
     def psf(osys):
-        return osys.calc_psf(wavelength=WAVELENGTH)[0].data[:N, :N]     # rows/cols -256 .. 255 like lo
+        return osys.calc_psf(wavelength=WAVELENGTH)[0].data[:N, :N]  # rows/cols -256 .. 255 like lo
 
     ideal, _ = build(np.zeros_like(coeffs))
     osys, zwfe = build(coeffs)
@@ -127,24 +155,34 @@ def hcipy_psf():
 
     pupil_grid = hcipy.make_pupil_grid(ACROSS, D)
     focal_grid = hcipy.make_uniform_grid([N, N], N * SPACING, has_center=True)
-    aperture = hcipy.evaluate_supersampled(hcipy.make_circular_aperture(D), pupil_grid, 8)   # as lo's 8 x 8 edges
-    # radial_cutoff=False: edge pixels whose centre is outside R keep the polynomial's value, as in lo.
+    aperture = hcipy.evaluate_supersampled(
+        hcipy.make_circular_aperture(D), pupil_grid, 8
+    )  # as lo's 8 x 8 edges
+    # radial_cutoff=False: edge pixels whose centre is outside R keep the polynomial's value, as in
+    # lo.
     basis = hcipy.make_zernike_basis(max(PSF_TERMS), D, pupil_grid, 1, radial_cutoff=False)
     prop = hcipy.FraunhoferPropagator(pupil_grid, focal_grid, focal_length=DIST)
     coeffs = np.array([PSF_TERMS.get(j, 0.0) for j in range(1, max(PSF_TERMS) + 1)])
 
     def psf(c):
         w = basis.linear_combination(c)
-        return prop(hcipy.Wavefront(aperture * np.exp(2j * np.pi * w / WAVELENGTH), WAVELENGTH)).power.shaped
+        return prop(
+            hcipy.Wavefront(aperture * np.exp(2j * np.pi * w / WAVELENGTH), WAVELENGTH)
+        ).power.shaped
 
     w = np.asarray(basis.linear_combination(coeffs))
-    return psf(0 * coeffs), lambda: psf(coeffs), convention_error(w, pupil_grid.x, pupil_grid.y, PSF_TERMS)
+    return (
+        psf(0 * coeffs),
+        lambda: psf(coeffs),
+        convention_error(w, pupil_grid.x, pupil_grid.y, PSF_TERMS),
+    )
 
 
 def lightpipes_psf():
     import LightPipes as lp
 
-    # LightPipes' Zernike multiplies by exp(-2 pi i A Z / lambda) with theta = atan2(y, x) + pi, which flips
+    # LightPipes' Zernike multiplies by exp(-2 pi i A Z / lambda) with theta = atan2(y, x) + pi,
+    # which flips
     # odd-m terms: A = -c for even m, +c for odd m gives lo's exp(+2 pi i W / lambda).
     def pupil(terms):
         f = lp.Begin(N * D / ACROSS, WAVELENGTH, N)
@@ -154,18 +192,30 @@ def lightpipes_psf():
         return f
 
     def psf(terms):
-        f = lp.PipFFT(lp.CircAperture(pupil(terms), R))   # hard edge; output spacing lambda d / (N delta)
+        f = lp.PipFFT(
+            lp.CircAperture(pupil(terms), R)
+        )  # hard edge; output spacing lambda d / (N delta)
         return np.abs(f.field) ** 2
 
     f = pupil(PSF_TERMS)
     y, x = f.mgrid_cartesian
-    phase = np.angle(f.field * np.exp(-2j * np.pi * wavefront(PSF_TERMS, x / R, y / R) / WAVELENGTH))
+    phase = np.angle(
+        f.field * np.exp(-2j * np.pi * wavefront(PSF_TERMS, x / R, y / R) / WAVELENGTH)
+    )
     inside = np.hypot(x, y) < R
-    return psf({}), lambda: psf(PSF_TERMS), float(np.max(np.abs(phase[inside]))) * WAVELENGTH / (2 * np.pi)
+    return (
+        psf({}),
+        lambda: psf(PSF_TERMS),
+        float(np.max(np.abs(phase[inside]))) * WAVELENGTH / (2 * np.pi),
+    )
 
 
-PEERS = {"poppy": lambda: poppy_psf(False), "poppy (hard edge)": lambda: poppy_psf(True),
-         "hcipy": hcipy_psf, "LightPipes": lightpipes_psf}
+PEERS = {
+    "poppy": lambda: poppy_psf(False),
+    "poppy (hard edge)": lambda: poppy_psf(True),
+    "hcipy": hcipy_psf,
+    "LightPipes": lightpipes_psf,
+}
 REPEATS = {"lo": 10, "poppy": 5, "poppy (hard edge)": 5, "hcipy": 10, "LightPipes": 5}
 
 
@@ -182,8 +232,13 @@ def point_image_section():
             rows[name] = {"status": f"not installed ({e})"}
             continue
         peak = ideal[C, C]
-        row = {"ms": 1e3 * t, "strehl": float(psf[C, C] / peak), "strehl_minus_exact": float(psf[C, C] / peak - exact),
-               "wavefront_max_error_m": w_error, "ideal_peak_on_axis": bool(np.argmax(ideal) == C * N + C)}
+        row = {
+            "ms": 1e3 * t,
+            "strehl": float(psf[C, C] / peak),
+            "strehl_minus_exact": float(psf[C, C] / peak - exact),
+            "wavefront_max_error_m": w_error,
+            "ideal_peak_on_axis": bool(np.argmax(ideal) == C * N + C),
+        }
         if ref is None:
             ref = (ideal / peak, psf / peak)
         else:
@@ -192,13 +247,19 @@ def point_image_section():
             row["x_lo_time"] = t / (1e-3 * rows["lo"]["ms"])
         rows[name] = row
     sigma = math.sqrt(sum(c * c for c in PSF_TERMS.values()))
-    return {"exact_strehl": exact, "marechal": math.exp(-(2 * math.pi * sigma / WAVELENGTH) ** 2), "codes": rows}
+    return {
+        "exact_strehl": exact,
+        "marechal": math.exp(-((2 * math.pi * sigma / WAVELENGTH) ** 2)),
+        "codes": rows,
+    }
 
 
 # ---- 2 and 3: overlap curves ----
 
+
 def timed(fn):
-    """One timed call, for calls of seconds (no plans or caches to warm: FO plans with FFTW_ESTIMATE)."""
+    """One timed call, for calls of seconds (no plans or caches to warm: FO plans with
+    FFTW_ESTIMATE)."""
     t0 = time.perf_counter()
     result = fn()
     return time.perf_counter() - t0, result
@@ -206,7 +267,9 @@ def timed(fn):
 
 def fan_system(system):
     # An NA of 0.99 filters no ray of this lidar but makes lo trace every scatterer's ray fan.
-    return dataclasses.replace(system, detector=dataclasses.replace(system.detector, numerical_aperture=0.99))
+    return dataclasses.replace(
+        system, detector=dataclasses.replace(system.detector, numerical_aperture=0.99)
+    )
 
 
 def curve_section():
@@ -215,44 +278,83 @@ def curve_section():
     fan = fan_system(system)
     t_rt, rt = best_time(lambda: lo.overlap(system, RANGES, "rt").overlap, 5)
     t_fo, fo = timed(lambda: lo.overlap(system, RANGES, "fo").overlap)
-    t_fo5, fo5 = timed(lambda: lo._core.overlap_fo_aberrated(system._native, ab._native, RANGES,
-                                                             lo._core.FoAberratedOptions(tail_error=1e-5)))
+    t_fo5, fo5 = timed(
+        lambda: lo._core.overlap_fo_aberrated(
+            system._native, ab._native, RANGES, lo._core.FoAberratedOptions(tail_error=1e-5)
+        )
+    )
     t_fan, fn = timed(lambda: lo.overlap(fan, RANGES, "rt").overlap)
     zr = RANGES[list(REFINED)]
-    refined_fan = lo._core.RtAberratedOptions(rings=REFINED_FAN[0], ring_rays=REFINED_FAN[1], directions=DIRECTIONS)
-    t_ref, refined = timed(lambda: lo._core.overlap_rt_aberrated(fan._native, ab._native, zr, refined_fan).overlap)
+    refined_fan = lo._core.RtAberratedOptions(
+        rings=REFINED_FAN[0], ring_rays=REFINED_FAN[1], directions=DIRECTIONS
+    )
+    t_ref, refined = timed(
+        lambda: lo._core.overlap_rt_aberrated(fan._native, ab._native, zr, refined_fan).overlap
+    )
     fo5_g = fo5.overlap
-    worst = int(np.argmax(np.abs(fo - fo5_g)))     # one more decade there: is tail 1e-5 converged?
-    t_fo6, fo6 = timed(lambda: lo._core.overlap_fo_aberrated(system._native, ab._native, RANGES[worst:worst + 1],
-                                                             lo._core.FoAberratedOptions(max_grid=8192, tail_error=1e-6)))
+    worst = int(np.argmax(np.abs(fo - fo5_g)))  # one more decade there: is tail 1e-5 converged?
+    t_fo6, fo6 = timed(
+        lambda: lo._core.overlap_fo_aberrated(
+            system._native,
+            ab._native,
+            RANGES[worst : worst + 1],
+            lo._core.FoAberratedOptions(max_grid=8192, tail_error=1e-6),
+        )
+    )
     ideal = lo.overlap(lo.paper_table1(), RANGES, "fo").overlap
-    return {"ranges_m": RANGES.tolist(), "ideal_fo": ideal.tolist(), "rt": rt.tolist(), "fo": fo.tolist(),
-            "fan": fn.tolist(), "fo_tail_1e-5": fo5_g.tolist(), "fo_grid_tail_1e-5": fo5.grid.tolist(),
-            "refined_ranges_m": zr.tolist(), "refined_fan": refined.tolist(),
-            "fo_worst_range_m": RANGES[worst],
-            "fo_worst_tail_1e-4_1e-5_1e-6": [fo[worst], fo5_g[worst], fo6.overlap[0]],
-            "fo_worst_grid_tail_1e-6": int(fo6.grid[0]),
-            "s": {"rt": t_rt, "fo": t_fo, "fo_tail_1e-5": t_fo5, "fan": t_fan, "refined_fan": t_ref,
-                  "fo_tail_1e-6_one_range": t_fo6},
-            "rt_minus_fan_max": float(np.max(np.abs(rt - fn))),
-            "rt_minus_refined_fan": (rt[list(REFINED)] - refined).tolist(),
-            "fan_minus_refined_fan": (fn[list(REFINED)] - refined).tolist(),
-            "fo_minus_fo_tail_1e-5_max": float(np.max(np.abs(fo - fo5_g))),
-            "rt_minus_fo_max": float(np.max(np.abs(rt - fo))), "rt_minus_fo_far": float(rt[-1] - fo[-1]),
-            "aberrations_effect_max": float(np.max(np.abs(fo - ideal)))}
+    return {
+        "ranges_m": RANGES.tolist(),
+        "ideal_fo": ideal.tolist(),
+        "rt": rt.tolist(),
+        "fo": fo.tolist(),
+        "fan": fn.tolist(),
+        "fo_tail_1e-5": fo5_g.tolist(),
+        "fo_grid_tail_1e-5": fo5.grid.tolist(),
+        "refined_ranges_m": zr.tolist(),
+        "refined_fan": refined.tolist(),
+        "fo_worst_range_m": RANGES[worst],
+        "fo_worst_tail_1e-4_1e-5_1e-6": [fo[worst], fo5_g[worst], fo6.overlap[0]],
+        "fo_worst_grid_tail_1e-6": int(fo6.grid[0]),
+        "s": {
+            "rt": t_rt,
+            "fo": t_fo,
+            "fo_tail_1e-5": t_fo5,
+            "fan": t_fan,
+            "refined_fan": t_ref,
+            "fo_tail_1e-6_one_range": t_fo6,
+        },
+        "rt_minus_fan_max": float(np.max(np.abs(rt - fn))),
+        "rt_minus_refined_fan": (rt[list(REFINED)] - refined).tolist(),
+        "fan_minus_refined_fan": (fn[list(REFINED)] - refined).tolist(),
+        "fo_minus_fo_tail_1e-5_max": float(np.max(np.abs(fo - fo5_g))),
+        "rt_minus_fo_max": float(np.max(np.abs(rt - fo))),
+        "rt_minus_fo_far": float(rt[-1] - fo[-1]),
+        "aberrations_effect_max": float(np.max(np.abs(fo - ideal))),
+    }
 
 
 def seidel_section():
     out = {}
-    for label, ab in (("w131", lo.Aberrations(**SEIDEL)), ("w131+z6", lo.Aberrations(**SEIDEL, zernike={6: 0.3e-6}))):
+    for label, ab in (
+        ("w131", lo.Aberrations(**SEIDEL)),
+        ("w131+z6", lo.Aberrations(**SEIDEL, zernike={6: 0.3e-6})),
+    ):
         system = with_aberrations(lo.paper_table1(), ab)
         # which beam integral lo chose (radial or over directions), asked at the cheapest range
-        raw = lo._core.overlap_rt_aberrated(system._native, ab._native, RANGES[-1:],
-                                            lo._core.RtAberratedOptions(directions=DIRECTIONS))
+        raw = lo._core.overlap_rt_aberrated(
+            system._native,
+            ab._native,
+            RANGES[-1:],
+            lo._core.RtAberratedOptions(directions=DIRECTIONS),
+        )
         curve = lambda: lo.overlap(system, RANGES, "rt").overlap  # noqa: E731
-        t, g = best_time(curve, 3) if label == "w131" else timed(curve)     # ~0.5 s against ~18 s
-        out[label] = {"s": t, "s_per_range": t / RANGES.size, "radial": raw.rotationally_symmetric,
-                      "overlap": g.tolist()}
+        t, g = best_time(curve, 3) if label == "w131" else timed(curve)  # ~0.5 s against ~18 s
+        out[label] = {
+            "s": t,
+            "s_per_range": t / RANGES.size,
+            "radial": raw.rotationally_symmetric,
+            "overlap": g.tolist(),
+        }
     out["ideal_rt"] = lo.overlap(lo.paper_table1(), RANGES, "rt").overlap.tolist()
     return out
 
@@ -268,34 +370,57 @@ def main():
     print(f"lidar_overlap {lo.__version__} | load {load0:.2f} | commit {source_commit()}")
     t0 = time.perf_counter()
     psf = point_image_section()
-    print(f"\n1. Point image {N}^2, Z6/Z8/Z11 = 0.05/0.03/0.05 um RMS: exact Strehl {psf['exact_strehl']:.6f} "
-          f"(Marechal {psf['marechal']:.4f})")
-    print(f"{'code':18s} {'ms':>7s} {'x lo':>6s} {'Strehl':>9s} {'- exact':>9s} {'PSF diff':>9s} {'ideal diff':>10s} "
-          f"{'W err (m)':>9s}")
+    print(
+        f"\n1. Point image {N}^2, Z6/Z8/Z11 = 0.05/0.03/0.05 um RMS: exact Strehl "
+        f"{psf['exact_strehl']:.6f} "
+        f"(Marechal {psf['marechal']:.4f})"
+    )
+    print(
+        f"{'code':18s} {'ms':>7s} {'x lo':>6s} {'Strehl':>9s} {'- exact':>9s} {'PSF diff':>9s} "
+        f"{'ideal diff':>10s} "
+        f"{'W err (m)':>9s}"
+    )
     for name, r in psf["codes"].items():
         if "ms" not in r:
             print(f"{name:18s} {r['status']}")
             continue
-        print(f"{name:18s} {r['ms']:7.1f} {r.get('x_lo_time', 1.0):6.2f} {r['strehl']:9.6f} "
-              f"{r['strehl_minus_exact']:9.1e} "
-              f"{r.get('psf_max_diff_vs_lo', 0.0):9.1e} {r.get('ideal_psf_max_diff_vs_lo', 0.0):10.1e} "
-              f"{r['wavefront_max_error_m']:9.1e}")
+        print(
+            f"{name:18s} {r['ms']:7.1f} {r.get('x_lo_time', 1.0):6.2f} {r['strehl']:9.6f} "
+            f"{r['strehl_minus_exact']:9.1e} "
+            f"{r.get('psf_max_diff_vs_lo', 0.0):9.1e} "
+            f"{r.get('ideal_psf_max_diff_vs_lo', 0.0):10.1e} "
+            f"{r['wavefront_max_error_m']:9.1e}"
+        )
     curve = curve_section()
     s = curve["s"]
-    print(f"\n2. Overlap, Z6 = Z11 = 0.5 um RMS, {RANGES.size} ranges {RANGES[0]:.0f}-{RANGES[-1]:.0f} m")
-    print(f"  rt (pupil form) {s['rt']:.3f} s | fo {s['fo']:.2f} s | fo tail 1e-5 {s['fo_tail_1e-5']:.2f} s | "
-          f"ray fan 48x128 {s['fan']:.2f} s | fan {REFINED_FAN[0]}x{REFINED_FAN[1]} at {len(REFINED)} ranges "
-          f"{s['refined_fan']:.2f} s")
-    print(f"  |rt - fan| max {curve['rt_minus_fan_max']:.1e}; rt - fan {REFINED_FAN[0]}x{REFINED_FAN[1]} at "
-          f"{np.round(curve['refined_ranges_m'])} m: "
-          f"{np.array2string(np.array(curve['rt_minus_refined_fan']), precision=1)}")
-    print(f"  |fo - fo(tail 1e-5)| max {curve['fo_minus_fo_tail_1e-5_max']:.1e}; |rt - fo| max "
-          f"{curve['rt_minus_fo_max']:.1e} (at {RANGES[-1]:.0f} m {curve['rt_minus_fo_far']:.1e}); "
-          f"aberrations move G by up to {curve['aberrations_effect_max']:.3f}")
+    print(
+        f"\n2. Overlap, Z6 = Z11 = 0.5 um RMS, {RANGES.size} ranges "
+        f"{RANGES[0]:.0f}-{RANGES[-1]:.0f} m"
+    )
+    print(
+        f"  rt (pupil form) {s['rt']:.3f} s | fo {s['fo']:.2f} s | fo tail 1e-5 "
+        f"{s['fo_tail_1e-5']:.2f} s | "
+        f"ray fan 48x128 {s['fan']:.2f} s | fan {REFINED_FAN[0]}x{REFINED_FAN[1]} at "
+        f"{len(REFINED)} ranges "
+        f"{s['refined_fan']:.2f} s"
+    )
+    print(
+        f"  |rt - fan| max {curve['rt_minus_fan_max']:.1e}; rt - fan "
+        f"{REFINED_FAN[0]}x{REFINED_FAN[1]} at "
+        f"{np.round(curve['refined_ranges_m'])} m: "
+        f"{np.array2string(np.array(curve['rt_minus_refined_fan']), precision=1)}"
+    )
+    print(
+        f"  |fo - fo(tail 1e-5)| max {curve['fo_minus_fo_tail_1e-5_max']:.1e}; |rt - fo| max "
+        f"{curve['rt_minus_fo_max']:.1e} (at {RANGES[-1]:.0f} m {curve['rt_minus_fo_far']:.1e}); "
+        f"aberrations move G by up to {curve['aberrations_effect_max']:.3f}"
+    )
     g = curve["fo_worst_tail_1e-4_1e-5_1e-6"]
-    print(f"  fo at {curve['fo_worst_range_m']:.0f} m, tail_error 1e-4 / 1e-5 / 1e-6: "
-          f"{g[0]:.8f} / {g[1]:.8f} / {g[2]:.8f} "
-          f"(1e-6: {s['fo_tail_1e-6_one_range']:.1f} s, grid {curve['fo_worst_grid_tail_1e-6']})")
+    print(
+        f"  fo at {curve['fo_worst_range_m']:.0f} m, tail_error 1e-4 / 1e-5 / 1e-6: "
+        f"{g[0]:.8f} / {g[1]:.8f} / {g[2]:.8f} "
+        f"(1e-6: {s['fo_tail_1e-6_one_range']:.1f} s, grid {curve['fo_worst_grid_tail_1e-6']})"
+    )
     seidel = seidel_section()
     print("\n3. Seidel coma W131 = 0.2 um at 0.45 mrad (ray fan per scatterer)")
     for label in ("w131", "w131+z6"):
@@ -305,12 +430,26 @@ def main():
     run_s, load1 = time.perf_counter() - t0, load_average()
     print(f"\nrun {run_s:.0f} s, load {load0:.2f} -> {load1:.2f}")
     out = Path(__file__).resolve().parent / "results" / "bench_aberrations.json"
-    meta = {"measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "commit": source_commit(), "versions": versions,
-            "cores": os.cpu_count(), "load_average_1min_start": load0, "load_average_1min_end": load1,
-            "run_s": run_s, "wavelength_m": WAVELENGTH, "n": N, "spacing_m": SPACING, "pupil_samples_across": ACROSS,
-            "psf_zernike_m_rms": PSF_TERMS, "curve_zernike_m_rms": CURVE_TERMS, "seidel": SEIDEL,
-            "refined_fan": REFINED_FAN}
-    out.write_text(json.dumps({"meta": meta, "point_image": psf, "curve": curve, "seidel": seidel}, indent=2))
+    meta = {
+        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+        "commit": source_commit(),
+        "versions": versions,
+        "cores": os.cpu_count(),
+        "load_average_1min_start": load0,
+        "load_average_1min_end": load1,
+        "run_s": run_s,
+        "wavelength_m": WAVELENGTH,
+        "n": N,
+        "spacing_m": SPACING,
+        "pupil_samples_across": ACROSS,
+        "psf_zernike_m_rms": PSF_TERMS,
+        "curve_zernike_m_rms": CURVE_TERMS,
+        "seidel": SEIDEL,
+        "refined_fan": REFINED_FAN,
+    }
+    out.write_text(
+        json.dumps({"meta": meta, "point_image": psf, "curve": curve, "seidel": seidel}, indent=2)
+    )
     print(f"wrote {out}")
 
 

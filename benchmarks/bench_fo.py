@@ -1,35 +1,49 @@
 """Speed and accuracy of the Fourier-optics propagation against an FFT round trip and against peers.
 
-All in this process, for grids N = 256, 512, 1024, 2048: a TEM00 field at its waist (w0 = 5 mm, 355 nm)
+All in this process, for grids N = 256, 512, 1024, 2048: a TEM00 field at its waist (w0 = 5 mm, 355
+nm)
 on a square window of +-5 w0 (spacing 10 w0 / N), propagated
 
 - ``angular_spectrum`` (Eq. (A1)) over 2 m, inside the angular-spectrum region of every grid (the
   critical distance N dx^2 / lambda is 3.4 m at N = 2048, 27.5 m at N = 256);
-- ``fresnel`` (single-FFT Eq. (A5), output spacing lambda z / (N dx)) over 100 m, beyond the critical
+- ``fresnel`` (single-FFT Eq. (A5), output spacing lambda z / (N dx)) over 100 m, beyond the
+  critical
   distance of every grid.
 
 lo is timed against ``_core.fft2d_roundtrip`` on the same values: the same copies in and out, one
 forward and one backward FFT on the same cached FFTW plans, nothing else (target: lo <= 1.3x of it).
-Warm times are the best of several calls after one untimed call (the cached propagation plan exists);
-lo, the reference and lo's native call are timed in interleaved rounds so that a change of machine load
-hits all of them alike. Cold times are reported separately: ``cold`` is the first call of the process
-for that N and method (for the angular spectrum it includes FFTW's planning of the forward and backward
-2-D transforms; Fresnel then reuses the forward plan), ``new z`` the best call at a distance not seen
-before (FFTW plans exist, the propagation plan -- transfer function or chirps -- is made anew), which is
+Warm times are the best of several calls after one untimed call (the cached propagation plan
+exists);
+lo, the reference and lo's native call are timed in interleaved rounds so that a change of machine
+load
+hits all of them alike. Cold times are reported separately: ``cold`` is the first call of the
+process
+for that N and method (for the angular spectrum it includes FFTW's planning of the forward and
+backward
+2-D transforms; Fresnel then reuses the forward plan), ``new z`` the best call at a distance not
+seen
+before (FFTW plans exist, the propagation plan -- transfer function or chirps -- is made anew),
+which is
 what every range of an overlap curve pays today.
 
-Peers (optional, benchmark-only; each is skipped with the reason when it does not import): LightPipes
-(Forvard: spectral, paraxial transfer function; Fresnel: convolution with Fresnel-integral kernel on a
-2N grid), hcipy (AngularSpectrumPropagator / FresnelPropagator, default num_oversampling = 2 and with 1)
+Peers (optional, benchmark-only; each is skipped with the reason when it does not import):
+LightPipes
+(Forvard: spectral, paraxial transfer function; Fresnel: convolution with Fresnel-integral kernel on
+a
+2N grid), hcipy (AngularSpectrumPropagator / FresnelPropagator, default num_oversampling = 2 and
+with 1)
 and poppy (FresnelWavefront.propagate_fresnel; inside its pilot beam's Rayleigh range this is its
-plane-to-plane transfer-function step). Each gets the same N, window, spacing, wavelength and distance,
+plane-to-plane transfer-function step). Each gets the same N, window, spacing, wavelength and
+distance,
 is timed warm like lo (its own cached set-up, e.g. hcipy's transfer function, exists; set-up done
-outside the timed call, e.g. a fresh poppy wavefront, is not timed), and its accuracy is measured the
+outside the timed call, e.g. a fresh poppy wavefront, is not timed), and its accuracy is measured
+the
 same way as lo's: the relative error |1 - w_D1 / w| (Eq. (D2) without the factor 100) of the
 second-moment radius w = sqrt(2 (var x + var y)) computed here from the returned irradiance on the
 peer's own grid coordinates, against Eq. (D1).
 
-Run:  python benchmarks/bench_fo.py   (writes benchmarks/results/bench_fo.json). SI units throughout.
+Run:  python benchmarks/bench_fo.py   (writes benchmarks/results/bench_fo.json). SI units
+throughout.
 """
 
 from __future__ import annotations
@@ -43,20 +57,20 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from _common import best_time, load_average, source_commit
 
 import lidar_overlap as lo
-from _common import best_time, load_average, source_commit
 from lidar_overlap import _core
 
-WAVELENGTH = 355e-9                 # m
-WAIST = 5e-3                        # m, w0
-HALF_WINDOW = 5.0                   # window +- HALF_WINDOW w0
+WAVELENGTH = 355e-9  # m
+WAIST = 5e-3  # m, w0
+HALF_WINDOW = 5.0  # window +- HALF_WINDOW w0
 SIZES = (256, 512, 1024, 2048)
-CASES = {"angular_spectrum": 2.0, "fresnel": 100.0}     # method -> distance (m)
-REPEATS_LO = {256: 25, 512: 19, 1024: 13, 2048: 9}      # rounds of (reference, lo, lo native)
+CASES = {"angular_spectrum": 2.0, "fresnel": 100.0}  # method -> distance (m)
+REPEATS_LO = {256: 25, 512: 19, 1024: 13, 2048: 9}  # rounds of (reference, lo, lo native)
 REPEATS_PEER = {256: 7, 512: 5, 1024: 3, 2048: 3}
-NEW_DISTANCES = 5                   # distinct unseen distances timed for "new z"
-TARGET_RATIO = 1.3                  # wanted lo warm time / reference time
+NEW_DISTANCES = 5  # distinct unseen distances timed for "new z"
+TARGET_RATIO = 1.3  # wanted lo warm time / reference time
 
 
 def d1_radius(z):
@@ -65,7 +79,8 @@ def d1_radius(z):
 
 
 def second_moment_radius(intensity, x, y):
-    """sqrt(2 (var x + var y)) of an irradiance on the grid x (columns) by y (rows), about its centroid:
+    """sqrt(2 (var x + var y)) of an irradiance on the grid x (columns) by y (rows), about its
+    centroid:
     the 1/e^2 radius of a TEM00 beam."""
     i = np.asarray(intensity, dtype=float)
     total = i.sum()
@@ -78,10 +93,9 @@ def d1_error(intensity, x, y, z):
     return abs(1.0 - d1_radius(z) / second_moment_radius(intensity, x, y))
 
 
-
-
 def interleaved_best(fns, repeats):
-    """Best wall time of each function in `fns` (name -> callable), timed in `repeats` rounds that call
+    """Best wall time of each function in `fns` (name -> callable), timed in `repeats` rounds that
+    call
     every function once, after one untimed round."""
     for fn in fns.values():
         fn()
@@ -102,7 +116,8 @@ def timed_once(fn):
 
 # ---------------------------------------------------------------------------------------------
 # Peers. Each factory returns (version, variants); a variant is (peer, routine, settings, prepare,
-# methods it is run for), and prepare(n, distance) -> (call, setup or None, intensity_and_grid), where
+# methods it is run for), and prepare(n, distance) -> (call, setup or None, intensity_and_grid),
+# where
 # intensity_and_grid(result) -> (irradiance, x of the columns, y of the rows).
 # ---------------------------------------------------------------------------------------------
 def lightpipes_variants():
@@ -113,7 +128,7 @@ def lightpipes_variants():
 
     def field(n):
         if n not in fields:
-            fields.clear()      # one grid at a time
+            fields.clear()  # one grid at a time
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 fields[n] = lp.GaussBeam(lp.Begin(2 * HALF_WINDOW * WAIST, WAVELENGTH, n), WAIST)
@@ -122,8 +137,12 @@ def lightpipes_variants():
     def make(routine):
         def prepare(n, distance):
             f = field(n)
-            return (lambda: routine(f, distance)), None, \
-                (lambda g: (lp.Intensity(g, 0), g.xvalues, g.yvalues))
+            return (
+                (lambda: routine(f, distance)),
+                None,
+                (lambda g: (lp.Intensity(g, 0), g.xvalues, g.yvalues)),
+            )
+
         return prepare
 
     settings = f"numpy FFT (pyFFTW {'on' if lp_config._USE_PYFFTW else 'off'})"
@@ -143,21 +162,37 @@ def hcipy_variants():
             wf = hcipy.Wavefront(hcipy.Field(amplitude, grid), WAVELENGTH)
             prop = cls(grid, distance, num_oversampling=oversampling)
             x, y = grid.x.reshape(n, n)[0], grid.y.reshape(n, n)[:, 0]
-            return (lambda: prop.forward(wf)), None, (lambda out: (np.asarray(out.intensity.shaped), x, y))
+            return (
+                (lambda: prop.forward(wf)),
+                None,
+                (lambda out: (np.asarray(out.intensity.shaped), x, y)),
+            )
+
         return prepare
 
-    try:        # hcipy tries mkl_fft first, then scipy.fft (all cores from 256^2 samples on)
+    try:  # hcipy tries mkl_fft first, then scipy.fft (all cores from 256^2 samples on)
         import mkl_fft  # noqa: F401
+
         backend = "mkl_fft"
     except ImportError:
         backend = "scipy.fft"
     variants = []
-    for method, cls in (("angular_spectrum", hcipy.AngularSpectrumPropagator),
-                        ("fresnel", hcipy.FresnelPropagator)):
+    for method, cls in (
+        ("angular_spectrum", hcipy.AngularSpectrumPropagator),
+        ("fresnel", hcipy.FresnelPropagator),
+    ):
         for oversampling in (2, 1):
-            variants.append(("hcipy", f"{cls.__name__}", f"num_oversampling={oversampling}"
-                             + (" (default)" if oversampling == 2 else "") + f", 2N zero padding, {backend}",
-                             make(cls, oversampling), (method,)))
+            variants.append(
+                (
+                    "hcipy",
+                    f"{cls.__name__}",
+                    f"num_oversampling={oversampling}"
+                    + (" (default)" if oversampling == 2 else "")
+                    + f", 2N zero padding, {backend}",
+                    make(cls, oversampling),
+                    (method,),
+                )
+            )
     return hcipy.__version__, variants
 
 
@@ -170,9 +205,14 @@ def poppy_variants():
         values = lo.Field.gaussian(WAVELENGTH, WAIST, n, 2 * HALF_WINDOW * WAIST / n).values
 
         def setup():
-            # Window 2 * HALF_WINDOW * w0 = npix * oversample pixels of spacing 2 beam_radius / npix.
-            wf = poppy.FresnelWavefront(beam_radius=HALF_WINDOW * WAIST / 2 * u.m, wavelength=WAVELENGTH * u.m,
-                                        npix=n // 2, oversample=2)
+            # Window 2 * HALF_WINDOW * w0 = npix * oversample pixels of spacing 2 beam_radius /
+            # npix.
+            wf = poppy.FresnelWavefront(
+                beam_radius=HALF_WINDOW * WAIST / 2 * u.m,
+                wavelength=WAVELENGTH * u.m,
+                npix=n // 2,
+                oversample=2,
+            )
             wf.wavefront = values.copy()
             return wf
 
@@ -186,11 +226,23 @@ def poppy_variants():
 
         return call, setup, intensity_and_grid
 
-    backends = ", ".join(k[5:].lower() for k in ("_USE_FFTW", "_USE_MKL", "_USE_NUMEXPR", "_USE_CUPY")
-                         if getattr(accel_math, k, False)) or "numpy"
-    return poppy.__version__, [("poppy", "FresnelWavefront.propagate_fresnel",
-                                f"oversample=2, npix=N/2; accelerators: {backends}", prepare,
-                                ("angular_spectrum", "fresnel"))]
+    backends = (
+        ", ".join(
+            k[5:].lower()
+            for k in ("_USE_FFTW", "_USE_MKL", "_USE_NUMEXPR", "_USE_CUPY")
+            if getattr(accel_math, k, False)
+        )
+        or "numpy"
+    )
+    return poppy.__version__, [
+        (
+            "poppy",
+            "FresnelWavefront.propagate_fresnel",
+            f"oversample=2, npix=N/2; accelerators: {backends}",
+            prepare,
+            ("angular_spectrum", "fresnel"),
+        )
+    ]
 
 
 PEERS = {"LightPipes": lightpipes_variants, "hcipy": hcipy_variants, "poppy": poppy_variants}
@@ -206,8 +258,12 @@ def load_peers():
         except ImportError as e:
             status[name] = {"installed": False, "version": None, "reason": f"not installed ({e})"}
             continue
-        except Exception as e:     # imports but cannot be set up: record why
-            status[name] = {"installed": True, "version": None, "reason": f"{type(e).__name__}: {e}"}
+        except Exception as e:  # imports but cannot be set up: record why
+            status[name] = {
+                "installed": True,
+                "version": None,
+                "reason": f"{type(e).__name__}: {e}",
+            }
             continue
         status[name] = {"installed": True, "version": version, "reason": None}
         variants += v
@@ -224,16 +280,25 @@ def run_size(n, peer_variants):
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", lo.SamplingWarning)
-        # Cold: first calls of the process at this N (angular spectrum first: it plans both FFTW directions).
-        cold = {m: timed_once(lambda m=m: lo.propagate(field, z, method=m))[0] for m, z in CASES.items()}
+        # Cold: first calls of the process at this N (angular spectrum first: it plans both FFTW
+        # directions).
+        cold = {
+            m: timed_once(lambda m=m: lo.propagate(field, z, method=m))[0] for m, z in CASES.items()
+        }
         rounds = {"reference": lambda: _core.fft2d_roundtrip(field.values)}
         for m, z in CASES.items():
             rounds[m] = lambda m=m, z=z: lo.propagate(field, z, method=m)
-            rounds[m + "_native"] = lambda m=m, z=z: _core.propagate(field.values, spacing, WAVELENGTH, z, m, 0.0, 0)
+            rounds[m + "_native"] = lambda m=m, z=z: _core.propagate(
+                field.values, spacing, WAVELENGTH, z, m, 0.0, 0
+            )
         warm = interleaved_best(rounds, REPEATS_LO[n])
-        new_z = {m: min(timed_once(lambda m=m, k=k: lo.propagate(field, z * (1.0 + 1e-6 * k), method=m))[0]
-                        for k in range(1, NEW_DISTANCES + 1))
-                 for m, z in CASES.items()}
+        new_z = {
+            m: min(
+                timed_once(lambda m=m, k=k: lo.propagate(field, z * (1.0 + 1e-6 * k), method=m))[0]
+                for k in range(1, NEW_DISTANCES + 1)
+            )
+            for m, z in CASES.items()
+        }
         results = {m: lo.propagate(field, z, method=m) for m, z in CASES.items()}
     caught_all += [str(w.message) for w in caught if issubclass(w.category, lo.SamplingWarning)]
     out["reference_s"] = warm["reference"]
@@ -265,19 +330,24 @@ def run_size(n, peer_variants):
                     call, setup, intensity_and_grid = prepare(n, z)
                     t, res = best_time(call, REPEATS_PEER[n], setup)
                     intensity, x, y = intensity_and_grid(res)
-                row.update(s=t, ratio_to_lo=t / warm[m], ratio_to_lo_new_distance=t / new_z[m],
-                           d1_rel_error=d1_error(intensity, x, y, z))
-            except Exception as e:     # report, do not hide, a peer that fails on this case
-                row.update(s=None, ratio_to_lo=None, ratio_to_lo_new_distance=None, d1_rel_error=None,
-                           error=f"{type(e).__name__}: {e}")
+                row.update(
+                    s=t,
+                    ratio_to_lo=t / warm[m],
+                    ratio_to_lo_new_distance=t / new_z[m],
+                    d1_rel_error=d1_error(intensity, x, y, z),
+                )
+            except Exception as e:  # report, do not hide, a peer that fails on this case
+                row.update(
+                    s=None,
+                    ratio_to_lo=None,
+                    ratio_to_lo_new_distance=None,
+                    d1_rel_error=None,
+                    error=f"{type(e).__name__}: {e}",
+                )
             case["peers"].append(row)
         out["cases"][m] = case
     out["sampling_warnings"] = caught_all
     return out
-
-
-
-
 
 
 def fmt_ms(t):
@@ -285,22 +355,37 @@ def fmt_ms(t):
 
 
 def print_tables(rows):
-    print(f"\nlo against the FFT round trip (ms; x ref = lo / reference, target <= {TARGET_RATIO:g}x; "
-          f"D1 err = |1 - w_D1 / w|)")
-    header = (f"{'N':>5} {'case':9} {'z (m)':>6} {'ref':>8} {'lo':>8} {'x ref':>6} {'native':>8} {'cold':>9} "
-              f"{'new z':>8} {'D1 err':>8}  target")
+    print(
+        "\nlo against the FFT round trip (ms; x ref = lo / reference, target <= "
+        f"{TARGET_RATIO:g}x; "
+        f"D1 err = |1 - w_D1 / w|)"
+    )
+    header = (
+        f"{'N':>5} {'case':9} {'z (m)':>6} {'ref':>8} {'lo':>8} {'x ref':>6} {'native':>8} "
+        f"{'cold':>9} "
+        f"{'new z':>8} {'D1 err':>8}  target"
+    )
     print(header)
     print("-" * len(header))
     for r in rows:
         for m, c in r["cases"].items():
-            print(f"{r['n']:5d} {m[:9]:9} {c['distance_m']:6g} {fmt_ms(r['reference_s'])} {fmt_ms(c['lo_s'])} "
-                  f"{c['ratio_to_reference']:5.2f}x {fmt_ms(c['lo_native_s'])} {c['lo_cold_s'] * 1e3:9.1f} "
-                  f"{fmt_ms(c['lo_new_distance_s'])} {c['lo_d1_rel_error']:8.1e}  "
-                  f"{'met' if c['target_met'] else 'NOT met'}")
-    print("\npeers (ms; x lo = peer time / lo warm time, x new z = peer time / lo new-z time; D1 err of the "
-          "peer and of lo on the same case)")
-    header = (f"{'N':>5} {'case':9} {'peer':10} {'routine':34} {'time':>9} {'x lo':>7} {'x new z':>7} "
-              f"{'D1 err':>8} {'lo err':>8}")
+            print(
+                f"{r['n']:5d} {m[:9]:9} {c['distance_m']:6g} {fmt_ms(r['reference_s'])} "
+                f"{fmt_ms(c['lo_s'])} "
+                f"{c['ratio_to_reference']:5.2f}x {fmt_ms(c['lo_native_s'])} "
+                f"{c['lo_cold_s'] * 1e3:9.1f} "
+                f"{fmt_ms(c['lo_new_distance_s'])} {c['lo_d1_rel_error']:8.1e}  "
+                f"{'met' if c['target_met'] else 'NOT met'}"
+            )
+    print(
+        "\npeers (ms; x lo = peer time / lo warm time, x new z = peer time / lo new-z time; D1 err "
+        "of the "
+        "peer and of lo on the same case)"
+    )
+    header = (
+        f"{'N':>5} {'case':9} {'peer':10} {'routine':34} {'time':>9} {'x lo':>7} {'x new z':>7} "
+        f"{'D1 err':>8} {'lo err':>8}"
+    )
     print(header)
     print("-" * len(header))
     for r in rows:
@@ -310,21 +395,31 @@ def print_tables(rows):
                 if p["s"] is None:
                     print(f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} failed: {p['error']}")
                     continue
-                print(f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} {p['s'] * 1e3:9.2f} "
-                      f"{p['ratio_to_lo']:6.1f}x {p['ratio_to_lo_new_distance']:6.1f}x "
-                      f"{p['d1_rel_error']:8.1e} {c['lo_d1_rel_error']:8.1e}")
+                print(
+                    f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} {p['s'] * 1e3:9.2f} "
+                    f"{p['ratio_to_lo']:6.1f}x {p['ratio_to_lo_new_distance']:6.1f}x "
+                    f"{p['d1_rel_error']:8.1e} {c['lo_d1_rel_error']:8.1e}"
+                )
 
 
 def main():
     load_start = load_average()
-    print(f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-          f"load average {load_start:.2f}")
-    print(f"TEM00 w0 = {WAIST * 1e3:g} mm, {WAVELENGTH * 1e9:g} nm, window +-{HALF_WINDOW:g} w0; "
-          f"angular spectrum over {CASES['angular_spectrum']:g} m, Fresnel over {CASES['fresnel']:g} m; "
-          f"best of {REPEATS_LO} (lo, reference) / {REPEATS_PEER} (peers) warm calls")
+    print(
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
+        f"load average {load_start:.2f}"
+    )
+    print(
+        f"TEM00 w0 = {WAIST * 1e3:g} mm, {WAVELENGTH * 1e9:g} nm, window +-{HALF_WINDOW:g} w0; "
+        f"angular spectrum over {CASES['angular_spectrum']:g} m, Fresnel over {CASES['fresnel']:g} "
+        "m; "
+        f"best of {REPEATS_LO} (lo, reference) / {REPEATS_PEER} (peers) warm calls"
+    )
     if load_start > 0.5:
-        print(f"warning: 1-min load average {load_start:.2f} before the run; other processes share the "
-              f"{os.cpu_count()} cores and the times below may be inflated")
+        print(
+            f"warning: 1-min load average {load_start:.2f} before the run; other processes share "
+            "the "
+            f"{os.cpu_count()} cores and the times below may be inflated"
+        )
     peer_status, peer_variants = load_peers()
     for name, s in peer_status.items():
         print(f"peer {name}: " + (f"{s['version']}" if s["version"] else s["reason"]))
@@ -341,7 +436,11 @@ def main():
 
     out = Path(__file__).resolve().parent / "results" / "bench_fo.json"
     out.parent.mkdir(parents=True, exist_ok=True)
-    versions = {"lidar_overlap": lo.__version__, "numpy": np.__version__, "python": sys.version.split()[0]}
+    versions = {
+        "lidar_overlap": lo.__version__,
+        "numpy": np.__version__,
+        "python": sys.version.split()[0],
+    }
     for module in ("scipy", "astropy", "numexpr"):
         try:
             versions[module] = __import__(module).__version__
@@ -351,14 +450,26 @@ def main():
         "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
         "versions": versions,
         "source_commit": source_commit(),
-        "machine": platform.machine(), "cores": os.cpu_count(),
-        "load_average_1min": load_start, "load_average_1min_end": load_end,
-        "beam": {"wavelength_m": WAVELENGTH, "waist_radius_m": WAIST, "window_half_width_in_w0": HALF_WINDOW},
+        "machine": platform.machine(),
+        "cores": os.cpu_count(),
+        "load_average_1min": load_start,
+        "load_average_1min_end": load_end,
+        "beam": {
+            "wavelength_m": WAVELENGTH,
+            "waist_radius_m": WAIST,
+            "window_half_width_in_w0": HALF_WINDOW,
+        },
         "cases": {m: {"distance_m": z} for m, z in CASES.items()},
-        "repeats": {"lo_and_reference": REPEATS_LO, "peers": REPEATS_PEER, "new_distances": NEW_DISTANCES},
-        "timing": "best of the repeats after one untimed call; lo, its native call and the reference in "
-                  "interleaved rounds",
-        "accuracy": "|1 - w_D1 / w|, w = second-moment radius of the returned irradiance on its own grid",
+        "repeats": {
+            "lo_and_reference": REPEATS_LO,
+            "peers": REPEATS_PEER,
+            "new_distances": NEW_DISTANCES,
+        },
+        "timing": "best of the repeats after one untimed call; lo, its native call and the "
+        "reference in "
+        "interleaved rounds",
+        "accuracy": "|1 - w_D1 / w|, w = second-moment radius of the returned irradiance on its "
+        "own grid",
         "peers": peer_status,
     }
     out.write_text(json.dumps({"meta": meta, "sizes": rows}, indent=2) + "\n")

@@ -1,15 +1,21 @@
 """FO overlap curve: lidar_overlap's Fourier-space formulation against Appendix C as written.
 
-One process, the paper's Table 1 lidar (355 nm, TEM00 w0 = 1 mm, f = 1 m, D = 150 mm, FFOV 0.9 mrad):
+One process, the paper's Table 1 lidar (355 nm, TEM00 w0 = 1 mm, f = 1 m, D = 150 mm, FFOV 0.9
+mrad):
 - lo: `lo.overlap(system, ranges, method="fo", fo_path=...)` for 200 ranges (5-1000 m geometric and
-  linear, 30-1000 m), on the 2-D path (sampled beam, Parseval sum on a grid) and the radial path (one
-  integral per range, axisymmetric scenes), threads = 0 and 1, best of 3 warm runs (the first call also
-  makes the FFTW plans; its time is reported apart); each against a radial reference with 4x the nodes.
+  linear, 30-1000 m), on the 2-D path (sampled beam, Parseval sum on a grid) and the radial path
+  (one
+  integral per range, axisymmetric scenes), threads = 0 and 1, best of 3 warm runs (the first call
+  also
+  makes the FFTW plans; its time is reported apart); each against a radial reference with 4x the
+  nodes.
 - direct: Appendix C one emitter at a time (C3-C6) at a few ranges: for each of 7 x 7 Gauss-Hermite
-  scatterers of the Gaussian beam, the aperture field exp(i psi |A|^2) exp(-i k A.P/z) (spherical wave,
+  scatterers of the Gaussian beam, the aperture field exp(i psi |A|^2) exp(-i k A.P/z) (spherical
+  wave,
   lens C4 and the propagation phase to the detector plane combined into psi; sampled at 4 points per
   radian of its steepest phase), propagated to the detector plane by lo.propagate (Fraunhofer form,
-  chirp-z to 1 um samples over the detector), |U|^2 summed over the detector disc. Its time per range
+  chirp-z to 1 um samples over the detector), |U|^2 summed over the detector disc. Its time per
+  range
   is extrapolated to the 200-range curve, and its G is compared with lo's.
 Prints a table and writes results/bench_fo_overlap.json. Run: python benchmarks/bench_fo_overlap.py
 """
@@ -24,16 +30,19 @@ import warnings
 from pathlib import Path
 
 import numpy as np
-
-import lidar_overlap as lo
 from _common import best_time, load_average, source_commit
 
-CURVES = {"5-1000 m": np.geomspace(5.0, 1000.0, 200), "5-1000 m linear": np.linspace(5.0, 1000.0, 200),
-          "30-1000 m": np.geomspace(30.0, 1000.0, 200)}
+import lidar_overlap as lo
+
+CURVES = {
+    "5-1000 m": np.geomspace(5.0, 1000.0, 200),
+    "5-1000 m linear": np.linspace(5.0, 1000.0, 200),
+    "30-1000 m": np.geomspace(30.0, 1000.0, 200),
+}
 PATHS = ("2d", "radial")
 DIRECT_RANGES = (300.0, 1000.0)
-EMITTER_NODES = 7           # Gauss-Hermite nodes per axis over the beam (11 gave the same G to 1e-6)
-DETECTOR_SAMPLE = 1e-6      # m, detector-plane spacing (Airy radius 2.9 um)
+EMITTER_NODES = 7  # Gauss-Hermite nodes per axis over the beam (11 gave the same G to 1e-6)
+DETECTOR_SAMPLE = 1e-6  # m, detector-plane spacing (Airy radius 2.9 um)
 REPEATS = 3
 
 
@@ -51,11 +60,14 @@ def direct_overlap(system, z):
     a = (np.arange(n_pupil) - n_pupil // 2) * da
     ax, ay = np.meshgrid(a, a)
     r = np.hypot(ax, ay)
-    aperture = np.clip((radius - r) / da + 0.5, 0.0, 1.0)          # anti-aliased edge
-    # The chirp-z output has the pupil's n samples of DETECTOR_SAMPLE: it must hold the detector disc.
+    aperture = np.clip((radius - r) / da + 0.5, 0.0, 1.0)  # anti-aliased edge
+    # The chirp-z output has the pupil's n samples of DETECTOR_SAMPLE: it must hold the detector
+    # disc.
     x = (np.arange(n_pupil) - n_pupil // 2) * DETECTOR_SAMPLE
     if x[-1] < det.radius + abs(det.offset[0]) or x[-1] < det.radius + abs(det.offset[1]):
-        n_pupil = int(2 ** np.ceil(np.log2(2.2 * (det.radius + max(map(abs, det.offset))) / DETECTOR_SAMPLE)))
+        n_pupil = int(
+            2 ** np.ceil(np.log2(2.2 * (det.radius + max(map(abs, det.offset))) / DETECTOR_SAMPLE))
+        )
         da = 2 * radius / (n_pupil - 4)
         a = (np.arange(n_pupil) - n_pupil // 2) * da
         ax, ay = np.meshgrid(a, a)
@@ -63,41 +75,65 @@ def direct_overlap(system, z):
         aperture = np.clip((radius - r) / da + 0.5, 0.0, 1.0)
         x = (np.arange(n_pupil) - n_pupil // 2) * DETECTOR_SAMPLE
     on_detector = np.hypot(*np.meshgrid(x - det.offset[0], x - det.offset[1])) <= det.radius
-    nodes, weights = np.polynomial.hermite_e.hermegauss(EMITTER_NODES)   # for exp(-t^2/2)
+    nodes, weights = np.polynomial.hermite_e.hermegauss(EMITTER_NODES)  # for exp(-t^2/2)
     sigma = w / 2
     g = 0.0
     for i, ti in enumerate(nodes):
         for j, tj in enumerate(nodes):
             px, py = sigma * ti + beam.center(z)[0], sigma * tj + beam.center(z)[1]
             field = aperture * np.exp(1j * (psi * r**2 - k * (ax * px + ay * py) / z))
-            with warnings.catch_warnings():   # the near-field phase is in psi on purpose
+            with warnings.catch_warnings():  # the near-field phase is in psi on purpose
                 warnings.simplefilter("ignore", lo.SamplingWarning)
-                image = lo.propagate(lo.Field(field, da, lam), d, method="fraunhofer", output_spacing=DETECTOR_SAMPLE)
-            coupling = np.sum(image.intensity[on_detector]) * DETECTOR_SAMPLE**2 / (np.pi * radius**2)
+                image = lo.propagate(
+                    lo.Field(field, da, lam), d, method="fraunhofer", output_spacing=DETECTOR_SAMPLE
+                )
+            coupling = (
+                np.sum(image.intensity[on_detector]) * DETECTOR_SAMPLE**2 / (np.pi * radius**2)
+            )
             g += weights[i] * weights[j] * coupling
     return g / np.sum(weights) ** 2, EMITTER_NODES**2
 
 
 def main():
     system = lo.paper_table1()
-    print(f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-          f"load {load_average():.2f} | commit {source_commit()}")
+    print(
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
+        f"load {load_average():.2f} | commit {source_commit()}"
+    )
     rows = {}
     for name, z in CURVES.items():
-        reference = lo._core.overlap_fo_radial(system._native, z, lo._core.RadialFoOptions(periods_per_panel=2.0)).overlap
+        reference = lo._core.overlap_fo_radial(
+            system._native, z, lo._core.RadialFoOptions(periods_per_panel=2.0)
+        ).overlap
         for path in PATHS:
             t0 = time.perf_counter()
             lo.overlap(system, z, method="fo", fo_path=path)
             cold = time.perf_counter() - t0
-            t_all, res = best_time(lambda: lo.overlap(system, z, method="fo", fo_path=path, threads=0), REPEATS)
-            t_one, _ = best_time(lambda: lo.overlap(system, z, method="fo", fo_path=path, threads=1), REPEATS)
+            t_all, res = best_time(
+                lambda: lo.overlap(system, z, method="fo", fo_path=path, threads=0), REPEATS
+            )
+            t_one, _ = best_time(
+                lambda: lo.overlap(system, z, method="fo", fo_path=path, threads=1), REPEATS
+            )
             error = float(np.max(np.abs(res.overlap - reference)))
-            rows[f"{name} {path}"] = {"ranges": len(z), "path": path, "first_call_s": cold, "threads0_s": t_all,
-                                      "threads1_s": t_one, "max_error": error}
-            print(f"lo FO curve {name}, {path}: {t_all:.4f} s (threads=0), {t_one:.4f} s (threads=1), "
-                  f"first call {cold:.3f} s, max |G - reference| {error:.1e}")
+            rows[f"{name} {path}"] = {
+                "ranges": len(z),
+                "path": path,
+                "first_call_s": cold,
+                "threads0_s": t_all,
+                "threads1_s": t_one,
+                "max_error": error,
+            }
+            print(
+                f"lo FO curve {name}, {path}: {t_all:.4f} s (threads=0), {t_one:.4f} s "
+                "(threads=1), "
+                f"first call {cold:.3f} s, max |G - reference| {error:.1e}"
+            )
         two_d, radial = rows[f"{name} 2d"], rows[f"{name} radial"]
-        print(f"  radial path {two_d['threads0_s'] / radial['threads0_s']:.0f}x faster than 2-D (target >= 20x)")
+        print(
+            f"  radial path {two_d['threads0_s'] / radial['threads0_s']:.0f}x faster than 2-D "
+            "(target >= 20x)"
+        )
 
     direct = []
     for z in DIRECT_RANGES:
@@ -105,24 +141,43 @@ def main():
         g_direct, emitters = direct_overlap(system, z)
         dt = time.perf_counter() - t0
         g_lo = lo.overlap(system, np.array([z]), method="fo", fo_path="2d").overlap[0]
-        direct.append({"z_m": z, "seconds": dt, "emitters": emitters, "G_direct": g_direct, "G_lo": g_lo})
-        print(f"direct Appendix C at {z:g} m: {dt:.2f} s for {emitters} emitters, G = {g_direct:.6f} "
-              f"(lo {g_lo:.6f}, difference {g_direct - g_lo:+.1e})")
+        direct.append(
+            {"z_m": z, "seconds": dt, "emitters": emitters, "G_direct": g_direct, "G_lo": g_lo}
+        )
+        print(
+            f"direct Appendix C at {z:g} m: {dt:.2f} s for {emitters} emitters, G = {g_direct:.6f} "
+            f"(lo {g_lo:.6f}, difference {g_direct - g_lo:+.1e})"
+        )
     per_range = np.mean([d["seconds"] for d in direct])
     for name, row in rows.items():
         row["direct_extrapolated_s"] = per_range * row["ranges"]
         row["speedup"] = row["direct_extrapolated_s"] / row["threads0_s"]
-        print(f"{name}: direct, extrapolated from {len(direct)} ranges: {row['direct_extrapolated_s']:.0f} s; "
-              f"lo is {row['speedup']:.0f}x faster (target: lo <= 1 s for 200 ranges; "
-              f"{'met' if row['threads0_s'] <= 1.0 else 'NOT met'})")
+        print(
+            f"{name}: direct, extrapolated from {len(direct)} ranges: "
+            f"{row['direct_extrapolated_s']:.0f} s; "
+            f"lo is {row['speedup']:.0f}x faster (target: lo <= 1 s for 200 ranges; "
+            f"{'met' if row['threads0_s'] <= 1.0 else 'NOT met'})"
+        )
 
     out = Path(__file__).resolve().parent / "results" / "bench_fo_overlap.json"
     out.parent.mkdir(exist_ok=True)
-    out.write_text(json.dumps({"meta": {"measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                                        "lidar_overlap": lo.__version__, "commit": source_commit(),
-                                        "machine": platform.machine(), "cores": os.cpu_count(),
-                                        "load_average_1min": load_average()},
-                               "curves": rows, "direct": direct}, indent=2))
+    out.write_text(
+        json.dumps(
+            {
+                "meta": {
+                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+                    "lidar_overlap": lo.__version__,
+                    "commit": source_commit(),
+                    "machine": platform.machine(),
+                    "cores": os.cpu_count(),
+                    "load_average_1min": load_average(),
+                },
+                "curves": rows,
+                "direct": direct,
+            },
+            indent=2,
+        )
+    )
     print(f"wrote {out}")
 
 

@@ -1,9 +1,11 @@
 """Phase screens: one 512 x 512 modified von Karman screen with subharmonics, lo against aotools'
-`ft_sh_phase_screen` (benchmark-only dependency), in one process, with the structure function of both
+`ft_sh_phase_screen` (benchmark-only dependency), in one process, with the structure function of
+both
 against 6.88 (r/r0)^(5/3) so that the comparison is at equal quality.
 
 lo: `_core.phase_screen(n, spacing, r0, L0, l0, seed, index)` (C++, FFT screen plus three levels of
-subharmonics, one screen per call; `generate_pair` in C++ gives two per FFT). aotools: the same method in
+subharmonics, one screen per call; `generate_pair` in C++ gives two per FFT). aotools: the same
+method in
 NumPy. Timing: best of 7 after one untimed call. Writes results/bench_phase_screen.json.
 """
 
@@ -14,12 +16,12 @@ import time
 from pathlib import Path
 
 import numpy as np
-
-import lidar_overlap as lo
 from _common import best_time, load_average, source_commit
 
-N, SPACING, R0, L0, L0_INNER = 512, 0.01, 0.1, 1e6, 1e-6   # aotools needs l0 > 0; 1 um is none here
-SCREENS_FOR_D = 60      # screens averaged for the structure function
+import lidar_overlap as lo
+
+N, SPACING, R0, L0, L0_INNER = 512, 0.01, 0.1, 1e6, 1e-6  # aotools needs l0 > 0; 1 um is none here
+SCREENS_FOR_D = 60  # screens averaged for the structure function
 SEPARATIONS = (4, 8, 16, 32, 64, 128)
 
 
@@ -32,19 +34,38 @@ def structure_function(screens):
 
 def main():
     print(f"lidar_overlap {lo.__version__} | load {load_average():.2f} | commit {source_commit()}")
-    lo_screen = lambda i=0: lo._core.phase_screen(N, SPACING, R0, L0, L0_INNER, 1, i)
+
+    def lo_screen(i=0):
+        return lo._core.phase_screen(N, SPACING, R0, L0, L0_INNER, 1, i)
+
     lo_screen()
     t_lo, _ = best_time(lo_screen, 7)
-    row = {"lo_ms": 1e3 * t_lo, "lo_D_over_kolmogorov": structure_function([lo_screen(i) for i in range(SCREENS_FOR_D)]).tolist()}
+    row = {
+        "lo_ms": 1e3 * t_lo,
+        "lo_D_over_kolmogorov": structure_function(
+            [lo_screen(i) for i in range(SCREENS_FOR_D)]
+        ).tolist(),
+    }
     try:
         from aotools.turbulence.phasescreen import ft_sh_phase_screen
-        peer = lambda: ft_sh_phase_screen(R0, N, SPACING, L0, L0_INNER)
+
+        def peer():
+            return ft_sh_phase_screen(R0, N, SPACING, L0, L0_INNER)
+
         peer()
         t_peer, _ = best_time(peer, 7)
-        row.update(aotools_ms=1e3 * t_peer, speedup=t_peer / t_lo,
-                   aotools_D_over_kolmogorov=structure_function([peer() for _ in range(SCREENS_FOR_D)]).tolist())
-        print(f"{N}^2 screen with subharmonics: lo {1e3 * t_lo:.1f} ms, aotools {1e3 * t_peer:.1f} ms: lo "
-              f"{t_peer / t_lo:.1f}x faster (target >= 5x)")
+        row.update(
+            aotools_ms=1e3 * t_peer,
+            speedup=t_peer / t_lo,
+            aotools_D_over_kolmogorov=structure_function(
+                [peer() for _ in range(SCREENS_FOR_D)]
+            ).tolist(),
+        )
+        print(
+            f"{N}^2 screen with subharmonics: lo {1e3 * t_lo:.1f} ms, aotools {1e3 * t_peer:.1f} "
+            "ms: lo "
+            f"{t_peer / t_lo:.1f}x faster (target >= 5x)"
+        )
     except ImportError:
         print(f"{N}^2 screen with subharmonics: lo {1e3 * t_lo:.1f} ms (aotools not installed)")
     for name in ("lo", "aotools"):
@@ -52,10 +73,25 @@ def main():
             ratios = " ".join(f"{r:.3f}" for r in row[f"{name}_D_over_kolmogorov"])
             print(f"  {name}: D(r) / 6.88 (r/r0)^(5/3) at {SEPARATIONS} samples: {ratios}")
     out = Path(__file__).resolve().parent / "results" / "bench_phase_screen.json"
-    out.write_text(json.dumps({"meta": {"measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "commit": source_commit(),
-                                        "load_average_1min": load_average(), "n": N, "spacing_m": SPACING,
-                                        "r0_m": R0, "outer_scale_m": L0, "separations": SEPARATIONS,
-                                        "screens_for_structure_function": SCREENS_FOR_D}, "result": row}, indent=2))
+    out.write_text(
+        json.dumps(
+            {
+                "meta": {
+                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+                    "commit": source_commit(),
+                    "load_average_1min": load_average(),
+                    "n": N,
+                    "spacing_m": SPACING,
+                    "r0_m": R0,
+                    "outer_scale_m": L0,
+                    "separations": SEPARATIONS,
+                    "screens_for_structure_function": SCREENS_FOR_D,
+                },
+                "result": row,
+            },
+            indent=2,
+        )
+    )
     print(f"wrote {out}")
 
 

@@ -1,26 +1,45 @@
-"""Hypothesis strategies for the probes of the analysis layer on top of the forward model (alignment maps,
-the telecover test, sensitivities, overlap correction); see _hostile_probes.py, which lists them in PROBES."""
+"""Hypothesis strategies for the probes of the analysis layer on top of the forward model (alignment
+maps,
+the telecover test, sensitivities, overlap correction); see _hostile_probes.py, which lists them in
+PROBES."""
 
 from __future__ import annotations
 
-from hypothesis import strategies as st
-
-from _hostile_values import (corrupt, corruptions, hostile_choice, hostile_count, hostile_real, ranges, sanes, system,
-                             tolerance)
+from _hostile_values import (
+    corrupt,
+    corruptions,
+    hostile_choice,
+    hostile_count,
+    hostile_real,
+    ranges,
+    sanes,
+    system,
+    tolerance,
+)
 from _probe_worker import call
+from hypothesis import strategies as st
 
 _explain_where = st.sampled_from(("system", "ranges", "tolerance"))
 
 
-# ------------------------------------------------------------------------------------------ alignment, telecover
-ALIGNMENT_AXES = ("tilt_x", "tilt_y", "beam_offset_x", "beam_offset_y", "detector_offset_x", "detector_offset_y",
-                  "defocus")
+# ------------------------------------------------------------------------------------------
+# alignment, telecover
+ALIGNMENT_AXES = (
+    "tilt_x",
+    "tilt_y",
+    "beam_offset_x",
+    "beam_offset_y",
+    "detector_offset_x",
+    "detector_offset_y",
+    "defocus",
+)
 _alignment_where = st.sampled_from(("system", "ranges", "axis", "tolerance"))
 
 
 @st.composite
 def alignment_map(draw):
-    """lo.alignment_map over one or two sane or hostile axes (values, order, sizes), of a hostile system or
+    """lo.alignment_map over one or two sane or hostile axes (values, order, sizes), of a hostile
+    system or
     ranges, or at a hostile tolerance."""
     count, where, r = draw(corruptions), draw(_alignment_where), draw(sanes)
     axes = r.sample(ALIGNMENT_AXES, r.randint(1, 2))
@@ -31,36 +50,65 @@ def alignment_map(draw):
         kwargs[axis] = sorted({r.real(low, scale) for _ in range(r.randint(1, 4))})
     if count and where == "axis":
         bad_axis = axes[0]
-        kwargs[bad_axis] = r.choice((lambda: kwargs[bad_axis] + [draw(hostile_real)],
-                                     lambda: kwargs[bad_axis][::-1] + kwargs[bad_axis],
-                                     lambda: [], lambda: draw(hostile_real)))()
+        kwargs[bad_axis] = r.choice(
+            (
+                lambda: kwargs[bad_axis] + [draw(hostile_real)],
+                lambda: kwargs[bad_axis][::-1] + kwargs[bad_axis],
+                lambda: [],
+                lambda: draw(hostile_real),
+            )
+        )()
     tol = draw(hostile_real) if count and where == "tolerance" else tolerance(r)
-    return call("alignment_map", draw(system(bad=count if where == "system" else 0)),
-                draw(ranges(bad=count if where == "ranges" else 0, max_size=3)), tolerance=tol, **kwargs)
+    return call(
+        "alignment_map",
+        draw(system(bad=count if where == "system" else 0)),
+        draw(ranges(bad=count if where == "ranges" else 0, max_size=3)),
+        tolerance=tol,
+        **kwargs,
+    )
 
 
-TELECOVER_HOSTILITY = {"sectors": hostile_choice, "tolerance": hostile_real, "threads": hostile_count}
+TELECOVER_HOSTILITY = {
+    "sectors": hostile_choice,
+    "tolerance": hostile_real,
+    "threads": hostile_count,
+}
 _telecover_where = st.sampled_from(("system", "ranges", "options", "mask"))
 
 
 @st.composite
 def telecover(draw):
-    """lo.telecover of a hostile system or ranges, with hostile options, or through a mask with a hostile
+    """lo.telecover of a hostile system or ranges, with hostile options, or through a mask with a
+    hostile
     sector (angles, radii)."""
     count, where, r = draw(corruptions), draw(_telecover_where), draw(sanes)
     sane = {"sectors": "quadrants", "tolerance": tolerance(r), "threads": r.choice((0, 1, 2))}
     kwargs = corrupt(draw, sane, TELECOVER_HOSTILITY, count if where == "options" else 0)
     if where == "mask":
         start = r.real(-3.0, 3.0)
-        sector = {"start_angle": start, "stop_angle": start + r.real(0.1, 3.0), "inner_radius": r.real(0.0, 0.03)}
+        sector = {
+            "start_angle": start,
+            "stop_angle": start + r.real(0.1, 3.0),
+            "inner_radius": r.real(0.0, 0.03),
+        }
         if count:
             sector[r.choice(sorted(sector))] = draw(hostile_real)
         kwargs["sectors"] = call("ApertureMask", (call("Sector", **sector),))
-    return call("telecover", draw(system(bad=count if where == "system" else 0)),
-                draw(ranges(bad=count if where == "ranges" else 0, max_size=4)), **kwargs)
+    return call(
+        "telecover",
+        draw(system(bad=count if where == "system" else 0)),
+        draw(ranges(bad=count if where == "ranges" else 0, max_size=4)),
+        **kwargs,
+    )
 
 
-SENSITIVITY_PATHS = ("beam.tilt[0]", "beam.offset[1]", "detector.defocus", "detector.radius", "beam.divergence")
+SENSITIVITY_PATHS = (
+    "beam.tilt[0]",
+    "beam.offset[1]",
+    "detector.defocus",
+    "detector.radius",
+    "beam.divergence",
+)
 
 
 @st.composite
@@ -70,8 +118,12 @@ def sensitivity(draw):
     paths = r.sample(SENSITIVITY_PATHS, r.randint(1, 2))
     if count and where == "tolerance":
         paths = [draw(hostile_choice)] + paths[1:]
-    return call("sensitivity", draw(system(bad=count if where == "system" else 0)),
-                draw(ranges(bad=count if where == "ranges" else 0, max_size=3)), paths)
+    return call(
+        "sensitivity",
+        draw(system(bad=count if where == "system" else 0)),
+        draw(ranges(bad=count if where == "ranges" else 0, max_size=3)),
+        paths,
+    )
 
 
 CORRECT_HOSTILITY = {"min_overlap": hostile_real}

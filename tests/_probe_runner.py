@@ -1,6 +1,9 @@
-"""Parent side of the hostile-input probes: one long-lived worker process runs the probes, and a probe
-that kills it (signal, abort) or stops answering within the time limit is recorded as a crash or a hang
-and the worker is replaced. A crash therefore never takes pytest down, and a probe costs milliseconds,
+"""Parent side of the hostile-input probes: one long-lived worker process runs the probes, and a
+probe
+that kills it (signal, abort) or stops answering within the time limit is recorded as a crash or a
+hang
+and the worker is replaced. A crash therefore never takes pytest down, and a probe costs
+milliseconds,
 not a Python start-up.
 """
 
@@ -22,8 +25,17 @@ from collections import Counter, defaultdict
 from pathlib import Path
 
 import numpy as np
-
-from _probe_worker import BAD_ERROR, CLEAN_ERROR, CRASH, FINITE, HANG, SILENT_WRONG, Attr, Call, entry_name
+from _probe_worker import (
+    BAD_ERROR,
+    CLEAN_ERROR,
+    CRASH,
+    FINITE,
+    HANG,
+    SILENT_WRONG,
+    Attr,
+    Call,
+    entry_name,
+)
 
 HERE = Path(__file__).resolve().parent
 #: Seconds a probe may take before it counts as a hang.
@@ -51,9 +63,14 @@ class _Worker:
         env["PYTHONPATH"] = os.pathsep.join([_package_root(), str(HERE), env.get("PYTHONPATH", "")])
         env.setdefault("OMP_NUM_THREADS", "2")
         self.stderr = tempfile.TemporaryFile()
-        self.proc = subprocess.Popen([sys.executable, "-c", "import _probe_worker; _probe_worker.serve()"],
-                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self.stderr, env=env,
-                                     start_new_session=True)
+        self.proc = subprocess.Popen(
+            [sys.executable, "-c", "import _probe_worker; _probe_worker.serve()"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=self.stderr,
+            env=env,
+            start_new_session=True,
+        )
         self.ready = False
 
     def wait_ready(self) -> None:
@@ -77,7 +94,7 @@ class _Worker:
         (size,) = struct.unpack("<I", header)
         data = b""
         while len(data) < size:
-            chunk = os.read(out, size - len(data))   # the reply follows its header at once
+            chunk = os.read(out, size - len(data))  # the reply follows its header at once
             if not chunk:
                 raise EOFError
             data += chunk
@@ -90,7 +107,9 @@ class _Worker:
 
     def kill(self) -> None:
         try:
-            os.killpg(self.proc.pid, signal.SIGKILL)   # the worker and any threads or children it made
+            os.killpg(
+                self.proc.pid, signal.SIGKILL
+            )  # the worker and any threads or children it made
         except ProcessLookupError:
             pass
         self.proc.wait()
@@ -106,8 +125,10 @@ class _Worker:
 
 
 class ProbeRunner:
-    """Runs probes (:class:`Call` trees) in a worker process; ``run`` returns the worker's judgement,
-    or a crash or hang verdict with the worker's last stderr lines. A spare worker starts in the background
+    """Runs probes (:class:`Call` trees) in a worker process; ``run`` returns the worker's
+    judgement,
+    or a crash or hang verdict with the worker's last stderr lines. A spare worker starts in the
+    background
     as soon as one is in use, so that replacing a crashed or hung worker costs no start-up."""
 
     def __init__(self, time_limit: float = DEFAULT_TIME_LIMIT) -> None:
@@ -142,7 +163,8 @@ class ProbeRunner:
         self.close()
 
     def run(self, probe: Call, time_limit: float | None = None) -> dict:
-        """Run one probe; the outcome dict has ``verdict`` (one of VERDICTS), ``why`` and, by verdict,
+        """Run one probe; the outcome dict has ``verdict`` (one of VERDICTS), ``why`` and, by
+        verdict,
         ``type``/``message`` (errors), ``summary`` (results) or ``signal``/``stderr`` (crashes)."""
         limit = self.time_limit if time_limit is None else time_limit
         worker = self._active()
@@ -156,14 +178,27 @@ class ProbeRunner:
             code = worker.proc.wait()
             stderr = worker.stderr_tail()
             worker.stderr.close()
-            return self._retire({"verdict": CRASH, "signal": -code if code < 0 else None, "returncode": code,
-                                 "stderr": stderr, "why": f"worker died ({_describe_exit(code)})",
-                                 "seconds": time.monotonic() - start})
+            return self._retire(
+                {
+                    "verdict": CRASH,
+                    "signal": -code if code < 0 else None,
+                    "returncode": code,
+                    "stderr": stderr,
+                    "why": f"worker died ({_describe_exit(code)})",
+                    "seconds": time.monotonic() - start,
+                }
+            )
         if data is None:
             stderr = worker.stderr_tail()
             worker.kill()
-            return self._retire({"verdict": HANG, "why": f"no answer within {limit:g} s", "seconds": limit,
-                                 "stderr": stderr})
+            return self._retire(
+                {
+                    "verdict": HANG,
+                    "why": f"no answer within {limit:g} s",
+                    "seconds": limit,
+                    "stderr": stderr,
+                }
+            )
         return pickle.loads(data)
 
 
@@ -180,17 +215,28 @@ def _describe_exit(code: int) -> str:
 def render(node) -> str:
     """The Python expression that reproduces a probe (``lo`` is lidar_overlap, ``np`` numpy)."""
     if isinstance(node, Call):
-        fn = f"{render(node.fn.node)}.{node.fn.name}" if isinstance(node.fn, Attr) else (
-            node.fn if node.fn.startswith("np.") else f"lo.{node.fn}")
-        parts = [render(a) for a in node.args] + [f"{k}={render(v)}" for k, v in node.kwargs.items()]
+        fn = (
+            f"{render(node.fn.node)}.{node.fn.name}"
+            if isinstance(node.fn, Attr)
+            else (node.fn if node.fn.startswith("np.") else f"lo.{node.fn}")
+        )
+        parts = [render(a) for a in node.args] + [
+            f"{k}={render(v)}" for k, v in node.kwargs.items()
+        ]
         return f"{fn}({', '.join(parts)})"
     if isinstance(node, float):
         if math.isnan(node):
             return "float('nan')"
-        return repr(float(node)) if math.isfinite(node) else ("float('inf')" if node > 0 else "-float('inf')")
+        return (
+            repr(float(node))
+            if math.isfinite(node)
+            else ("float('inf')" if node > 0 else "-float('inf')")
+        )
     if isinstance(node, int) and not isinstance(node, bool) and abs(node) >= 10**20:
         exponent = len(str(abs(node))) - 1
-        return ("-" if node < 0 else "") + (f"10**{exponent}" if abs(node) == 10**exponent else repr(node))
+        return ("-" if node < 0 else "") + (
+            f"10**{exponent}" if abs(node) == 10**exponent else repr(node)
+        )
     if isinstance(node, tuple):
         inner = ", ".join(render(v) for v in node)
         return f"({inner},)" if len(node) == 1 else f"({inner})"
@@ -199,8 +245,11 @@ def render(node) -> str:
     if isinstance(node, dict):
         return "{" + ", ".join(f"{render(k)}: {render(v)}" for k, v in node.items()) + "}"
     if isinstance(node, np.ndarray):
-        return f"np.array({node.tolist()!r}, dtype={node.dtype.name!r})" if node.size <= 8 else \
-            f"<array shape {node.shape} {node.dtype}>"
+        return (
+            f"np.array({node.tolist()!r}, dtype={node.dtype.name!r})"
+            if node.size <= 8
+            else f"<array shape {node.shape} {node.dtype}>"
+        )
     return repr(node)
 
 
@@ -215,12 +264,17 @@ def describe(probe: Call, outcome: dict) -> str:
 
 
 def cause(probe: Call, outcome: dict) -> tuple:
-    """What a broken probe has in common with others that break the same way: entry point, verdict, and
+    """What a broken probe has in common with others that break the same way: entry point, verdict,
+    and
     the error or the reason with its numbers blanked."""
     text = outcome.get("message") if outcome["verdict"] == BAD_ERROR else outcome.get("why", "")
     text = re.sub(r"\(np\.float64\(([^)]*)\)", r"(\1", text or "")
-    return (entry_name(probe), outcome["verdict"], outcome.get("type", ""),
-            re.sub(r"[-+]?\b\d[\d.e+-]*|nan|inf", "#", text.splitlines()[0] if text else "")[:100])
+    return (
+        entry_name(probe),
+        outcome["verdict"],
+        outcome.get("type", ""),
+        re.sub(r"[-+]?\b\d[\d.e+-]*|nan|inf", "#", text.splitlines()[0] if text else "")[:100],
+    )
 
 
 class Tally:
@@ -242,8 +296,20 @@ class Tally:
             self.causes[cause(probe, outcome)].append((probe, outcome))
 
     def table(self) -> str:
-        head = ("entry point", "tried", "clean error", "finite result", "bad error", "crash", "hang", "silent wrong")
-        rows = [(name, sum(c.values()), *(c[v] for v in VERDICTS)) for name, c in sorted(self.counts.items())]
+        head = (
+            "entry point",
+            "tried",
+            "clean error",
+            "finite result",
+            "bad error",
+            "crash",
+            "hang",
+            "silent wrong",
+        )
+        rows = [
+            (name, sum(c.values()), *(c[v] for v in VERDICTS))
+            for name, c in sorted(self.counts.items())
+        ]
         rows.append(("TOTAL", sum(self.total.values()), *(self.total[v] for v in VERDICTS)))
         width = max(len(r[0]) for r in rows + [head])
         lines = [f"{head[0]:<{width}} " + " ".join(f"{h:>13}" for h in head[1:])]
@@ -256,16 +322,21 @@ class Tally:
         lines = []
         for group in groups[:limit]:
             probe, outcome = min(group, key=lambda pair: len(render(pair[0])))
-            lines.append(f"[{len(group)} probe{'s' if len(group) > 1 else ''}] {describe(probe, outcome)}")
+            lines.append(
+                f"[{len(group)} probe{'s' if len(group) > 1 else ''}] {describe(probe, outcome)}"
+            )
         if len(groups) > limit:
             lines.append(f"... and {len(groups) - limit} more causes")
         return "\n".join(lines)
 
 
 class Campaign:
-    """Probes run through one runner and tallied. A build that hangs or crashes on many probes would make a
-    campaign slow (a hang costs the whole time limit), so past ``max_hangs`` hangs or ``max_crashes``
-    crashes the remaining probes are only counted as not run; the campaign has failed by then anyway."""
+    """Probes run through one runner and tallied. A build that hangs or crashes on many probes would
+    make a
+    campaign slow (a hang costs the whole time limit), so past ``max_hangs`` hangs or
+    ``max_crashes``
+    crashes the remaining probes are only counted as not run; the campaign has failed by then
+    anyway."""
 
     def __init__(self, runner: ProbeRunner, max_hangs: int = 2, max_crashes: int = 40) -> None:
         self.runner, self.max_hangs, self.max_crashes = runner, max_hangs, max_crashes
@@ -283,8 +354,13 @@ class Campaign:
 
     def failure_report(self) -> str:
         tried = sum(self.tally.total.values())
-        head = (f"{len(self.tally.broken)} of {tried} probes broke the input contract, "
-                f"{len(self.tally.causes)} causes")
+        head = (
+            f"{len(self.tally.broken)} of {tried} probes broke the input contract, "
+            f"{len(self.tally.causes)} causes"
+        )
         if self.not_run:
-            head += f" ({self.not_run} more not run after {self.max_hangs} hangs or {self.max_crashes} crashes)"
+            head += (
+                f" ({self.not_run} more not run after {self.max_hangs} hangs "
+                f"or {self.max_crashes} crashes)"
+            )
         return f"{head}:\n{self.tally.table()}\n\n{self.tally.report()}"

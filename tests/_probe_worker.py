@@ -1,14 +1,19 @@
-"""Worker process of the hostile-input probes: builds one call from a plain description, runs it, and
+"""Worker process of the hostile-input probes: builds one call from a plain description, runs it,
+and
 judges the outcome against the input contract.
 
-The contract: every public entry point ends either in a ValueError or TypeError whose message names one
-of the parameters the caller set, or in a result whose numbers are finite, with every overlap in [0, 1].
+The contract: every public entry point ends either in a ValueError or TypeError whose message names
+one
+of the parameters the caller set, or in a result whose numbers are finite, with every overlap in [0,
+1].
 Warnings are allowed. Anything else (another exception type, a crash, a hang, a NaN or out-of-range
 number) breaks it.
 
-A probe is a :class:`Call` tree of plain values (floats, ints, strings, tuples, dicts, numpy arrays), so
+A probe is a :class:`Call` tree of plain values (floats, ints, strings, tuples, dicts, numpy
+arrays), so
 it pickles small and reads back as the Python expression that reproduces it (see ``_probe_runner``).
-The worker reads length-prefixed pickles on stdin and answers on a private copy of its stdout; its own
+The worker reads length-prefixed pickles on stdin and answers on a private copy of its stdout; its
+own
 fd 1 is pointed at stderr so that anything the library prints cannot corrupt the protocol.
 
 Run as ``python -c "import _probe_worker; _probe_worker.serve()"`` with this directory on sys.path.
@@ -39,9 +44,11 @@ BAD_ERROR, SILENT_WRONG, CRASH, HANG = "bad_error", "silent_wrong", "crash", "ha
 
 #: Exception types a clean refusal may have.
 CLEAN_TYPES = (ValueError, TypeError)
-#: Text of pybind11's argument-mismatch TypeError, which lists C++ signatures instead of naming a parameter.
+#: Text of pybind11's argument-mismatch TypeError, which lists C++ signatures instead of naming a
+#: parameter.
 SIGNATURE_DUMP = "incompatible function arguments"
-#: Path quantities whose exact value is +inf where a path holds no turbulence (Cn² = 0 or zero length):
+#: Path quantities whose exact value is +inf where a path holds no turbulence (Cn² = 0 or zero
+#: length):
 #: the Fried parameter and the isoplanatic angle.
 UNBOUNDED_WITHOUT_TURBULENCE = ("fried_parameter", "isoplanatic_angle")
 
@@ -68,7 +75,8 @@ def call(fn, *args, **kwargs) -> Call:
     return Call(fn, tuple(args), dict(kwargs))
 
 
-# ------------------------------------------------------------------------------------------ building
+# ------------------------------------------------------------------------------------------
+# building
 def _resolve(fn, names: set):
     import numpy as np
 
@@ -88,7 +96,8 @@ def _is_numpy(fn) -> bool:
 
 
 def _bound_names(fn, args, kwargs) -> set:
-    """Names of the parameters a call sets, positional ones included where the signature is known."""
+    """Names of the parameters a call sets, positional ones included where the signature is
+    known."""
     names = set(kwargs)
     try:
         names |= set(inspect.signature(fn).bind_partial(*args, **kwargs).arguments)
@@ -103,7 +112,7 @@ def _build(node, names: set):
         fn = _resolve(node.fn, names)
         args = tuple(_build(a, names) for a in node.args)
         kwargs = {k: _build(v, names) for k, v in node.kwargs.items()}
-        if not _is_numpy(node.fn):        # numpy builds test data; its parameters are not the library's
+        if not _is_numpy(node.fn):  # numpy builds test data; its parameters are not the library's
             names |= _bound_names(fn, args, kwargs)
         if isinstance(node.fn, Attr):
             names.add(node.fn.name)
@@ -129,20 +138,38 @@ def entry_name(node) -> str:
 
 # ------------------------------------------------------------------------------------------ judging
 def names_a_parameter(message: str, names) -> bool:
-    """True when ``message`` names one of ``names`` as a word ("beam.wavelength" and "ranges[2]" name
+    """True when ``message`` names one of ``names`` as a word ("beam.wavelength" and "ranges[2]"
+    name
     "wavelength" and "ranges"; "wavelengths" names neither)."""
-    return any(re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", message) for n in names)
+    return any(
+        re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", message) for n in names
+    )
 
 
 def judge_exception(exc: BaseException, names) -> tuple:
     message = str(exc)
     kind = type(exc).__name__
     if not isinstance(exc, CLEAN_TYPES):
-        return BAD_ERROR, kind, message, f"{kind} is not a clean refusal (expected ValueError or TypeError)"
+        return (
+            BAD_ERROR,
+            kind,
+            message,
+            f"{kind} is not a clean refusal (expected ValueError or TypeError)",
+        )
     if SIGNATURE_DUMP in message:
-        return BAD_ERROR, kind, message, "a pybind11 signature dump instead of a message naming the parameter"
+        return (
+            BAD_ERROR,
+            kind,
+            message,
+            "a pybind11 signature dump instead of a message naming the parameter",
+        )
     if not names_a_parameter(message, names):
-        return BAD_ERROR, kind, message, f"the message names none of the parameters set: {sorted(names)}"
+        return (
+            BAD_ERROR,
+            kind,
+            message,
+            f"the message names none of the parameters set: {sorted(names)}",
+        )
     return CLEAN_ERROR, kind, message, ""
 
 
@@ -157,7 +184,9 @@ def _finite_array(name, values, problems, low=None, high=None):
         problems.append(f"{name} holds {int(np.sum(~np.isfinite(arr)))} non-finite value(s)")
         return
     if low is not None and arr.size and (arr.min() < low or arr.max() > high):
-        problems.append(f"{name} spans [{arr.min():.17g}, {arr.max():.17g}], outside [{low}, {high}]")
+        problems.append(
+            f"{name} spans [{arr.min():.17g}, {arr.max():.17g}], outside [{low}, {high}]"
+        )
 
 
 def _finite_number(name, value, problems, low=-math.inf, high=math.inf, allow_nan=False):
@@ -196,9 +225,13 @@ def judge_result(result, node, built) -> tuple:
         _finite_array("field.values", result.values, problems)
         _finite_number("field.spacing", result.spacing, problems, low=5e-324)
         summary["n"], summary["spacing"] = int(result.values.shape[0]), float(result.spacing)
-        with np.errstate(all="ignore"):     # reported, not judged: spacing² may overflow for a valid field
-            summary["power"] = float(np.sum(np.abs(result.values) ** 2) * np.float64(result.spacing) ** 2)
-    elif isinstance(result, lo.FieldBeam):   # FlatTopBeam too
+        with np.errstate(
+            all="ignore"
+        ):  # reported, not judged: spacing² may overflow for a valid field
+            summary["power"] = float(
+                np.sum(np.abs(result.values) ** 2) * np.float64(result.spacing) ** 2
+            )
+    elif isinstance(result, lo.FieldBeam):  # FlatTopBeam too
         _finite_array("beam.field.values", result.field.values, problems)
         if isinstance(result, lo.FlatTopBeam):
             _finite_array("far_field", result.far_field, problems)
@@ -217,18 +250,22 @@ def judge_result(result, node, built) -> tuple:
     elif isinstance(result, lo.TelecoverResult):
         _finite_array("sectors' overlap", result.overlap, problems, 0.0, 1.0)
         _finite_array("full.overlap", result.full.overlap, problems, 0.0, 1.0)
-        dev = np.asarray(result.deviation, dtype=float)   # NaN is documented where every sector's G is 0
-        if np.any(np.isinf(dev)) or np.any(np.isnan(dev) & (np.asarray(result.overlap).sum(axis=0) > 0)):
+        dev = np.asarray(
+            result.deviation, dtype=float
+        )  # NaN is documented where every sector's G is 0
+        if np.any(np.isinf(dev)) or np.any(
+            np.isnan(dev) & (np.asarray(result.overlap).sum(axis=0) > 0)
+        ):
             problems.append("deviation holds an infinite value, or NaN where the sectors see light")
         summary["overlap"] = np.asarray(result.overlap).tolist()
     elif isinstance(result, lo.CorrectedSignal):
         mask = np.asarray(result.mask, dtype=bool)
-        for name in ("values", "std"):                    # NaN is documented where masked
+        for name in ("values", "std"):  # NaN is documented where masked
             _finite_array(name, np.asarray(getattr(result, name), dtype=float)[~mask], problems)
         summary["masked"] = int(mask.sum())
-    elif type(result).__name__ == "Dataset":              # alignment maps and sensitivities (xarray)
+    elif type(result).__name__ == "Dataset":  # alignment maps and sensitivities (xarray)
         for name, var in result.data_vars.items():
-            if var.dtype.kind in "biuf":                  # units and labels are strings
+            if var.dtype.kind in "biuf":  # units and labels are strings
                 low, high = (0.0, 1.0) if name == "overlap" else (None, None)
                 _finite_array(name, var.values, problems, low, high)
         summary["variables"] = sorted(result.data_vars)
@@ -243,15 +280,18 @@ def judge_result(result, node, built) -> tuple:
         summary["value"] = v
         if entry == "emitter_coupling":
             _finite_number("coupling", v, problems, 0.0, 1.0)
-        elif entry in ("full_overlap_range", "first_signal_range"):   # NaN is documented: never reached
+        elif entry in (
+            "full_overlap_range",
+            "first_signal_range",
+        ):  # NaN is documented: never reached
             _finite_number(entry, v, problems, 0.0, allow_nan=True)
         elif entry == "optimal_focus_range" and v == math.inf and _defocus_is_zero(node, built):
-            pass                                                          # documented: inf for defocus 0
+            pass  # documented: inf for defocus 0
         elif entry == "optimal_focus_range":
             _finite_number(entry, v, problems, 0.0)
         elif entry in UNBOUNDED_WITHOUT_TURBULENCE and v == math.inf:
             pass
-        else:                        # Turbulence methods: r0, variances, radii, angles are all >= 0
+        else:  # Turbulence methods: r0, variances, radii, angles are all >= 0
             _finite_number(entry, v, problems, 0.0)
     return problems, summary
 
@@ -264,7 +304,8 @@ def _defocus_is_zero(node, built) -> bool:
 # ------------------------------------------------------------------------------------------ running
 def run_probe(node) -> dict:
     """Build and run ``node`` with every warning recorded (never raised), and judge the outcome.
-    ``warnings`` holds those of the outermost call alone, ``build_warnings`` those of building its arguments."""
+    ``warnings`` holds those of the outermost call alone, ``build_warnings`` those of building its
+    arguments."""
     names: set = set()
     start = time.perf_counter()
     building: list = []
@@ -287,21 +328,36 @@ def run_probe(node) -> dict:
         if isinstance(exc, (KeyboardInterrupt, SystemExit)):
             raise
         verdict, kind, message, why = judge_exception(exc, names)
-        outcome = {"verdict": verdict, "type": kind, "message": message[:2000], "why": why,
-                   "traceback": traceback.format_exc(limit=-4)[-3000:] if verdict != CLEAN_ERROR else ""}
+        outcome = {
+            "verdict": verdict,
+            "type": kind,
+            "message": message[:2000],
+            "why": why,
+            "traceback": traceback.format_exc(limit=-4)[-3000:] if verdict != CLEAN_ERROR else "",
+        }
     else:
         try:
             problems, summary = judge_result(result, node, built)
         except Exception as exc:  # noqa: BLE001 - a result that cannot even be inspected is wrong
             problems, summary = [f"inspecting the result raised {type(exc).__name__}: {exc}"], {}
-        outcome = {"verdict": SILENT_WRONG if problems else FINITE, "why": "; ".join(problems), "summary": summary}
-    outcome.update(seconds=time.perf_counter() - start, warnings=_warning_list(calling),
-                   build_warnings=_warning_list(building))
+        outcome = {
+            "verdict": SILENT_WRONG if problems else FINITE,
+            "why": "; ".join(problems),
+            "summary": summary,
+        }
+    outcome.update(
+        seconds=time.perf_counter() - start,
+        warnings=_warning_list(calling),
+        build_warnings=_warning_list(building),
+    )
     return outcome
 
 
 def _warning_list(caught) -> list:
-    return [(w.category.__name__, issubclass(w.category, RuntimeWarning), str(w.message)[:300]) for w in caught]
+    return [
+        (w.category.__name__, issubclass(w.category, RuntimeWarning), str(w.message)[:300])
+        for w in caught
+    ]
 
 
 def _read_exact(stream, n: int) -> bytes:
@@ -321,7 +377,7 @@ def serve() -> None:
     limit = int(os.environ.get("LIDAR_OVERLAP_PROBE_MEMORY", DEFAULT_MEMORY_LIMIT))
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
     reply = os.fdopen(os.dup(1), "wb", buffering=0)
-    os.dup2(2, 1)                       # whatever the library prints goes to stderr, not into the protocol
+    os.dup2(2, 1)  # whatever the library prints goes to stderr, not into the protocol
     sys.stdout = sys.stderr
     requests = sys.stdin.buffer
     import lidar_overlap  # noqa: F401 - imported once, before the first probe's clock starts

@@ -13,8 +13,12 @@ def client():
     distributed = pytest.importorskip("distributed")
     package_root = os.path.dirname(os.path.dirname(os.path.abspath(lo.__file__)))
     old = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = os.pathsep.join([package_root] + ([old] if old else []))  # the workers' import
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
+    os.environ["PYTHONPATH"] = os.pathsep.join(
+        [package_root] + ([old] if old else [])
+    )  # the workers' import
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    )
     c = distributed.Client(cluster)
     try:
         yield c

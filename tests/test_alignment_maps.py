@@ -1,4 +1,5 @@
-"""Alignment maps of many systems through Dask: each map bit for bit the single call's, the same on a two-worker
+"""Alignment maps of many systems through Dask: each map bit for bit the single call's, the same on
+a two-worker
 cluster, in threads and in a plain loop; bad arguments refused by name."""
 
 import numpy as np
@@ -8,9 +9,16 @@ import lidar_overlap as lo
 
 xr = pytest.importorskip("xarray")
 
-SYSTEMS = [lo.paper_table1(), lo.paper_table1(defocus=1e-3), lo.paper_table1(obstruction_radius=0.02),
-           lo.LidarSystem(beam=lo.GaussianBeam(355e-9, 1e-3, offset=(0.1, 0.0), tilt=(-2e-4, 0.0)),
-                          telescope=lo.paper_table1().telescope, detector=lo.paper_table1().detector)]
+SYSTEMS = [
+    lo.paper_table1(),
+    lo.paper_table1(defocus=1e-3),
+    lo.paper_table1(obstruction_radius=0.02),
+    lo.LidarSystem(
+        beam=lo.GaussianBeam(355e-9, 1e-3, offset=(0.1, 0.0), tilt=(-2e-4, 0.0)),
+        telescope=lo.paper_table1().telescope,
+        detector=lo.paper_table1().detector,
+    ),
+]
 RANGES = np.geomspace(60.0, 2000.0, 4)
 AXES = dict(tilt_x=np.linspace(-1e-4, 1e-4, 3), defocus=np.array([-5e-4, 0.0, 5e-4]))
 
@@ -35,19 +43,23 @@ def test_a_cluster_threads_and_a_loop_give_the_same_bits(client, monkeypatch):
     assert there.attrs["engine"] == "distributed" and here.attrs["engine"] in ("dask", "loop")
     xr.testing.assert_identical(here.drop_attrs(), there.drop_attrs())
     import lidar_overlap.analysis.engines as engines
+
     monkeypatch.setattr(engines, "engine", lambda client: "loop")
     xr.testing.assert_identical(maps().drop_attrs(), here.drop_attrs())
 
 
-@pytest.mark.parametrize("systems, kw, message", [
-    ([], {}, "^systems is invalid"),
-    (SYSTEMS[0], {}, "^systems is invalid"),
-    ("table1", {}, "^systems is invalid"),
-    ([SYSTEMS[0], None], {}, "^systems is invalid"),
-    (SYSTEMS, {"tilt_z": np.zeros(2)}, "^tilt_z is invalid: expected the axes"),
-    (SYSTEMS, {"client": "cluster"}, "^client = 'cluster' is invalid"),
-    (SYSTEMS, {"threads": -1}, "^threads = -1 is invalid"),
-])
+@pytest.mark.parametrize(
+    "systems, kw, message",
+    [
+        ([], {}, "^systems is invalid"),
+        (SYSTEMS[0], {}, "^systems is invalid"),
+        ("table1", {}, "^systems is invalid"),
+        ([SYSTEMS[0], None], {}, "^systems is invalid"),
+        (SYSTEMS, {"tilt_z": np.zeros(2)}, "^tilt_z is invalid: expected the axes"),
+        (SYSTEMS, {"client": "cluster"}, "^client = 'cluster' is invalid"),
+        (SYSTEMS, {"threads": -1}, "^threads = -1 is invalid"),
+    ],
+)
 def test_bad_arguments_are_refused_by_name(systems, kw, message):
     axes = {k: v for k, v in AXES.items() if "tilt_z" not in kw}
     with pytest.raises(ValueError, match=message):

@@ -1,4 +1,5 @@
-"""Invalid input is rejected with a ValueError that names the offending parameter; nothing is clamped.
+"""Invalid input is rejected with a ValueError that names the offending parameter; nothing is
+clamped.
 
 Also checks that the system dataclasses are frozen and that dataclasses.replace re-validates.
 """
@@ -12,7 +13,7 @@ import pytest
 import lidar_overlap as lo
 
 NAN, INF = math.nan, math.inf
-NOT_POSITIVE = [0.0, -1e-3, NAN, INF, -INF]   # invalid for every strictly positive finite size
+NOT_POSITIVE = [0.0, -1e-3, NAN, INF, -INF]  # invalid for every strictly positive finite size
 BAD_PAIRS = [(1.0,), (1.0, 2.0, 3.0), [[1.0, 2.0]], (NAN, 0.0), (0.0, INF), "xy", None]
 
 
@@ -26,7 +27,9 @@ def obstructed():
     return lo.paper_table1(obstruction_radius=0.02, obstruction_distance=0.7)
 
 
-# --- beam -------------------------------------------------------------------------------------------
+# --- beam
+# -------------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("value", NOT_POSITIVE)
 @pytest.mark.parametrize("name", ["wavelength", "waist_radius", "divergence"])
@@ -54,7 +57,9 @@ def test_beam_non_numbers(value):
         lo.GaussianBeam(waist_radius=value)
 
 
-# --- telescope --------------------------------------------------------------------------------------
+# --- telescope
+# --------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("value", NOT_POSITIVE)
 @pytest.mark.parametrize("name", ["diameter", "focal_length"])
@@ -88,7 +93,9 @@ def test_valid_edge_values_are_accepted():
     lo.LidarSystem(detector=lo.Detector(defocus=-0.5))
 
 
-# --- detector ---------------------------------------------------------------------------------------
+# --- detector
+# ---------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("value", NOT_POSITIVE)
 def test_detector_radius(value):
@@ -106,7 +113,9 @@ def test_detector_defocus_not_finite(value):
 def test_defocus_not_behind_lens(defocus):
     # the detector plane f + defocus must lie behind the lens: defocus > -f (f = 1 m)
     with pytest.raises(ValueError, match="detector.defocus"):
-        lo.LidarSystem(telescope=lo.Telescope(focal_length=1.0), detector=lo.Detector(defocus=defocus))
+        lo.LidarSystem(
+            telescope=lo.Telescope(focal_length=1.0), detector=lo.Detector(defocus=defocus)
+        )
     with pytest.raises(ValueError, match="detector.defocus"):
         lo.paper_table1(defocus=defocus)
 
@@ -140,7 +149,9 @@ def test_from_fov_radius():
     assert lo.Detector.from_fov(1e-3, 0.5).radius == pytest.approx(0.25e-3, rel=1e-15)
 
 
-# --- system -----------------------------------------------------------------------------------------
+# --- system
+# -----------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("name", ["beam", "telescope", "detector"])
 def test_system_parts_have_the_right_type(name):
@@ -148,21 +159,26 @@ def test_system_parts_have_the_right_type(name):
         lo.LidarSystem(**{name: 1.0})
 
 
-# --- overlap arguments ------------------------------------------------------------------------------
+# --- overlap arguments
+# ------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("ranges", [
-    [0.0, 1.0, 2.0],        # non-positive
-    [-5.0, 10.0],           # negative
-    [1.0, NAN, 3.0],        # NaN
-    [1.0, INF],             # infinite
-    [[1.0, 2.0], [3.0, 4.0]],  # 2-D
-    [],                     # empty
-    5.0,                    # scalar (0-D)
-    [1.0, 3.0, 2.0],        # not increasing
-    [1.0, 1.0, 2.0],        # repeated
-    ["a", "b"],             # not numbers
-    [259.6, (1.0, 2.0, 3.0), 18064.6],  # ragged (NumPy's own error named nothing)
-])
+
+@pytest.mark.parametrize(
+    "ranges",
+    [
+        [0.0, 1.0, 2.0],  # non-positive
+        [-5.0, 10.0],  # negative
+        [1.0, NAN, 3.0],  # NaN
+        [1.0, INF],  # infinite
+        [[1.0, 2.0], [3.0, 4.0]],  # 2-D
+        [],  # empty
+        5.0,  # scalar (0-D)
+        [1.0, 3.0, 2.0],  # not increasing
+        [1.0, 1.0, 2.0],  # repeated
+        ["a", "b"],  # not numbers
+        [259.6, (1.0, 2.0, 3.0), 18064.6],  # ragged (NumPy's own error named nothing)
+    ],
+)
 def test_overlap_bad_ranges(system, ranges):
     with pytest.raises(ValueError, match="ranges"):
         lo.overlap(system, ranges)
@@ -204,7 +220,9 @@ def test_overlap_needs_a_system():
         lo.overlap(lo.GaussianBeam(), [1.0, 2.0])
 
 
-# --- emitter_coupling and optimal_focus_range -------------------------------------------------------
+# --- emitter_coupling and optimal_focus_range
+# -------------------------------------------------------
+
 
 @pytest.mark.parametrize("value", BAD_PAIRS)
 def test_emitter_coupling_bad_position(system, value):
@@ -241,11 +259,17 @@ def test_optimal_focus_range_bad_focal_length(f):
         lo.optimal_focus_range(f, 1e-3)
 
 
-# --- immutability and replace -----------------------------------------------------------------------
+# --- immutability and replace
+# -----------------------------------------------------------------------
+
 
 def test_dataclasses_are_frozen(system):
-    for obj, name, value in [(system.beam, "waist_radius", 2e-3), (system.telescope, "diameter", 0.2),
-                             (system.detector, "radius", 1e-3), (system, "beam", lo.GaussianBeam())]:
+    for obj, name, value in [
+        (system.beam, "waist_radius", 2e-3),
+        (system.telescope, "diameter", 0.2),
+        (system.detector, "radius", 1e-3),
+        (system, "beam", lo.GaussianBeam()),
+    ]:
         with pytest.raises(dataclasses.FrozenInstanceError):
             setattr(obj, name, value)
     res = lo.overlap(system, [10.0, 20.0])
@@ -258,7 +282,9 @@ def test_replace_builds_a_new_valid_object(system):
     assert beam.waist_radius == 2e-3 and system.beam.waist_radius == 1e-3
     # the native model follows: the diffraction-limited divergence is recomputed from the new waist
     assert beam.half_angle_divergence == pytest.approx(355e-9 / (np.pi * 2e-3), rel=1e-12)
-    assert beam.radius(100.0) == pytest.approx(np.hypot(2e-3, 100.0 * 355e-9 / (np.pi * 2e-3)), rel=1e-12)
+    assert beam.radius(100.0) == pytest.approx(
+        np.hypot(2e-3, 100.0 * 355e-9 / (np.pi * 2e-3)), rel=1e-12
+    )
     # and so does the overlap: a 1 mrad beam overfills the 0.45 mrad field of view at 300 m
     wide = dataclasses.replace(system, beam=dataclasses.replace(system.beam, divergence=1e-3))
     g_old, g_new = (lo.overlap(s, [300.0], tolerance=1e-8).overlap[0] for s in (system, wide))
@@ -278,15 +304,22 @@ def test_replace_revalidates(system):
     # a smaller aperture no longer contains an existing obstruction
     blocked = lo.paper_table1(obstruction_radius=0.02)
     with pytest.raises(ValueError, match="telescope.obstruction_radius"):
-        dataclasses.replace(blocked, telescope=dataclasses.replace(blocked.telescope, diameter=0.03))
+        dataclasses.replace(
+            blocked, telescope=dataclasses.replace(blocked.telescope, diameter=0.03)
+        )
 
 
-# --- beam profiles, field beams and flat tops ---------------------------------------------------------
+# --- beam profiles, field beams and flat tops
+# ---------------------------------------------------------
 HUGE = [2**31, 2**63, 10**400, 1.7976931348623157e308, 1e300]
 LG = dict(wavelength=355e-9, waist_radius=1e-3, l=1, p=1, n=64, spacing=2e-4)
-PROFILES = {"annular_field": dict(wavelength=355e-9, outer_radius=1e-3, inner_radius=2e-4, n=64, spacing=5e-5),
-            "laguerre_gauss_field": LG,
-            "super_gaussian_field": dict(wavelength=355e-9, radius=1e-3, order=4.0, n=64, spacing=1e-4)}
+PROFILES = {
+    "annular_field": dict(
+        wavelength=355e-9, outer_radius=1e-3, inner_radius=2e-4, n=64, spacing=5e-5
+    ),
+    "laguerre_gauss_field": LG,
+    "super_gaussian_field": dict(wavelength=355e-9, radius=1e-3, order=4.0, n=64, spacing=1e-4),
+}
 
 
 def profile(fn, **changes):
@@ -318,7 +351,9 @@ def test_profile_spacing_refused_by_name(fn, value):
         profile(fn, spacing=value)
 
 
-@pytest.mark.parametrize("value", [10**400, 1.7976931348623157e308, 1e300, 1e31, 0.0, -1.0, NAN, True])
+@pytest.mark.parametrize(
+    "value", [10**400, 1.7976931348623157e308, 1e300, 1e31, 0.0, -1.0, NAN, True]
+)
 @pytest.mark.parametrize("fn", sorted(PROFILES))
 def test_profile_power_refused_by_name(fn, value):
     with pytest.raises(ValueError, match="^power = "):
@@ -332,7 +367,9 @@ def test_profile_on_a_grid_far_coarser_than_the_beam_refused_naming_spacing(fn):
         profile(fn, spacing=1e5, **({"inner_radius": 0.0} if fn == "annular_field" else {}))
 
 
-@pytest.mark.parametrize("name, value", [("l", 101), ("l", -101), ("l", 2**63), ("l", 1.0), ("p", 101), ("p", 2**63)])
+@pytest.mark.parametrize(
+    "name, value", [("l", 101), ("l", -101), ("l", 2**63), ("l", 1.0), ("p", 101), ("p", 2**63)]
+)
 def test_laguerre_gauss_indices_bounded(name, value):
     with pytest.raises(ValueError, match=f"^{name} = "):
         profile("laguerre_gauss_field", **{name: value})
@@ -340,7 +377,8 @@ def test_laguerre_gauss_indices_bounded(name, value):
 
 @pytest.mark.parametrize("l, p", [(100, 0), (-100, 0), (0, 100), (100, 100)])
 def test_laguerre_gauss_extreme_indices_are_finite_with_their_radius(l, p):
-    """w0 sqrt(2p + |l| + 1), within what 1024² samples resolve of p + 1 rings (measured 0.3 % at p = 100)."""
+    """w0 sqrt(2p + |l| + 1), within what 1024² samples resolve of p + 1 rings (measured 0.3 % at p
+    = 100)."""
     radius = 1e-3 * math.sqrt(2 * p + abs(l) + 1)
     f = profile("laguerre_gauss_field", l=l, p=p, n=1024, spacing=9.6 * radius / 1024)
     assert np.all(np.isfinite(f.values)) and abs(f.power - 1.0) < 1e-12
@@ -350,7 +388,7 @@ def test_laguerre_gauss_extreme_indices_are_finite_with_their_radius(l, p):
 @pytest.mark.parametrize("order", [1e300, 1.7976931348623157e308, 10**300])
 def test_super_gaussian_of_huge_order_is_a_disc_whose_window_is_checked(order):
     disc = profile("super_gaussian_field", order=order)
-    assert abs(disc.beam_radius / 1e-3 - 1) < 0.02            # a uniform disc's second-moment radius is R
+    assert abs(disc.beam_radius / 1e-3 - 1) < 0.02  # a uniform disc's second-moment radius is R
     with pytest.raises(ValueError, match=r"^n \* spacing = "):
         profile("super_gaussian_field", order=order, n=16)
 

@@ -1,15 +1,18 @@
-"""The command line: `run` on the bundled Table 1 scenario writes CSV, NetCDF and plot with the numbers of
-lo.overlap to the last digit, --method overrides the file, bad scenarios and failed computations exit with
-code 1 and a one-line message naming the key (command-line syntax errors with 2, Ctrl-C with 130), a full
-disk leaves no file, the summary prints no range that does not exist, `demo` writes the three Table 1
+"""The command line: `run` on the bundled Table 1 scenario writes CSV, NetCDF and plot with the
+numbers of
+lo.overlap to the last digit, --method overrides the file, bad scenarios and failed computations
+exit with
+code 1 and a one-line message naming the key (command-line syntax errors with 2, Ctrl-C with 130), a
+full
+disk leaves no file, the summary prints no range that does not exist, `demo` writes the three Table
+1
 variants, and the module runs as a script. Hostile scenario files: test_cli_hostile.py."""
 
 import errno
 import os
+import re
 import subprocess
 import sys
-import types
-import re
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +28,8 @@ TABLE1 = SCENARIOS / "table1.toml"
 
 @pytest.fixture(autouse=True)
 def no_scene(monkeypatch):
-    """The 3-D scene (pyvista) is slow to render; its own tests cover it. Here: as if not installed."""
+    """The 3-D scene (pyvista) is slow to render; its own tests cover it. Here: as if not
+    installed."""
     monkeypatch.setitem(sys.modules, "pyvista", None)
 
 
@@ -36,7 +40,9 @@ def _csv_only(text):
 
 
 def _read_columns(path):
-    rows = [line for line in Path(path).read_text().splitlines() if line and not line.startswith("#")]
+    rows = [
+        line for line in Path(path).read_text().splitlines() if line and not line.startswith("#")
+    ]
     assert rows[0] == "range_m,overlap,error_estimate"
     return np.array([[float(v) for v in row.split(",")] for row in rows[1:]])
 
@@ -48,8 +54,12 @@ def test_run_table1_writes_the_files_with_exact_numbers(tmp_path, capsys):
         assert (tmp_path / f"table1{suffix}").stat().st_size > 0, suffix
         assert f"table1{suffix}" in out
     assert "full overlap" in out and "first signal" in out and "method        rt" in out
-    assert "pyvista" in err and "table1_scene.png not written" in err  # the note says what to install
-    expected = lo.overlap(lo.paper_table1(), np.geomspace(5.0, 1000.0, 200), method="rt", tolerance=1e-4)
+    assert (
+        "pyvista" in err and "table1_scene.png not written" in err
+    )  # the note says what to install
+    expected = lo.overlap(
+        lo.paper_table1(), np.geomspace(5.0, 1000.0, 200), method="rt", tolerance=1e-4
+    )
     data = _read_columns(tmp_path / "table1.csv")
     assert np.array_equal(data[:, 0], expected.ranges)
     assert np.array_equal(data[:, 1], expected.overlap)
@@ -70,12 +80,16 @@ def test_bundled_file_is_the_built_in_scenario():
 def test_aberrated_scenario_loads_and_refuses_bad_terms(tmp_path):
     scenario = load_scenario(SCENARIOS / "table1_aberrated.toml")
     ab = scenario.system.telescope.aberrations
-    assert ab.zernike == {6: 0.3e-6, 11: 0.5e-6} and ab.w131 == 0.2e-6 and ab.field_radius == 0.45e-3
+    assert (
+        ab.zernike == {6: 0.3e-6, 11: 0.5e-6} and ab.w131 == 0.2e-6 and ab.field_radius == 0.45e-3
+    )
     assert scenario.model() == "rt"
     text = (SCENARIOS / "table1_aberrated.toml").read_text()
-    for change, words in ((('"11" = 0.5e-6', '"eleven" = 0.5e-6'), "[telescope.aberrations.zernike] eleven"),
-                          (("w131 = 0.2e-6", "w132 = 0.2e-6"), "unknown key 'w132'"),
-                          (("field_radius = 0.45e-3", "field_radius = 0.0"), "field_radius")):
+    for change, words in (
+        (('"11" = 0.5e-6', '"eleven" = 0.5e-6'), "[telescope.aberrations.zernike] eleven"),
+        (("w131 = 0.2e-6", "w132 = 0.2e-6"), "unknown key 'w132'"),
+        (("field_radius = 0.45e-3", "field_radius = 0.0"), "field_radius"),
+    ):
         path = tmp_path / "bad.toml"
         path.write_text(text.replace(*change))
         with pytest.raises(ValueError, match=re.escape(words)):
@@ -84,48 +98,98 @@ def test_aberrated_scenario_loads_and_refuses_bad_terms(tmp_path):
 
 def test_biaxial_flat_top_scenario_loads():
     scenario = load_scenario(SCENARIOS / "biaxial_flat_top.toml")
-    assert isinstance(scenario.system.beam, lo.FlatTopBeam) and scenario.system.beam.offset == (0.1, 0.0)
+    assert isinstance(scenario.system.beam, lo.FlatTopBeam) and scenario.system.beam.offset == (
+        0.1,
+        0.0,
+    )
     assert scenario.model() == "fo" and scenario.ranges.size == 60
 
 
 def test_method_override(tmp_path, capsys):
-    text = TABLE1.read_text().replace("count = 200", "count = 8").replace("start = 5.0", "start = 20.0")
+    text = (
+        TABLE1.read_text()
+        .replace("count = 200", "count = 8")
+        .replace("start = 5.0", "start = 20.0")
+    )
     (tmp_path / "small.toml").write_text(_csv_only(text))
-    assert main(["run", str(tmp_path / "small.toml"), "--out", str(tmp_path), "--method", "fo"]) == 0
+    assert (
+        main(["run", str(tmp_path / "small.toml"), "--out", str(tmp_path), "--method", "fo"]) == 0
+    )
     out = capsys.readouterr().out
     assert "method        fo" in out
     read = lo.OverlapResult.from_csv(tmp_path / "table1.csv")
     expected = lo.overlap(lo.paper_table1(), np.geomspace(20.0, 1000.0, 8), method="fo")
     assert read.method == "fo" and np.array_equal(read.overlap, expected.overlap)
     assert not (tmp_path / "table1.nc").exists() and not (tmp_path / "table1_overlap.png").exists()
-    assert main(["run", str(tmp_path / "small.toml"), "--out", str(tmp_path), "--method", "auto", "--quiet"]) == 0
-    # auto at the scenario's tolerance 1e-4: diffraction at the receiver (~1e-3) needs Fourier optics.
+    assert (
+        main(
+            [
+                "run",
+                str(tmp_path / "small.toml"),
+                "--out",
+                str(tmp_path),
+                "--method",
+                "auto",
+                "--quiet",
+            ]
+        )
+        == 0
+    )
+    # auto at the scenario's tolerance 1e-4: diffraction at the receiver (~1e-3) needs Fourier
+    # optics.
     assert lo.OverlapResult.from_csv(tmp_path / "table1.csv").method == "fo"
 
 
-@pytest.mark.parametrize("change, words", [
-    (("waist_radius = 1e-3", "waist = 1e-3"), ["[beam]", "unknown key 'waist'", "valid: wavelength, waist_radius"]),
-    (("[output]", "[outputs]"), ["unknown key 'outputs'", "valid: name, description"]),
-    (("wavelength = 355e-9", 'wavelength = "355 nm"'), ["[beam] wavelength = '355 nm'",
-                                                       "expected a finite real number"]),
-    (("count = 200", "count = 12.5"), ["[ranges] count = 12.5", "expected an integer"]),
-    (("[telescope]", "[telescope_]"), ["unknown key 'telescope_'"]),
-    (("diameter = 0.15", ""), ["[telescope] missing key 'diameter'"]),
-    (("fov = 0.9e-3", "fov = -1"), ["table1.toml: [detector] fov = -1 is invalid: expected a finite value > 0"]),
-    (("waist_radius = 1e-3", "waist_radius = -1e-3"), ["[beam] waist_radius = -0.001 is invalid", "> 0"]),
-    (("obstruction_radius = 0.0", "obstruction_radius = 0.1"), ["[telescope] obstruction_radius", "aperture"]),
-    (("fov = 0.9e-3", "fov = 0.9e-3\nradius = 0.45e-3"), ["[detector] fov and radius: both given",
-                                                          "expected exactly one"]),
-    (("fov = 0.9e-3", ""), ["[detector] fov and radius: neither given"]),
-    (('method = "rt"', 'method = "ray"'), ["[run] method = 'ray' is invalid", "'rt', 'fo', 'auto'"]),
-    (('spacing = "log"', 'spacing = "logarithmic"'), ["[ranges] spacing = 'logarithmic'", "'linear', 'log'"]),
-    (("start = 5.0", "start = 0.5"), None),  # valid: no obstruction
-])
+@pytest.mark.parametrize(
+    "change, words",
+    [
+        (
+            ("waist_radius = 1e-3", "waist = 1e-3"),
+            ["[beam]", "unknown key 'waist'", "valid: wavelength, waist_radius"],
+        ),
+        (("[output]", "[outputs]"), ["unknown key 'outputs'", "valid: name, description"]),
+        (
+            ("wavelength = 355e-9", 'wavelength = "355 nm"'),
+            ["[beam] wavelength = '355 nm'", "expected a finite real number"],
+        ),
+        (("count = 200", "count = 12.5"), ["[ranges] count = 12.5", "expected an integer"]),
+        (("[telescope]", "[telescope_]"), ["unknown key 'telescope_'"]),
+        (("diameter = 0.15", ""), ["[telescope] missing key 'diameter'"]),
+        (
+            ("fov = 0.9e-3", "fov = -1"),
+            ["table1.toml: [detector] fov = -1 is invalid: expected a finite value > 0"],
+        ),
+        (
+            ("waist_radius = 1e-3", "waist_radius = -1e-3"),
+            ["[beam] waist_radius = -0.001 is invalid", "> 0"],
+        ),
+        (
+            ("obstruction_radius = 0.0", "obstruction_radius = 0.1"),
+            ["[telescope] obstruction_radius", "aperture"],
+        ),
+        (
+            ("fov = 0.9e-3", "fov = 0.9e-3\nradius = 0.45e-3"),
+            ["[detector] fov and radius: both given", "expected exactly one"],
+        ),
+        (("fov = 0.9e-3", ""), ["[detector] fov and radius: neither given"]),
+        (
+            ('method = "rt"', 'method = "ray"'),
+            ["[run] method = 'ray' is invalid", "'rt', 'fo', 'auto'"],
+        ),
+        (
+            ('spacing = "log"', 'spacing = "logarithmic"'),
+            ["[ranges] spacing = 'logarithmic'", "'linear', 'log'"],
+        ),
+        (("start = 5.0", "start = 0.5"), None),  # valid: no obstruction
+    ],
+)
 def test_scenario_errors_exit_1_naming_the_key(tmp_path, capsys, change, words):
     text = TABLE1.read_text()
     assert change[0] in text
     path = tmp_path / "table1.toml"
-    path.write_text(_csv_only(text.replace(change[0], change[1], 1).replace("count = 200", "count = 20")))
+    path.write_text(
+        _csv_only(text.replace(change[0], change[1], 1).replace("count = 200", "count = 20"))
+    )
     code = main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"])
     out, err = capsys.readouterr()
     if words is None:
@@ -141,7 +205,9 @@ def test_scenario_errors_exit_1_naming_the_key(tmp_path, capsys, change, words):
 
 def test_ranges_inside_the_obstruction_distance(tmp_path, capsys):
     text = TABLE1.read_text().replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
-    (tmp_path / "s.toml").write_text(text.replace("start = 5.0", "start = 0.5").replace("count = 200", "count = 120"))
+    (tmp_path / "s.toml").write_text(
+        text.replace("start = 5.0", "start = 0.5").replace("count = 200", "count = 120")
+    )
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "out"), "--quiet"]) == 1
     err = capsys.readouterr().err
     assert "s.toml: [ranges] ranges[0] = 0.5" in err and "obstruction distance" in err
@@ -150,15 +216,23 @@ def test_ranges_inside_the_obstruction_distance(tmp_path, capsys):
 
 def test_missing_section_bad_toml_and_bad_arguments(tmp_path, capsys):
     text = TABLE1.read_text()
-    cut = text[:text.index("[ranges]")] + text[text.index("[run]"):]
+    cut = text[: text.index("[ranges]")] + text[text.index("[run]") :]
     (tmp_path / "a.toml").write_text(cut)
     (tmp_path / "b.toml").write_text("name = 'twice'\n" + text)
-    cases = [(["run", str(tmp_path / "a.toml")], "missing section [ranges]", 1),
-             (["run", str(tmp_path / "b.toml")], "b.toml: invalid TOML", 1),
-             (["run", str(tmp_path / "none.toml")], "none.toml: cannot read the scenario", 1),
-             (["run", str(tmp_path)], "cannot read the scenario", 1),  # a directory
-             (["run", str(TABLE1), "--method", "exact"], "argument --method: invalid choice: 'exact'", 2),
-             (["run"], "required: scenario", 2), (["simulate"], "invalid choice: 'simulate'", 2), ([], "required", 2)]
+    cases = [
+        (["run", str(tmp_path / "a.toml")], "missing section [ranges]", 1),
+        (["run", str(tmp_path / "b.toml")], "b.toml: invalid TOML", 1),
+        (["run", str(tmp_path / "none.toml")], "none.toml: cannot read the scenario", 1),
+        (["run", str(tmp_path)], "cannot read the scenario", 1),  # a directory
+        (
+            ["run", str(TABLE1), "--method", "exact"],
+            "argument --method: invalid choice: 'exact'",
+            2,
+        ),
+        (["run"], "required: scenario", 2),
+        (["simulate"], "invalid choice: 'simulate'", 2),
+        ([], "required", 2),
+    ]
     for argv, words, code in cases:
         assert main(argv) == code, argv
         err = capsys.readouterr().err
@@ -185,7 +259,11 @@ def test_progress_on_long_runs(tmp_path, capsys, monkeypatch):
 
 def test_without_xarray_the_csv_is_still_written(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "xarray", None)
-    text = TABLE1.read_text().replace("plot = true", "plot = false").replace("count = 200", "count = 20")
+    text = (
+        TABLE1.read_text()
+        .replace("plot = true", "plot = false")
+        .replace("count = 200", "count = 20")
+    )
     (tmp_path / "s.toml").write_text(text)
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path)]) == 0
     assert (tmp_path / "table1.csv").exists() and not (tmp_path / "table1.nc").exists()
@@ -199,12 +277,18 @@ def test_scene_is_written_through_save_scene(tmp_path, capsys, monkeypatch):
         calls.append((system, kwargs))
         Path(filename).write_bytes(b"png")
 
-    monkeypatch.delitem(sys.modules, "pyvista")   # installed (the fake below stands for its scene)
+    monkeypatch.delitem(sys.modules, "pyvista")  # installed (the fake below stands for its scene)
     monkeypatch.setattr("lidar_overlap.cli.commands.save_scene", save_scene)
-    text = TABLE1.read_text().replace("netcdf = true", "netcdf = false").replace("plot = true", "plot = false")
+    text = (
+        TABLE1.read_text()
+        .replace("netcdf = true", "netcdf = false")
+        .replace("plot = true", "plot = false")
+    )
     (tmp_path / "s.toml").write_text(text)
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 0
-    assert (tmp_path / "table1_scene.png").exists() and "table1_scene.png" in capsys.readouterr().out
+    assert (
+        tmp_path / "table1_scene.png"
+    ).exists() and "table1_scene.png" in capsys.readouterr().out
     assert calls[0][0] == lo.paper_table1() and calls[0][1]["result"].ranges.size == 200
 
 
@@ -219,25 +303,49 @@ def test_demo_writes_the_three_table1_variants(tmp_path, capsys):
     assert obstructed.system == lo.paper_table1(obstruction_radius=0.02)
     assert obstructed.overlap[-1] == pytest.approx(1 - (0.02 / 0.075) ** 2, abs=1e-3)
     defocused = lo.OverlapResult.from_csv(tmp_path / "table1_defocus_5mm.csv")
-    assert defocused.full_overlap_range() < lo.OverlapResult.from_csv(tmp_path / "table1.csv").full_overlap_range()
+    assert (
+        defocused.full_overlap_range()
+        < lo.OverlapResult.from_csv(tmp_path / "table1.csv").full_overlap_range()
+    )
     assert out.count("full overlap") == 3 and f"written to {tmp_path}" in out
 
 
 def test_subprocess(tmp_path):
-    (tmp_path / "s.toml").write_text(_csv_only(TABLE1.read_text()).replace("count = 200", "count = 10"))
-    done = subprocess.run([sys.executable, "-m", "lidar_overlap.cli", "run", str(tmp_path / "s.toml"),
-                           "--out", str(tmp_path / "out")], capture_output=True, text=True, timeout=120)
+    (tmp_path / "s.toml").write_text(
+        _csv_only(TABLE1.read_text()).replace("count = 200", "count = 10")
+    )
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "lidar_overlap.cli",
+            "run",
+            str(tmp_path / "s.toml"),
+            "--out",
+            str(tmp_path / "out"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert done.returncode == 0, done.stderr
     assert "full overlap" in done.stdout and (tmp_path / "out" / "table1.csv").exists()
-    bad = subprocess.run([sys.executable, "-m", "lidar_overlap.cli", "run", str(tmp_path / "none.toml")],
-                         capture_output=True, text=True, timeout=120)
+    bad = subprocess.run(
+        [sys.executable, "-m", "lidar_overlap.cli", "run", str(tmp_path / "none.toml")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert bad.returncode == 1 and "Traceback" not in bad.stderr and "cannot read" in bad.stderr
 
 
-# ------------------------------------------------------------------------------------- failures and files
+# ------------------------------------------------------------------------------------- failures and
+# files
 def _small_scenario(tmp_path, outputs=("csv",), start=5.0, stop=1000.0):
     text = TABLE1.read_text().replace("count = 200", "count = 20")
-    text = text.replace("start = 5.0", f"start = {start!r}").replace("stop = 1000.0", f"stop = {stop!r}")
+    text = text.replace("start = 5.0", f"start = {start!r}").replace(
+        "stop = 1000.0", f"stop = {stop!r}"
+    )
     for key in ("csv", "netcdf", "plot", "scene"):
         if key not in outputs:
             text = text.replace(f"{key} = true", f"{key} = false")
@@ -248,20 +356,29 @@ def _small_scenario(tmp_path, outputs=("csv",), start=5.0, stop=1000.0):
 
 def _one_error_line(err, *words):
     lines = err.splitlines()
-    assert len(lines) == 1 and lines[0].startswith("lidar-overlap: error: ") and "Traceback" not in err, err
+    assert (
+        len(lines) == 1 and lines[0].startswith("lidar-overlap: error: ") and "Traceback" not in err
+    ), err
     for word in words:
         assert word in lines[0], (word, err)
 
 
 def test_a_nan_curve_is_a_failure_not_a_file(tmp_path, capsys, monkeypatch):
-    """A computation that returns NaN (as the core once did for extreme inputs) ends in exit 1: the result
+    """A computation that returns NaN (as the core once did for extreme inputs) ends in exit 1: the
+    result
     refuses it on construction, and nothing is written."""
     from lidar_overlap.io import scenario as scenario_module
 
     def nan_overlap(plan):
         z = plan.ranges
-        return lo.OverlapResult(ranges=z, overlap=np.full(z.size, np.nan), method="rt",
-                                error_estimate=np.zeros(z.size), system=plan.system, tolerance=1e-4)
+        return lo.OverlapResult(
+            ranges=z,
+            overlap=np.full(z.size, np.nan),
+            method="rt",
+            error_estimate=np.zeros(z.size),
+            system=plan.system,
+            tolerance=1e-4,
+        )
 
     monkeypatch.setattr(scenario_module, "run", nan_overlap)
     path = _small_scenario(tmp_path, outputs=("csv", "netcdf", "plot"))
@@ -272,7 +389,8 @@ def test_a_nan_curve_is_a_failure_not_a_file(tmp_path, capsys, monkeypatch):
 
 
 def test_the_summary_prints_no_range_that_does_not_exist(tmp_path, capsys):
-    # G = 0 everywhere: the obstruction (20 mm) hides the receiver's central rays, the only ones that reach
+    # G = 0 everywhere: the obstruction (20 mm) hides the receiver's central rays, the only ones
+    # that reach
     # the detector from these short ranges, from the whole Table 1 beam up to 20 m
     text = TABLE1.read_text().replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
     text = text.replace("count = 200", "count = 20").replace("start = 5.0", "start = 1.0")
@@ -285,13 +403,20 @@ def test_the_summary_prints_no_range_that_does_not_exist(tmp_path, capsys):
 
 
 def test_warnings_are_printed_once_after_success_and_not_on_failure(tmp_path, capsys):
-    path = _small_scenario(tmp_path, outputs=("csv", "plot"), stop=40.0)   # G still rising at 40 m
+    path = _small_scenario(tmp_path, outputs=("csv", "plot"), stop=40.0)  # G still rising at 40 m
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"]) == 0
     err = capsys.readouterr().err
     lines = [line for line in err.splitlines() if "still rising" in line]
-    assert len(lines) == 1 and lines[0].startswith("warning: full_overlap_range:") and "extend the ranges" in err
-    path.write_text(path.read_text().replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
-                    .replace("start = 5.0", "start = 0.5"))   # now ranges inside the obstruction distance
+    assert (
+        len(lines) == 1
+        and lines[0].startswith("warning: full_overlap_range:")
+        and "extend the ranges" in err
+    )
+    path.write_text(
+        path.read_text()
+        .replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
+        .replace("start = 5.0", "start = 0.5")
+    )  # now ranges inside the obstruction distance
     assert main(["run", str(path), "--out", str(tmp_path / "out2"), "--quiet"]) == 1
     _one_error_line(capsys.readouterr().err, "obstruction distance")
 
@@ -305,9 +430,26 @@ def test_a_full_disk_fails_in_one_line_and_leaves_no_partial_file(tmp_path, caps
 
     monkeypatch.setattr(Figure, "savefig", half_then_full)
     out = tmp_path / "out"
-    assert main(["run", str(_small_scenario(tmp_path, outputs=("csv", "plot"))), "--out", str(out), "--quiet"]) == 1
-    _one_error_line(capsys.readouterr().err, f"cannot write {out / 'table1_overlap.png'}", "No space left on device")
-    assert sorted(p.name for p in out.iterdir()) == ["table1.csv"]   # complete, written before; no temporary
+    assert (
+        main(
+            [
+                "run",
+                str(_small_scenario(tmp_path, outputs=("csv", "plot"))),
+                "--out",
+                str(out),
+                "--quiet",
+            ]
+        )
+        == 1
+    )
+    _one_error_line(
+        capsys.readouterr().err,
+        f"cannot write {out / 'table1_overlap.png'}",
+        "No space left on device",
+    )
+    assert sorted(p.name for p in out.iterdir()) == [
+        "table1.csv"
+    ]  # complete, written before; no temporary
     assert lo.OverlapResult.from_csv(out / "table1.csv").ranges.size == 20
 
 
@@ -318,15 +460,25 @@ def test_writing_through_a_link_to_dev_full(tmp_path, capsys):
     (out / "table1.csv").symlink_to("/dev/full")
     assert main(["run", str(_small_scenario(tmp_path)), "--out", str(out), "--quiet"]) == 1
     _one_error_line(capsys.readouterr().err, "No space left on device")
-    assert sorted(p.name for p in out.iterdir()) == ["table1.csv"] and (out / "table1.csv").is_symlink()
+    assert (
+        sorted(p.name for p in out.iterdir()) == ["table1.csv"]
+        and (out / "table1.csv").is_symlink()
+    )
 
 
-@pytest.mark.parametrize("raised, code, words", [
-    (KeyboardInterrupt(), 130, "interrupted"),
-    (RuntimeError("unexpected\nstate"), 1, "internal error: RuntimeError: unexpected state"),
-    (MemoryError(), 1, "out of memory"),
-    (ValueError("threads = 5 is invalid: expected at most 4"), 1, "[run] threads = 5 is invalid"),
-])
+@pytest.mark.parametrize(
+    "raised, code, words",
+    [
+        (KeyboardInterrupt(), 130, "interrupted"),
+        (RuntimeError("unexpected\nstate"), 1, "internal error: RuntimeError: unexpected state"),
+        (MemoryError(), 1, "out of memory"),
+        (
+            ValueError("threads = 5 is invalid: expected at most 4"),
+            1,
+            "[run] threads = 5 is invalid",
+        ),
+    ],
+)
 def test_every_failure_is_one_line(tmp_path, capsys, monkeypatch, raised, code, words):
     from lidar_overlap.io import scenario as scenario_module
 
@@ -334,20 +486,30 @@ def test_every_failure_is_one_line(tmp_path, capsys, monkeypatch, raised, code, 
         raise raised
 
     monkeypatch.setattr(scenario_module, "run", fail)
-    assert main(["run", str(_small_scenario(tmp_path)), "--out", str(tmp_path / "out"), "--quiet"]) == code
+    assert (
+        main(["run", str(_small_scenario(tmp_path)), "--out", str(tmp_path / "out"), "--quiet"])
+        == code
+    )
     _one_error_line(capsys.readouterr().err, words)
     assert not (tmp_path / "out").exists()
 
 
 def test_an_output_directory_that_is_a_file(tmp_path, capsys):
     (tmp_path / "taken").write_text("")
-    assert main(["run", str(_small_scenario(tmp_path)), "--out", str(tmp_path / "taken"), "--quiet"]) == 1
+    assert (
+        main(["run", str(_small_scenario(tmp_path)), "--out", str(tmp_path / "taken"), "--quiet"])
+        == 1
+    )
     _one_error_line(capsys.readouterr().err, "cannot write", "taken")
 
 
 def test_text_from_the_scenario_cannot_drive_the_terminal(tmp_path, capsys):
     path = _small_scenario(tmp_path)
-    path.write_text(path.read_text().replace('description = "Mono-axial', 'description = "\\u001b[2J\\u0007Mono-axial'))
+    path.write_text(
+        path.read_text().replace(
+            'description = "Mono-axial', 'description = "\\u001b[2J\\u0007Mono-axial'
+        )
+    )
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"]) == 0
     out = capsys.readouterr().out
     assert "\x1b" not in out and "\x07" not in out and "table1: [2J Mono-axial lidar" in out

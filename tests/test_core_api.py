@@ -1,4 +1,5 @@
-"""The core's Python API: option classes carry the C++ defaults and are checked by the core; results are
+"""The core's Python API: option classes carry the C++ defaults and are checked by the core; results
+are
 classes with NumPy properties; overlap_rt_batch is the single-system RT call, entry by entry."""
 
 import numpy as np
@@ -7,8 +8,14 @@ import pytest
 import lidar_overlap as lo
 from lidar_overlap import _core
 
-OPTIONS = [_core.RtOptions, _core.FoOptions, _core.RadialFoOptions, _core.RtAberratedOptions,
-           _core.FoAberratedOptions, _core.TurbulenceOptions]
+OPTIONS = [
+    _core.RtOptions,
+    _core.FoOptions,
+    _core.RadialFoOptions,
+    _core.RtAberratedOptions,
+    _core.FoAberratedOptions,
+    _core.TurbulenceOptions,
+]
 
 
 @pytest.mark.parametrize("cls", OPTIONS)
@@ -50,13 +57,18 @@ def test_invalid_values_are_refused_by_the_core_by_name():
 def test_results_are_numpy_properties():
     s = lo.paper_table1()._native
     rt = _core.overlap_rt(s, [100.0, 500.0])
-    assert rt.overlap.dtype == np.float64 and rt.error_estimate.dtype == np.float64 and rt.converged.dtype == bool
+    assert (
+        rt.overlap.dtype == np.float64
+        and rt.error_estimate.dtype == np.float64
+        and rt.converged.dtype == bool
+    )
     assert rt.overlap.shape == (2,) and isinstance(rt.evaluations, int) and rt.axisymmetric is True
     with pytest.raises(AttributeError):
         rt.overlap = np.zeros(2)
     fo = _core.overlap_fo(s, [500.0], _core.FoOptions(beam_grid=64))
-    assert isinstance(fo.beam_reports[0], _core.PropagationReport) and fo.beam_reports[0].method in (
-        "angular_spectrum", "fresnel")
+    assert isinstance(fo.beam_reports[0], _core.PropagationReport) and fo.beam_reports[
+        0
+    ].method in ("angular_spectrum", "fresnel")
     assert fo.spectrum_grid.shape == (1,)
     with pytest.raises(TypeError):
         _core.RtOverlap()
@@ -64,7 +76,11 @@ def test_results_are_numpy_properties():
 
 def test_batch_entries_are_single_calls_bit_for_bit():
     systems, ranges = [], []
-    for tilt, offset in [((0.0, 0.0), (0.0, 0.0)), ((0.2e-3, 0.0), (0.05, 0.0)), ((-0.1e-3, 0.05e-3), (0.0, -0.02))]:
+    for tilt, offset in [
+        ((0.0, 0.0), (0.0, 0.0)),
+        ((0.2e-3, 0.0), (0.05, 0.0)),
+        ((-0.1e-3, 0.05e-3), (0.0, -0.02)),
+    ]:
         for z in (40.0, 150.0, 900.0):
             systems.append(lo.LidarSystem(beam=lo.GaussianBeam(tilt=tilt, offset=offset)))
             ranges.append(z)

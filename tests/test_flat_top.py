@@ -49,7 +49,7 @@ def test_paper_design_meets_its_target(plate):
     assert abs(plate.edge_width / plate.edge_width_target - 1) < EDGE_RTOL
     angle, profile = azimuthal_profile(plate.far_field, plate.angular_spacing)
     plateau = profile[angle < 0.25 * PSI].mean()
-    half = np.interp(-0.5, -profile[angle < PSI] / plateau, angle[angle < PSI])   # falling edge
+    half = np.interp(-0.5, -profile[angle < PSI] / plateau, angle[angle < PSI])  # falling edge
     assert abs(2 * half - PSI) < DIAMETER_ATOL
 
 
@@ -57,15 +57,19 @@ def test_far_field_recomputed_by_fraunhofer(plate):
     z = 1e6 * np.pi * W0**2 / LAM
     far = lo.propagate(plate.field, z, method="fraunhofer")
     assert abs(far.spacing / z - plate.angular_spacing) < 1e-12 * plate.angular_spacing
-    radiant_intensity = far.intensity * z**2                      # W/m^2 x m^2/sr
-    assert np.max(np.abs(radiant_intensity - plate.far_field)) < FAR_FIELD_ATOL * plate.far_field.max()
+    radiant_intensity = far.intensity * z**2  # W/m^2 x m^2/sr
+    assert (
+        np.max(np.abs(radiant_intensity - plate.far_field)) < FAR_FIELD_ATOL * plate.far_field.max()
+    )
 
 
 def test_plate_conserves_energy(plate):
     assert abs(plate.field.power - 1.0) < POWER_RTOL
     assert abs(plate.far_field.sum() * plate.angular_spacing**2 - 1.0) < POWER_RTOL
     gaussian = lo.Field.gaussian(LAM, W0, plate.field.n, plate.field.spacing)
-    np.testing.assert_allclose(np.abs(plate.field.values), np.abs(gaussian.values), rtol=0, atol=1e-12 * W0**-1)
+    np.testing.assert_allclose(
+        np.abs(plate.field.values), np.abs(gaussian.values), rtol=0, atol=1e-12 * W0**-1
+    )
 
 
 def test_history_is_monotone_error_reduction(plate):
@@ -86,20 +90,27 @@ def test_iteration_cap_is_reported():
 
 
 def test_wider_disc_keeps_more_power_inside(plate):
-    # The edge has the same absolute width, so a disc four times wider holds more of the power (92 %).
+    # The edge has the same absolute width, so a disc four times wider holds more of the power (92
+    # %).
     wide = lo.FlatTopBeam(LAM, W0, 4 * PSI, samples_per_waist=16)
     assert wide.stop == "converged" and wide.uniformity_rms < PLATEAU_RMS_MAX
     assert wide.efficiency > plate.efficiency + 0.15
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(angular_diameter=2.0 * THETA_D), "angular_diameter = .* diffraction|2 lambda / \\(pi w0\\)"),
-    (dict(angular_diameter=1e-3, samples_per_waist=1.0), "samples_per_waist"),
-    (dict(grid=100, samples_per_waist=16.0), "grid = 100"),
-    (dict(grid=63), "grid = 63 is invalid: expected an even size >= 64"),
-    (dict(edge_width=-1e-4), "edge_width"),
-    (dict(waist_radius=-1e-3), "waist_radius"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (
+            dict(angular_diameter=2.0 * THETA_D),
+            "angular_diameter = .* diffraction|2 lambda / \\(pi w0\\)",
+        ),
+        (dict(angular_diameter=1e-3, samples_per_waist=1.0), "samples_per_waist"),
+        (dict(grid=100, samples_per_waist=16.0), "grid = 100"),
+        (dict(grid=63), "grid = 63 is invalid: expected an even size >= 64"),
+        (dict(edge_width=-1e-4), "edge_width"),
+        (dict(waist_radius=-1e-3), "waist_radius"),
+    ],
+)
 def test_refusals(kwargs, match):
     args = dict(wavelength=LAM, waist_radius=W0, angular_diameter=PSI) | kwargs
     with pytest.raises(ValueError, match=match):

@@ -1,6 +1,8 @@
-"""Hostile input never crashes, hangs or returns a silent wrong number: property-based probes of every
+"""Hostile input never crashes, hangs or returns a silent wrong number: property-based probes of
+every
 public entry point (hypothesis, fixed seed), run in a worker process so that a crash cannot take the
-test session down (see tests/_probe_worker.py for the contract and tests/_hostile_probes.py for what is
+test session down (see tests/_probe_worker.py for the contract and tests/_hostile_probes.py for what
+is
 drawn). All of an entry point's probes run; its test then fails with the table of outcomes and the
 broken probes grouped by cause, with the shortest reproducer of each.
 
@@ -8,10 +10,9 @@ LIDAR_OVERLAP_PROBE_TIME_LIMIT (s, default 20) sets when a probe counts as a han
 """
 
 import pytest
-from hypothesis import HealthCheck, Phase, given, settings
-
 from _hostile_probes import PROBES
 from _probe_runner import Campaign, ProbeRunner
+from hypothesis import HealthCheck, Phase, given, settings
 
 
 @pytest.fixture(scope="module")
@@ -25,9 +26,16 @@ def test_hostile_inputs_end_in_a_clean_error_or_a_finite_result(entry, runner):
     strategy, examples = PROBES[entry]
     campaign = Campaign(runner)
 
-    # Failures are collected rather than raised: every example runs, and no time goes into shrinking.
-    @settings(max_examples=examples, derandomize=True, database=None, deadline=None,
-              phases=[Phase.explicit, Phase.generate], suppress_health_check=list(HealthCheck))
+    # Failures are collected rather than raised: every example runs, and no time goes into
+    # shrinking.
+    @settings(
+        max_examples=examples,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        phases=[Phase.explicit, Phase.generate],
+        suppress_health_check=list(HealthCheck),
+    )
     @given(probe=strategy)
     def probe_once(probe):
         campaign.run(probe)

@@ -1,8 +1,11 @@
 """Limits every entry point enforces, Ctrl-C, reproducibility and the public phase screens.
 
-Physical scales, thread counts and the memory budget are refused before any work with a ValueError naming
-the parameter; a computation interrupted by SIGINT stops within a second; the 2-D FO path gives the same
-bits for any thread count and in another process; lo.phase_screen has the Kolmogorov structure function.
+Physical scales, thread counts and the memory budget are refused before any work with a ValueError
+naming
+the parameter; a computation interrupted by SIGINT stops within a second; the 2-D FO path gives the
+same
+bits for any thread count and in another process; lo.phase_screen has the Kolmogorov structure
+function.
 """
 
 import math
@@ -18,28 +21,35 @@ import pytest
 
 import lidar_overlap as lo
 
-# Ctrl-C: the core asks Python for signals every 0.1 s between ranges and transforms; one second covers
-# that, the longest single step of the computation below (a few ms) and the interpreter's start of unwinding.
+# Ctrl-C: the core asks Python for signals every 0.1 s between ranges and transforms; one second
+# covers
+# that, the longest single step of the computation below (a few ms) and the interpreter's start of
+# unwinding.
 INTERRUPT_LATENCY = 1.0
-# Kolmogorov screens: mean structure function over 64 screens of 128^2 against 6.88 (r/r0)^(5/3). The core
-# is within 2 % of it (tests/cpp/test_phase_screen.cpp, 2000 screens); 64 screens add ~3 % sampling scatter.
+# Kolmogorov screens: mean structure function over 64 screens of 128^2 against 6.88 (r/r0)^(5/3).
+# The core
+# is within 2 % of it (tests/cpp/test_phase_screen.cpp, 2000 screens); 64 screens add ~3 % sampling
+# scatter.
 STRUCTURE_RTOL = 0.08
 
 
-@pytest.mark.parametrize("make, name", [
-    (lambda: lo.GaussianBeam(wavelength=1e300), "beam.wavelength"),
-    (lambda: lo.GaussianBeam(waist_radius=1e-300), "beam.waist_radius"),
-    (lambda: lo.GaussianBeam(waist_radius=1e-7), "beam.waist_radius"),      # lambda/(pi w0) > 1 rad
-    (lambda: lo.GaussianBeam(divergence=1e300), "beam.divergence"),
-    (lambda: lo.GaussianBeam(tilt=(2.0, 0.0)), "beam.tilt"),
-    (lambda: lo.GaussianBeam(offset=(1e30, 0.0)), "beam.offset"),
-    (lambda: lo.Telescope(diameter=5e-324), "telescope.diameter"),
-    (lambda: lo.Telescope(focal_length=1e11), "telescope.focal_length"),
-    (lambda: lo.Detector(radius=1e300), "detector.radius"),
-    (lambda: lo.Aberrations(w040=1e300), "aberrations.w040"),
-    (lambda: lo.Aberrations(zernike={232: 1e-9}), "aberrations.zernike"),
-    (lambda: lo.Turbulence(1e300), "cn2"),
-])
+@pytest.mark.parametrize(
+    "make, name",
+    [
+        (lambda: lo.GaussianBeam(wavelength=1e300), "beam.wavelength"),
+        (lambda: lo.GaussianBeam(waist_radius=1e-300), "beam.waist_radius"),
+        (lambda: lo.GaussianBeam(waist_radius=1e-7), "beam.waist_radius"),  # lambda/(pi w0) > 1 rad
+        (lambda: lo.GaussianBeam(divergence=1e300), "beam.divergence"),
+        (lambda: lo.GaussianBeam(tilt=(2.0, 0.0)), "beam.tilt"),
+        (lambda: lo.GaussianBeam(offset=(1e30, 0.0)), "beam.offset"),
+        (lambda: lo.Telescope(diameter=5e-324), "telescope.diameter"),
+        (lambda: lo.Telescope(focal_length=1e11), "telescope.focal_length"),
+        (lambda: lo.Detector(radius=1e300), "detector.radius"),
+        (lambda: lo.Aberrations(w040=1e300), "aberrations.w040"),
+        (lambda: lo.Aberrations(zernike={232: 1e-9}), "aberrations.zernike"),
+        (lambda: lo.Turbulence(1e300), "cn2"),
+    ],
+)
 def test_meaningless_scales_are_refused_by_name(make, name):
     with pytest.raises(ValueError, match=name.replace(".", r"\.")):
         make()
@@ -65,12 +75,12 @@ def test_threads_beyond_the_cap_are_refused(threads):
 def test_memory_budget_is_checked_before_allocating():
     default = lo.max_memory()
     try:
-        lo.set_max_memory(2**20)   # 1 MiB
+        lo.set_max_memory(2**20)  # 1 MiB
         with pytest.raises(ValueError, match=r"n = 512 needs .*\(max_memory\)"):
             lo.Field.gaussian(355e-9, 1e-3, 512, 1e-5)
         with pytest.raises(ValueError, match="beam_grid"):
             lo.overlap(lo.paper_table1(), [100.0], "fo", fo_path="2d", beam_grid=512)
-        assert lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4).n == 64     # 64 KiB fits
+        assert lo.Field.gaussian(355e-9, 1e-3, 64, 1e-4).n == 64  # 64 KiB fits
     finally:
         lo.set_max_memory(0)
     assert lo.max_memory() == default > 0
@@ -83,12 +93,18 @@ def test_huge_grids_are_refused_without_allocating(grid):
 
 
 def _interrupted_run(code: str) -> tuple[float, str]:
-    """Run ``code`` in a fresh interpreter, SIGINT it once it has printed 'started', and return the seconds
+    """Run ``code`` in a fresh interpreter, SIGINT it once it has printed 'started', and return the
+    seconds
     from the signal to the process's end and its stderr."""
-    proc = subprocess.Popen([sys.executable, "-c", textwrap.dedent(code)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, env={**os.environ, "PYTHONWARNINGS": "ignore"})
+    proc = subprocess.Popen(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONWARNINGS": "ignore"},
+    )
     assert proc.stdout.readline().strip() == "started"
-    time.sleep(0.5)                                   # well inside the computation
+    time.sleep(0.5)  # well inside the computation
     proc.send_signal(signal.SIGINT)
     sent = time.perf_counter()
     try:
@@ -98,13 +114,18 @@ def _interrupted_run(code: str) -> tuple[float, str]:
     return time.perf_counter() - sent, err
 
 
-@pytest.mark.parametrize("call", [
-    "lo.overlap(lo.LidarSystem(beam=lo.GaussianBeam(tilt=(1e-4, 0.0))), np.geomspace(5, 3000, 300000), 'rt', "
-    "tolerance=1e-8)",
-    "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 400), 'fo', fo_path='2d')",
-    "lo.overlap(lo.paper_table1(), np.geomspace(100, 2000, 20), 'fo', turbulence=lo.Turbulence(1e-14), "
-    "realizations=2000)",
-])
+@pytest.mark.parametrize(
+    "call",
+    [
+        "lo.overlap(lo.LidarSystem(beam=lo.GaussianBeam(tilt=(1e-4, 0.0))), np.geomspace(5, 3000, "
+        "300000), 'rt', "
+        "tolerance=1e-8)",
+        "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 400), 'fo', fo_path='2d')",
+        "lo.overlap(lo.paper_table1(), np.geomspace(100, 2000, 20), 'fo', "
+        "turbulence=lo.Turbulence(1e-14), "
+        "realizations=2000)",
+    ],
+)
 def test_ctrl_c_stops_a_long_computation_within_a_second(call):
     elapsed, err = _interrupted_run(f"""
         import numpy as np, lidar_overlap as lo
@@ -122,11 +143,20 @@ def test_fo_2d_is_bit_reproducible_across_threads_and_processes():
     one = lo.overlap(system, z, "fo", fo_path="2d", threads=1).overlap
     every = lo.overlap(system, z, "fo", fo_path="2d", threads=0).overlap
     assert one.tobytes() == every.tobytes()
-    code = ("import numpy as np, lidar_overlap as lo; s = lo.LidarSystem(beam=lo.GaussianBeam(offset=(0.1, 0.0), "
-            "tilt=(-0.3e-3, 0.0))); print(lo.overlap(s, np.geomspace(50.0, 2000.0, 6), 'fo', fo_path='2d', "
-            "threads=3).overlap.tobytes().hex())")
-    other = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
-                           env={**os.environ, "PYTHONWARNINGS": "ignore"}).stdout.strip()
+    code = (
+        "import numpy as np, lidar_overlap as lo; s = "
+        "lo.LidarSystem(beam=lo.GaussianBeam(offset=(0.1, 0.0), "
+        "tilt=(-0.3e-3, 0.0))); print(lo.overlap(s, np.geomspace(50.0, 2000.0, 6), 'fo', "
+        "fo_path='2d', "
+        "threads=3).overlap.tobytes().hex())"
+    )
+    other = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        env={**os.environ, "PYTHONWARNINGS": "ignore"},
+    ).stdout.strip()
     assert other == one.tobytes().hex()
 
 
@@ -146,9 +176,16 @@ def test_phase_screen_is_reproducible_and_checked():
     assert a.shape == (64, 64) and np.all(np.isfinite(a))
     assert np.array_equal(a, lo.phase_screen(64, 0.01, 0.05, seed=1, index=3))
     assert not np.array_equal(a, lo.phase_screen(64, 0.01, 0.05, seed=2, index=3))
-    assert np.all(lo.phase_screen(64, 0.01, math.inf) == 0.0)       # no turbulence
-    for kwargs, name in ((dict(n=2**32), "n"), (dict(n=63), "n"), (dict(r0=0.0), "r0"), (dict(spacing=math.nan), "spacing"),
-                         (dict(seed=-1), "seed"), (dict(outer_scale=0.0), "outer_scale"), (dict(inner_scale=-1.0), "inner_scale")):
+    assert np.all(lo.phase_screen(64, 0.01, math.inf) == 0.0)  # no turbulence
+    for kwargs, name in (
+        (dict(n=2**32), "n"),
+        (dict(n=63), "n"),
+        (dict(r0=0.0), "r0"),
+        (dict(spacing=math.nan), "spacing"),
+        (dict(seed=-1), "seed"),
+        (dict(outer_scale=0.0), "outer_scale"),
+        (dict(inner_scale=-1.0), "inner_scale"),
+    ):
         args = dict(n=64, spacing=0.01, r0=0.05) | kwargs
         with pytest.raises(ValueError, match=name):
             lo.phase_screen(**args)

@@ -1,5 +1,7 @@
-"""Plan, then run: a plan computes no curve, running it computes each curve once (core calls counted), method
-objects and shortcut strings are the same computation, and a plan run in parts equals the plan run whole."""
+"""Plan, then run: a plan computes no curve, running it computes each curve once (core calls
+counted), method
+objects and shortcut strings are the same computation, and a plan run in parts equals the plan run
+whole."""
 
 import dataclasses
 from collections import defaultdict
@@ -12,24 +14,38 @@ from lidar_overlap import _core, cli
 
 Z = np.geomspace(20.0, 2000.0, 40)
 TABLE1 = lo.paper_table1()
-FIBRE = dataclasses.replace(TABLE1, detector=lo.Detector(radius=25e-6))   # RT misses ~1.6e-3: auto takes FO
+FIBRE = dataclasses.replace(
+    TABLE1, detector=lo.Detector(radius=25e-6)
+)  # RT misses ~1.6e-3: auto takes FO
 ABERRATED = lo.with_aberrations(TABLE1, lo.Aberrations(zernike={11: 0.3e-6}))
-CURVES = ("overlap_rt", "overlap_rt_batch", "overlap_rt_aberrated", "overlap_fo", "overlap_fo_field",
-          "overlap_fo_radial", "overlap_fo_aberrated", "overlap_fo_turbulent")
+CURVES = (
+    "overlap_rt",
+    "overlap_rt_batch",
+    "overlap_rt_aberrated",
+    "overlap_fo",
+    "overlap_fo_field",
+    "overlap_fo_radial",
+    "overlap_fo_aberrated",
+    "overlap_fo_turbulent",
+)
 
 
 @pytest.fixture
 def calls(monkeypatch):
-    """Every call of the core's overlap functions, as (the core's system, ranges) under the function's name."""
+    """Every call of the core's overlap functions, as (the core's system, ranges) under the
+    function's name."""
     seen = defaultdict(list)
     for name in CURVES:
         original = getattr(_core, name)
 
         def counted(*args, _name=name, _original=original, **kwargs):
-            ranges = args[2] if _name in ("overlap_rt_aberrated", "overlap_fo_aberrated") else args[1]
+            ranges = (
+                args[2] if _name in ("overlap_rt_aberrated", "overlap_fo_aberrated") else args[1]
+            )
             system = args[0][0] if _name == "overlap_rt_batch" else args[0]
             seen[_name].append((system, np.array(ranges, dtype=float)))
             return _original(*args, **kwargs)
+
         monkeypatch.setattr(_core, name, counted)
     return seen
 
@@ -52,19 +68,23 @@ def test_auto_runs_one_curve(calls, system, tolerance, model):
 
 
 def test_aberrated_auto_runs_rt_once_beside_its_two_coarse_estimate_curves(calls):
-    """The estimate takes two coarse curves (detector radius ± 1 %, at most 16 ranges); RT of the system itself
+    """The estimate takes two coarse curves (detector radius ± 1 %, at most 16 ranges); RT of the
+    system itself
     runs once, over all ranges, and is the result."""
     res = lo.overlap(ABERRATED, Z, "auto", tolerance=1e-2)
     assert res.method == "rt"
     own = [z for system, z in calls["overlap_rt_aberrated"] if system is ABERRATED._native]
-    estimates = [z for system, z in calls["overlap_rt_aberrated"] if system is not ABERRATED._native]
+    estimates = [
+        z for system, z in calls["overlap_rt_aberrated"] if system is not ABERRATED._native
+    ]
     assert len(own) == 1 and np.array_equal(own[0], Z)
     assert len(estimates) == 2 and all(z.size <= 16 for z in estimates)
     assert sum(len(v) for v in calls.values()) == 3
 
 
 def test_turbulent_rt_is_one_batched_core_call_equal_to_one_call_per_draw(calls):
-    """K x N draws in one overlap_rt_batch call, each bit-identical to ray tracing that draw alone (the draws
+    """K x N draws in one overlap_rt_batch call, each bit-identical to ray tracing that draw alone
+    (the draws
     rebuilt here from the same seed with the documented wander law)."""
     from lidar_overlap.forward.backends.turbulent import beam_for
 
@@ -76,22 +96,32 @@ def test_turbulent_rt_is_one_batched_core_call_equal_to_one_call_per_draw(calls)
     options = _core.RtOptions()
     options.tolerance = 1e-6
     for i, zi in enumerate(z):
-        st = turbulence.short_term_radius(wavelength=beam.wavelength, waist_radius=beam.waist_radius, path_length=zi)
-        lt = turbulence.long_term_radius(wavelength=beam.wavelength, waist_radius=beam.waist_radius, path_length=zi)
+        st = turbulence.short_term_radius(
+            wavelength=beam.wavelength, waist_radius=beam.waist_radius, path_length=zi
+        )
+        lt = turbulence.long_term_radius(
+            wavelength=beam.wavelength, waist_radius=beam.waist_radius, path_length=zi
+        )
         sigma = 0.5 * np.sqrt(lt**2 - st**2)
         for j in range(k):
-            native = _core.LidarSystem(beam_for(beam, zi, st, rng.normal(0.0, sigma, 2))._native,
-                                       TABLE1.telescope._native, TABLE1.detector._native)
+            native = _core.LidarSystem(
+                beam_for(beam, zi, st, rng.normal(0.0, sigma, 2))._native,
+                TABLE1.telescope._native,
+                TABLE1.detector._native,
+            )
             assert _core.overlap_rt(native, [zi], options).overlap[0] == res.realizations[j, i]
 
 
 def test_the_cli_with_auto_computes_each_range_once(calls, tmp_path):
-    """lidar-overlap run with auto: one plan, each range computed once (in chunks for the progress bar)."""
+    """lidar-overlap run with auto: one plan, each range computed once (in chunks for the progress
+    bar)."""
     scenario = tmp_path / "s.toml"
-    scenario.write_text('name = "s"\n[beam]\nwavelength = 355e-9\nwaist_radius = 1e-3\n'
-                        '[telescope]\ndiameter = 0.15\nfocal_length = 1.0\n[detector]\nfov = 0.9e-3\n'
-                        '[ranges]\nstart = 20.0\nstop = 2000.0\ncount = 120\n[run]\nmethod = "auto"\n'
-                        'tolerance = 1e-2\n[output]\ncsv = true\nnetcdf = false\nplot = false\nscene = false\n')
+    scenario.write_text(
+        'name = "s"\n[beam]\nwavelength = 355e-9\nwaist_radius = 1e-3\n'
+        "[telescope]\ndiameter = 0.15\nfocal_length = 1.0\n[detector]\nfov = 0.9e-3\n"
+        '[ranges]\nstart = 20.0\nstop = 2000.0\ncount = 120\n[run]\nmethod = "auto"\n'
+        "tolerance = 1e-2\n[output]\ncsv = true\nnetcdf = false\nplot = false\nscene = false\n"
+    )
     assert cli.main(["run", str(scenario), "--out", str(tmp_path / "out"), "--quiet"]) == 0
     computed = np.concatenate([z for _, z in calls["overlap_rt"]])
     assert computed.size == 120 and np.unique(computed).size == 120
@@ -106,13 +136,19 @@ def test_a_plan_run_in_parts_equals_the_plan_run_whole(method):
     assert np.array_equal(np.concatenate([q.overlap for q in parts]), whole.overlap)
 
 
-@pytest.mark.parametrize("shortcut, options, method", [
-    ("rt", dict(tolerance=1e-6), lo.RT(tolerance=1e-6)),
-    ("fo", dict(fo_path="2d", beam_grid=128), lo.FO(path="2d", beam_grid=128)),
-    ("auto", dict(tolerance=1e-3), lo.Auto(tolerance=1e-3)),
-    ("rt", dict(turbulence=lo.Turbulence(1e-14), realizations=2, seed=1),
-     lo.Turbulent(lo.Turbulence(1e-14), lo.RT(), realizations=2, seed=1)),
-])
+@pytest.mark.parametrize(
+    "shortcut, options, method",
+    [
+        ("rt", dict(tolerance=1e-6), lo.RT(tolerance=1e-6)),
+        ("fo", dict(fo_path="2d", beam_grid=128), lo.FO(path="2d", beam_grid=128)),
+        ("auto", dict(tolerance=1e-3), lo.Auto(tolerance=1e-3)),
+        (
+            "rt",
+            dict(turbulence=lo.Turbulence(1e-14), realizations=2, seed=1),
+            lo.Turbulent(lo.Turbulence(1e-14), lo.RT(), realizations=2, seed=1),
+        ),
+    ],
+)
 def test_a_method_object_and_its_shortcut_are_the_same_computation(shortcut, options, method):
     z = Z[::8]
     by_string, by_object = lo.overlap(TABLE1, z, shortcut, **options), lo.overlap(TABLE1, z, method)
@@ -121,54 +157,82 @@ def test_a_method_object_and_its_shortcut_are_the_same_computation(shortcut, opt
 
 
 def test_defaults_are_the_cores():
-    assert (lo.RT().tolerance, lo.RT().max_segments) == (_core.RtOptions().tolerance, _core.RtOptions().max_segments)
-    assert (lo.RT().rings, lo.RT().ring_rays) == (_core.RtAberratedOptions().rings, _core.RtAberratedOptions().ring_rays)
+    assert (lo.RT().tolerance, lo.RT().max_segments) == (
+        _core.RtOptions().tolerance,
+        _core.RtOptions().max_segments,
+    )
+    assert (lo.RT().rings, lo.RT().ring_rays) == (
+        _core.RtAberratedOptions().rings,
+        _core.RtAberratedOptions().ring_rays,
+    )
     assert lo.FO().max_spectrum_grid == _core.FoOptions().max_spectrum_grid
     t = lo.Turbulent(lo.Turbulence(1e-14))
-    assert (t.realizations, t.screens, t.seed) == (_core.TurbulenceOptions().realizations,
-                                                   _core.TurbulenceOptions().screens, _core.TurbulenceOptions().seed)
+    assert (t.realizations, t.screens, t.seed) == (
+        _core.TurbulenceOptions().realizations,
+        _core.TurbulenceOptions().screens,
+        _core.TurbulenceOptions().seed,
+    )
     p = lo.plan(TABLE1, Z, lo.FO(path="2d"))
-    assert (p.options.beam_grid, p.options.beam_window) == (_core.FoOptions().beam_grid, _core.FoOptions().beam_window)
+    assert (p.options.beam_grid, p.options.beam_window) == (
+        _core.FoOptions().beam_grid,
+        _core.FoOptions().beam_window,
+    )
 
 
-@pytest.mark.parametrize("system, method, kind", [
-    (TABLE1, "rt", "bound"), (TABLE1, "fo", "nominal"), (TABLE1, lo.Auto(1e-2), "bound"), (FIBRE, lo.Auto(1e-4), "nominal"),
-    (TABLE1, lo.Turbulent(lo.Turbulence(1e-14), "fo", realizations=2), "standard_error")])
+@pytest.mark.parametrize(
+    "system, method, kind",
+    [
+        (TABLE1, "rt", "bound"),
+        (TABLE1, "fo", "nominal"),
+        (TABLE1, lo.Auto(1e-2), "bound"),
+        (FIBRE, lo.Auto(1e-4), "nominal"),
+        (TABLE1, lo.Turbulent(lo.Turbulence(1e-14), "fo", realizations=2), "standard_error"),
+    ],
+)
 def test_the_plan_states_the_kind_of_error_the_result_carries(system, method, kind):
     p = lo.plan(system, Z[-3:], method)
     assert p.error_kind == kind and lo.run(p).error_kind == kind
 
 
 # --------------------------------------------------------------------------------- hostile input
-@pytest.mark.parametrize("method, message", [
-    (lo.RT(), "^tolerance given beside method = RT"),
-    ("magic", "^method = 'magic' is invalid"),
-    (3, "^method = 3 is invalid"),
-    (None, "^method = None is invalid"),
-])
+@pytest.mark.parametrize(
+    "method, message",
+    [
+        (lo.RT(), "^tolerance given beside method = RT"),
+        ("magic", "^method = 'magic' is invalid"),
+        (3, "^method = 3 is invalid"),
+        (None, "^method = None is invalid"),
+    ],
+)
 def test_bad_methods_and_options_beside_a_method_object_are_refused_by_name(method, message):
     with pytest.raises(ValueError, match=message):
         lo.overlap(TABLE1, Z, method, tolerance=1e-3 if isinstance(method, lo.RT) else None)
 
 
-@pytest.mark.parametrize("build, message", [
-    (lambda: lo.RT(tolerance=0.0), "^tolerance = 0.0 is invalid"),
-    (lambda: lo.RT(tolerance=float("nan")), "^tolerance = nan is invalid"),
-    (lambda: lo.RT(max_segments=0), "^max_segments = 0 is invalid"),
-    (lambda: lo.RT(rings=2**63), "^rings = .* is invalid"),
-    (lambda: lo.FO(path="3d"), "^path = '3d' is invalid"),
-    (lambda: lo.FO(beam_grid=8), "^beam_grid = 8 is invalid"),
-    (lambda: lo.FO(path="radial", beam_grid=128), "apply to the 2-D FO path only"),
-    (lambda: lo.FO(beam_window=float("inf")), None),
-    (lambda: lo.Auto(tolerance=1.0), "^tolerance = 1.0 is invalid"),
-    (lambda: lo.Auto(rt="rt"), "^rt = 'rt' is invalid"),
-    (lambda: lo.Turbulent(1e-14), "^turbulence = 1e-14 is invalid"),
-    (lambda: lo.Turbulent(lo.Turbulence(1e-14), realizations=0), "^realizations = 0 is invalid"),
-    (lambda: lo.Turbulent(lo.Turbulence(1e-14), seed=-1), "^seed = -1 is invalid"),
-    (lambda: lo.Turbulent(lo.Turbulence(1e-14), method="fast"), "^method = 'fast' is invalid"),
-])
+@pytest.mark.parametrize(
+    "build, message",
+    [
+        (lambda: lo.RT(tolerance=0.0), "^tolerance = 0.0 is invalid"),
+        (lambda: lo.RT(tolerance=float("nan")), "^tolerance = nan is invalid"),
+        (lambda: lo.RT(max_segments=0), "^max_segments = 0 is invalid"),
+        (lambda: lo.RT(rings=2**63), "^rings = .* is invalid"),
+        (lambda: lo.FO(path="3d"), "^path = '3d' is invalid"),
+        (lambda: lo.FO(beam_grid=8), "^beam_grid = 8 is invalid"),
+        (lambda: lo.FO(path="radial", beam_grid=128), "apply to the 2-D FO path only"),
+        (lambda: lo.FO(beam_window=float("inf")), None),
+        (lambda: lo.Auto(tolerance=1.0), "^tolerance = 1.0 is invalid"),
+        (lambda: lo.Auto(rt="rt"), "^rt = 'rt' is invalid"),
+        (lambda: lo.Turbulent(1e-14), "^turbulence = 1e-14 is invalid"),
+        (
+            lambda: lo.Turbulent(lo.Turbulence(1e-14), realizations=0),
+            "^realizations = 0 is invalid",
+        ),
+        (lambda: lo.Turbulent(lo.Turbulence(1e-14), seed=-1), "^seed = -1 is invalid"),
+        (lambda: lo.Turbulent(lo.Turbulence(1e-14), method="fast"), "^method = 'fast' is invalid"),
+    ],
+)
 def test_method_objects_refuse_bad_options_by_name(build, message):
-    if message is None:   # accepted here, refused by the core when the plan runs, naming it
+    if message is None:  # accepted here, refused by the core when the plan runs, naming it
         with pytest.raises(ValueError, match="beam_window"):
             lo.overlap(TABLE1, Z[-2:], build())
         return
@@ -189,5 +253,7 @@ def test_run_refuses_what_is_not_a_plan():
         lo.run("rt")
     with pytest.raises(ValueError, match="^plan.backend = 'gpu' is invalid"):
         lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), backend="gpu"))
-    with pytest.raises(ValueError, match=r"^ranges\[0\] = -1 is invalid"):   # the core checks what it is given
+    with pytest.raises(
+        ValueError, match=r"^ranges\[0\] = -1 is invalid"
+    ):  # the core checks what it is given
         lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), ranges=np.array([-1.0, 2.0])))

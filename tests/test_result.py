@@ -1,4 +1,5 @@
-"""OverlapResult: contents, the derived ranges checked against their definitions on the returned curve,
+"""OverlapResult: contents, the derived ranges checked against their definitions on the returned
+curve,
 the cases where they do not exist (NaN), threshold validation, and the matplotlib plot."""
 
 import dataclasses
@@ -13,15 +14,18 @@ import pytest  # noqa: E402
 
 import lidar_overlap as lo  # noqa: E402
 
-THIN = dict(waist_radius=1e-9, divergence=1e-12, width_law="linear")  # a geometric pencil beam (M^2 < 1 needs the linear law)
+THIN = dict(
+    waist_radius=1e-9, divergence=1e-12, width_law="linear"
+)  # a geometric pencil beam (M^2 < 1 needs the linear law)
 RANGES = np.geomspace(1.0, 1e4, 300)
 
 
 @pytest.fixture(scope="module")
 def results():
     tilted = lo.paper_table1()
-    tilted = dataclasses.replace(tilted, beam=dataclasses.replace(tilted.beam, offset=(0.1, 0.0),
-                                                                  tilt=(-0.4e-3, 0.0)))
+    tilted = dataclasses.replace(
+        tilted, beam=dataclasses.replace(tilted.beam, offset=(0.1, 0.0), tilt=(-0.4e-3, 0.0))
+    )
     return {
         "table1": lo.overlap(lo.paper_table1(), RANGES),
         "obstructed": lo.overlap(lo.paper_table1(obstruction_radius=0.04), RANGES),
@@ -32,7 +36,8 @@ def results():
 
 @pytest.fixture(scope="module")
 def dark():
-    """A curve that is zero everywhere: thin on-axis beam, ranges before the obstruction onset (45.1 m)."""
+    """A curve that is zero everywhere: thin on-axis beam, ranges before the obstruction onset (45.1
+    m)."""
     return lo.overlap(lo.paper_table1(obstruction_radius=0.02, **THIN), np.linspace(1.0, 40.0, 50))
 
 
@@ -96,7 +101,8 @@ def test_first_signal_range_definition(results, case, threshold):
 
 
 def test_first_signal_range_is_absolute(results):
-    # 0.8 is reached by the clear system but never by one that loses (40/75)^2 = 28 % to the obstruction
+    # 0.8 is reached by the clear system but never by one that loses (40/75)^2 = 28 % to the
+    # obstruction
     assert np.isfinite(results["table1"].first_signal_range(0.8))
     assert np.isnan(results["obstructed"].first_signal_range(0.8))
     assert results["table1"].first_signal_range() == results["table1"].first_signal_range(1e-3)
@@ -156,7 +162,11 @@ def test_plot_onto_given_axes(results):
         out_a = results["table1"].plot(ax=ax)
         out_b = results["obstructed"].plot(ax=ax)
         assert out_a is ax and out_b is ax
-        ys = [np.asarray(ln.get_ydata()) for ln in ax.get_lines() if len(ln.get_ydata()) == RANGES.size]
+        ys = [
+            np.asarray(ln.get_ydata())
+            for ln in ax.get_lines()
+            if len(ln.get_ydata()) == RANGES.size
+        ]
         assert any(np.array_equal(y, results["table1"].overlap) for y in ys)
         assert any(np.array_equal(y, results["obstructed"].overlap) for y in ys)
     finally:
@@ -172,7 +182,8 @@ def test_plot_without_signal_draws_no_marks(dark):
         plt.close(ax.figure)
 
 
-# --------------------------------------------------------------------------------- equality and error kinds
+# --------------------------------------------------------------------------------- equality and
+# error kinds
 def test_equal_results_compare_equal_and_differing_ones_do_not(results):
     res = results["table1"]
     again = lo.overlap(res.system, res.ranges, "rt", tolerance=res.tolerance)
@@ -187,16 +198,24 @@ def test_equal_results_compare_equal_and_differing_ones_do_not(results):
 
 def test_results_with_nan_tolerance_equal_themselves_and_allclose_compares_curves():
     z = np.geomspace(50.0, 2000.0, 6)
-    fo, rt = lo.overlap(lo.paper_table1(), z, "fo"), lo.overlap(lo.paper_table1(), z, "rt", tolerance=1e-6)
+    fo, rt = (
+        lo.overlap(lo.paper_table1(), z, "fo"),
+        lo.overlap(lo.paper_table1(), z, "rt", tolerance=1e-6),
+    )
     assert np.isnan(fo.tolerance) and fo == lo.overlap(lo.paper_table1(), z, "fo")
     gap = float(np.max(np.abs(fo.overlap - rt.overlap)))
     assert fo != rt and fo.allclose(rt, atol=gap) and not fo.allclose(rt, atol=0.5 * gap)
-    assert not fo.allclose(lo.overlap(lo.paper_table1(), z[:-1], "fo"), atol=1.0)   # other ranges
+    assert not fo.allclose(lo.overlap(lo.paper_table1(), z[:-1], "fo"), atol=1.0)  # other ranges
 
 
-@pytest.mark.parametrize("other, atol, message", [("rt", 0.0, "^other = 'rt' is invalid"),
-                                                  (None, -1.0, "^atol = -1.0 is invalid"),
-                                                  (None, float("nan"), "^atol = nan is invalid")])
+@pytest.mark.parametrize(
+    "other, atol, message",
+    [
+        ("rt", 0.0, "^other = 'rt' is invalid"),
+        (None, -1.0, "^atol = -1.0 is invalid"),
+        (None, float("nan"), "^atol = nan is invalid"),
+    ],
+)
 def test_allclose_refuses_bad_arguments_by_name(results, other, atol, message):
     res = results["table1"]
     with pytest.raises(ValueError, match=message):

@@ -1,6 +1,9 @@
-"""OverlapResult files: CSV and NetCDF round trips are exact (ranges, G, error estimates, method, tolerance),
-the files carry units and the system description, a Gaussian system is rebuilt from the attributes, a
-missing xarray gives an ImportError saying what to install; a file appears only once complete (a full disk
+"""OverlapResult files: CSV and NetCDF round trips are exact (ranges, G, error estimates, method,
+tolerance),
+the files carry units and the system description, a Gaussian system is rebuilt from the attributes,
+a
+missing xarray gives an ImportError saying what to install; a file appears only once complete (a
+full disk
 leaves nothing, or the previous file), and files with NaN or out-of-range values are refused."""
 
 import dataclasses
@@ -20,7 +23,9 @@ RANGES = np.geomspace(5.0, 1000.0, 50)
 
 
 def _biaxial():
-    system = lo.paper_table1(obstruction_radius=0.02, defocus=3e-3, divergence=0.2e-3, width_law="linear")
+    system = lo.paper_table1(
+        obstruction_radius=0.02, defocus=3e-3, divergence=0.2e-3, width_law="linear"
+    )
     beam = dataclasses.replace(system.beam, offset=(0.1, -0.01), tilt=(-0.3e-3, 1e-5))
     detector = dataclasses.replace(system.detector, numerical_aperture=0.22, offset=(1e-5, 0.0))
     return dataclasses.replace(system, beam=beam, detector=detector)
@@ -29,16 +34,20 @@ def _biaxial():
 @pytest.fixture(scope="module")
 def results():
     # The aberrated ray fan stops ~2e-4 short of convergence here: a 1e-4 tolerance would warn.
-    return {"rt": lo.overlap(lo.paper_table1(), RANGES, method="rt"),
-            "fo": lo.overlap(lo.paper_table1(obstruction_radius=0.02), RANGES[20::4], method="fo"),
-            "biaxial": lo.overlap(_biaxial(), RANGES, method="rt", tolerance=1e-6),
-            "aberrated": lo.overlap(_aberrated(), RANGES[20::8], method="rt", tolerance=1e-3)}
+    return {
+        "rt": lo.overlap(lo.paper_table1(), RANGES, method="rt"),
+        "fo": lo.overlap(lo.paper_table1(obstruction_radius=0.02), RANGES[20::4], method="fo"),
+        "biaxial": lo.overlap(_biaxial(), RANGES, method="rt", tolerance=1e-6),
+        "aberrated": lo.overlap(_aberrated(), RANGES[20::8], method="rt", tolerance=1e-3),
+    }
 
 
 def _aberrated():
     aberrations = lo.Aberrations(zernike={6: 0.2e-6, 11: 0.3e-6}, w222=0.1e-6, field_radius=0.45e-3)
     base = lo.paper_table1()
-    return dataclasses.replace(base, telescope=dataclasses.replace(base.telescope, aberrations=aberrations))
+    return dataclasses.replace(
+        base, telescope=dataclasses.replace(base.telescope, aberrations=aberrations)
+    )
 
 
 def _assert_same(read, original, system_too=True):
@@ -46,7 +55,9 @@ def _assert_same(read, original, system_too=True):
     assert np.array_equal(read.overlap, original.overlap)
     assert np.array_equal(read.error_estimate, original.error_estimate, equal_nan=True)
     assert read.method == original.method
-    assert read.tolerance == original.tolerance or (math.isnan(read.tolerance) and math.isnan(original.tolerance))
+    assert read.tolerance == original.tolerance or (
+        math.isnan(read.tolerance) and math.isnan(original.tolerance)
+    )
     if system_too:
         assert read.system == original.system
 
@@ -72,7 +83,10 @@ def test_csv_layout(results, tmp_path):
     header = dict(line[2:].split(": ", 1) for line in lines if line.startswith("# "))
     assert header["method"] == "rt" and float(header["tolerance"]) == 1e-4
     assert header["scenario"] == "unit test"
-    assert float(header["beam_wavelength_m"]) == 355e-9 and float(header["detector_radius_m"]) == 0.45e-3
+    assert (
+        float(header["beam_wavelength_m"]) == 355e-9
+        and float(header["detector_radius_m"]) == 0.45e-3
+    )
     columns = [line for line in lines if not line.startswith("#")]
     assert columns[0] == "range_m,overlap,error_estimate"
     assert len(columns) == 1 + RANGES.size
@@ -83,18 +97,34 @@ def test_xarray_dataset_units_and_attributes(results):
     ds = results["biaxial"].to_xarray()
     assert ds["range"].attrs["units"] == "m"
     assert ds["range"].attrs["long_name"] == "range from the transmitting plane"
-    assert ds["overlap"].attrs == {**ds["overlap"].attrs, "units": "1", "long_name": "lidar overlap function"}
+    assert ds["overlap"].attrs == {
+        **ds["overlap"].attrs,
+        "units": "1",
+        "long_name": "lidar overlap function",
+    }
     assert ds["error_estimate"].attrs["units"] == "1"
     a = ds.attrs
     assert a["Conventions"] == "CF-1.10" and lo.__version__ in a["history"] and a["title"]
     assert a["method"] == "rt" and a["tolerance"] == 1e-6
     system = _biaxial()
-    expected = {"beam_wavelength_m": 355e-9, "beam_waist_radius_m": 1e-3, "beam_divergence_rad": 0.2e-3,
-                "beam_offset_x_m": 0.1, "beam_offset_y_m": -0.01, "beam_tilt_x_rad": -0.3e-3,
-                "beam_tilt_y_rad": 1e-5, "telescope_diameter_m": 0.15, "telescope_focal_length_m": 1.0,
-                "telescope_obstruction_radius_m": 0.02, "telescope_obstruction_distance_m": 0.7,
-                "detector_radius_m": system.detector.radius, "detector_defocus_m": 3e-3,
-                "detector_offset_x_m": 1e-5, "detector_numerical_aperture": 0.22, "detector_fov_rad": system.fov}
+    expected = {
+        "beam_wavelength_m": 355e-9,
+        "beam_waist_radius_m": 1e-3,
+        "beam_divergence_rad": 0.2e-3,
+        "beam_offset_x_m": 0.1,
+        "beam_offset_y_m": -0.01,
+        "beam_tilt_x_rad": -0.3e-3,
+        "beam_tilt_y_rad": 1e-5,
+        "telescope_diameter_m": 0.15,
+        "telescope_focal_length_m": 1.0,
+        "telescope_obstruction_radius_m": 0.02,
+        "telescope_obstruction_distance_m": 0.7,
+        "detector_radius_m": system.detector.radius,
+        "detector_defocus_m": 3e-3,
+        "detector_offset_x_m": 1e-5,
+        "detector_numerical_aperture": 0.22,
+        "detector_fov_rad": system.fov,
+    }
     for key, value in expected.items():
         assert isinstance(a[key], float) and a[key] == value, key
     assert a["beam_type"] == "gaussian" and a["beam_width_law"] == "linear"
@@ -114,25 +144,37 @@ def test_netcdf_attributes_survive_the_file(results, tmp_path):
 
 
 def test_flat_top_is_described_and_not_rebuilt(tmp_path):
-    beam = lo.FlatTopBeam(355e-9, 1e-3, 0.36e-3, grid=256, samples_per_waist=6.0, offset=(0.05, 0.0))
-    system = lo.LidarSystem(beam=beam, telescope=lo.Telescope(0.15, 1.0), detector=lo.Detector(0.45e-3))
+    beam = lo.FlatTopBeam(
+        355e-9, 1e-3, 0.36e-3, grid=256, samples_per_waist=6.0, offset=(0.05, 0.0)
+    )
+    system = lo.LidarSystem(
+        beam=beam, telescope=lo.Telescope(0.15, 1.0), detector=lo.Detector(0.45e-3)
+    )
     res = lo.overlap(system, [200.0, 1000.0], method="fo")
     a = res.to_xarray().attrs
     assert a["beam_type"] == "flat_top" and a["beam_angular_diameter_rad"] == 0.36e-3
     assert a["beam_grid_size"] == 256 and a["beam_offset_x_m"] == 0.05
     res.to_netcdf(tmp_path / "f.nc")
     res.to_csv(tmp_path / "f.csv")
-    for read in (lo.OverlapResult.from_netcdf(tmp_path / "f.nc"), lo.OverlapResult.from_csv(tmp_path / "f.csv")):
+    for read in (
+        lo.OverlapResult.from_netcdf(tmp_path / "f.nc"),
+        lo.OverlapResult.from_csv(tmp_path / "f.csv"),
+    ):
         _assert_same(read, res, system_too=False)
         assert read.system is None
-        with pytest.warns(RuntimeWarning, match="still rising"):  # two ranges cannot show the far-range limit
+        with pytest.warns(
+            RuntimeWarning, match="still rising"
+        ):  # two ranges cannot show the far-range limit
             assert read.full_overlap_range() == res.full_overlap_range()
 
 
 def test_missing_xarray_says_what_to_install(results, monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "xarray", None)
-    for call in (results["rt"].to_xarray, lambda: results["rt"].to_netcdf(tmp_path / "g.nc"),
-                 lambda: lo.OverlapResult.from_netcdf(tmp_path / "g.nc")):
+    for call in (
+        results["rt"].to_xarray,
+        lambda: results["rt"].to_netcdf(tmp_path / "g.nc"),
+        lambda: lo.OverlapResult.from_netcdf(tmp_path / "g.nc"),
+    ):
         with pytest.raises(ImportError, match=r"pip install 'lidar-overlap\[io\]'"):
             call()
     results["rt"].to_csv(tmp_path / "g.csv")  # CSV needs nothing extra
@@ -151,7 +193,8 @@ def test_not_a_result_file(tmp_path):
         lo.OverlapResult.from_csv(good)
 
 
-# ----------------------------------------------------------------------------- atomic writes, refused files
+# ----------------------------------------------------------------------------- atomic writes,
+# refused files
 class _DiskFullAfter:
     """A file object that writes the first ``limit`` characters, then fails as a full disk would."""
 
@@ -160,7 +203,7 @@ class _DiskFullAfter:
 
     def write(self, text):
         if len(text) > self._left:
-            self._f.write(text[:self._left])
+            self._f.write(text[: self._left])
             self._f.flush()
             raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
         self._left -= len(text)
@@ -191,7 +234,7 @@ def test_a_full_disk_leaves_no_csv(results, tmp_path, monkeypatch):
     with pytest.raises(OSError) as info:
         results["rt"].to_csv(tmp_path / "g.csv")
     assert info.value.errno == errno.ENOSPC and info.value.filename == str(tmp_path / "g.csv")
-    assert written and written[0] != tmp_path / "g.csv"   # it wrote beside the file, not to it
+    assert written and written[0] != tmp_path / "g.csv"  # it wrote beside the file, not to it
     assert _leftovers(tmp_path) == []
 
 
@@ -201,8 +244,12 @@ def test_a_full_disk_keeps_the_previous_file(results, tmp_path, monkeypatch):
     path = tmp_path / "g.csv"
     results["fo"].to_csv(path)
     before = path.read_bytes()
-    monkeypatch.setattr(_files, "open", lambda p, mode="r", **kw: _DiskFullAfter(open(p, mode, **kw), 1000),
-                        raising=False)
+    monkeypatch.setattr(
+        _files,
+        "open",
+        lambda p, mode="r", **kw: _DiskFullAfter(open(p, mode, **kw), 1000),
+        raising=False,
+    )
     with pytest.raises(OSError):
         results["rt"].to_csv(path)
     assert path.read_bytes() == before and _leftovers(tmp_path) == ["g.csv"]
@@ -252,10 +299,15 @@ def test_a_link_is_kept_and_its_target_replaced(results, tmp_path):
     _assert_same(lo.OverlapResult.from_csv(tmp_path / "data" / "g.csv"), results["rt"])
 
 
-@pytest.mark.parametrize("row, words", [("100.0,nan,0.0", "overlap[1] = nan at range 100.0 m"),
-                                        ("100.0,1.5,0.0", "overlap[1] = 1.5"),
-                                        ("100.0,0.5,-1.0", "error_estimate[1] = -1.0"),
-                                        ("5.0,0.5,0.0", "strictly increasing")])
+@pytest.mark.parametrize(
+    "row, words",
+    [
+        ("100.0,nan,0.0", "overlap[1] = nan at range 100.0 m"),
+        ("100.0,1.5,0.0", "overlap[1] = 1.5"),
+        ("100.0,0.5,-1.0", "error_estimate[1] = -1.0"),
+        ("5.0,0.5,0.0", "strictly increasing"),
+    ],
+)
 def test_csv_with_bad_values_is_refused_naming_the_file(tmp_path, row, words):
     path = tmp_path / "g.csv"
     lo.overlap(lo.paper_table1(), [10.0]).to_csv(path)

@@ -1,14 +1,18 @@
-"""Ray-tracing overlap G(z) and single-scatterer coupling against an independent Monte-Carlo ray trace.
+"""Ray-tracing overlap G(z) and single-scatterer coupling against an independent Monte-Carlo ray
+trace.
 
-The Monte-Carlo here follows the paraxial geometry of the design notes directly: random scatterers P from
-the Gaussian beam at range z (each coordinate ~ Normal(centre, w/2), centre = offset + tilt z), random
+The Monte-Carlo here follows the paraxial geometry of the design notes directly: random scatterers P
+from
+the Gaussian beam at range z (each coordinate ~ Normal(centre, w/2), centre = offset + tilt z),
+random
 aperture points A uniform over the aperture disc, one ray per (P, A) pair. A ray counts when it
 
 - misses the obstruction disc: |A + (P - A) z_obs / z| >= r_obs,
 - lands on the detector: |A (1 + d/z - d/f) - P d/z - detector.offset| <= r_d, with d = f + defocus,
 - is within the numerical aperture: |(A - P)/z - A/f| <= tan(asin(NA)).
 
-G is the fraction of rays that count (rays through the whole aperture are the denominator). Each case is
+G is the fraction of rays that count (rays through the whole aperture are the denominator). Each
+case is
 checked at a few ranges where G is neither 0 nor 1, within 5 binomial sigma plus a small floor.
 """
 
@@ -19,15 +23,19 @@ import pytest
 
 import lidar_overlap as lo
 
-N_RAYS = 1_000_000      # (scatterer, aperture point) pairs per range
-CHUNK = 250_000         # rays traced at once (memory)
-N_SIGMA = 5.0           # agreement in binomial standard deviations sqrt(G (1 - G) / N)
-ABS_FLOOR = 1e-4        # covers the engine tolerance (1e-6 here) and G values where sigma -> 0
+N_RAYS = 1_000_000  # (scatterer, aperture point) pairs per range
+CHUNK = 250_000  # rays traced at once (memory)
+N_SIGMA = 5.0  # agreement in binomial standard deviations sqrt(G (1 - G) / N)
+ABS_FLOOR = 1e-4  # covers the engine tolerance (1e-6 here) and G values where sigma -> 0
 ENGINE_TOL = 1e-6
 
 
 def beam_radius(beam, z):
-    theta = beam.wavelength / (np.pi * beam.waist_radius) if beam.divergence is None else beam.divergence
+    theta = (
+        beam.wavelength / (np.pi * beam.waist_radius)
+        if beam.divergence is None
+        else beam.divergence
+    )
     if beam.width_law == "gaussian":
         return np.hypot(beam.waist_radius, theta * z)
     return beam.waist_radius + theta * z
@@ -40,26 +48,27 @@ def aperture_points(rng, radius, n):
 
 
 def accepted(system, z, p, a):
-    """Boolean mask of the rays from scatterers p through aperture points a (both (n, 2)) that count."""
+    """Boolean mask of the rays from scatterers p through aperture points a (both (n, 2)) that
+    count."""
     tel, det = system.telescope, system.detector
     f = tel.focal_length
     d = f + det.defocus
     hit = a * (1 + d / z - d / f) - p * d / z - np.asarray(det.offset)
-    ok = np.einsum("ij,ij->i", hit, hit) <= det.radius ** 2
+    ok = np.einsum("ij,ij->i", hit, hit) <= det.radius**2
     if tel.obstruction_radius > 0:
         q = a + (p - a) * (tel.obstruction_distance / z)
-        ok &= np.einsum("ij,ij->i", q, q) >= tel.obstruction_radius ** 2
+        ok &= np.einsum("ij,ij->i", q, q) >= tel.obstruction_radius**2
     if det.numerical_aperture is not None:
         slope = (a - p) / z - a / f
         max_slope = np.tan(np.arcsin(det.numerical_aperture))
-        ok &= np.einsum("ij,ij->i", slope, slope) <= max_slope ** 2
+        ok &= np.einsum("ij,ij->i", slope, slope) <= max_slope**2
     return ok
 
 
 def mc_overlap(system, z, rng, n=N_RAYS):
     beam = system.beam
     centre = np.asarray(beam.offset) + np.asarray(beam.tilt) * z
-    sigma = beam_radius(beam, z) / 2.0          # 1/e^2 radius w  <=>  per-coordinate sigma w/2
+    sigma = beam_radius(beam, z) / 2.0  # 1/e^2 radius w  <=>  per-coordinate sigma w/2
     count = 0
     for start in range(0, n, CHUNK):
         m = min(CHUNK, n - start)
@@ -95,18 +104,30 @@ CASES = {
     "linear_width_law": (lo.paper_table1(width_law="linear"), [15.0, 60.0, 150.0]),
     "obstructed": (lo.paper_table1(obstruction_radius=0.02), [40.0, 80.0, 150.0, 1000.0]),
     "defocused": (lo.paper_table1(defocus=5e-3), [20.0, 60.0, 201.0, 3000.0]),
-    # beam starts 0.1 m beside the axis and is tilted back across the field of view (crosses it at 250 m)
-    "biaxial_tilted": (_with(BASE, beam=dict(offset=(0.1, 0.0), tilt=(-0.4e-3, 0.0))),
-                       [130.0, 180.0, 250.0, 1000.0, 5000.0]),
-    "tilted_2d": (_with(BASE, beam=dict(offset=(0.03, -0.02), tilt=(-0.2e-3, 0.25e-3), divergence=0.2e-3)),
-                  [50.0, 150.0, 600.0]),
+    # beam starts 0.1 m beside the axis and is tilted back across the field of view (crosses it at
+    # 250 m)
+    "biaxial_tilted": (
+        _with(BASE, beam=dict(offset=(0.1, 0.0), tilt=(-0.4e-3, 0.0))),
+        [130.0, 180.0, 250.0, 1000.0, 5000.0],
+    ),
+    "tilted_2d": (
+        _with(BASE, beam=dict(offset=(0.03, -0.02), tilt=(-0.2e-3, 0.25e-3), divergence=0.2e-3)),
+        [50.0, 150.0, 600.0],
+    ),
     # NA 0.05 accepts slopes up to 0.05006 while the marginal ray of the f/6.7 lens has slope 0.075
     "na_limited": (_with(BASE, detector=dict(numerical_aperture=0.05)), [30.0, 100.0, 1000.0]),
-    "detector_offset": (_with(BASE, detector=dict(offset=(0.25e-3, 0.1e-3))), [30.0, 120.0, 1000.0]),
-    "everything": (_with(lo.paper_table1(obstruction_radius=0.025, defocus=3e-3, width_law="linear"),
-                         beam=dict(offset=(0.05, 0.0), tilt=(-0.15e-3, 0.05e-3)),
-                         detector=dict(offset=(-0.1e-3, 0.05e-3), numerical_aperture=0.06)),
-                   [80.0, 200.0, 400.0, 2000.0]),
+    "detector_offset": (
+        _with(BASE, detector=dict(offset=(0.25e-3, 0.1e-3))),
+        [30.0, 120.0, 1000.0],
+    ),
+    "everything": (
+        _with(
+            lo.paper_table1(obstruction_radius=0.025, defocus=3e-3, width_law="linear"),
+            beam=dict(offset=(0.05, 0.0), tilt=(-0.15e-3, 0.05e-3)),
+            detector=dict(offset=(-0.1e-3, 0.05e-3), numerical_aperture=0.06),
+        ),
+        [80.0, 200.0, 400.0, 2000.0],
+    ),
 }
 
 
@@ -119,7 +140,9 @@ def test_overlap_matches_monte_carlo(case):
     # the case is informative: G takes intermediate values somewhere on these ranges
     assert np.any((mc > 0.02) & (mc < 0.98)), mc
     for zi, got, ref in zip(z, res.overlap, mc):
-        assert abs(got - ref) <= allowed(ref), f"{case}: z = {zi} m: engine G = {got:.6f}, Monte-Carlo {ref:.6f}"
+        assert abs(got - ref) <= allowed(ref), (
+            f"{case}: z = {zi} m: engine G = {got:.6f}, Monte-Carlo {ref:.6f}"
+        )
 
 
 def test_na_case_really_cuts():
@@ -129,7 +152,8 @@ def test_na_case_really_cuts():
     g_na = lo.overlap(system, z, tolerance=ENGINE_TOL).overlap
     g_free = lo.overlap(free, z, tolerance=ENGINE_TOL).overlap
     assert np.max(g_free - g_na) > 0.2
-    # far away every ray of an on-axis point leaves the lens at slope |A|/f: only |A| <= f tan(asin NA) pass
+    # far away every ray of an on-axis point leaves the lens at slope |A|/f: only |A| <= f tan(asin
+    # NA) pass
     far = lo.overlap(system, [1e6], tolerance=ENGINE_TOL).overlap[0]
     assert far == pytest.approx((np.tan(np.arcsin(0.05)) / 0.075) ** 2, abs=1e-4)
 
@@ -138,8 +162,8 @@ def test_biaxial_case_crosses_the_field_of_view():
     system, _ = CASES["biaxial_tilted"]
     z = np.geomspace(10.0, 1e4, 200)
     g = lo.overlap(system, z, tolerance=ENGINE_TOL).overlap
-    assert g[0] < 1e-3            # beam outside the field of view close to the lidar
-    assert g.max() > 0.99         # fully seen where it crosses the axis
+    assert g[0] < 1e-3  # beam outside the field of view close to the lidar
+    assert g.max() > 0.99  # fully seen where it crosses the axis
     assert g[-1] < 0.9 * g.max()  # and leaving the field of view again far away
 
 
@@ -152,8 +176,14 @@ POINTS = [
     (lo.paper_table1(defocus=5e-3), 80.0, (0.02, -0.01)),
     (_with(BASE, detector=dict(numerical_aperture=0.05)), 500.0, (0.05, 0.0)),
     (_with(BASE, detector=dict(offset=(0.25e-3, 0.1e-3))), 120.0, (-0.02, -0.01)),
-    (_with(lo.paper_table1(obstruction_radius=0.025, defocus=3e-3),
-           detector=dict(offset=(-0.1e-3, 0.05e-3), numerical_aperture=0.06)), 300.0, (0.04, -0.03)),
+    (
+        _with(
+            lo.paper_table1(obstruction_radius=0.025, defocus=3e-3),
+            detector=dict(offset=(-0.1e-3, 0.05e-3), numerical_aperture=0.06),
+        ),
+        300.0,
+        (0.04, -0.03),
+    ),
 ]
 
 
@@ -163,7 +193,9 @@ def test_emitter_coupling_matches_monte_carlo(index):
     rng = np.random.default_rng(7 + index)
     ref = mc_coupling(system, z, position, rng)
     got = lo.emitter_coupling(system, z, position=position)
-    assert abs(got - ref) <= allowed(ref), f"z = {z} m, P = {position}: engine {got:.6f}, Monte-Carlo {ref:.6f}"
+    assert abs(got - ref) <= allowed(ref), (
+        f"z = {z} m, P = {position}: engine {got:.6f}, Monte-Carlo {ref:.6f}"
+    )
 
 
 def test_some_emitter_points_are_partially_coupled():

@@ -1,7 +1,8 @@
 """The 3-D scene (lidar_overlap.scene): geometry of its meshes, the rendered picture, errors.
 
 Mesh vertices are placed exactly on circles at sampled ranges, so radii and centres are checked to
-rounding (REL); the detector-plane image is a sampled convolution, checked against G(z) to IMAGE_ABS."""
+rounding (REL); the detector-plane image is a sampled convolution, checked against G(z) to
+IMAGE_ABS."""
 
 import dataclasses
 import re
@@ -16,8 +17,8 @@ import lidar_overlap as lo
 pv = pytest.importorskip("pyvista")
 from lidar_overlap.views.scene import save_scene, scene  # noqa: E402
 
-REL = 1e-9          # vertices are computed in float64 at exact ranges: rounding only
-IMAGE_ABS = 0.01    # detector image power inside the detector vs G: 192² pixels, disc edges
+REL = 1e-9  # vertices are computed in float64 at exact ranges: rounding only
+IMAGE_ABS = 0.01  # detector image power inside the detector vs G: 192² pixels, disc edges
 RANGES = np.geomspace(1.0, 500.0, 60)
 
 
@@ -45,15 +46,23 @@ def with_beam(system, **changes):
 
 def test_picture_is_not_blank(tmp_path):
     system = lo.paper_table1(obstruction_radius=0.02)
-    path = save_scene(system, tmp_path / "scene.png", ranges=RANGES, planes=(60.0, 300.0), color_by="overlap",
-                      window_size=(600, 400))
+    path = save_scene(
+        system,
+        tmp_path / "scene.png",
+        ranges=RANGES,
+        planes=(60.0, 300.0),
+        color_by="overlap",
+        window_size=(600, 400),
+    )
     assert path == tmp_path / "scene.png" and path.stat().st_size > 10_000
     image = pv.read(path)
     rgb = np.asarray(image.point_data[image.point_data.keys()[0]])[:, :3].astype(float)
     assert rgb.shape[0] == 600 * 400
     background = np.median(rgb, axis=0)
-    assert np.mean(np.any(np.abs(rgb - background) > 30, axis=1)) > 0.05      # > 5 % of the pixels drawn
-    assert len(np.unique(rgb.astype(np.uint8), axis=0)) > 200                 # shaded, coloured, textured
+    assert (
+        np.mean(np.any(np.abs(rgb - background) > 30, axis=1)) > 0.05
+    )  # > 5 % of the pixels drawn
+    assert len(np.unique(rgb.astype(np.uint8), axis=0)) > 200  # shaded, coloured, textured
     assert rgb.std() > 20
 
 
@@ -86,17 +95,20 @@ def test_fov_cone_half_angle_is_rd_over_f():
     slope, intercept = np.polyfit(z, radii, 1)
     assert slope == pytest.approx(system.detector.radius / system.telescope.focal_length, rel=1e-9)
     assert intercept == pytest.approx(0.5 * system.telescope.diameter, rel=1e-9)
-    rim = np.linalg.norm(meshes["aperture"].points[:, :2], axis=1).max()       # a float32 disc
+    rim = np.linalg.norm(meshes["aperture"].points[:, :2], axis=1).max()  # a float32 disc
     assert rim == pytest.approx(scale * 0.5 * system.telescope.diameter, rel=1e-6)
 
 
 def test_fov_cone_with_defocus_narrows_to_the_detector_at_the_focus_range():
-    """At z_opt the circle of confusion vanishes: the FOV radius is the back-projected detector r_d z/d."""
+    """At z_opt the circle of confusion vanishes: the FOV radius is the back-projected detector r_d
+    z/d."""
     system = lo.paper_table1(defocus=2e-3)
     f, d = 1.0, 1.0 + 2e-3
     z_opt = lo.optimal_focus_range(f, 2e-3)
     meshes = build(system, ranges=np.sort(np.r_[RANGES, z_opt]), exaggeration=1.0)
-    assert ring(meshes["fov"], z_opt)[1] == pytest.approx(system.detector.radius * z_opt / d, rel=1e-7)
+    assert ring(meshes["fov"], z_opt)[1] == pytest.approx(
+        system.detector.radius * z_opt / d, rel=1e-7
+    )
     assert meshes["detector"].center[2] == pytest.approx(-d)
 
 
@@ -119,17 +131,28 @@ def test_detector_offset_moves_the_fov_and_detector_only():
     offset = (1e-4, -5e-5)
     moved = dataclasses.replace(base, detector=dataclasses.replace(base.detector, offset=offset))
     a, b = build(base, exaggeration=scale), build(moved, exaggeration=scale)
-    for z in (0.0, RANGES[30], RANGES[-1]):   # line of sight: angle -o_d/f (in focus, d = f)
-        assert np.allclose(ring(b["fov"], z)[0], -scale * np.array(offset) * z, rtol=0, atol=REL * scale * z + 1e-12)
+    for z in (0.0, RANGES[30], RANGES[-1]):  # line of sight: angle -o_d/f (in focus, d = f)
+        assert np.allclose(
+            ring(b["fov"], z)[0],
+            -scale * np.array(offset) * z,
+            rtol=0,
+            atol=REL * scale * z + 1e-12,
+        )
     assert np.allclose(b["detector"].center, (scale * offset[0], scale * offset[1], -1.0))
     assert np.array_equal(a["beam"].points, b["beam"].points)
 
 
-@pytest.mark.parametrize("offset, tilt, z", [((0.0, 0.0), (0.0, 0.0), 60.0),
-                                             ((0.05, 0.02), (0.0, 0.0), 100.0),
-                                             ((0.2, 0.0), (-0.4e-3, 0.0), 150.0)])
+@pytest.mark.parametrize(
+    "offset, tilt, z",
+    [
+        ((0.0, 0.0), (0.0, 0.0), 60.0),
+        ((0.05, 0.02), (0.0, 0.0), 100.0),
+        ((0.2, 0.0), (-0.4e-3, 0.0), 150.0),
+    ],
+)
 def test_detector_image_inside_the_detector_holds_g(offset, tilt, z):
-    """Without obstruction or NA, the image's power inside the detector outline over its total is G(z)."""
+    """Without obstruction or NA, the image's power inside the detector outline over its total is
+    G(z)."""
     system = with_beam(lo.paper_table1(), offset=offset, tilt=tilt)
     meshes = build(system, planes=(z,))
     image, outline = meshes[f"detector_image_{z:g}"], meshes[f"detector_outline_{z:g}"]
@@ -146,7 +169,9 @@ def test_full_overlap_is_marked_and_obstruction_drawn():
     result = lo.overlap(system, RANGES)
     plotter = scene(system, result=result, off_screen=True, color_by="overlap")
     meshes = plotter.lidar_meshes
-    assert {"beam", "fov", "aperture", "obstruction", "detector", "full_overlap"} <= set(plotter.actors)
+    assert {"beam", "fov", "aperture", "obstruction", "detector", "full_overlap"} <= set(
+        plotter.actors
+    )
     plotter.close()
     assert ring(meshes["full_overlap"], result.full_overlap_range())[1] > 0
     assert meshes["obstruction"].center[2] == pytest.approx(system.telescope.obstruction_distance)
@@ -163,29 +188,37 @@ def test_default_ranges_end_at_twice_the_full_overlap_range():
 
 
 def test_package_imports_without_pyvista():
-    code = "import sys; sys.modules['pyvista'] = None; import lidar_overlap, lidar_overlap.views.scene"
+    code = (
+        "import sys; sys.modules['pyvista'] = None; import lidar_overlap, lidar_overlap.views.scene"
+    )
     assert subprocess.run([sys.executable, "-c", code], capture_output=True).returncode == 0
 
 
 def test_without_pyvista_both_functions_say_how_to_install(monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "pyvista", None)
-    message = re.escape("the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' (or pip install pyvista)")
+    message = re.escape(
+        "the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' "
+        "(or pip install pyvista)"
+    )
     with pytest.raises(ImportError, match=message):
         scene(lo.paper_table1())
     with pytest.raises(ImportError, match=message):
         save_scene(lo.paper_table1(), tmp_path / "x.png")
 
 
-@pytest.mark.parametrize("kwargs, name", [
-    (dict(exaggeration=0.0), "exaggeration"),
-    (dict(exaggeration=-5.0), "exaggeration"),
-    (dict(color_by="power"), "color_by"),
-    (dict(planes=(600.0,)), "planes"),
-    (dict(planes=(-1.0,)), "planes"),
-    (dict(planes=("far",)), "planes"),
-    (dict(ranges=[-1.0, 2.0]), "ranges"),
-    (dict(result="G"), "result"),
-])
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(exaggeration=0.0), "exaggeration"),
+        (dict(exaggeration=-5.0), "exaggeration"),
+        (dict(color_by="power"), "color_by"),
+        (dict(planes=(600.0,)), "planes"),
+        (dict(planes=(-1.0,)), "planes"),
+        (dict(planes=("far",)), "planes"),
+        (dict(ranges=[-1.0, 2.0]), "ranges"),
+        (dict(result="G"), "result"),
+    ],
+)
 def test_bad_input_names_the_parameter(kwargs, name):
     kwargs.setdefault("ranges", RANGES)
     with pytest.raises(ValueError, match=name):

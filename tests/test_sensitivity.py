@@ -1,5 +1,7 @@
-"""Sensitivities dG/dp: against a finer finite difference at a much tighter tolerance, against closed forms
-(a point aperture; G depending on the beam centre offset + tilt z only), and bad parameters refused by name."""
+"""Sensitivities dG/dp: against a finer finite difference at a much tighter tolerance, against
+closed forms
+(a point aperture; G depending on the beam centre offset + tilt z only), and bad parameters refused
+by name."""
 
 import warnings
 
@@ -14,16 +16,24 @@ pytest.importorskip("xarray")
 TOL = 1e-4
 #: The reference: steps 4x smaller (truncation 16x smaller) at a quadrature tolerance 1e5 x tighter.
 REF_TOL, REF_SHRINK = 1e-9, 4.0
-CROSSING = lo.LidarSystem(beam=lo.GaussianBeam(wavelength=355e-9, waist_radius=1e-3, offset=(0.05, 0.0),
-                                               tilt=(-1e-4, 0.0)),      # back on the axis at 500 m
-                          telescope=lo.paper_table1().telescope, detector=lo.paper_table1().detector)
+CROSSING = lo.LidarSystem(
+    beam=lo.GaussianBeam(
+        wavelength=355e-9, waist_radius=1e-3, offset=(0.05, 0.0), tilt=(-1e-4, 0.0)
+    ),  # back on the axis at 500 m
+    telescope=lo.paper_table1().telescope,
+    detector=lo.paper_table1().detector,
+)
 
 
 def _reference(system, z, path, h):
     """dG/dp by a central difference of step h at REF_TOL."""
     v = parameters.get(system, path)
-    up, down = (lo.overlap(parameters.replace(system, {path: v + s * h}), z, "rt", tolerance=REF_TOL).overlap
-                for s in (1, -1))
+    up, down = (
+        lo.overlap(
+            parameters.replace(system, {path: v + s * h}), z, "rt", tolerance=REF_TOL
+        ).overlap
+        for s in (1, -1)
+    )
     return (up - down) / (2 * h)
 
 
@@ -35,25 +45,35 @@ def test_against_a_finer_difference_at_a_much_tighter_tolerance():
     assert list(ds["unit"].values) == ["rad", "m", "m", "m"]
     for k, path in enumerate(paths):
         ref = _reference(CROSSING, z, path, float(ds["step"][k]) / REF_SHRINK)
-        # The stated error must cover the actual one (the reference's own error is ~1/16 of the truncation).
-        assert np.all(np.abs(ds["derivative"].values[k] - ref) <= ds["error_estimate"].values[k]), path
-    assert np.any(np.abs(ds["derivative"].values) > 10 * ds["error_estimate"].values)   # and tells something
+        # The stated error must cover the actual one (the reference's own error is ~1/16 of the
+        # truncation).
+        assert np.all(np.abs(ds["derivative"].values[k] - ref) <= ds["error_estimate"].values[k]), (
+            path
+        )
+    assert np.any(
+        np.abs(ds["derivative"].values) > 10 * ds["error_estimate"].values
+    )  # and tells something
 
 
 def test_the_step_follows_the_tolerance_and_the_parameter_scale():
-    ds = lo.sensitivity(lo.paper_table1(), [300.0], ["beam.tilt[0]", "detector.radius"], tolerance=1e-4)
+    ds = lo.sensitivity(
+        lo.paper_table1(), [300.0], ["beam.tilt[0]", "detector.radius"], tolerance=1e-4
+    )
     half_fov = 0.45e-3
     assert float(ds["step"][0]) == pytest.approx(half_fov * (3e-4) ** (1 / 3), rel=1e-12)
     assert float(ds["step"][1]) == pytest.approx(0.45e-3 * (3e-4) ** (1 / 3), rel=1e-12)
 
 
 def test_detector_radius_against_the_point_aperture_closed_form():
-    # A point aperture sees the detector as a cone of half-angle r_d/f: G = 1 - exp(-u), u = 2 (r_d z / f)² / w²,
+    # A point aperture sees the detector as a cone of half-angle r_d/f: G = 1 - exp(-u), u = 2 (r_d
+    # z / f)² / w²,
     # so dG/dr_d = exp(-u) 4 r_d z² / (f² w²).
     system = parameters.replace(lo.paper_table1(), {"telescope.diameter": 1e-7})
-    z = np.array([0.8, 1.5, 3.0])              # where u ~ 1: the beam still near its 1 mm waist
+    z = np.array([0.8, 1.5, 3.0])  # where u ~ 1: the beam still near its 1 mm waist
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)      # RT outside its diffraction validity: geometry only
+        warnings.simplefilter(
+            "ignore", RuntimeWarning
+        )  # RT outside its diffraction validity: geometry only
         ds = lo.sensitivity(system, z, ["detector.radius"], tolerance=1e-7)
     r_d, f, w = system.detector.radius, 1.0, system.beam.radius(z)
     u = 2 * (r_d * z / f) ** 2 / w**2
@@ -64,9 +84,12 @@ def test_detector_radius_against_the_point_aperture_closed_form():
 
 
 def test_tilt_is_range_times_offset_and_vanishes_at_the_crossing():
-    # RT's G depends on the beam through its centre offset + tilt z (and its radius): dG/dtilt = z dG/doffset.
-    # At 500 m the beam is centred on the axisymmetric receiver, where G is even in the centre: both vanish;
-    # before, the centre is at positive x, so tilting towards +x takes it farther off the axis and lowers G.
+    # RT's G depends on the beam through its centre offset + tilt z (and its radius): dG/dtilt = z
+    # dG/doffset.
+    # At 500 m the beam is centred on the axisymmetric receiver, where G is even in the centre: both
+    # vanish;
+    # before, the centre is at positive x, so tilting towards +x takes it farther off the axis and
+    # lowers G.
     z = np.array([100.0, 150.0, 500.0])
     ds = lo.sensitivity(CROSSING, z, ["beam.tilt[0]", "beam.offset[0]"], tolerance=TOL)
     d, e = ds["derivative"].values, ds["error_estimate"].values
@@ -80,14 +103,20 @@ def test_axisymmetric_tilt_derivative_is_zero():
     assert np.all(np.abs(ds["derivative"].values) <= ds["error_estimate"].values)
 
 
-@pytest.mark.parametrize("paths, message", [
-    (["beam.tilt[2]"], r"parameter 'beam.tilt\[2\]' is invalid"),
-    (["detector.size"], "parameter 'detector.size' is invalid"),
-    ([], r"parameters = \[\] is invalid"),
-    (["beam.tilt", "beam.tilt[0]"], "named twice"),
-    (["telescope.obstruction_radius"], "telescope.obstruction_radius = 0 is at the edge"),
-    (["detector.defocus", "telescope.aberrations.zernike[11]"], r"zernike\[11\] is not available"),
-])
+@pytest.mark.parametrize(
+    "paths, message",
+    [
+        (["beam.tilt[2]"], r"parameter 'beam.tilt\[2\]' is invalid"),
+        (["detector.size"], "parameter 'detector.size' is invalid"),
+        ([], r"parameters = \[\] is invalid"),
+        (["beam.tilt", "beam.tilt[0]"], "named twice"),
+        (["telescope.obstruction_radius"], "telescope.obstruction_radius = 0 is at the edge"),
+        (
+            ["detector.defocus", "telescope.aberrations.zernike[11]"],
+            r"zernike\[11\] is not available",
+        ),
+    ],
+)
 def test_bad_parameters_are_refused_by_name(paths, message):
     with pytest.raises(ValueError, match=message):
         lo.sensitivity(lo.paper_table1(), [300.0], paths)
@@ -95,8 +124,11 @@ def test_bad_parameters_are_refused_by_name(paths, message):
 
 def test_other_bad_input_is_refused():
     near_limit = parameters.replace(lo.paper_table1(), {"detector.defocus": -0.99999})
-    with pytest.raises(ValueError, match=r"detector.defocus = -0.99999 - 1 x step 0.000402, a point of the central "
-                                         r"difference, leaves"):
+    with pytest.raises(
+        ValueError,
+        match=r"detector.defocus = -0.99999 - 1 x step 0.000402, a point of the central "
+        r"difference, leaves",
+    ):
         lo.sensitivity(near_limit, [300.0], ["detector.defocus"])
     with pytest.raises(ValueError, match="not available"):
         lo.sensitivity(lo.paper_table1(), [300.0], ["detector.radius"], method="fo")

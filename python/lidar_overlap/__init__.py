@@ -1,12 +1,31 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout).
 
 The package is built in layers, each importing only those below it (docs/architecture.md):
-``model`` (value types), ``optics`` (fields and their propagation), ``overlap`` (methods, plans, backends,
-results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, studies), ``io`` (scenario
+``model`` (value types), ``optics`` (fields and their propagation), ``overlap`` (methods, plans,
+backends,
+results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, studies), ``io``
+(scenario
 files), ``cli`` and ``views`` (plots, 3-D scenes). This namespace re-exports what users call.
 """
 
 from ._core import __version__, max_memory, max_threads, set_max_memory
+from .analysis.alignment import alignment_map, alignment_maps
+from .analysis.autoalign import AlignResult, align
+from .analysis.fit import fit
+from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
+from .analysis.fit_telecover import fit_telecover
+from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
+from .analysis.optimize import OptimizeResult, optimize
+from .analysis.sensitivity import sensitivity
+from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
+from .analysis.studies import tolerance_study
+from .analysis.telecover import TelecoverResult, telecover
+from .analysis.turbulent_study import turbulent_realizations
+from .forward.compute import overlap, run
+from .forward.coupling import emitter_coupling, optimal_focus_range
+from .forward.methods import FO, RT, Auto, Turbulent
+from .forward.planning import Plan, explain, plan
+from .forward.result import OverlapResult, TurbulentOverlapResult
 from .model import parameters
 from .model.aberrations import (
     Aberrations,
@@ -29,23 +48,6 @@ from .optics.detector_image import DetectorImage, detector_image
 from .optics.imaging import point_image
 from .optics.phase_screen import phase_screen
 from .optics.propagation import SamplingWarning, propagate
-from .forward.compute import overlap, run
-from .forward.coupling import emitter_coupling, optimal_focus_range
-from .forward.methods import FO, RT, Auto, Turbulent
-from .forward.planning import Plan, explain, plan
-from .forward.result import OverlapResult, TurbulentOverlapResult
-from .analysis.alignment import alignment_map, alignment_maps
-from .analysis.autoalign import AlignResult, align
-from .analysis.fit import fit
-from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
-from .analysis.fit_telecover import fit_telecover
-from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
-from .analysis.optimize import OptimizeResult, optimize
-from .analysis.sensitivity import sensitivity
-from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
-from .analysis.studies import tolerance_study
-from .analysis.telecover import TelecoverResult, telecover
-from .analysis.turbulent_study import turbulent_realizations
 from .views import plotting
 from .views.scene import save_scene, scene
 

@@ -1,25 +1,25 @@
 """Conversion of user input into the shapes the core expects, with errors that name the parameter.
 
 Value ranges (positive sizes, obstruction inside the aperture, ...) are checked once, in C++; this
-module checks types and shapes, which the core cannot see, and applies the core's rules (its length scales
+module checks types and shapes, which the core cannot see, and applies the core's rules (its length
+scales
 and memory budget) to the arrays Python builds itself.
 """
 
 from __future__ import annotations
 
-from typing import Any
-
 import math
 import os
 import sys
 import warnings
+from typing import Any
 
 import numpy as np
 
 from . import _core
 
-
-#: Largest integer option passed to the core (sizes are checked there against grid and memory limits).
+#: Largest integer option passed to the core (sizes are checked there against grid and memory
+#: limits).
 MAX_COUNT = 2**62
 
 
@@ -30,14 +30,19 @@ def shown(value: Any) -> str:
 
 
 def real(name: str, value: Any) -> float:
-    """A real scalar as float; bools, strings and arrays are rejected, and so are ints beyond float range."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+    """A real scalar as float; bools, strings and arrays are rejected, and so are ints beyond float
+    range."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+        value, (int, float, np.integer, np.floating)
+    ):
         raise ValueError(f"{name} = {shown(value)} is invalid: expected a real number")
     try:
         return float(value)
     except OverflowError:
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected a real number within double range "
-                         "(|x| < 1.8e308)") from None
+        raise ValueError(
+            f"{name} = {shown(value)} is invalid: expected a real number within double range "
+            "(|x| < 1.8e308)"
+        ) from None
 
 
 def positive(name: str, value: Any) -> float:
@@ -53,10 +58,13 @@ def optional_real(name: str, value: Any) -> float | None:
 
 
 def pair(name: str, value: Any) -> tuple[float, float]:
-    """An (x, y) pair of finite floats: a tuple, list or 1-D array of two real numbers (not bools or strings)."""
+    """An (x, y) pair of finite floats: a tuple, list or 1-D array of two real numbers (not bools or
+    strings)."""
     items = value.tolist() if isinstance(value, np.ndarray) and value.ndim == 1 else value
     if not isinstance(items, (tuple, list)) or len(items) != 2:
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected an (x, y) pair of two numbers")
+        raise ValueError(
+            f"{name} = {shown(value)} is invalid: expected an (x, y) pair of two numbers"
+        )
     x, y = (real(f"{name}[{i}]", v) for i, v in enumerate(items))
     if not (math.isfinite(x) and math.isfinite(y)):
         raise ValueError(f"{name} = {shown(value)} is invalid: expected finite numbers")
@@ -65,39 +73,64 @@ def pair(name: str, value: Any) -> tuple[float, float]:
 
 def ranges(name: str, value: Any) -> np.ndarray:
     """A non-empty, strictly increasing 1-D array of finite ranges (m)."""
-    try:   # ragged nesting such as [1.0, (2.0, 3.0)] fails here, in NumPy's words
+    try:  # ragged nesting such as [1.0, (2.0, 3.0)] fails here, in NumPy's words
         raw = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray([value])
     except (TypeError, ValueError, OverflowError) as exc:
-        raise ValueError(f"{name} is invalid: expected a 1-D array of ranges in m ({exc})") from None
-    if raw.dtype.kind not in "iuf":   # strings, bools, objects: refused before float() could accept "100"
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected a 1-D array of ranges in m (real numbers)")
+        raise ValueError(
+            f"{name} is invalid: expected a 1-D array of ranges in m ({exc})"
+        ) from None
+    if (
+        raw.dtype.kind not in "iuf"
+    ):  # strings, bools, objects: refused before float() could accept "100"
+        raise ValueError(
+            f"{name} = {shown(value)} is invalid: expected a 1-D array of ranges in m (real "
+            "numbers)"
+        )
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError, OverflowError) as exc:
-        raise ValueError(f"{name} is invalid: expected a 1-D array of ranges in m ({exc})") from None
+        raise ValueError(
+            f"{name} is invalid: expected a 1-D array of ranges in m ({exc})"
+        ) from None
     if arr.ndim != 1 or arr.size == 0:
-        raise ValueError(f"{name} has shape {arr.shape}: expected a non-empty 1-D array of ranges in m")
+        raise ValueError(
+            f"{name} has shape {arr.shape}: expected a non-empty 1-D array of ranges in m"
+        )
     bad = ~np.isfinite(arr)
     if bad.any():
-        raise ValueError(f"{name}[{int(np.argmax(bad))}] = {arr[bad][0]} is invalid: expected a finite range in m")
+        raise ValueError(
+            f"{name}[{int(np.argmax(bad))}] = {arr[bad][0]} is invalid: expected a finite range in "
+            "m"
+        )
     if arr.size > 1 and not np.all(np.diff(arr) > 0):
         i = int(np.argmax(~(np.diff(arr) > 0)))
-        raise ValueError(f"{name} must be strictly increasing: {name}[{i + 1}] = {arr[i + 1]} follows {arr[i]}")
+        raise ValueError(
+            f"{name} must be strictly increasing: {name}[{i + 1}] = {arr[i + 1]} follows {arr[i]}"
+        )
     return arr
 
 
 def choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
-    """One of ``valid``; non-strings (NumPy arrays would make the comparison ambiguous) refused by name."""
+    """One of ``valid``; non-strings (NumPy arrays would make the comparison ambiguous) refused by
+    name."""
     if not isinstance(value, str) or value not in valid:
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected one of {', '.join(map(repr, valid))}")
+        raise ValueError(
+            f"{name} = {shown(value)} is invalid: expected one of {', '.join(map(repr, valid))}"
+        )
     return value
 
 
 def count(name: str, value: Any, minimum: int, maximum: int = MAX_COUNT) -> int:
     """An integer in [minimum, maximum] (bools refused)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
+    if (
+        isinstance(value, (bool, np.bool_))
+        or not isinstance(value, (int, np.integer))
+        or not minimum <= value <= maximum
+    ):
         too_large = isinstance(value, (int, np.integer)) and value > maximum
-        limit = f"from {minimum} to {maximum}" if maximum != MAX_COUNT or too_large else f">= {minimum}"
+        limit = (
+            f"from {minimum} to {maximum}" if maximum != MAX_COUNT or too_large else f">= {minimum}"
+        )
         raise ValueError(f"{name} = {shown(value)} is invalid: expected an integer {limit}")
     return int(value)
 
@@ -111,27 +144,35 @@ def unit_interval(name: str, value: Any, include_one: bool = False) -> float:
     """A value in (0, 1), or (0, 1] with include_one."""
     v = real(name, value)
     if not (0.0 < v < 1.0 or (include_one and v == 1.0)):
-        raise ValueError(f"{name} = {v!r} is invalid: expected a value in (0, {'1]' if include_one else '1)'}")
+        raise ValueError(
+            f"{name} = {v!r} is invalid: expected a value in (0, {'1]' if include_one else '1)'}"
+        )
     return v
 
 
 def length(name: str, value) -> float:
-    """A length (m) within the core's scales, MIN_LENGTH to MAX_LENGTH, refused by name otherwise."""
+    """A length (m) within the core's scales, MIN_LENGTH to MAX_LENGTH, refused by name
+    otherwise."""
     v = real(name, value)
     if not _core.MIN_LENGTH <= v <= _core.MAX_LENGTH:
-        raise ValueError(f"{name} = {v!r} is invalid: expected a length from {_core.MIN_LENGTH:g} m to "
-                         f"{_core.MAX_LENGTH:g} m")
+        raise ValueError(
+            f"{name} = {v!r} is invalid: expected a length from {_core.MIN_LENGTH:g} m to "
+            f"{_core.MAX_LENGTH:g} m"
+        )
     return v
 
 
 def check_memory(name: str, value, needed: float, fix: str) -> None:
-    """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the core's rule
+    """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the
+    core's rule
     for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
     budget = _core.max_memory()
     if not needed <= budget:
-        raise ValueError(f"{name} = {shown(value)} needs {_bytes_shown(needed)} of memory, more than the "
-                         f"budget of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
-                         "set_max_memory")
+        raise ValueError(
+            f"{name} = {shown(value)} needs {_bytes_shown(needed)} of memory, more than the "
+            f"budget of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
+            "set_max_memory"
+        )
 
 
 def _bytes_shown(size: float) -> str:
@@ -140,19 +181,24 @@ def _bytes_shown(size: float) -> str:
 
 
 def system_range(system, z: float, name: str) -> None:
-    """Refuse, as the overlap paths refuse ``ranges[i]`` but naming ``name``, a range ``z`` (m) outside the core's
-    lengths or, behind an obstruction, not beyond its distance (``LidarSystem.validate_ranges`` in C++)."""
+    """Refuse, as the overlap paths refuse ``ranges[i]`` but naming ``name``, a range ``z`` (m)
+    outside the core's
+    lengths or, behind an obstruction, not beyond its distance (``LidarSystem.validate_ranges`` in
+    C++)."""
     try:
         system._native.validate_ranges([z])
     except ValueError as exc:
         message = str(exc)
-        raise ValueError(name + message.removeprefix("ranges[0]") if message.startswith("ranges[0]") else message) \
-            from None
+        raise ValueError(
+            name + message.removeprefix("ranges[0]") if message.startswith("ranges[0]") else message
+        ) from None
 
 
 def warn(message: str, category: type = RuntimeWarning) -> None:
-    """``warnings.warn`` attributed to the first caller outside this package, however deep the call that warns
-    (so the warning points at the user's line, and filters on the package's modules see only misplaced ones)."""
+    """``warnings.warn`` attributed to the first caller outside this package, however deep the call
+    that warns
+    (so the warning points at the user's line, and filters on the package's modules see only
+    misplaced ones)."""
     package = os.path.dirname(os.path.abspath(__file__)) + os.sep
     frame, level = sys._getframe(1), 2
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):

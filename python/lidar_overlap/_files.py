@@ -1,12 +1,17 @@
 """Writing a file so that its final name only ever holds a complete file.
 
-The data go to a temporary file beside the target (same directory, so the same file system) that is flushed
-to disk and then renamed over the target with :func:`os.replace`, which is atomic. If anything fails on the
-way (a full disk, an error in the writer, Ctrl-C) the temporary file is removed and the target is left as it
+The data go to a temporary file beside the target (same directory, so the same file system) that is
+flushed
+to disk and then renamed over the target with :func:`os.replace`, which is atomic. If anything fails
+on the
+way (a full disk, an error in the writer, Ctrl-C) the temporary file is removed and the target is
+left as it
 was: absent, or the previous complete file.
 
-A target that exists and is not a regular file (``/dev/stdout``, ``/dev/full``, a FIFO) cannot be replaced
-and is written in place; a symbolic link is followed, so the file it points to is replaced and the link kept.
+A target that exists and is not a regular file (``/dev/stdout``, ``/dev/full``, a FIFO) cannot be
+replaced
+and is written in place; a symbolic link is followed, so the file it points to is replaced and the
+link kept.
 """
 
 from __future__ import annotations
@@ -19,15 +24,18 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Iterator
 
-#: Characters of the target's name kept in the temporary name (which adds about 25), so that a target whose
+#: Characters of the target's name kept in the temporary name (which adds about 25), so that a
+#: target whose
 #: name fits the file system's 255-byte limit has a temporary name that fits too.
 _NAME_KEPT = 200
 
 
 @contextmanager
 def replacing_path(path) -> Iterator[Path]:
-    """Yield a temporary path for a writer that takes a file name (xarray, matplotlib); on success the file
-    written there replaces ``path``. The temporary name keeps the target's suffix, for writers that choose
+    """Yield a temporary path for a writer that takes a file name (xarray, matplotlib); on success
+    the file
+    written there replaces ``path``. The temporary name keeps the target's suffix, for writers that
+    choose
     their format by it. OSErrors name ``path``, not the temporary file."""
     target = Path(os.path.realpath(path))
     if _is_special(target):
@@ -65,14 +73,17 @@ def _is_special(target: Path) -> bool:
 
 
 def _create_beside(target: Path, path) -> Path:
-    """Create (exclusively, so no other writer shares it) an empty temporary file in the target's directory,
+    """Create (exclusively, so no other writer shares it) an empty temporary file in the target's
+    directory,
     with the permissions the target has, or else the ones a new file gets (0666 less the umask)."""
     try:
         mode = stat.S_IMODE(os.stat(target).st_mode)
     except FileNotFoundError:
         mode = None
     while True:
-        temporary = target.with_name(f".{target.stem[:_NAME_KEPT]}.{secrets.token_hex(4)}.partial{target.suffix}")
+        temporary = target.with_name(
+            f".{target.stem[:_NAME_KEPT]}.{secrets.token_hex(4)}.partial{target.suffix}"
+        )
         try:
             fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
         except FileExistsError:
@@ -80,7 +91,9 @@ def _create_beside(target: Path, path) -> Path:
         except OSError as exc:
             raise _naming(exc, path, temporary) from None
         try:
-            if mode is not None and hasattr(os, "fchmod"):  # POSIX: keep the replaced file's permissions
+            if mode is not None and hasattr(
+                os, "fchmod"
+            ):  # POSIX: keep the replaced file's permissions
                 os.fchmod(fd, mode)
         finally:
             os.close(fd)
@@ -88,9 +101,12 @@ def _create_beside(target: Path, path) -> Path:
 
 
 def _sync(temporary: Path) -> None:
-    """Flush the written data to disk before the rename, so a crash cannot leave a short file under the
+    """Flush the written data to disk before the rename, so a crash cannot leave a short file under
+    the
     final name."""
-    fd = os.open(temporary, os.O_RDWR if os.name == "nt" else os.O_RDONLY)  # Windows syncs writable handles
+    fd = os.open(
+        temporary, os.O_RDWR if os.name == "nt" else os.O_RDONLY
+    )  # Windows syncs writable handles
     try:
         os.fsync(fd)
     finally:
@@ -105,7 +121,8 @@ def _remove(temporary: Path) -> None:
 
 
 def _naming(exc: OSError, path, temporary: Path) -> OSError:
-    """The same error, naming the target instead of the temporary file (or naming it at all: a failed write
+    """The same error, naming the target instead of the temporary file (or naming it at all: a
+    failed write
     names no file)."""
     if exc.filename not in (None, str(temporary), temporary):
         return exc

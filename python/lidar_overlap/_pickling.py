@@ -1,5 +1,7 @@
-"""Pickling of the value types (for process pools and distributed clusters): a copy is built again from the
-constructor arguments and validated again; the core's object inside a value is never pickled (it cannot be)."""
+"""Pickling of the value types (for process pools and distributed clusters): a copy is built again
+from the
+constructor arguments and validated again; the core's object inside a value is never pickled (it
+cannot be)."""
 
 from __future__ import annotations
 
@@ -17,4 +19,7 @@ class ByArguments:
     __slots__ = ()
 
     def __reduce__(self):
-        return rebuild, (type(self), {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.init})
+        return rebuild, (
+            type(self),
+            {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.init},
+        )

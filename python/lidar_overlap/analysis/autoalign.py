@@ -1,18 +1,26 @@
-"""Automatic alignment on a simulated noisy lidar signal: steer the beam tilt to maximise the signal at one range.
+"""Automatic alignment on a simulated noisy lidar signal: steer the beam tilt to maximise the signal
+at one range.
 
-The lidar's own beam tilt is the unknown misalignment; the search sets the absolute tilt (rad) and sees only
-the shot-averaged, background-subtracted photon count in the range bin at ``range`` (``lo.signal(...,
+The lidar's own beam tilt is the unknown misalignment; the search sets the absolute tilt (rad) and
+sees only
+the shot-averaged, background-subtracted photon count in the range bin at ``range``
+(``lo.signal(...,
 noise=True)``), which is proportional to G there plus photon noise. Two searches:
 
-- ``"raster"``: a 5 x 5 grid over the box about the lidar's own tilt, then boxes of one grid step about the
+- ``"raster"``: a 5 x 5 grid over the box about the lidar's own tilt, then boxes of one grid step
+  about the
   brightest cell, each level a finer grid (what an operator does by hand), until the step is below
   ``resolution``;
-- ``"gradient"``: from the lidar's own tilt, central differences of the signal along x and y (4 measurements
-  per step, probes one step apart: a probe much shorter than the peak's width would see only noise), a step of
-  length ``step`` along the gradient, halved whenever the signal at the new tilt is not higher than at the old
+- ``"gradient"``: from the lidar's own tilt, central differences of the signal along x and y (4
+  measurements
+  per step, probes one step apart: a probe much shorter than the peak's width would see only noise),
+  a step of
+  length ``step`` along the gradient, halved whenever the signal at the new tilt is not higher than
+  at the old
   one, until it is below ``resolution``.
 
-The G of each candidate comes from the ray tracer (a grid in one core call); the best G (for judging how far a
+The G of each candidate comes from the ray tracer (a grid in one core call); the best G (for judging
+how far a
 search got) from :func:`lidar_overlap.analysis.optimize` with :class:`MaximumOverlapAt`.
 """
 
@@ -37,10 +45,14 @@ WITHIN = 0.99
 
 @dataclass(frozen=True, eq=False)
 class AlignResult:
-    """tilt : the (x, y) tilt the search ends at (rad). tilts : the search's estimate after each step (n x 2,
-    rad); shots : the shots fired by then (n); overlap : G at each estimate; best_overlap : the best G in the
-    box (at ``best_tilt``). shots_to_within : shots after which every estimate has G >= 0.99 best_overlap
-    (None if the search never got there). steps : measurements taken (each ``shots_per_step`` shots)."""
+    """tilt : the (x, y) tilt the search ends at (rad). tilts : the search's estimate after each
+    step (n x 2,
+    rad); shots : the shots fired by then (n); overlap : G at each estimate; best_overlap : the best
+    G in the
+    box (at ``best_tilt``). shots_to_within : shots after which every estimate has G >= 0.99
+    best_overlap
+    (None if the search never got there). steps : measurements taken (each ``shots_per_step``
+    shots)."""
 
     tilt: tuple
     tilts: np.ndarray
@@ -52,35 +64,65 @@ class AlignResult:
     steps: int
 
 
-def align(system, range, *, search: str = "raster", box: float = 1e-3, shots_per_step: int = 100,
-          signal: Mapping = None, resolution: float = 5e-6, step: float = 1e-4, max_steps: int = 2000,
-          tolerance: float = 1e-4, seed: int = 0) -> AlignResult:
-    """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m), within ``box`` (rad) of its own
+def align(
+    system,
+    range,
+    *,
+    search: str = "raster",
+    box: float = 1e-3,
+    shots_per_step: int = 100,
+    signal: Mapping = None,
+    resolution: float = 5e-6,
+    step: float = 1e-4,
+    max_steps: int = 2000,
+    tolerance: float = 1e-4,
+    seed: int = 0,
+) -> AlignResult:
+    """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m), within ``box``
+    (rad) of its own
     tilt in x and y (the actuator's travel about where it starts).
 
-    signal : keywords of :func:`lidar_overlap.signal` (pulse_energy, receiver_efficiency, range_resolution,
-    atmosphere, background), required. shots_per_step : shots averaged per measurement. resolution (rad):
-    the raster's last grid step and the gradient's smallest step (and probe); step (rad): the gradient's first
+    signal : keywords of :func:`lidar_overlap.signal` (pulse_energy, receiver_efficiency,
+        range_resolution,
+    atmosphere, background), required. shots_per_step : shots averaged per measurement. resolution
+    (rad):
+    the raster's last grid step and the gradient's smallest step (and probe); step (rad): the
+    gradient's first
     step. seed : of the photon noise (measurement k uses seed + k).
     """
     _checks.choice("search", search, ("raster", "gradient"))
-    box, resolution, step = (_checks.positive(n, v) for n, v in (("box", box), ("resolution", resolution),
-                                                                 ("step", step)))
+    box, resolution, step = (
+        _checks.positive(n, v)
+        for n, v in (("box", box), ("resolution", resolution), ("step", step))
+    )
     shots_per_step = _checks.count("shots_per_step", shots_per_step, 1, 10**9)
     max_steps = _checks.count("max_steps", max_steps, 1, 10**6)
     if not isinstance(signal, Mapping):
-        raise ValueError(f"signal = {_checks.shown(signal)} is invalid: expected a mapping of lo.signal keywords "
-                         "(pulse_energy, receiver_efficiency, range_resolution, ...)")
+        raise ValueError(
+            f"signal = {_checks.shown(signal)} is invalid: expected a mapping of lo.signal "
+            "keywords "
+            "(pulse_energy, receiver_efficiency, range_resolution, ...)"
+        )
     start = np.array(system.beam.tilt, dtype=float)
     lower, upper = start - box, start + box
-    best = optimize(system, MaximumOverlapAt(range), TILT, np.column_stack([lower, upper]), tolerance=tolerance)
-    problem = Problem(system, MaximumOverlapAt(range), TILT, lower, upper, RT(tolerance=tolerance), [range])
+    best = optimize(
+        system, MaximumOverlapAt(range), TILT, np.column_stack([lower, upper]), tolerance=tolerance
+    )
+    problem = Problem(
+        system, MaximumOverlapAt(range), TILT, lower, upper, RT(tolerance=tolerance), [range]
+    )
     counter = iter(np.arange(seed, seed + 10**7))
 
     def measure(tilts: np.ndarray) -> np.ndarray:
         """Noisy photons per bin and shot at each tilt (rows), the G's in one core call."""
-        return np.array([_signal(r, **signal, shots=shots_per_step, noise=True, seed=int(next(counter))).noisy[0]
-                         for r in problem.results(np.clip(tilts, lower, upper))])
+        return np.array(
+            [
+                _signal(
+                    r, **signal, shots=shots_per_step, noise=True, seed=int(next(counter))
+                ).noisy[0]
+                for r in problem.results(np.clip(tilts, lower, upper))
+            ]
+        )
 
     run = _raster if search == "raster" else _gradient
     tilts, measurements = run(measure, start, box, resolution, step, max_steps)
@@ -90,14 +132,21 @@ def align(system, range, *, search: str = "raster", box: float = 1e-3, shots_per
     within = g >= WITHIN * best.objective
     last_out = np.flatnonzero(~within)
     first = 0 if last_out.size == 0 else int(last_out[-1]) + 1
-    return AlignResult(tilt=tuple(tilts[-1]), tilts=tilts, shots=shots, overlap=g, best_overlap=best.objective,
-                       best_tilt=tuple(best.values[p] for p in TILT),
-                       shots_to_within=int(shots[first]) if first < len(shots) else None,
-                       steps=int(measurements[-1]))
+    return AlignResult(
+        tilt=tuple(tilts[-1]),
+        tilts=tilts,
+        shots=shots,
+        overlap=g,
+        best_overlap=best.objective,
+        best_tilt=tuple(best.values[p] for p in TILT),
+        shots_to_within=int(shots[first]) if first < len(shots) else None,
+        steps=int(measurements[-1]),
+    )
 
 
 def _raster(measure, start, box, resolution, step, max_steps):
-    """Grids of RASTER_POINTS² about the brightest cell, each one grid step wide, down to ``resolution``."""
+    """Grids of RASTER_POINTS² about the brightest cell, each one grid step wide, down to
+    ``resolution``."""
     centre, half, tilts, counts, taken = start.copy(), box, [], [], 0
     while taken < max_steps:
         axis = np.linspace(-half, half, RASTER_POINTS)
@@ -121,8 +170,8 @@ def _gradient(measure, start, box, resolution, step, max_steps):
     while taken < max_steps and step >= resolution:
         m = measure(x + step * probes)
         taken += 4
-        level = float(m.mean())     # the signal at x, to O(step²)
-        if level <= previous:       # worse than before: go back, shorter
+        level = float(m.mean())  # the signal at x, to O(step²)
+        if level <= previous:  # worse than before: go back, shorter
             x, step = x - step * direction, 0.5 * step
         else:
             previous = level

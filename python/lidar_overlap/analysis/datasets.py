@@ -1,4 +1,5 @@
-"""xarray, imported when a dataset is built (maps, sensitivities, studies, telecover; the ``[io]`` extra), and
+"""xarray, imported when a dataset is built (maps, sensitivities, studies, telecover; the ``[io]``
+extra), and
 the variables they share."""
 
 from __future__ import annotations
@@ -9,8 +10,9 @@ def xarray(what: str):
     try:
         import xarray as xr
     except ImportError as exc:
-        raise ImportError(f"{what} returns an xarray.Dataset and needs xarray: pip install 'lidar-overlap[io]'") \
-            from exc
+        raise ImportError(
+            f"{what} returns an xarray.Dataset and needs xarray: pip install 'lidar-overlap[io]'"
+        ) from exc
     return xr
 
 

@@ -1,18 +1,27 @@
-"""Fitting a lidar system to a measured overlap curve: the free scalars (paths of :mod:`lidar_overlap.model.parameters`) by
+"""Fitting a lidar system to a measured overlap curve: the free scalars (paths of
+:mod:`lidar_overlap.model.parameters`) by
 weighted least squares (``scipy.optimize.least_squares``, trust-region reflective with bounds).
 
-Model. Planned once, on the starting system: auto's choice (RT or FO, and RT's quadrature tolerance) holds
-for the whole fit, so the model cannot switch between RT and FO while the parameters move (a switch would
-put a step of the size of the model error into the cost). Each evaluation runs that plan with the trial
+Model. Planned once, on the starting system: auto's choice (RT or FO, and RT's quadrature tolerance)
+holds
+for the whole fit, so the model cannot switch between RT and FO while the parameters move (a switch
+would
+put a step of the size of the model error into the cost). Each evaluation runs that plan with the
+trial
 system.
 
-Jacobian. Central differences with the step rule of :mod:`lidar_overlap.analysis.sensitivity` (h = s (3 tolerance)^(1/3), s the
-parameter's natural scale); on ray tracing all 2 k shifted systems go through one ``overlap_rt_batch``
-call, so one Jacobian is one core call. The optimiser works on p / s, so a tilt (1e-4 rad) and a defocus
+Jacobian. Central differences with the step rule of :mod:`lidar_overlap.analysis.sensitivity` (h = s
+(3 tolerance)^(1/3), s the
+parameter's natural scale); on ray tracing all 2 k shifted systems go through one
+``overlap_rt_batch``
+call, so one Jacobian is one core call. The optimiser works on p / s, so a tilt (1e-4 rad) and a
+defocus
 (1e-3 m) are of one order for it.
 
-Covariance. (Jᵀ J)⁻¹ of the sigma-normalised residuals at the solution (Gauss-Newton). With ``sigma=None``
-the points have unit weights and the covariance is scaled by the reduced chi-square: the noise is then
+Covariance. (Jᵀ J)⁻¹ of the sigma-normalised residuals at the solution (Gauss-Newton). With
+``sigma=None``
+the points have unit weights and the covariance is scaled by the reduced chi-square: the noise is
+then
 estimated from the scatter of the residuals. With a robust loss it is the same form with every point
 counted (outliers included): an approximation, on the large side.
 
@@ -20,9 +29,11 @@ Driver. :func:`solve` is shared by the fits (:func:`fit` here, :func:`.fit_telec
 :class:`Model` (its vector and Jacobian as functions of a trial system); the optimiser, covariance,
 degeneracy warnings and convergence error are the same.
 
-Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar whose
+Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar
+whose
 beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
-``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; any other
+``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; any
+other
 (positive) scalar from a tenth to ten times its start.
 """
 
@@ -36,36 +47,58 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from .. import _checks
-from ..model import parameters as _parameters
 from ..forward.compute import run
-from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
 from ..forward.methods import Turbulent
 from ..forward.planning import plan
+from ..model import parameters as _parameters
+from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
 from .sensitivity import jacobian, step_scale
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
 #: |correlation| above which a pair of parameters is reported as degenerate.
 DEGENERATE_CORRELATION = 0.95
-#: The model's tolerance must stay below this fraction of the median sigma (else it adds to the noise).
+#: The model's tolerance must stay below this fraction of the median sigma (else it adds to the
+#: noise).
 TOLERANCE_FRACTION = 0.1
 
 
-def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defocus"), bounds=None, method="auto",
-        tolerance: float = 1e-4, loss: str = "linear", max_evaluations: int = 200, *,
-        allow_unconverged: bool = False, threads: int = 0) -> FitResult:
-    """Fit the ``free`` scalars of ``system`` (its values are the start) to ``measured`` G at ``ranges``.
+def fit(
+    system,
+    ranges,
+    measured,
+    sigma=None,
+    free=("beam.tilt", "detector.defocus"),
+    bounds=None,
+    method="auto",
+    tolerance: float = 1e-4,
+    loss: str = "linear",
+    max_evaluations: int = 200,
+    *,
+    allow_unconverged: bool = False,
+    threads: int = 0,
+) -> FitResult:
+    """Fit the ``free`` scalars of ``system`` (its values are the start) to ``measured`` G at
+    ``ranges``.
 
-    ranges : m, strictly increasing. measured : G at each range. sigma : 1-sigma error of each point (a scalar
-    or one per range, > 0); None: unit weights, covariance scaled by the reduced chi-square. free : parameter
-    paths (``"beam.tilt"`` stands for both components). bounds : {path: (low, high)} in SI units, replacing
+    ranges : m, strictly increasing. measured : G at each range. sigma : 1-sigma error of each point
+        (a scalar
+    or one per range, > 0); None: unit weights, covariance scaled by the reduced chi-square. free :
+    parameter
+    paths (``"beam.tilt"`` stands for both components). bounds : {path: (low, high)} in SI units,
+    replacing
     :func:`default_bounds` for those paths; the start must lie within. method : ``"rt"``, ``"fo"``,
-    ``"auto"`` or a method object, planned once on the start (module docstring). tolerance : the model's
-    absolute tolerance on G (RT and auto); keep it below 0.1 x the median sigma (warned otherwise). loss : as
-    in least_squares (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"`` resist outliers; the residual
-    scale is 1 sigma). max_evaluations : most model evaluations. allow_unconverged : return a result with
+    ``"auto"`` or a method object, planned once on the start (module docstring). tolerance : the
+    model's
+    absolute tolerance on G (RT and auto); keep it below 0.1 x the median sigma (warned otherwise).
+    loss : as
+    in least_squares (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"`` resist outliers; the
+    residual
+    scale is 1 sigma). max_evaluations : most model evaluations. allow_unconverged : return a result
+    with
     ``converged=False`` instead of raising RuntimeError when the optimiser stops short.
 
-    Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each pair
+    Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
+    pair
     of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
     paths = free_paths(free)
@@ -77,17 +110,36 @@ def fit(system, ranges, measured, sigma=None, free=("beam.tilt", "detector.defoc
         curve = run(dataclasses.replace(p, system=trial))
         return curve, curve.overlap
 
-    model = Model(lambda trial: result(trial)[1], lambda trial: jacobian(p, trial, paths, h_tolerance), result, p,
-                  h_tolerance, p.tolerance)
-    return solve(system, paths, model, y, _sigma(sigma, y), sigma is not None, bounds, loss, max_evaluations,
-                 allow_unconverged)
+    model = Model(
+        lambda trial: result(trial)[1],
+        lambda trial: jacobian(p, trial, paths, h_tolerance),
+        result,
+        p,
+        h_tolerance,
+        p.tolerance,
+    )
+    return solve(
+        system,
+        paths,
+        model,
+        y,
+        _sigma(sigma, y),
+        sigma is not None,
+        bounds,
+        loss,
+        max_evaluations,
+        allow_unconverged,
+    )
 
 
 @dataclass(frozen=True)
 class Model:
-    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured point;
-    ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` -> (the result kept as
-    ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by the FitResult; ``tolerance``, the
+    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured
+    point;
+    ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` -> (the
+    result kept as
+    ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by the FitResult;
+    ``tolerance``, the
     model's error on the vector (compared with sigma)."""
 
     evaluate: Callable
@@ -98,18 +150,33 @@ class Model:
     tolerance: float
 
 
-def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, max_evaluations,
-          allow_unconverged: bool, independent: Optional[int] = None) -> FitResult:
-    """The least-squares driver shared by the fits: the free ``paths`` of ``system`` (the start) so that
-    ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of independent points
+def solve(
+    system,
+    paths,
+    model: Model,
+    y,
+    w,
+    sigma_given: bool,
+    bounds,
+    loss,
+    max_evaluations,
+    allow_unconverged: bool,
+    independent: Optional[int] = None,
+) -> FitResult:
+    """The least-squares driver shared by the fits: the free ``paths`` of ``system`` (the start) so
+    that
+    ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of independent
+    points
     (default ``y.size``), which sets the degrees of freedom. See :func:`fit` for the rest."""
     optimize = _scipy()
     k = len(paths)
     n = y.size if independent is None else independent
     if n < k or (not sigma_given and n == k):
         kind = "" if independent is None else " independent"
-        raise ValueError(f"measured has {n}{kind} points for {k} free parameters: expected more points than "
-                         "parameters (at least as many with sigma given); measure more ranges or free fewer")
+        raise ValueError(
+            f"measured has {n}{kind} points for {k} free parameters: expected more points than "
+            "parameters (at least as many with sigma given); measure more ranges or free fewer"
+        )
     loss = _checks.choice("loss", loss, LOSSES)
     max_evaluations = _checks.count("max_evaluations", max_evaluations, 1)
     start = np.array([_parameters.get(system, path) for path in paths])
@@ -117,8 +184,10 @@ def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, ma
     scale = np.array([step_scale(system, path) for path in paths])
     tolerance = model.tolerance
     if sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * np.median(w):
-        _checks.warn(f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
-                     f"sigma ({np.median(w):.3g}): its error adds to the noise; lower tolerance")
+        _checks.warn(
+            f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
+            f"sigma ({np.median(w):.3g}): its error adds to the noise; lower tolerance"
+        )
     counts = {"model": 0, "jacobian": 0}
 
     def system_at(u):
@@ -132,49 +201,89 @@ def solve(system, paths, model: Model, y, w, sigma_given: bool, bounds, loss, ma
         counts["jacobian"] += 1
         return model.jacobian(system_at(u)) * scale / w[:, None]
 
-    solution = optimize.least_squares(residuals, start / scale, jac=normalised_jacobian, bounds=(low / scale,
-                                      high / scale), method="trf", loss=loss, max_nfev=max_evaluations)
+    solution = optimize.least_squares(
+        residuals,
+        start / scale,
+        jac=normalised_jacobian,
+        bounds=(low / scale, high / scale),
+        method="trf",
+        loss=loss,
+        max_nfev=max_evaluations,
+    )
     converged = solution.status > 0
     if not converged and not allow_unconverged:
-        raise RuntimeError(f"fit did not converge: {solution.message} (status {solution.status}, "
-                           f"{counts['model']} model evaluations, max_evaluations={max_evaluations}); raise "
-                           "max_evaluations, start closer, or pass allow_unconverged=True to get the last point")
+        raise RuntimeError(
+            f"fit did not converge: {solution.message} (status {solution.status}, "
+            f"{counts['model']} model evaluations, max_evaluations={max_evaluations}); raise "
+            "max_evaluations, start closer, or pass allow_unconverged=True to get the last point"
+        )
     result, vector = model.result(system_at(solution.x))
     counts["model"] += 1
     r = (vector - y) / w
-    j = normalised_jacobian(solution.x) / scale      # per SI unit of each parameter
+    j = normalised_jacobian(solution.x) / scale  # per SI unit of each parameter
     chi_square, dof = float(r @ r), n - k
     cov = covariance(j, chi_square / dof if not sigma_given else 1.0)
     sd = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
-        # Singular J (infinite covariance): -cos of the angle between two columns is their correlation when
+        # Singular J (infinite covariance): -cos of the angle between two columns is their
+        # correlation when
         # only they are free, and +-1 names the pair that cannot be told apart.
         corr = cov / np.outer(sd, sd) if np.all(np.isfinite(sd)) else -_cosines(j)
-    pairs = tuple((paths[a], paths[b], float(corr[a, b])) for a in range(k) for b in range(a + 1, k)
-                  if abs(corr[a, b]) > DEGENERATE_CORRELATION)
+    pairs = tuple(
+        (paths[a], paths[b], float(corr[a, b]))
+        for a in range(k)
+        for b in range(a + 1, k)
+        if abs(corr[a, b]) > DEGENERATE_CORRELATION
+    )
     if pairs:
-        _checks.warn("fit: degenerate parameters, the data cannot tell them apart: " + ", ".join(
-            f"{a} and {b} (correlation {c:+.3f})" for a, b, c in pairs) + "; fix one, or measure other ranges",
-            DegeneracyWarning)
+        _checks.warn(
+            "fit: degenerate parameters, the data cannot tell them apart: "
+            + ", ".join(f"{a} and {b} (correlation {c:+.3f})" for a, b, c in pairs)
+            + "; fix one, or measure other ranges",
+            DegeneracyWarning,
+        )
     if not np.all(np.isfinite(sd)):
-        _checks.warn("fit: the Jacobian is singular at the solution, so the data do not constrain every free "
-                     "parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or a beam tilt "
-                     "and a detector offset along one axis, which move the field of view alike); uncertainties "
-                     "are infinite", DegeneracyWarning)
+        _checks.warn(
+            "fit: the Jacobian is singular at the solution, so the data do not constrain every "
+            "free "
+            "parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or a "
+            "beam tilt "
+            "and a detector offset along one axis, which move the field of view alike); "
+            "uncertainties "
+            "are infinite",
+            DegeneracyWarning,
+        )
     noise = math.sqrt(chi_square / dof) if dof > 0 else float("nan")
     if not sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * noise:
-        _checks.warn(f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the scatter of "
-                     f"the residuals ({noise:.3g}): its error adds to the noise; lower tolerance")
+        _checks.warn(
+            f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the "
+            "scatter of "
+            f"the residuals ({noise:.3g}): its error adds to the noise; lower tolerance"
+        )
     return FitResult(
         parameters={path: float(v) for path, v in zip(paths, solution.x * scale)},
         uncertainties={path: float(v) for path, v in zip(paths, sd)},
         start={path: float(v) for path, v in zip(paths, start)},
-        covariance=cov, correlation=corr, residuals=r, chi_square=chi_square,
-        reduced_chi_square=chi_square / dof if dof > 0 else float("nan"), degrees_of_freedom=dof,
-        result=result, measured=y, sigma=w if sigma_given else None, covariance_scaled=not sigma_given,
-        degenerate_pairs=pairs, evaluations=counts["model"], jacobian_evaluations=counts["jacobian"],
-        status=int(solution.status), message=str(solution.message), converged=bool(converged), loss=loss,
-        plan=model.plan, step_tolerance=model.step_tolerance)
+        covariance=cov,
+        correlation=corr,
+        residuals=r,
+        chi_square=chi_square,
+        reduced_chi_square=chi_square / dof if dof > 0 else float("nan"),
+        degrees_of_freedom=dof,
+        result=result,
+        measured=y,
+        sigma=w if sigma_given else None,
+        covariance_scaled=not sigma_given,
+        degenerate_pairs=pairs,
+        evaluations=counts["model"],
+        jacobian_evaluations=counts["jacobian"],
+        status=int(solution.status),
+        message=str(solution.message),
+        converged=bool(converged),
+        loss=loss,
+        plan=model.plan,
+        step_tolerance=model.step_tolerance,
+    )
 
 
 def _cosines(j: np.ndarray) -> np.ndarray:
@@ -191,7 +300,10 @@ def default_bounds(system, path: str, start: float):
     if path.startswith("detector.offset["):
         return start - 10 * system.detector.radius, start + 10 * system.detector.radius
     if path == "detector.defocus":
-        return start - 0.1 * system.telescope.focal_length, start + 0.1 * system.telescope.focal_length
+        return (
+            start - 0.1 * system.telescope.focal_length,
+            start + 0.1 * system.telescope.focal_length,
+        )
     return start / 10, start * 10
 
 
@@ -206,8 +318,12 @@ def _scipy():
 def free_paths(free):
     """The fit's ``free`` argument as scalar paths (pairs expanded), refused naming ``free``."""
     try:
-        return _parameters.plain_paths(free, "free", "the fit is planned on the start, whose model may not include "
-                                       "aberrations; fit the alignment scalars")
+        return _parameters.plain_paths(
+            free,
+            "free",
+            "the fit is planned on the start, whose model may not include "
+            "aberrations; fit the alignment scalars",
+        )
     except ValueError as exc:
         if str(exc).startswith("parameter"):
             raise ValueError(f"free: {exc}; name parameters of the system") from None
@@ -217,8 +333,10 @@ def free_paths(free):
 def fit_plan(system, ranges, method, tolerance, threads):
     """The plan every evaluation of a fit runs (made once, on the start; no turbulence)."""
     if isinstance(method, Turbulent):
-        raise ValueError("method = Turbulent(...) is invalid for a fit: its curves are random draws; fit with "
-                         "'rt', 'fo' or 'auto'")
+        raise ValueError(
+            "method = Turbulent(...) is invalid for a fit: its curves are random draws; fit with "
+            "'rt', 'fo' or 'auto'"
+        )
     tolerance = _checks.positive("tolerance", tolerance)
     shortcuts = {"tolerance": tolerance} if isinstance(method, str) else {}
     return plan(system, ranges, method, threads=threads, **shortcuts)
@@ -228,14 +346,18 @@ def _measured(measured, z):
     try:
         y = np.asarray(measured, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"measured is invalid: expected a 1-D array of G, one per range ({exc})") from None
+        raise ValueError(
+            f"measured is invalid: expected a 1-D array of G, one per range ({exc})"
+        ) from None
     if y.shape != z.shape:
         raise ValueError(f"measured has shape {y.shape}: expected {z.shape}, one G per range")
     bad = ~np.isfinite(y)
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"measured[{i}] = {y[i]} is invalid: expected finite values; drop that range "
-                         "(and its measured value) instead")
+        raise ValueError(
+            f"measured[{i}] = {y[i]} is invalid: expected finite values; drop that range "
+            "(and its measured value) instead"
+        )
     return y
 
 
@@ -245,13 +367,17 @@ def _sigma(sigma, y):
     try:
         w = np.broadcast_to(np.asarray(sigma, dtype=float), y.shape).copy()
     except (TypeError, ValueError):
-        raise ValueError(f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number or one value per "
-                         f"range (shape {y.shape})") from None
+        raise ValueError(
+            f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number or one value per "
+            f"range (shape {y.shape})"
+        ) from None
     bad = ~(np.isfinite(w) & (w > 0))
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"sigma[{i}] = {w[i]} is invalid: expected finite values > 0 (the 1-sigma error of "
-                         "each point); use None for unit weights")
+        raise ValueError(
+            f"sigma[{i}] = {w[i]} is invalid: expected finite values > 0 (the 1-sigma error of "
+            "each point); use None for unit weights"
+        )
     return w
 
 
@@ -259,13 +385,17 @@ def _bounds(system, paths, start, bounds):
     given = {}
     if bounds is not None:
         if not isinstance(bounds, dict):
-            raise ValueError(f"bounds = {_checks.shown(bounds)} is invalid: expected a dict path -> (low, high)")
+            raise ValueError(
+                f"bounds = {_checks.shown(bounds)} is invalid: expected a dict path -> (low, high)"
+            )
         for key, value in bounds.items():
             keys = _parameters.expand([key]) if isinstance(key, str) else [key]
             for path in keys:
                 if path not in paths:
-                    raise ValueError(f"bounds: {_checks.shown(key)} is not a free parameter: expected one of "
-                                     f"{', '.join(paths)}")
+                    raise ValueError(
+                        f"bounds: {_checks.shown(key)} is not a free parameter: expected one of "
+                        f"{', '.join(paths)}"
+                    )
                 given[path] = value
     low, high = np.empty(len(paths)), np.empty(len(paths))
     for i, (path, x0) in enumerate(zip(paths, start)):
@@ -276,7 +406,10 @@ def _bounds(system, paths, start, bounds):
         if not lo < hi:
             raise ValueError(f"bounds[{path!r}] = ({lo:g}, {hi:g}) is invalid: expected low < high")
         if not lo <= x0 <= hi:
-            raise ValueError(f"bounds[{path!r}] = ({lo:g}, {hi:g}) excludes the start {x0:g}: widen the bounds or "
-                             "start the system within them")
+            raise ValueError(
+                f"bounds[{path!r}] = ({lo:g}, {hi:g}) excludes the start {x0:g}: widen the bounds "
+                "or "
+                "start the system within them"
+            )
         low[i], high[i] = lo, hi
     return low, high

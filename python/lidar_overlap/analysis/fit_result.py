@@ -1,5 +1,7 @@
-"""The result of :func:`lidar_overlap.analysis.fit` (and :func:`lidar_overlap.analysis.fit_telecover`): the parameters, their
-covariance, the fitted curve, and the model's prediction at other ranges with its 1-sigma band (the covariance
+"""The result of :func:`lidar_overlap.analysis.fit` (and
+:func:`lidar_overlap.analysis.fit_telecover`): the parameters, their
+covariance, the fitted curve, and the model's prediction at other ranges with its 1-sigma band (the
+covariance
 propagated through the Jacobian)."""
 
 from __future__ import annotations
@@ -22,7 +24,8 @@ RANK_TOLERANCE = 1e-10
 
 
 class DegeneracyWarning(RuntimeWarning):
-    """The data cannot tell some free parameters apart (|correlation| > 0.95, or a singular Jacobian)."""
+    """The data cannot tell some free parameters apart (|correlation| > 0.95, or a singular
+    Jacobian)."""
 
 
 def covariance(j: np.ndarray, scale: float) -> np.ndarray:
@@ -34,13 +37,15 @@ def covariance(j: np.ndarray, scale: float) -> np.ndarray:
 
 
 def step_tolerance(p, tolerance: float) -> float:
-    """The tolerance that sets the central-difference steps: RT's quadrature tolerance, else the fit's."""
+    """The tolerance that sets the central-difference steps: RT's quadrature tolerance, else the
+    fit's."""
     return p.rt_quadrature_tolerance if p.backend == "rt" else tolerance
 
 
 @dataclass(frozen=True)
 class Prediction:
-    """The fitted model at ``ranges`` (m): ``overlap`` and its 1-sigma band ``sigma`` (from the covariance)."""
+    """The fitted model at ``ranges`` (m): ``overlap`` and its 1-sigma band ``sigma`` (from the
+    covariance)."""
 
     ranges: np.ndarray
     overlap: np.ndarray
@@ -51,13 +56,19 @@ class Prediction:
 class FitResult:
     """A fit of free parameters of a lidar system to a measured overlap (SI units).
 
-    parameters, uncertainties, start : path -> best value, its 1-sigma uncertainty, the start. covariance,
-    correlation : (k, k) in the order of ``parameters``. residuals : (model - measured) / sigma per range.
-    chi_square, reduced_chi_square, degrees_of_freedom : of those residuals (n - k). result : the fitted
+    parameters, uncertainties, start : path -> best value, its 1-sigma uncertainty, the start.
+        covariance,
+    correlation : (k, k) in the order of ``parameters``. residuals : (model - measured) / sigma per
+        range.
+    chi_square, reduced_chi_square, degrees_of_freedom : of those residuals (n - k). result : the
+        fitted
     :class:`OverlapResult`. measured, sigma : the data (sigma None when unit weights were used; then
-    ``covariance_scaled`` is True: the covariance is scaled by the reduced chi-square). degenerate_pairs :
-    (path, path, correlation) with |correlation| > 0.95. evaluations, jacobian_evaluations : model curves
-    and Jacobians computed (one core call each on ray tracing). status, message, converged : the optimiser's.
+    ``covariance_scaled`` is True: the covariance is scaled by the reduced chi-square).
+    degenerate_pairs :
+    (path, path, correlation) with |correlation| > 0.95. evaluations, jacobian_evaluations : model
+    curves
+    and Jacobians computed (one core call each on ray tracing). status, message, converged : the
+    optimiser's.
     """
 
     parameters: Dict[str, float]
@@ -93,9 +104,12 @@ class FitResult:
         return self.result.ranges
 
     def predict(self, ranges) -> Prediction:
-        """The fitted model at ``ranges`` (m) and its 1-sigma band, sqrt(diag(J C Jᵀ)) with J = dG/dp there:
-        e.g. the near range of a curve measured only from 150 m. The fit's plan (model and options) is kept;
-        the band covers the parameters' uncertainty, not the model's own error (``result.error_estimate``)."""
+        """The fitted model at ``ranges`` (m) and its 1-sigma band, sqrt(diag(J C Jᵀ)) with J =
+        dG/dp there:
+        e.g. the near range of a curve measured only from 150 m. The fit's plan (model and options)
+        is kept;
+        the band covers the parameters' uncertainty, not the model's own error
+        (``result.error_estimate``)."""
         z = _checks.ranges("ranges", ranges)
         self.system._native.validate_ranges(z)
         p = dataclasses.replace(self.plan, system=self.system, ranges=z)
@@ -107,14 +121,21 @@ class FitResult:
 
     def summary(self) -> str:
         """The parameters with uncertainties, chi-square and degeneracies, one line each."""
-        lines = [f"fit ({self.result.method}, loss {self.loss}): {'converged' if self.converged else 'NOT converged'}"
-                 f" after {self.evaluations} model and {self.jacobian_evaluations} Jacobian evaluations"]
+        lines = [
+            f"fit ({self.result.method}, loss {self.loss}): "
+            f"{'converged' if self.converged else 'NOT converged'}"
+            f" after {self.evaluations} model and {self.jacobian_evaluations} Jacobian evaluations"
+        ]
         for path, value in self.parameters.items():
-            lines.append(f"  {path:<22} {value:+.6g} ± {self.uncertainties[path]:.3g} {unit(path)}"
-                         f"  (start {self.start[path]:+.6g})")
+            lines.append(
+                f"  {path:<22} {value:+.6g} ± {self.uncertainties[path]:.3g} {unit(path)}"
+                f"  (start {self.start[path]:+.6g})"
+            )
         scaled = " (unit weights: covariance scaled by it)" if self.covariance_scaled else ""
-        lines.append(f"  chi-square {self.chi_square:.4g} for {self.degrees_of_freedom} degrees of freedom, "
-                     f"reduced {self.reduced_chi_square:.4g}{scaled}")
+        lines.append(
+            f"  chi-square {self.chi_square:.4g} for {self.degrees_of_freedom} degrees of freedom, "
+            f"reduced {self.reduced_chi_square:.4g}{scaled}"
+        )
         for a, b, c in self.degenerate_pairs:
             lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
         return "\n".join(lines)
@@ -123,18 +144,25 @@ class FitResult:
 
     def table(self):
         """Rows (path, value, uncertainty, unit, start) for files."""
-        return [(path, v, self.uncertainties[path], unit(path), self.start[path])
-                for path, v in self.parameters.items()]
+        return [
+            (path, v, self.uncertainties[path], unit(path), self.start[path])
+            for path, v in self.parameters.items()
+        ]
 
     def plot(self, ranges=None, fig=None):
-        """Data with error bars, the fitted curve with its 1-sigma band over ``ranges`` (default: from a quarter
-        of the first measured range, where valid, to the last) and the residuals below. Returns the matplotlib
-        Figure (needs ``pip install 'lidar-overlap[plot]'``). A telecover fit: the measured and fitted deviations
+        """Data with error bars, the fitted curve with its 1-sigma band over ``ranges`` (default:
+        from a quarter
+        of the first measured range, where valid, to the last) and the residuals below. Returns the
+        matplotlib
+        Figure (needs ``pip install 'lidar-overlap[plot]'``). A telecover fit: the measured and
+        fitted deviations
         per sector (at the measured ranges) and the residuals."""
         from matplotlib.figure import Figure
 
         if isinstance(self.result, TelecoverResult):
-            return _plot_telecover_fit(self, fig or Figure(figsize=(7.0, 5.6), constrained_layout=True))
+            return _plot_telecover_fit(
+                self, fig or Figure(figsize=(7.0, 5.6), constrained_layout=True)
+            )
         z = self.ranges
         if ranges is None:
             ranges = np.geomspace(z[0] / 4, z[-1], 200)
@@ -145,16 +173,31 @@ class FitResult:
         pred = self.predict(ranges)
         fig = fig or Figure(figsize=(7.0, 5.6), constrained_layout=True)
         top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
-        err = self.sigma if self.sigma is not None else np.full(z.shape, math.sqrt(self.reduced_chi_square))
+        err = (
+            self.sigma
+            if self.sigma is not None
+            else np.full(z.shape, math.sqrt(self.reduced_chi_square))
+        )
         top.errorbar(z, self.measured, yerr=err, fmt=".", ms=3, lw=0.6, color="k", label="measured")
         top.plot(pred.ranges, pred.overlap, color="C0", label="fitted model")
-        top.fill_between(pred.ranges, pred.overlap - pred.sigma, pred.overlap + pred.sigma, color="C0", alpha=0.3,
-                         label="1-sigma band (parameters)")
+        top.fill_between(
+            pred.ranges,
+            pred.overlap - pred.sigma,
+            pred.overlap + pred.sigma,
+            color="C0",
+            alpha=0.3,
+            label="1-sigma band (parameters)",
+        )
         top.set_xscale("log")
         top.set_ylabel("overlap G")
         top.legend(fontsize=8, loc="lower right")
-        top.set_title("; ".join(f"{p} = {v:.4g} ± {self.uncertainties[p]:.2g} {unit(p)}"
-                                for p, v in self.parameters.items()), fontsize=8)
+        top.set_title(
+            "; ".join(
+                f"{p} = {v:.4g} ± {self.uncertainties[p]:.2g} {unit(p)}"
+                for p, v in self.parameters.items()
+            ),
+            fontsize=8,
+        )
         bottom.axhline(0.0, color="0.5", lw=0.6)
         bottom.plot(z, self.residuals, ".", color="k", ms=3)
         bottom.set_xlabel("range (m)")
@@ -162,14 +205,17 @@ class FitResult:
         return fig
 
 
-
 def _plot_telecover_fit(fit: FitResult, fig):
-    """Measured deviations (with error bars) and the fitted ones per sector in %, residuals below."""
+    """Measured deviations (with error bars) and the fitted ones per sector in %, residuals
+    below."""
     t = fit.result
     z, shape = t.ranges, (len(t.names), t.ranges.size)
     measured, residuals = fit.measured.reshape(shape), fit.residuals.reshape(shape)
-    err = (fit.sigma.reshape(shape) if fit.sigma is not None
-           else np.full(shape, math.sqrt(fit.reduced_chi_square)))
+    err = (
+        fit.sigma.reshape(shape)
+        if fit.sigma is not None
+        else np.full(shape, math.sqrt(fit.reduced_chi_square))
+    )
     top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
     for k, (name, d) in enumerate(zip(t.names, t.deviation)):
         color = f"C{k % 10}"
@@ -180,8 +226,13 @@ def _plot_telecover_fit(fit: FitResult, fig):
     top.set_xscale("log")
     top.set_ylabel("normalised deviation (%)")
     top.legend(fontsize=8)
-    top.set_title("; ".join(f"{p} = {v:.4g} ± {fit.uncertainties[p]:.2g} {unit(p)}"
-                            for p, v in fit.parameters.items()), fontsize=8)
+    top.set_title(
+        "; ".join(
+            f"{p} = {v:.4g} ± {fit.uncertainties[p]:.2g} {unit(p)}"
+            for p, v in fit.parameters.items()
+        ),
+        fontsize=8,
+    )
     bottom.axhline(0.0, color="0.5", lw=0.6)
     bottom.set_xlabel("range (m)")
     bottom.set_ylabel("residual / sigma" if fit.sigma is not None else "residual")

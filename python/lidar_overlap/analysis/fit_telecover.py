@@ -1,13 +1,20 @@
-"""Fitting misalignment to a measured telecover test: the free scalars of a system such that its sectors'
-normalised deviations G_i / mean G - 1 (:func:`.telecover`) match the measured ones, by the least-squares
-driver of :mod:`lidar_overlap.analysis.fit` (:func:`.fit.solve`: optimiser, covariance, degeneracy warnings, convergence error).
+"""Fitting misalignment to a measured telecover test: the free scalars of a system such that its
+sectors'
+normalised deviations G_i / mean G - 1 (:func:`.telecover`) match the measured ones, by the
+least-squares
+driver of :mod:`lidar_overlap.analysis.fit` (:func:`.fit.solve`: optimiser, covariance, degeneracy
+warnings, convergence error).
 
-Model. Ray tracing through each sector's mask, planned once per sector on the start (RT at ``tolerance``);
-the vector is the deviations, sector-major (sector x range, flattened). Jacobian: central differences of the
-deviations, from :func:`.sensitivity.central_differences` of each sector's G (the same steps for every sector).
+Model. Ray tracing through each sector's mask, planned once per sector on the start (RT at
+``tolerance``);
+the vector is the deviations, sector-major (sector x range, flattened). Jacobian: central
+differences of the
+deviations, from :func:`.sensitivity.central_differences` of each sector's G (the same steps for
+every sector).
 
 Constraint. The deviations of a range sum to zero over the sectors, so a range carries (sectors - 1)
-independent points: the measured deviations are centred per range (a no-op on deviations computed from
+independent points: the measured deviations are centred per range (a no-op on deviations computed
+from
 signals, the projection of independent noise otherwise), and the degrees of freedom are
 (sectors - 1) x ranges - free parameters.
 """
@@ -26,31 +33,57 @@ from .sensitivity import central_differences
 from .telecover import TelecoverResult, deviations, sector_mask, with_mask
 
 
-def fit_telecover(system, ranges, measured_deviation, sigma=None, free=("beam.tilt",), sectors="quadrants",
-                  bounds=None, tolerance: float = 1e-4, loss: str = "linear", max_evaluations: int = 200, *,
-                  allow_unconverged: bool = False, threads: int = 0) -> FitResult:
-    """Fit the ``free`` scalars of ``system`` (the start) to the telecover deviations ``measured_deviation``.
+def fit_telecover(
+    system,
+    ranges,
+    measured_deviation,
+    sigma=None,
+    free=("beam.tilt",),
+    sectors="quadrants",
+    bounds=None,
+    tolerance: float = 1e-4,
+    loss: str = "linear",
+    max_evaluations: int = 200,
+    *,
+    allow_unconverged: bool = False,
+    threads: int = 0,
+) -> FitResult:
+    """Fit the ``free`` scalars of ``system`` (the start) to the telecover deviations
+    ``measured_deviation``.
 
-    The deviations are ratios of the sectors' G: they constrain what breaks the symmetry between the sectors
-    (beam tilt, beam and detector offsets: north = +y, east = +x, so a beam tilted north fits as tilt[1] > 0),
-    not the absolute level of G (an overall scale, a symmetric defocus or field of view are weakly or not at
-    all constrained: expect degeneracy warnings). Unlike G, the deviations are odd in a tilt, so a start at
+    The deviations are ratios of the sectors' G: they constrain what breaks the symmetry between the
+    sectors
+    (beam tilt, beam and detector offsets: north = +y, east = +x, so a beam tilted north fits as
+    tilt[1] > 0),
+    not the absolute level of G (an overall scale, a symmetric defocus or field of view are weakly
+    or not at
+    all constrained: expect degeneracy warnings). Unlike G, the deviations are odd in a tilt, so a
+    start at
     tilt 0 is fine.
 
-    ranges : m, strictly increasing. measured_deviation : array (sector x range) in the order of the sectors'
-    names, or a :class:`TelecoverResult` (its deviations, at the same sectors and ranges). sigma : 1-sigma error
-    of each deviation: a number, one per range or one per (sector, range), > 0; None: unit weights and the
-    covariance scaled by the reduced chi-square. sectors : ``"quadrants"`` or an :class:`ApertureMask` (as in
-    :func:`.telecover`). tolerance : RT's absolute tolerance on each sector's G. Other arguments as in
-    :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is the fitted :class:`TelecoverResult` and
-    whose ``measured``, ``sigma`` and ``residuals`` are sector-major (sector x range, flattened); ``predict``
+    ranges : m, strictly increasing. measured_deviation : array (sector x range) in the order of the
+        sectors'
+    names, or a :class:`TelecoverResult` (its deviations, at the same sectors and ranges). sigma :
+    1-sigma error
+    of each deviation: a number, one per range or one per (sector, range), > 0; None: unit weights
+    and the
+    covariance scaled by the reduced chi-square. sectors : ``"quadrants"`` or an
+    :class:`ApertureMask` (as in
+    :func:`.telecover`). tolerance : RT's absolute tolerance on each sector's G. Other arguments as
+    in
+    :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is the fitted
+    :class:`TelecoverResult` and
+    whose ``measured``, ``sigma`` and ``residuals`` are sector-major (sector x range, flattened);
+    ``predict``
     gives the full aperture's G. Needs scipy.
     """
     paths = free_paths(free)
     mask = sector_mask(system, sectors)
     if len(mask.names) < 2:
-        raise ValueError(f"sectors has {len(mask.names)} sector: expected at least two (a deviation compares "
-                         "sectors)")
+        raise ValueError(
+            f"sectors has {len(mask.names)} sector: expected at least two (a deviation compares "
+            "sectors)"
+        )
     full = fit_plan(system, ranges, "rt", tolerance, threads)
     z = full.ranges
     parts = mask.split()
@@ -60,53 +93,98 @@ def fit_telecover(system, ranges, measured_deviation, sigma=None, free=("beam.ti
     h = step_tolerance(plans[0], tolerance)
 
     def sector_g(trial):
-        return [run(dataclasses.replace(p, system=with_mask(trial, part))) for p, part in zip(plans, parts)]
+        return [
+            run(dataclasses.replace(p, system=with_mask(trial, part)))
+            for p, part in zip(plans, parts)
+        ]
 
     def result(trial):
         curves = sector_g(trial)
-        t = TelecoverResult(z, mask.names, tuple(curves), run(dataclasses.replace(full, system=trial)))
+        t = TelecoverResult(
+            z, mask.names, tuple(curves), run(dataclasses.replace(full, system=trial))
+        )
         return t, t.deviation.ravel()
 
     def jacobian(trial):
         g = []
         for p, part in zip(plans, parts):
             steps, shifted, _ = central_differences(p, with_mask(trial, part), paths, (1, -1), h)
-            g.append(shifted)                          # (path, +-, range)
-        d = deviations(np.array(g))                    # (sector, path, +-, range)
-        return ((d[:, :, 0] - d[:, :, 1]) / (2.0 * steps[:, None])).transpose(0, 2, 1).reshape(-1, len(paths))
+            g.append(shifted)  # (path, +-, range)
+        d = deviations(np.array(g))  # (sector, path, +-, range)
+        return (
+            ((d[:, :, 0] - d[:, :, 1]) / (2.0 * steps[:, None]))
+            .transpose(0, 2, 1)
+            .reshape(-1, len(paths))
+        )
 
     start_g = np.array([c.overlap for c in sector_g(system)])
     dark = ~(start_g.mean(axis=0) > 0)
     if dark.any():
         i = int(np.argmax(dark))
-        raise ValueError(f"ranges[{i}] = {z[i]:g} m is invalid for a telecover fit: no sector receives light there "
-                         "(G = 0), so the deviations are undefined; start the ranges farther out")
+        raise ValueError(
+            f"ranges[{i}] = {z[i]:g} m is invalid for a telecover fit: no sector receives light "
+            "there "
+            "(G = 0), so the deviations are undefined; start the ranges farther out"
+        )
     # the model's error on a deviation: G's tolerance relative to a sector's typical (median) mean G
-    model = Model(lambda trial: deviations(np.array([c.overlap for c in sector_g(trial)])).ravel(), jacobian,
-                  result, full, h, tolerance / float(np.median(start_g.mean(axis=0))))
+    model = Model(
+        lambda trial: deviations(np.array([c.overlap for c in sector_g(trial)])).ravel(),
+        jacobian,
+        result,
+        full,
+        h,
+        tolerance / float(np.median(start_g.mean(axis=0))),
+    )
     y = y - y.mean(axis=0)
-    return solve(system, paths, model, y.ravel(), w.ravel(), sigma is not None, bounds, loss, max_evaluations,
-                 allow_unconverged, independent=(len(parts) - 1) * z.size)
+    return solve(
+        system,
+        paths,
+        model,
+        y.ravel(),
+        w.ravel(),
+        sigma is not None,
+        bounds,
+        loss,
+        max_evaluations,
+        allow_unconverged,
+        independent=(len(parts) - 1) * z.size,
+    )
 
 
 def _measured(measured, names, z) -> np.ndarray:
     if isinstance(measured, TelecoverResult):
         if measured.names != names:
-            raise ValueError(f"measured_deviation has sectors {', '.join(measured.names)}: expected "
-                             f"{', '.join(names)} (those of sectors=)")
-        if measured.ranges.shape != z.shape or not np.allclose(measured.ranges, z, rtol=1e-12, atol=0.0):
-            raise ValueError("measured_deviation is a TelecoverResult at other ranges: expected the ranges given")
+            raise ValueError(
+                f"measured_deviation has sectors {', '.join(measured.names)}: expected "
+                f"{', '.join(names)} (those of sectors=)"
+            )
+        if measured.ranges.shape != z.shape or not np.allclose(
+            measured.ranges, z, rtol=1e-12, atol=0.0
+        ):
+            raise ValueError(
+                "measured_deviation is a TelecoverResult at other ranges: expected the ranges given"
+            )
         measured = measured.deviation
     try:
         y = np.array(measured, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"measured_deviation is invalid: expected an array (sector x range) of deviations ({exc})") \
-            from None
+        raise ValueError(
+            "measured_deviation is invalid: expected an array (sector x range) of deviations "
+            f"({exc})"
+        ) from None
     if y.shape != (len(names), z.size):
-        raise ValueError(f"measured_deviation has shape {y.shape}: expected {(len(names), z.size)}, one row per "
-                         f"sector ({', '.join(names)}) and one column per range")
-    _first_bad("measured_deviation", y, ~np.isfinite(y) | (y < -1.0), names, z,
-               "a finite deviation >= -1 (G_i / mean G - 1); drop that range instead")
+        raise ValueError(
+            f"measured_deviation has shape {y.shape}: expected {(len(names), z.size)}, one row per "
+            f"sector ({', '.join(names)}) and one column per range"
+        )
+    _first_bad(
+        "measured_deviation",
+        y,
+        ~np.isfinite(y) | (y < -1.0),
+        names,
+        z,
+        "a finite deviation >= -1 (G_i / mean G - 1); drop that range instead",
+    )
     return y
 
 
@@ -116,10 +194,19 @@ def _sigma(sigma, shape, names) -> np.ndarray:
     try:
         w = np.broadcast_to(np.asarray(sigma, dtype=float), shape).copy()
     except (TypeError, ValueError):
-        raise ValueError(f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number, one value per range "
-                         f"or one per sector and range (shape {shape})") from None
-    _first_bad("sigma", w, ~(np.isfinite(w) & (w > 0)), names, None,
-               "finite values > 0 (the 1-sigma error of each deviation); use None for unit weights")
+        raise ValueError(
+            f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number, one value per "
+            "range "
+            f"or one per sector and range (shape {shape})"
+        ) from None
+    _first_bad(
+        "sigma",
+        w,
+        ~(np.isfinite(w) & (w > 0)),
+        names,
+        None,
+        "finite values > 0 (the 1-sigma error of each deviation); use None for unit weights",
+    )
     return w
 
 
@@ -127,4 +214,6 @@ def _first_bad(name, values, bad, names, z, expected) -> None:
     if bad.any():
         i, j = np.unravel_index(int(np.argmax(bad)), bad.shape)
         where = f" ({names[i]}" + (f", {z[j]:g} m)" if z is not None else ")")
-        raise ValueError(f"{name}[{i}, {j}] = {values[i, j]}{where} is invalid: expected {expected}")
+        raise ValueError(
+            f"{name}[{i}, {j}] = {values[i, j]}{where} is invalid: expected {expected}"
+        )

@@ -1,8 +1,12 @@
-"""Sensitivities dG/dp of the overlap to scalars of the system, by central differences of ray-traced G.
+"""Sensitivities dG/dp of the overlap to scalars of the system, by central differences of ray-traced
+G.
 
-Step rule. The central difference D(h) = (G(p + h) - G(p - h)) / 2h errs by the truncation h² G'''/6 plus
-the quadrature error of the two values, up to ``tolerance``/h. With G''' ~ 1/s³ for a parameter whose
-natural scale is s (G changes by O(1) over s), the sum is smallest at h = s (3 tolerance)^(1/3). The scales:
+Step rule. The central difference D(h) = (G(p + h) - G(p - h)) / 2h errs by the truncation h² G'''/6
+plus
+the quadrature error of the two values, up to ``tolerance``/h. With G''' ~ 1/s³ for a parameter
+whose
+natural scale is s (G changes by O(1) over s), the sum is smallest at h = s (3 tolerance)^(1/3). The
+scales:
 
 - ``beam.tilt[i]``: the receiver's half field of view r_d / f (rad);
 - ``beam.offset[i]``: the aperture radius D/2; ``detector.offset[i]``: the detector radius r_d;
@@ -10,8 +14,10 @@ natural scale is s (G changes by O(1) over s), the sum is smallest at h = s (3 t
 - every other (positive) scalar: its own value (a relative step).
 
 The error stated for each derivative is measured, not assumed: the truncation from D(h) and D(2h)
-(Richardson's leading-order estimate |D(2h) - D(h)| / 3, doubled as a margin for the h⁴ terms, which can
-make it short when they oppose the h² term) plus the core's error estimates of the two values over 2h.
+(Richardson's leading-order estimate |D(2h) - D(h)| / 3, doubled as a margin for the h⁴ terms, which
+can
+make it short when they oppose the h² term) plus the core's error estimates of the two values over
+2h.
 All 4 perturbed systems of every parameter go through one ``overlap_rt_batch`` call.
 """
 
@@ -22,12 +28,12 @@ import dataclasses
 import numpy as np
 
 from .. import _checks, _core
-from ..model import parameters as _parameters
-from .datasets import range_coordinate, xarray
-from .alignment import ray_tracing, requested
 from ..forward.compute import run
 from ..forward.planning import plan
 from ..forward.validity import warn_if_rt_invalid, warn_if_rt_unconverged
+from ..model import parameters as _parameters
+from .alignment import ray_tracing, requested
+from .datasets import range_coordinate, xarray
 
 _ANGLES = ("beam.tilt[0]", "beam.tilt[1]", "beam.divergence")
 _DIMENSIONLESS = ("detector.numerical_aperture",)
@@ -46,8 +52,10 @@ def step_scale(system, path: str) -> float:
         return 2.0 * r_d * f / d
     value = abs(_parameters.get(system, path))
     if not value > 0:
-        raise ValueError(f"parameters: {path} = 0 is at the edge of its valid range (it cannot be negative), so "
-                         "no central difference can be taken there")
+        raise ValueError(
+            f"parameters: {path} = 0 is at the edge of its valid range (it cannot be negative), so "
+            "no central difference can be taken there"
+        )
     return value
 
 
@@ -56,28 +64,46 @@ def unit(path: str) -> str:
     return "rad" if path in _ANGLES else "1" if path in _DIMENSIONLESS else "m"
 
 
-def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4, *, threads: int = 0):
-    """dG/dp at each range for each parameter path (:mod:`lidar_overlap.model.parameters`; a bare pair such as
+def sensitivity(
+    system, ranges, parameters, method="rt", tolerance: float = 1e-4, *, threads: int = 0
+):
+    """dG/dp at each range for each parameter path (:mod:`lidar_overlap.model.parameters`; a bare
+    pair such as
     ``"beam.tilt"`` stands for both components), by central differences of ray-traced G.
 
-    ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier optics is
-    refused: its curves state no error to set the step and the derivative's error from). tolerance : RT's
-    absolute tolerance on each G; the steps follow from it (module docstring). threads : OpenMP threads; 0 uses
+    ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier
+        optics is
+    refused: its curves state no error to set the step and the derivative's error from). tolerance :
+    RT's
+    absolute tolerance on each G; the steps follow from it (module docstring). threads : OpenMP
+    threads; 0 uses
     all cores.
 
-    Returns an ``xarray.Dataset`` (``pip install 'lidar-overlap[io]'``) with dims (``parameter``, ``range``):
-    ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its estimated absolute error),
-    ``step`` (h per parameter, in its unit), ``value`` (the system's value) and ``unit`` (per parameter).
+    Returns an ``xarray.Dataset`` (``pip install 'lidar-overlap[io]'``) with dims (``parameter``,
+    ``range``):
+    ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its estimated absolute
+    error),
+    ``step`` (h per parameter, in its unit), ``value`` (the system's value) and ``unit`` (per
+    parameter).
     """
-    paths = _parameters.plain_paths(parameters, "parameters", "sensitivities ray trace the plain receiver in one "
-                                    "batch call, and the aberrated paths have none yet")
+    paths = _parameters.plain_paths(
+        parameters,
+        "parameters",
+        "sensitivities ray trace the plain receiver in one "
+        "batch call, and the aberrated paths have none yet",
+    )
     xr = xarray("sensitivity")
-    model = ray_tracing(requested(method, tolerance), "for sensitivities: their steps and errors come from ray "
-                        "tracing's error estimates (Fourier optics states none); use method='rt'")
+    model = ray_tracing(
+        requested(method, tolerance),
+        "for sensitivities: their steps and errors come from ray "
+        "tracing's error estimates (Fourier optics states none); use method='rt'",
+    )
     p = plan(system, ranges, model, threads=threads)
     if p.backend != "rt":
-        raise ValueError(f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} "
-                         "(receiver aberrations), which has no batch call yet")
+        raise ValueError(
+            f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} "
+            "(receiver aberrations), which has no batch call yet"
+        )
     values = np.array([_parameters.get(system, path) for path in paths])
     steps, g, e = central_differences(p, system, paths, (1, -1, 2, -2), p.rt_quadrature_tolerance)
     factor = (3.0 * p.rt_quadrature_tolerance) ** (1.0 / 3.0)
@@ -90,54 +116,97 @@ def sensitivity(system, ranges, parameters, method="rt", tolerance: float = 1e-4
     per_unit = [f"1/{u}" if u != "1" else "1" for u in units]
     dims = ("parameter", "range")
     return xr.Dataset(
-        {"derivative": (dims, d1, {"long_name": "dG/dp, central difference with step h",
-                                   "units": "1/(unit of the parameter)"}),
-         "error_estimate": (dims, error, {"long_name": "estimated absolute error of dG/dp: 2 |D(2h) - D(h)|/3 "
-                                                      "+ quadrature error / h"}),
-         "step": ("parameter", steps, {"long_name": "central-difference step h, in the parameter's unit"}),
-         "value": ("parameter", values, {"long_name": "the system's value of the parameter"}),
-         "unit": ("parameter", np.array(units)),
-         "derivative_unit": ("parameter", np.array(per_unit))},
+        {
+            "derivative": (
+                dims,
+                d1,
+                {
+                    "long_name": "dG/dp, central difference with step h",
+                    "units": "1/(unit of the parameter)",
+                },
+            ),
+            "error_estimate": (
+                dims,
+                error,
+                {
+                    "long_name": "estimated absolute error of dG/dp: 2 |D(2h) - D(h)|/3 "
+                    "+ quadrature error / h"
+                },
+            ),
+            "step": (
+                "parameter",
+                steps,
+                {"long_name": "central-difference step h, in the parameter's unit"},
+            ),
+            "value": ("parameter", values, {"long_name": "the system's value of the parameter"}),
+            "unit": ("parameter", np.array(units)),
+            "derivative_unit": ("parameter", np.array(per_unit)),
+        },
         coords={"parameter": ("parameter", np.array(paths)), "range": range_coordinate(z)},
-        attrs={"method": p.method, "tolerance": p.tolerance,
-               "step_rule": f"h = s (3 tolerance)^(1/3) = {factor:.4g} s, s the parameter's natural scale"})
+        attrs={
+            "method": p.method,
+            "tolerance": p.tolerance,
+            "step_rule": f"h = s (3 tolerance)^(1/3) = {factor:.4g} s, s the parameter's natural "
+            "scale",
+        },
+    )
 
 
 def central_differences(p, system, paths, multiples, tolerance: float):
-    """G of ``system`` with each path shifted by k h for each k in ``multiples``, on the model of plan ``p``
+    """G of ``system`` with each path shifted by k h for each k in ``multiples``, on the model of
+    plan ``p``
     (its backend, options and ranges): (steps h, G and its error estimate, each (path, k, range)).
 
-    h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). On the ray-tracing
-    backend all shifted systems go through one ``overlap_rt_batch`` call; on any other, each is a run of ``p``
+    h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). On the
+    ray-tracing
+    backend all shifted systems go through one ``overlap_rt_batch`` call; on any other, each is a
+    run of ``p``
     with the shifted system (the plan's decisions kept)."""
     factor = (3.0 * tolerance) ** (1.0 / 3.0)
     steps = np.array([step_scale(system, path) * factor for path in paths])
     values = [_parameters.get(system, path) for path in paths]
-    shifted = [_shifted(system, path, v, h, k) for path, v, h in zip(paths, values, steps) for k in multiples]
+    shifted = [
+        _shifted(system, path, v, h, k)
+        for path, v, h in zip(paths, values, steps)
+        for k in multiples
+    ]
     z = p.ranges
     shape = (len(paths), len(multiples), z.size)
     if p.backend != "rt":
         results = [run(dataclasses.replace(p, system=s)) for s in shifted]
-        return (steps, np.array([r.overlap for r in results]).reshape(shape),
-                np.array([r.error_estimate for r in results]).reshape(shape))
-    _checks.check_memory("parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges")
-    raw = _core.overlap_rt_batch([s._native for s in shifted for _ in z], np.tile(z, len(shifted)), p.options)
+        return (
+            steps,
+            np.array([r.overlap for r in results]).reshape(shape),
+            np.array([r.error_estimate for r in results]).reshape(shape),
+        )
+    _checks.check_memory(
+        "parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges"
+    )
+    raw = _core.overlap_rt_batch(
+        [s._native for s in shifted for _ in z], np.tile(z, len(shifted)), p.options
+    )
     warn_if_rt_invalid(system, z)
-    warn_if_rt_unconverged(raw, np.tile(z, len(shifted)), p.tolerance, "raise max_segments or loosen tolerance")
+    warn_if_rt_unconverged(
+        raw, np.tile(z, len(shifted)), p.tolerance, "raise max_segments or loosen tolerance"
+    )
     return steps, raw.overlap.reshape(shape), raw.error_estimate.reshape(shape)
 
 
 def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
-    """dG/dp of ``system`` on plan ``p``'s model and ranges, shape (range, path): central differences with
+    """dG/dp of ``system`` on plan ``p``'s model and ranges, shape (range, path): central
+    differences with
     :func:`central_differences` (one core call on ray tracing)."""
     steps, g, _ = central_differences(p, system, paths, (1, -1), tolerance)
     return ((g[:, 0] - g[:, 1]) / (2.0 * steps[:, None])).T
 
 
 def _shifted(system, path: str, value: float, step: float, k: int):
-    """``system`` with ``path`` at value + k step; refused naming the parameter when that leaves the model."""
+    """``system`` with ``path`` at value + k step; refused naming the parameter when that leaves the
+    model."""
     try:
         return _parameters.replace(system, {path: float(value + k * step)})
     except ValueError as exc:
-        raise ValueError(f"parameters: {path} = {value:g} {'+' if k > 0 else '-'} {abs(k)} x step {step:.3g}, a "
-                         f"point of the central difference, leaves the model's range ({exc})") from None
+        raise ValueError(
+            f"parameters: {path} = {value:g} {'+' if k > 0 else '-'} {abs(k)} x step {step:.3g}, a "
+            f"point of the central difference, leaves the model's range ({exc})"
+        ) from None

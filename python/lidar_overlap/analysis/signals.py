@@ -1,13 +1,18 @@
 """Elastic lidar signals from an overlap function, and their overlap correction (SI units).
 
-The expected number of photons detected in the range bin at z, per laser shot, is the elastic lidar equation
+The expected number of photons detected in the range bin at z, per laser shot, is the elastic lidar
+equation
 
     P(z) = N₀ Δz A η G(z) β(z) T(z)² / z²,    N₀ = E₀ / (h c / λ),
 
-with E₀ the pulse energy (J), N₀ the photons it carries, Δz the range resolution (m; the bin the detector
-integrates, cτ/2 of its sampling time τ; each value is sampled at the bin's centre, with no convolution with the
-pulse), A = π D²/4 the full aperture (G is normalised to the full, unobstructed aperture, so an obstruction
-is in G already: see :mod:`lidar_overlap.forward.compute`), η the receiver efficiency (optics times detector quantum
+with E₀ the pulse energy (J), N₀ the photons it carries, Δz the range resolution (m; the bin the
+detector
+integrates, cτ/2 of its sampling time τ; each value is sampled at the bin's centre, with no
+convolution with the
+pulse), A = π D²/4 the full aperture (G is normalised to the full, unobstructed aperture, so an
+obstruction
+is in G already: see :mod:`lidar_overlap.forward.compute`), η the receiver efficiency (optics times
+detector quantum
 efficiency), β and T the backscatter and one-way transmission of an :class:`Atmosphere`.
 """
 
@@ -20,16 +25,19 @@ from typing import Optional
 import numpy as np
 
 from .. import _checks
-from ..model.atmosphere import Atmosphere
 from ..forward.result import OverlapResult
+from ..model.atmosphere import Atmosphere
 
 #: Planck constant (J s) and speed of light (m/s), exact in SI.
 PLANCK, LIGHT_SPEED = 6.62607015e-34, 299792458.0
-#: Largest pulse energy (J), range resolution (m), background (photons per bin and shot) and number of shots
+#: Largest pulse energy (J), range resolution (m), background (photons per bin and shot) and number
+#: of shots
 #: accepted: beyond any lidar, and far from overflowing the counts.
 MAX_PULSE_ENERGY, MAX_RANGE_RESOLUTION, MAX_BACKGROUND, MAX_SHOTS = 1e3, 1e4, 1e15, 10**12
-#: Expected counts above which a noisy realisation is drawn from the normal distribution of the same mean and
-#: variance instead of the Poisson one (whose relative skewness, 1/sqrt(counts), is then below 1e-6).
+#: Expected counts above which a noisy realisation is drawn from the normal distribution of the same
+#: mean and
+#: variance instead of the Poisson one (whose relative skewness, 1/sqrt(counts), is then below
+#: 1e-6).
 POISSON_LIMIT = 1e12
 
 
@@ -44,10 +52,13 @@ class LidarSignal:
     photons : expected photons detected per range bin and per shot, background excluded.
     range_corrected : photons · z² (photons m²), the range-corrected signal.
     range_corrected_full_overlap : the same with G = 1 (what an overlap correction should recover).
-    std : photons per bin and shot, the standard deviation of the shot-averaged, background-subtracted signal:
-        sqrt((photons + background) / shots) (Poisson counts summed over the shots; the background is taken as
+    std : photons per bin and shot, the standard deviation of the shot-averaged,
+        background-subtracted signal:
+        sqrt((photons + background) / shots) (Poisson counts summed over the shots; the background
+        is taken as
         known exactly, so subtracting it adds no variance).
-    noisy : one such shot-averaged, background-subtracted realisation (photons per bin and shot), or None.
+    noisy : one such shot-averaged, background-subtracted realisation (photons per bin and shot), or
+        None.
     background : photons per bin and shot (sky light and dark counts), subtracted from ``noisy``.
     shots : number of shots averaged.
     wavelength : m.
@@ -68,7 +79,8 @@ class LidarSignal:
         _freeze(self)
 
     def plot(self, ax=None):
-        """The dynamic-range view on log axes: expected photons per bin and shot with and without the overlap,
+        """The dynamic-range view on log axes: expected photons per bin and shot with and without
+        the overlap,
         the background, the noise level and the noisy realisation. Returns the matplotlib Axes."""
         from ..views.plotting import plot_signal
 
@@ -97,45 +109,68 @@ class CorrectedSignal:
 
 
 def _freeze(obj) -> None:
-    """Make the arrays of a result read-only (each its own copy, so no caller's array is touched)."""
+    """Make the arrays of a result read-only (each its own copy, so no caller's array is
+    touched)."""
     for value in vars(obj).values():
         if isinstance(value, np.ndarray):
             value.flags.writeable = False
 
 
-def signal(result: OverlapResult, atmosphere: Atmosphere = Atmosphere(), *, pulse_energy: float,
-           receiver_efficiency: float, range_resolution: float, background: float = 0.0, shots: int = 1,
-           noise: bool = False, seed: int = 0) -> LidarSignal:
-    """Expected photons per range bin and shot of the lidar of ``result`` (its ``system``'s wavelength and
-    telescope diameter, its overlap at its ranges) looking through ``atmosphere``, by the lidar equation of
+def signal(
+    result: OverlapResult,
+    atmosphere: Atmosphere = Atmosphere(),
+    *,
+    pulse_energy: float,
+    receiver_efficiency: float,
+    range_resolution: float,
+    background: float = 0.0,
+    shots: int = 1,
+    noise: bool = False,
+    seed: int = 0,
+) -> LidarSignal:
+    """Expected photons per range bin and shot of the lidar of ``result`` (its ``system``'s
+    wavelength and
+    telescope diameter, its overlap at its ranges) looking through ``atmosphere``, by the lidar
+    equation of
     :mod:`lidar_overlap.analysis.signals`.
 
     Parameters
     ----------
     result : an :class:`OverlapResult` that carries its system.
-    atmosphere : the :class:`Atmosphere` (molecules of a standard atmosphere at sea level, zenith, by default).
+    atmosphere : the :class:`Atmosphere` (molecules of a standard atmosphere at sea level, zenith,
+        by default).
     pulse_energy : J, (0, 1000].
-    receiver_efficiency : dimensionless, (0, 1]: optics transmission times detector quantum efficiency.
+    receiver_efficiency : dimensionless, (0, 1]: optics transmission times detector quantum
+        efficiency.
     range_resolution : m, (0, 1e4]: the length of a range bin.
     background : photons per bin and shot, [0, 1e15].
     shots : shots averaged, 1 to 1e12; the noise scales as 1/sqrt(shots).
-    noise : draw one noisy realisation (``LidarSignal.noisy``) with ``numpy.random.default_rng(seed)``.
+    noise : draw one noisy realisation (``LidarSignal.noisy``) with
+        ``numpy.random.default_rng(seed)``.
     seed : integer >= 0.
     """
     if not isinstance(result, OverlapResult):
-        raise ValueError(f"result = {_checks.shown(result)} is invalid: expected an OverlapResult (from overlap)")
+        raise ValueError(
+            f"result = {_checks.shown(result)} is invalid: expected an OverlapResult (from overlap)"
+        )
     if result.system is None:
-        raise ValueError("result.system is None: expected a result that carries its lidar system (a result read "
-                         "from a file keeps it only for Gaussian beams)")
+        raise ValueError(
+            "result.system is None: expected a result that carries its lidar system (a result read "
+            "from a file keeps it only for Gaussian beams)"
+        )
     if not isinstance(atmosphere, Atmosphere):
-        raise ValueError(f"atmosphere = {_checks.shown(atmosphere)} is invalid: expected an Atmosphere")
+        raise ValueError(
+            f"atmosphere = {_checks.shown(atmosphere)} is invalid: expected an Atmosphere"
+        )
     energy = _upto("pulse_energy", pulse_energy, MAX_PULSE_ENERGY, "J")
     efficiency = _checks.unit_interval("receiver_efficiency", receiver_efficiency, include_one=True)
     dz = _upto("range_resolution", range_resolution, MAX_RANGE_RESOLUTION, "m")
     bg = _checks.real("background", background)
     if not 0.0 <= bg <= MAX_BACKGROUND:
-        raise ValueError(f"background = {bg!r} is invalid: expected photons per bin and shot in [0, "
-                         f"{MAX_BACKGROUND:g}]")
+        raise ValueError(
+            f"background = {bg!r} is invalid: expected photons per bin and shot in [0, "
+            f"{MAX_BACKGROUND:g}]"
+        )
     shots = _checks.count("shots", shots, 1, MAX_SHOTS)
     seed = _checks.count("seed", seed, 0)
     if not isinstance(noise, (bool, np.bool_)):
@@ -144,20 +179,32 @@ def signal(result: OverlapResult, atmosphere: Atmosphere = Atmosphere(), *, puls
     z, g = result.ranges, result.overlap
     wavelength = result.system.beam.wavelength
     photons_per_pulse = energy * wavelength / (PLANCK * LIGHT_SPEED)
-    area = math.pi * result.system.telescope.diameter ** 2 / 4
-    t2 = atmosphere.transmission(wavelength, z) ** 2   # first: it refuses ranges beyond the model by name
+    area = math.pi * result.system.telescope.diameter**2 / 4
+    t2 = (
+        atmosphere.transmission(wavelength, z) ** 2
+    )  # first: it refuses ranges beyond the model by name
     beta = atmosphere.backscatter(wavelength, atmosphere.height(z))
-    full = photons_per_pulse * dz * area * efficiency * beta * t2   # P z² with G = 1
+    full = photons_per_pulse * dz * area * efficiency * beta * t2  # P z² with G = 1
     photons = full * g / z**2
     std = np.sqrt((photons + bg) / shots)
     noisy = _draw(photons + bg, shots, seed) - bg if noise else None
-    return LidarSignal(ranges=z.copy(), overlap=g.copy(), photons=photons, range_corrected=full * g,
-                       range_corrected_full_overlap=full, std=std, noisy=noisy, background=bg, shots=shots,
-                       wavelength=wavelength)
+    return LidarSignal(
+        ranges=z.copy(),
+        overlap=g.copy(),
+        photons=photons,
+        range_corrected=full * g,
+        range_corrected_full_overlap=full,
+        std=std,
+        noisy=noisy,
+        background=bg,
+        shots=shots,
+        wavelength=wavelength,
+    )
 
 
 def _draw(mean_per_shot: np.ndarray, shots: int, seed: int) -> np.ndarray:
-    """Shot average of Poisson counts of mean ``mean_per_shot`` summed over ``shots`` (normal where large)."""
+    """Shot average of Poisson counts of mean ``mean_per_shot`` summed over ``shots`` (normal where
+    large)."""
     rng = np.random.default_rng(seed)
     total = mean_per_shot * shots
     small = total <= POISSON_LIMIT
@@ -174,39 +221,52 @@ def _upto(name: str, value, maximum: float, unit: str) -> float:
     return v
 
 
-def correct(ranges, signal, overlap, *, min_overlap: float = 0.1, signal_std=None,
-            overlap_std=None) -> CorrectedSignal:
+def correct(
+    ranges, signal, overlap, *, min_overlap: float = 0.1, signal_std=None, overlap_std=None
+) -> CorrectedSignal:
     """Overlap-corrected signal S/G and its uncertainty sqrt((σ_S/G)² + (S σ_G/G²)²) (first-order
     propagation of independent errors).
 
     Parameters
     ----------
     ranges : m, strictly increasing, one per signal value.
-    signal : the measured signal S at each range, in any unit (photons per bin, range-corrected, ...): finite.
-    overlap : G at each range: an :class:`OverlapResult` at the same ranges, or an array of values in [0, 1].
-    min_overlap : (0, 1]: where G < min_overlap the signal is not corrected (too little of it reaches the
-        detector, and S/G would amplify every error): ``values`` and ``std`` are NaN there and ``mask`` True.
-    signal_std : the standard deviation of S, in its unit: a scalar or one per range, finite and >= 0; None
+    signal : the measured signal S at each range, in any unit (photons per bin, range-corrected,
+        ...): finite.
+    overlap : G at each range: an :class:`OverlapResult` at the same ranges, or an array of values
+        in [0, 1].
+    min_overlap : (0, 1]: where G < min_overlap the signal is not corrected (too little of it
+        reaches the
+        detector, and S/G would amplify every error): ``values`` and ``std`` are NaN there and
+        ``mask`` True.
+    signal_std : the standard deviation of S, in its unit: a scalar or one per range, finite and >=
+        0; None
         means 0 (an exact signal).
     overlap_std : the uncertainty of G: a scalar or one per range in [0, 1]. None means the result's
-        ``error_estimate`` when ``overlap`` is an :class:`OverlapResult` (for ``error_kind`` "bound", RT's
-        quadrature bound, that is a bound on the error, not a standard deviation, so ``std`` is then a
-        conservative bound too; for "nominal" and "standard_error" it is used as a standard deviation), and 0
+        ``error_estimate`` when ``overlap`` is an :class:`OverlapResult` (for ``error_kind``
+        "bound", RT's
+        quadrature bound, that is a bound on the error, not a standard deviation, so ``std`` is then
+        a
+        conservative bound too; for "nominal" and "standard_error" it is used as a standard
+        deviation), and 0
         for an array.
     """
     z = _checks.ranges("ranges", ranges)
     s = _profile("signal", signal, z.size)
     if isinstance(overlap, OverlapResult):
         if not np.array_equal(overlap.ranges, z):
-            raise ValueError("overlap.ranges differ from ranges: expected the overlap computed at the signal's "
-                             "ranges")
+            raise ValueError(
+                "overlap.ranges differ from ranges: expected the overlap computed at the signal's "
+                "ranges"
+            )
         g = overlap.overlap
         if overlap_std is None:
             overlap_std = overlap.error_estimate
             if np.isnan(overlap_std).any():
                 i = int(np.argmax(np.isnan(overlap_std)))
-                raise ValueError(f"overlap.error_estimate[{i}] is NaN (the method gave no estimate): pass "
-                                 "overlap_std explicitly (0.0 for an exact G)")
+                raise ValueError(
+                    f"overlap.error_estimate[{i}] is NaN (the method gave no estimate): pass "
+                    "overlap_std explicitly (0.0 for an exact G)"
+                )
     else:
         g = _profile("overlap", overlap, z.size)
         _within("overlap", g, 0.0, 1.0)
@@ -218,14 +278,16 @@ def correct(ranges, signal, overlap, *, min_overlap: float = 0.1, signal_std=Non
     use = ~mask
     values = np.full(z.size, np.nan)
     std = np.full(z.size, np.nan)
-    with np.errstate(over="ignore", invalid="ignore"):   # inf · 0: refused just below
+    with np.errstate(over="ignore", invalid="ignore"):  # inf · 0: refused just below
         values[use] = s[use] / g[use]
         std[use] = np.hypot(sigma_s[use] / g[use], values[use] * sigma_g[use] / g[use])
     overflow = use & ~(np.isfinite(values) & np.isfinite(std))
     if overflow.any():
         i = int(np.argmax(overflow))
-        raise ValueError(f"signal[{i}] = {s[i]!r} with G = {g[i]!r} overflows the corrected signal or its "
-                         "uncertainty beyond double range: expected a signal of smaller magnitude (rescale it)")
+        raise ValueError(
+            f"signal[{i}] = {s[i]!r} with G = {g[i]!r} overflows the corrected signal or its "
+            "uncertainty beyond double range: expected a signal of smaller magnitude (rescale it)"
+        )
     return CorrectedSignal(ranges=z.copy(), values=values, std=std, mask=mask)
 
 
@@ -236,7 +298,9 @@ def _profile(name: str, value, size: int) -> np.ndarray:
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{name} is invalid: expected a 1-D array of numbers ({exc})") from None
     if raw.dtype.kind not in "iuf":
-        raise ValueError(f"{name} = {_checks.shown(value)} is invalid: expected a 1-D array of real numbers")
+        raise ValueError(
+            f"{name} = {_checks.shown(value)} is invalid: expected a 1-D array of real numbers"
+        )
     arr = raw.astype(float)
     if arr.shape != (size,):
         raise ValueError(f"{name} has shape {arr.shape}: expected ({size},), one value per range")
@@ -251,13 +315,20 @@ def _within(name: str, arr: np.ndarray, low: float, high: float) -> None:
     bad = ~((arr >= low) & (arr <= high))
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"{name}[{i}] = {arr[i]!r} is invalid: expected a value in [{low:g}, {high:g}]")
+        raise ValueError(
+            f"{name}[{i}] = {arr[i]!r} is invalid: expected a value in [{low:g}, {high:g}]"
+        )
 
 
 def _spread(name: str, value, size: int, maximum: float) -> np.ndarray:
-    """A standard deviation per range: None (0), a scalar or one per range, each in [0, maximum] and finite."""
+    """A standard deviation per range: None (0), a scalar or one per range, each in [0, maximum] and
+    finite."""
     if value is None:
         return np.zeros(size)
-    arr = np.full(size, _checks.real(name, value)) if np.ndim(value) == 0 else _profile(name, value, size)
+    arr = (
+        np.full(size, _checks.real(name, value))
+        if np.ndim(value) == 0
+        else _profile(name, value, size)
+    )
     _within(name, arr, 0.0, min(maximum, np.finfo(float).max))
     return arr

@@ -1,10 +1,14 @@
-"""The telecover test (EARLINET quality assurance; Freudenthaler et al., 2018, Atmos. Meas. Tech. 11, 4713).
+"""The telecover test (EARLINET quality assurance; Freudenthaler et al., 2018, Atmos. Meas. Tech.
+11, 4713).
 
 The receiver's aperture is covered but for one sector at a time (classically four quadrants); the
 range-corrected signals of the sectors are compared through their normalised deviations
-S_i(z) / mean_j S_j(z) - 1. The atmosphere is the same for every sector, so the signals differ only through
-the overlap: S_i ∝ G_i, and the deviations are ratios of G's. :func:`telecover` computes each sector's G
-(one plan per sector; by ray tracing all sectors in one core call sharing their nodes) and the full-aperture G.
+S_i(z) / mean_j S_j(z) - 1. The atmosphere is the same for every sector, so the signals differ only
+through
+the overlap: S_i ∝ G_i, and the deviations are ratios of G's. :func:`telecover` computes each
+sector's G
+(one plan per sector; by ray tracing all sectors in one core call sharing their nodes) and the
+full-aperture G.
 """
 
 from __future__ import annotations
@@ -16,13 +20,13 @@ from typing import Tuple
 import numpy as np
 
 from .. import _checks
-from .datasets import xarray
-from ..model.aperture_mask import ApertureMask
 from ..forward.backends import masked as masked_backend
 from ..forward.compute import run
 from ..forward.planning import plan
 from ..forward.result import OverlapResult
+from ..model.aperture_mask import ApertureMask
 from ..model.system import LidarSystem
+from .datasets import xarray
 
 #: The ``sectors`` strings :func:`telecover` knows.
 SECTOR_SETS = ("quadrants",)
@@ -32,7 +36,8 @@ SECTOR_SETS = ("quadrants",)
 class TelecoverResult:
     """Per-sector overlaps and their normalised deviations.
 
-    ranges : m. names : the sectors' names. sectors : one :class:`OverlapResult` per sector (G normalised to
+    ranges : m. names : the sectors' names. sectors : one :class:`OverlapResult` per sector (G
+        normalised to
     the full aperture), in the order of ``names``. full : the full-aperture :class:`OverlapResult`.
     """
 
@@ -53,7 +58,8 @@ class TelecoverResult:
 
     @property
     def deviation(self) -> np.ndarray:
-        """Normalised deviations G_i / mean_j G_j - 1 (sector x range): the telecover's S_i / mean S - 1, since
+        """Normalised deviations G_i / mean_j G_j - 1 (sector x range): the telecover's S_i / mean S
+        - 1, since
         the sectors see the same atmosphere. NaN where no sector receives anything."""
         return deviations(self.overlap)
 
@@ -68,34 +74,72 @@ class TelecoverResult:
         return self.full.system
 
     def to_xarray(self):
-        """An ``xarray.Dataset`` (sector x range): ``overlap``, ``error_estimate``, ``deviation`` and
-        ``full_overlap`` (range), with units and the method in the attributes (needs the ``io`` extra)."""
+        """An ``xarray.Dataset`` (sector x range): ``overlap``, ``error_estimate``, ``deviation``
+        and
+        ``full_overlap`` (range), with units and the method in the attributes (needs the ``io``
+        extra)."""
         xr = xarray("TelecoverResult.to_xarray")
         dims = ("sector", "range")
         return xr.Dataset(
-            {"overlap": (dims, self.overlap, {"long_name": "overlap through the sector (of the full aperture)"}),
-             "error_estimate": (dims, self.error_estimate, {"long_name": "stated error of overlap"}),
-             "deviation": (dims, self.deviation, {"long_name": "normalised deviation G_i / mean G - 1"}),
-             "full_overlap": (("range",), self.full.overlap, {"long_name": "overlap of the full aperture"})},
+            {
+                "overlap": (
+                    dims,
+                    self.overlap,
+                    {"long_name": "overlap through the sector (of the full aperture)"},
+                ),
+                "error_estimate": (
+                    dims,
+                    self.error_estimate,
+                    {"long_name": "stated error of overlap"},
+                ),
+                "deviation": (
+                    dims,
+                    self.deviation,
+                    {"long_name": "normalised deviation G_i / mean G - 1"},
+                ),
+                "full_overlap": (
+                    ("range",),
+                    self.full.overlap,
+                    {"long_name": "overlap of the full aperture"},
+                ),
+            },
             coords={"sector": list(self.names), "range": ("range", self.ranges, {"units": "m"})},
-            attrs={"method": self.full.method, "tolerance": float(self.full.tolerance),
-                   "reference": "Freudenthaler et al. (2018), Atmos. Meas. Tech. 11, 4713"})
+            attrs={
+                "method": self.full.method,
+                "tolerance": float(self.full.tolerance),
+                "reference": "Freudenthaler et al. (2018), Atmos. Meas. Tech. 11, 4713",
+            },
+        )
 
     def plot(self, band: float = 0.05, axes=None):
-        """The conventional telecover figure: range-corrected signals per sector (∝ G_i) and the normalised
-        deviations with the ±``band`` lines. Returns the two Axes (needs ``pip install lidar-overlap[plot]``)."""
+        """The conventional telecover figure: range-corrected signals per sector (∝ G_i) and the
+        normalised
+        deviations with the ±``band`` lines. Returns the two Axes (needs ``pip install
+        lidar-overlap[plot]``)."""
         from ..views.plotting import plot_telecover
 
         return plot_telecover(self, band=band, axes=axes)
 
 
-def telecover(system: LidarSystem, ranges, sectors="quadrants", method="rt", tolerance: float = 1e-4, *,
-              threads: int = 0) -> TelecoverResult:
-    """The telecover test of ``system`` at ``ranges`` (m). ``sectors``: ``"quadrants"`` (north = +y, east = +x:
-    :meth:`ApertureMask.quadrants`) or an :class:`ApertureMask` whose sectors are measured one at a time.
-    ``method``: ``"rt"``, ``"fo"``, ``"auto"`` or a method object; ``tolerance`` applies to ``"rt"`` and
-    ``"auto"``. G of each sector stays normalised to the full aperture: by ray tracing the sectors of a partition
-    add up to the full G; in Fourier optics diffraction at the sectors' edges makes their sum fall short of it by
+def telecover(
+    system: LidarSystem,
+    ranges,
+    sectors="quadrants",
+    method="rt",
+    tolerance: float = 1e-4,
+    *,
+    threads: int = 0,
+) -> TelecoverResult:
+    """The telecover test of ``system`` at ``ranges`` (m). ``sectors``: ``"quadrants"`` (north = +y,
+    east = +x:
+    :meth:`ApertureMask.quadrants`) or an :class:`ApertureMask` whose sectors are measured one at a
+    time.
+    ``method``: ``"rt"``, ``"fo"``, ``"auto"`` or a method object; ``tolerance`` applies to ``"rt"``
+    and
+    ``"auto"``. G of each sector stays normalised to the full aperture: by ray tracing the sectors
+    of a partition
+    add up to the full G; in Fourier optics diffraction at the sectors' edges makes their sum fall
+    short of it by
     about RT's diffraction error (1e-3 on Table 1)."""
     mask = sector_mask(system, sectors)
     options = dict(threads=threads)
@@ -103,7 +147,9 @@ def telecover(system: LidarSystem, ranges, sectors="quadrants", method="rt", tol
         options["tolerance"] = tolerance
     full = run(plan(system, ranges, method, **options))
     plans = [plan(with_mask(system, part), full.ranges, method, **options) for part in mask.split()]
-    parts = tuple(masked_backend.run_together(plans) if masked_backend.together(plans) else map(run, plans))
+    parts = tuple(
+        masked_backend.run_together(plans) if masked_backend.together(plans) else map(run, plans)
+    )
     return TelecoverResult(ranges=full.ranges, names=mask.names, sectors=parts, full=full)
 
 
@@ -120,19 +166,25 @@ def with_mask(system: LidarSystem, mask: ApertureMask) -> LidarSystem:
 
 
 def sector_mask(system, sectors) -> ApertureMask:
-    """The mask of :func:`telecover`'s ``sectors`` (``"quadrants"`` or an :class:`ApertureMask`), checked against
+    """The mask of :func:`telecover`'s ``sectors`` (``"quadrants"`` or an :class:`ApertureMask`),
+    checked against
     ``system`` (a LidarSystem without a mask)."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     if system.telescope.mask is not None:
-        raise ValueError("system.telescope.mask is invalid for telecover: expected None (telecover sets each "
-                         "sector's mask itself; pass the mask as sectors=)")
+        raise ValueError(
+            "system.telescope.mask is invalid for telecover: expected None (telecover sets each "
+            "sector's mask itself; pass the mask as sectors=)"
+        )
     if isinstance(sectors, str):
         _checks.choice("sectors", sectors, SECTOR_SETS)
         mask = ApertureMask.quadrants()
     elif isinstance(sectors, ApertureMask):
         mask = sectors
     else:
-        raise ValueError(f"sectors = {_checks.shown(sectors)} is invalid: expected 'quadrants' or an ApertureMask")
+        raise ValueError(
+            f"sectors = {_checks.shown(sectors)} is invalid: expected 'quadrants' or an "
+            "ApertureMask"
+        )
     mask.validate(system.telescope.diameter, system.telescope.obstruction_radius)
     return mask

@@ -1,16 +1,26 @@
-"""Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see :mod:`lidar_overlap.io.scenario`),
-``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see :mod:`lidar_overlap.analysis.fit`) and
-``lidar-overlap telecover SCENARIO.toml [--measurements CSV --free PATH ...]`` (see :mod:`lidar_overlap.analysis.telecover`).
+"""Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see
+:mod:`lidar_overlap.io.scenario`),
+``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see
+:mod:`lidar_overlap.analysis.fit`) and
+``lidar-overlap telecover SCENARIO.toml [--measurements CSV --free PATH ...]`` (see
+:mod:`lidar_overlap.analysis.telecover`).
 
-Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library refuses, a
-file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted (Ctrl-C). A
-failure prints exactly one line on stderr, ``lidar-overlap: error: ...``, naming the file, the section and
+Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library
+refuses, a
+file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted
+(Ctrl-C). A
+failure prints exactly one line on stderr, ``lidar-overlap: error: ...``, naming the file, the
+section and
 the key where it can, and never a traceback.
 
-Nothing is written before the computation has succeeded, and every file (CSV, NetCDF, PNG) is written
-under a temporary name beside its final one and renamed only when complete, so a failure (a full disk,
-Ctrl-C) never leaves a partial file. Results are checked on construction (:class:`OverlapResult`), so a
-curve with a NaN or out-of-range G is a failure, not a file. Warnings are printed, one line each, once the
+Nothing is written before the computation has succeeded, and every file (CSV, NetCDF, PNG) is
+written
+under a temporary name beside its final one and renamed only when complete, so a failure (a full
+disk,
+Ctrl-C) never leaves a partial file. Results are checked on construction (:class:`OverlapResult`),
+so a
+curve with a NaN or out-of-range G is a failure, not a file. Warnings are printed, one line each,
+once the
 scenario has succeeded.
 """
 
@@ -49,40 +59,87 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file.")
+    parser = _Parser(
+        prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file."
+    )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit,telecover}")
-    run = sub.add_parser("run", help="compute one scenario (TOML) and write its files",
-                         description="Compute a scenario and write <name>.csv, <name>.nc, <name>_overlap.png and "
-                                     "<name>_scene.png, as its [output] section asks.")
+    run = sub.add_parser(
+        "run",
+        help="compute one scenario (TOML) and write its files",
+        description="Compute a scenario and write <name>.csv, <name>.nc, <name>_overlap.png and "
+        "<name>_scene.png, as its [output] section asks.",
+    )
     run.add_argument("scenario", help="scenario file (TOML), e.g. examples/scenarios/table1.toml")
-    demo = sub.add_parser("demo", help="the paper's Table 1 lidar, with r_obs = 20 mm and with 5 mm defocus",
-                          description="Compute the paper's Table 1 scenario and its obstruction (20 mm) and defocus "
-                                      "(5 mm) variants, built in, and write their files.")
-    fit = sub.add_parser("fit", help="fit system parameters of a scenario to a measured overlap (CSV)",
-                         description="Fit the --free parameters of the scenario's system (the start) to the "
-                                     "measured G in a CSV with the header range_m,overlap[,sigma]; write "
-                                     "<name>_fit.csv and <name>_fit.png and print the summary.")
-    fit.add_argument("scenario", help="scenario file (TOML): the starting system and the [run] model")
-    fit.add_argument("measurements", type=Path, help="CSV file with the header range_m,overlap[,sigma]")
-    fit.add_argument("--free", nargs="+", required=True, metavar="PATH",
-                     help="parameters to fit, e.g. beam.tilt detector.defocus (beam.tilt: both components)")
-    tc = sub.add_parser("telecover", help="the telecover test of a scenario, or a fit to measured deviations",
-                        description="Compute the telecover test of the scenario's system at its ranges and write "
-                                    "<name>_telecover.csv and .png; with --measurements (CSV: range_m, one deviation "
-                                    "column per sector, optional sigma), fit the --free parameters to it and write "
-                                    "<name>_telecover_fit.csv and .png.")
+    demo = sub.add_parser(
+        "demo",
+        help="the paper's Table 1 lidar, with r_obs = 20 mm and with 5 mm defocus",
+        description="Compute the paper's Table 1 scenario and its obstruction (20 mm) and defocus "
+        "(5 mm) variants, built in, and write their files.",
+    )
+    fit = sub.add_parser(
+        "fit",
+        help="fit system parameters of a scenario to a measured overlap (CSV)",
+        description="Fit the --free parameters of the scenario's system (the start) to the "
+        "measured G in a CSV with the header range_m,overlap[,sigma]; write "
+        "<name>_fit.csv and <name>_fit.png and print the summary.",
+    )
+    fit.add_argument(
+        "scenario", help="scenario file (TOML): the starting system and the [run] model"
+    )
+    fit.add_argument(
+        "measurements", type=Path, help="CSV file with the header range_m,overlap[,sigma]"
+    )
+    fit.add_argument(
+        "--free",
+        nargs="+",
+        required=True,
+        metavar="PATH",
+        help="parameters to fit, e.g. beam.tilt detector.defocus (beam.tilt: both components)",
+    )
+    tc = sub.add_parser(
+        "telecover",
+        help="the telecover test of a scenario, or a fit to measured deviations",
+        description="Compute the telecover test of the scenario's system at its ranges and write "
+        "<name>_telecover.csv and .png; with --measurements (CSV: range_m, one deviation "
+        "column per sector, optional sigma), fit the --free parameters to it and write "
+        "<name>_telecover_fit.csv and .png.",
+    )
     tc.add_argument("scenario", help="scenario file (TOML): the system, ranges and [run] model")
-    tc.add_argument("--sectors", type=_sectors, default="quadrants", metavar="quadrants|N",
-                    help="the quadrants north, east, south, west (default) or N equal sectors from +x")
-    tc.add_argument("--measurements", type=Path, help="CSV with the header range_m,<sector>,...[,sigma]")
-    tc.add_argument("--free", nargs="+", metavar="PATH", help="parameters to fit with --measurements, e.g. beam.tilt")
-    for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/"), (fit, "./<name>/"), (tc, "./<name>/")):
+    tc.add_argument(
+        "--sectors",
+        type=_sectors,
+        default="quadrants",
+        metavar="quadrants|N",
+        help="the quadrants north, east, south, west (default) or N equal sectors from +x",
+    )
+    tc.add_argument(
+        "--measurements", type=Path, help="CSV with the header range_m,<sector>,...[,sigma]"
+    )
+    tc.add_argument(
+        "--free",
+        nargs="+",
+        metavar="PATH",
+        help="parameters to fit with --measurements, e.g. beam.tilt",
+    )
+    for p, default in (
+        (run, "./<name>/"),
+        (demo, "./lidar-overlap-demo/"),
+        (fit, "./<name>/"),
+        (tc, "./<name>/"),
+    ):
         p.add_argument("--out", type=Path, help=f"output directory (default: {default})")
-        p.add_argument("--method", choices=METHODS,
-                       help="override [run] method; auto: the cheapest model within the [run] tolerance")
+        p.add_argument(
+            "--method",
+            choices=METHODS,
+            help="override [run] method; auto: the cheapest model within the [run] tolerance",
+        )
         if p is not fit:
-            p.add_argument("--quiet", action="store_true", help="no progress bar" if p is not tc else "no summary")
+            p.add_argument(
+                "--quiet",
+                action="store_true",
+                help="no progress bar" if p is not tc else "no summary",
+            )
     return parser
 
 
@@ -106,29 +163,40 @@ def main(argv: Optional[List[str]] = None) -> int:
             out = args.out or Path("lidar-overlap-demo")
             results = [_run_one(s, out, args.method, args.quiet) for s in table1_scenarios()]
             with _printed_warnings():
-                combined = _note(_plot_file(results, out / "table1_variants_overlap.png", "Table 1 and its variants"))
-            print(f"demo: {len(results)} scenarios written to {out}"
-                  + (f"; compared in {combined}" if combined else ""))
+                combined = _note(
+                    _plot_file(
+                        results, out / "table1_variants_overlap.png", "Table 1 and its variants"
+                    )
+                )
+            print(
+                f"demo: {len(results)} scenarios written to {out}"
+                + (f"; compared in {combined}" if combined else "")
+            )
     except KeyboardInterrupt:
         return _fail("interrupted", 130)
-    except ValueError as exc:  # ScenarioError, and the library's refusals (one line naming the parameter)
+    except (
+        ValueError
+    ) as exc:  # ScenarioError, and the library's refusals (one line naming the parameter)
         return _fail(str(exc), 1)
     except OSError as exc:
         return _fail(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", 1)
     except MemoryError:
         return _fail("out of memory: ask for fewer ranges or smaller grids", 1)
     except Exception as exc:  # a defect: still one line and a failure, never a traceback
-        return _fail(f"internal error: {type(exc).__name__}: {exc} (please report it with the scenario)", 1)
+        return _fail(
+            f"internal error: {type(exc).__name__}: {exc} (please report it with the scenario)", 1
+        )
     return 0
 
 
 def _fit(scenario: Scenario, args) -> int:
     try:
-        with _printed_warnings():   # printed only if the fit succeeds
-            result, files, note = fit_command.fit_scenario(scenario, args.measurements, args.free,
-                                               args.out or Path(scenario.name), args.method)
+        with _printed_warnings():  # printed only if the fit succeeds
+            result, files, note = fit_command.fit_scenario(
+                scenario, args.measurements, args.free, args.out or Path(scenario.name), args.method
+            )
             _note((None, note))
-    except (RuntimeError, ImportError) as exc:   # not converged; scipy missing
+    except (RuntimeError, ImportError) as exc:  # not converged; scipy missing
         return _fail(str(exc), 1)
     print(f"{scenario.name}: {result.summary()}")
     print(f"  files         {', '.join(files)}")
@@ -150,14 +218,18 @@ def _telecover(args) -> int:
     try:
         with _printed_warnings():
             if args.measurements is None:
-                result, files, notes = telecover_command.compute(scenario, args.sectors, out, args.method)
+                result, files, notes = telecover_command.compute(
+                    scenario, args.sectors, out, args.method
+                )
                 lines = telecover_command.summary(scenario.name, result)
             else:
-                result, files, notes = telecover_command.fit(scenario, args.sectors, args.measurements, args.free, out)
+                result, files, notes = telecover_command.fit(
+                    scenario, args.sectors, args.measurements, args.free, out
+                )
                 lines = [f"{scenario.name}: telecover {result.summary()}"]
             for note in notes:
                 _note((None, note))
-    except (RuntimeError, ImportError) as exc:   # not converged; scipy missing
+    except (RuntimeError, ImportError) as exc:  # not converged; scipy missing
         return _fail(str(exc), 1)
     if not args.quiet:
         print("\n".join(lines + [f"  files         {', '.join(files)}"]))
@@ -171,7 +243,7 @@ def _run_one(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
 
 def _compute_and_write(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
     start = time.perf_counter()
-    plan = scenario.plan(method)     # decided once: auto's estimate is not made again to run it
+    plan = scenario.plan(method)  # decided once: auto's estimate is not made again to run it
     n = scenario.ranges.size
     slow = n > 50 or plan.method == "fo"
     show, close = _progress(scenario.name, n) if slow and not quiet else (None, None)
@@ -184,19 +256,28 @@ def _compute_and_write(scenario: Scenario, out: Path, method: Optional[str], qui
             close(done)
     elapsed = time.perf_counter() - start
     out.mkdir(parents=True, exist_ok=True)
-    stem, attrs = out / scenario.name, {"scenario": scenario.name, "description": scenario.description}
+    stem, attrs = (
+        out / scenario.name,
+        {"scenario": scenario.name, "description": scenario.description},
+    )
     files, want = [], scenario.outputs
     if want.get("csv"):
         result.to_csv(f"{stem}.csv", attrs)
         files.append(f"{stem}.csv")
     if want.get("netcdf"):
         try:
-            result.to_netcdf(f"{stem}.nc", {"title": f"Lidar overlap function G(z): {scenario.name}", **attrs})
+            result.to_netcdf(
+                f"{stem}.nc", {"title": f"Lidar overlap function G(z): {scenario.name}", **attrs}
+            )
             files.append(f"{stem}.nc")
         except ImportError as exc:
             _note((None, f"{stem}.nc not written: {exc}"))
     if want.get("plot"):
-        files.append(_note(_plot_file([(scenario, result)], Path(f"{stem}_overlap.png"), scenario.description)))
+        files.append(
+            _note(
+                _plot_file([(scenario, result)], Path(f"{stem}_overlap.png"), scenario.description)
+            )
+        )
     if want.get("scene"):
         files.append(_note(_scene_file(scenario, result, Path(f"{stem}_scene.png"))))
     _summary(scenario, result, elapsed, [f for f in files if f])
@@ -209,9 +290,16 @@ def _summary(scenario: Scenario, result, elapsed: float, files: List[str]) -> No
 
     tolerance = f" (tolerance {result.tolerance:g})" if math.isfinite(result.tolerance) else ""
     z = result.ranges
-    print(f"{scenario.name}: {_one_line(scenario.description)}" if scenario.description else scenario.name)
+    print(
+        f"{scenario.name}: {_one_line(scenario.description)}"
+        if scenario.description
+        else scenario.name
+    )
     print(f"  method        {result.method}{tolerance}")
-    print(f"  ranges        {z.size} from {z[0]:.4g} m to {z[-1]:.4g} m; max G = {result.overlap.max():.4g}")
+    print(
+        f"  ranges        {z.size} from {z[0]:.4g} m to {z[-1]:.4g} m; max G = "
+        f"{result.overlap.max():.4g}"
+    )
     print(f"  full overlap  {at(result.full_overlap_range(), 'G >= 0.99 max G')}")
     print(f"  first signal  {at(result.first_signal_range(), 'G >= 1e-3')}")
     print(f"  time          {elapsed:.3g} s")
@@ -224,15 +312,20 @@ def _plot_file(runs, path: Path, title: str):
     try:
         from matplotlib.figure import Figure
     except ImportError:
-        return None, f"{path} not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'"
+        return (
+            None,
+            f"{path} not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'",
+        )
     fig = Figure(figsize=(7.0, 4.4), constrained_layout=True)
     ax = fig.add_subplot()
     for scenario, result in runs:
         label = f"{scenario.name} ({result.method})" if len(runs) > 1 else result.method
         result.plot(ax=ax, label=label)
         color = ax.lines[-1].get_color()
-        for z, style, what in ((result.full_overlap_range(), "--", "full overlap"),
-                               (result.first_signal_range(), ":", "first signal")):
+        for z, style, what in (
+            (result.full_overlap_range(), "--", "full overlap"),
+            (result.first_signal_range(), ":", "first signal"),
+        ):
             if math.isfinite(z):
                 ax.plot([], [], style, color=color, lw=0.8, label=f"{what}: {z:.4g} m")
     ax.legend(fontsize=8, loc="lower right")
@@ -245,7 +338,10 @@ def _plot_file(runs, path: Path, title: str):
 def _scene_file(scenario: Scenario, result, path: Path):
     """The 3-D scene (:func:`lidar_overlap.save_scene`) when pyvista is installed."""
     if importlib.util.find_spec("pyvista") is None:
-        return None, f"{path} not written: the 3-D scene needs pyvista: pip install 'lidar-overlap[viz]'"
+        return (
+            None,
+            f"{path} not written: the 3-D scene needs pyvista: pip install 'lidar-overlap[viz]'",
+        )
     try:
         with _files.replacing_path(path) as temporary:
             save_scene(scenario.system, str(temporary), result=result)
@@ -265,24 +361,34 @@ class _NothingWritten(Exception):
 
 
 def _progress(label: str, total: int):
-    """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its closer
-    close(completed), which erases the counter of a failed run so that the error stays the only line."""
+    """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its
+    closer
+    close(completed), which erases the counter of a failed run so that the error stays the only
+    line."""
     try:
         from tqdm import tqdm
     except ImportError:
+
         def show(done):
             print(f"\r{label}: {done}/{total} ranges", end="", file=sys.stderr, flush=True)
 
         def close(completed):
             blank = " " * len(f"{label}: {total}/{total} ranges")
-            print("" if completed else f"\r{blank}\r", end="\n" if completed else "", file=sys.stderr, flush=True)
+            print(
+                "" if completed else f"\r{blank}\r",
+                end="\n" if completed else "",
+                file=sys.stderr,
+                flush=True,
+            )
+
         return show, close
     bar = tqdm(total=total, desc=label, unit="range", file=sys.stderr, leave=False)
     return lambda done: bar.update(done - bar.n), lambda completed: bar.close()
 
 
 class _Note(UserWarning):
-    """An output left out (an optional dependency missing), printed as "note: ..." with the warnings."""
+    """An output left out (an optional dependency missing), printed as "note: ..." with the
+    warnings."""
 
 
 def _note(written_and_note):
@@ -294,8 +400,10 @@ def _note(written_and_note):
 
 @contextmanager
 def _printed_warnings():
-    """Collect the warnings of a block and print them, one line each and each once, if the block succeeds
-    (a failure prints its error alone). Runtime warnings are always shown, whatever filters the caller set."""
+    """Collect the warnings of a block and print them, one line each and each once, if the block
+    succeeds
+    (a failure prints its error alone). Runtime warnings are always shown, whatever filters the
+    caller set."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", RuntimeWarning)
         warnings.simplefilter("always", UserWarning)
@@ -309,13 +417,14 @@ def _printed_warnings():
 def _fail(message: str, code: int) -> int:
     line = _one_line(str(message))
     if len(line) > MAX_MESSAGE:
-        line = f"{line[:MAX_MESSAGE - 3]}..."
+        line = f"{line[: MAX_MESSAGE - 3]}..."
     print(f"{PROG}: error: {line}", file=sys.stderr)
     return code
 
 
 def _one_line(text: str) -> str:
-    """``text`` on one line, without control characters (a scenario's text must not drive the terminal)."""
+    """``text`` on one line, without control characters (a scenario's text must not drive the
+    terminal)."""
     return " ".join("".join(c if c.isprintable() else " " for c in text).split())
 
 

@@ -1,9 +1,12 @@
-"""``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...``: the scenario's system is the start,
-its ``[run]`` method and options the model, the CSV the data; writes ``<name>_fit.csv`` (the parameters with
+"""``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...``: the scenario's system is
+the start,
+its ``[run]`` method and options the model, the CSV the data; writes ``<name>_fit.csv`` (the
+parameters with
 their uncertainties) and ``<name>_fit.png``, and prints the summary.
 
 The measurements file is UTF-8 CSV: ``#`` lines are comments, then a header ``range_m,overlap`` or
-``range_m,overlap,sigma`` (m, G, the 1-sigma error of G), then one row per range. Every error names the
+``range_m,overlap,sigma`` (m, G, the 1-sigma error of G), then one row per range. Every error names
+the
 file, the line and the column.
 """
 
@@ -26,14 +29,19 @@ MAX_ROWS = 100_000
 
 
 def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """(ranges, overlap, sigma or None) from a measurements CSV; ValueError naming file, line and column."""
+    """(ranges, overlap, sigma or None) from a measurements CSV; ValueError naming file, line and
+    column."""
     data, sigma = read_table(path, COLUMNS[:2], signed=("overlap",))
     return data[:, 0], data[:, 1], sigma
 
 
-def read_table(path, columns: Sequence[str], signed: Sequence[str] = ()) -> Tuple[np.ndarray, np.ndarray | None]:
-    """(rows x ``columns``, the optional last column ``sigma`` or None) from a CSV whose header is ``columns``
-    (the first ``range_m``, strictly increasing), optionally followed by ``sigma``. Values are finite, and > 0
+def read_table(
+    path, columns: Sequence[str], signed: Sequence[str] = ()
+) -> Tuple[np.ndarray, np.ndarray | None]:
+    """(rows x ``columns``, the optional last column ``sigma`` or None) from a CSV whose header is
+    ``columns``
+    (the first ``range_m``, strictly increasing), optionally followed by ``sigma``. Values are
+    finite, and > 0
     but in the ``signed`` columns. ValueError naming file, line and column."""
     name, header_text = str(path), ",".join(columns)
     try:
@@ -53,11 +61,16 @@ def read_table(path, columns: Sequence[str], signed: Sequence[str] = ()) -> Tupl
         if header is None:
             header = tuple(cells)
             if header not in (tuple(columns), (*columns, "sigma")):
-                raise ValueError(f"{name}: line {number}: header {text!r} is invalid: expected "
-                                 f"'{header_text}' or '{header_text},sigma'")
+                raise ValueError(
+                    f"{name}: line {number}: header {text!r} is invalid: expected "
+                    f"'{header_text}' or '{header_text},sigma'"
+                )
             continue
         if len(cells) != len(header):
-            raise ValueError(f"{name}: line {number}: {len(cells)} values, expected {len(header)} ({','.join(header)})")
+            raise ValueError(
+                f"{name}: line {number}: {len(cells)} values, expected {len(header)} "
+                f"({','.join(header)})"
+            )
         row = []
         for column, (key, cell) in enumerate(zip(header, cells), start=1):
             try:
@@ -66,44 +79,59 @@ def read_table(path, columns: Sequence[str], signed: Sequence[str] = ()) -> Tupl
                 value = float("nan")
             if not math.isfinite(value) or (key not in signed and value <= 0):
                 what = "a finite number" if key in signed else "a finite number > 0"
-                raise ValueError(f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: "
-                                 f"expected {what}")
+                raise ValueError(
+                    f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: "
+                    f"expected {what}"
+                )
             row.append(value)
         if rows and not row[0] > rows[-1][0]:
-            raise ValueError(f"{name}: line {number}, column 1 (range_m): {row[0]:g} does not follow "
-                             f"{rows[-1][0]:g}: ranges must be strictly increasing")
+            raise ValueError(
+                f"{name}: line {number}, column 1 (range_m): {row[0]:g} does not follow "
+                f"{rows[-1][0]:g}: ranges must be strictly increasing"
+            )
         rows.append(row)
         if len(rows) > MAX_ROWS:
             raise ValueError(f"{name}: more than {MAX_ROWS} rows")
     if header is None or not rows:
-        raise ValueError(f"{name}: no {'header' if header is None else 'data'}: expected a header "
-                         f"'{header_text},sigma' (sigma optional) and one row per range")
+        raise ValueError(
+            f"{name}: no {'header' if header is None else 'data'}: expected a header "
+            f"'{header_text},sigma' (sigma optional) and one row per range"
+        )
     data = np.array(rows)
-    return data[:, :len(columns)], (data[:, -1] if len(header) > len(columns) else None)
+    return data[:, : len(columns)], (data[:, -1] if len(header) > len(columns) else None)
 
 
 def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: Path, method=None):
-    """Fit, then write ``<name>_fit.csv`` and ``<name>_fit.png`` into ``out``; returns (result, files, note)."""
+    """Fit, then write ``<name>_fit.csv`` and ``<name>_fit.png`` into ``out``; returns (result,
+    files, note)."""
     z, g, sigma = read_measurements(measurements)
     options = dict(scenario.options)
     threads = options.pop("threads", 0)
     model = from_shortcuts(scenario.resolved_method(method), **options)
     result = fit(scenario.system, z, g, sigma, free=free, method=model, threads=threads)
     header = [f"# scenario: {scenario.name}", f"# measurements: {measurements}"]
-    files, note = write_fit(result, out / f"{scenario.name}_fit", header, f"{scenario.name}: fit to "
-                            f"{Path(measurements).name}")
+    files, note = write_fit(
+        result,
+        out / f"{scenario.name}_fit",
+        header,
+        f"{scenario.name}: fit to {Path(measurements).name}",
+    )
     return result, files, note
 
 
 def write_fit(result, stem: Path, header: List[str], title: str):
-    """``<stem>.csv`` (``header`` lines, the model and chi-square, then the parameters) and ``<stem>.png``
+    """``<stem>.csv`` (``header`` lines, the model and chi-square, then the parameters) and
+    ``<stem>.png``
     (the result's plot); returns (files, note about a plot not written, or None)."""
     stem.parent.mkdir(parents=True, exist_ok=True)
-    lines = header + [f"# model: {result.result.method}, loss {result.loss}",
-                      f"# chi_square: {result.chi_square!r}", f"# degrees_of_freedom: {result.degrees_of_freedom}",
-                      f"# reduced_chi_square: {result.reduced_chi_square!r}",
-                      f"# covariance_scaled_by_reduced_chi_square: {result.covariance_scaled}",
-                      "parameter,value,uncertainty,unit,start"]
+    lines = header + [
+        f"# model: {result.result.method}, loss {result.loss}",
+        f"# chi_square: {result.chi_square!r}",
+        f"# degrees_of_freedom: {result.degrees_of_freedom}",
+        f"# reduced_chi_square: {result.reduced_chi_square!r}",
+        f"# covariance_scaled_by_reduced_chi_square: {result.covariance_scaled}",
+        "parameter,value,uncertainty,unit,start",
+    ]
     lines += [f"{p},{v!r},{u!r},{unit},{s!r}" for p, v, u, unit, s in result.table()]
     with _files.replacing(f"{stem}.csv", "w", encoding="utf-8", newline="\n") as f:
         f.write("\n".join(lines) + "\n")
@@ -111,7 +139,9 @@ def write_fit(result, stem: Path, header: List[str], title: str):
     try:
         fig = result.plot()
     except ImportError:
-        note = f"{stem}.png not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'"
+        note = (
+            f"{stem}.png not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'"
+        )
     else:
         fig.suptitle(title, fontsize=9)
         with _files.replacing_path(Path(f"{stem}.png")) as temporary:

@@ -1,13 +1,21 @@
-"""``lidar-overlap telecover SCENARIO.toml [--sectors quadrants|N] [--measurements CSV --free PATH ...]``.
+"""``lidar-overlap telecover SCENARIO.toml [--sectors quadrants|N] [--measurements CSV --free PATH
+...]``.
 
-Without measurements: the telecover of the scenario's system at its ranges, with its ``[run]`` model, written
-to ``<name>_telecover.csv`` (``# key: value`` header, then ``range_m``, one ``G_<sector>`` column per sector and
-one ``deviation_<sector>`` column per sector) and ``<name>_telecover.png`` (the conventional figure).
+Without measurements: the telecover of the scenario's system at its ranges, with its ``[run]``
+model, written
+to ``<name>_telecover.csv`` (``# key: value`` header, then ``range_m``, one ``G_<sector>`` column
+per sector and
+one ``deviation_<sector>`` column per sector) and ``<name>_telecover.png`` (the conventional
+figure).
 
-With measurements: a UTF-8 CSV with the header ``range_m,<sector>,...`` (one deviation column per sector, in
-the order of the sectors: ``north,east,south,west`` for quadrants, ``sector_0,...`` for N sectors) and an
-optional last column ``sigma`` (the 1-sigma error of each deviation); :func:`.fit_telecover` fits the free
-parameters (ray tracing at the ``[run]`` tolerance) and ``<name>_telecover_fit.csv`` and ``.png`` are written.
+With measurements: a UTF-8 CSV with the header ``range_m,<sector>,...`` (one deviation column per
+sector, in
+the order of the sectors: ``north,east,south,west`` for quadrants, ``sector_0,...`` for N sectors)
+and an
+optional last column ``sigma`` (the 1-sigma error of each deviation); :func:`.fit_telecover` fits
+the free
+parameters (ray tracing at the ``[run]`` tolerance) and ``<name>_telecover_fit.csv`` and ``.png``
+are written.
 """
 
 from __future__ import annotations
@@ -19,13 +27,13 @@ from typing import List, Optional
 import numpy as np
 
 from .. import _files
-from ..model.aperture_mask import ApertureMask
-from .fit import read_table, write_fit
 from ..analysis.fit_telecover import fit_telecover
+from ..analysis.telecover import sector_mask, telecover
 from ..forward.methods import from_shortcuts
 from ..forward.result import csv_value
 from ..io.scenario import Scenario
-from ..analysis.telecover import sector_mask, telecover
+from ..model.aperture_mask import ApertureMask
+from .fit import read_table, write_fit
 
 
 def sectors_argument(text: str) -> ApertureMask:
@@ -37,7 +45,9 @@ def sectors_argument(text: str) -> ApertureMask:
     except ValueError:
         n = 0
     if not 2 <= n <= 64:
-        raise ValueError(f"invalid value {text!r}: expected 'quadrants' or a number of sectors, 2 to 64")
+        raise ValueError(
+            f"invalid value {text!r}: expected 'quadrants' or a number of sectors, 2 to 64"
+        )
     return ApertureMask.sectors(n)
 
 
@@ -54,12 +64,19 @@ def compute(scenario: Scenario, mask: ApertureMask, out: Path, method: Optional[
     result = telecover(scenario.system, scenario.ranges, mask, model, threads=threads)
     out.mkdir(parents=True, exist_ok=True)
     stem = out / f"{scenario.name}_telecover"
-    header = {"format": "lidar-overlap telecover", "scenario": scenario.name, "description": scenario.description,
-              "sectors": " ".join(column(n) for n in result.names),
-              "full_overlap_range_m": result.full.full_overlap_range(), **result.full.attributes()}
+    header = {
+        "format": "lidar-overlap telecover",
+        "scenario": scenario.name,
+        "description": scenario.description,
+        "sectors": " ".join(column(n) for n in result.names),
+        "full_overlap_range_m": result.full.full_overlap_range(),
+        **result.full.attributes(),
+    }
     names = [column(n) for n in result.names]
     lines = [f"# {key}: {csv_value(value)}" for key, value in header.items()]
-    lines.append(",".join(["range_m"] + [f"G_{n}" for n in names] + [f"deviation_{n}" for n in names]))
+    lines.append(
+        ",".join(["range_m"] + [f"G_{n}" for n in names] + [f"deviation_{n}" for n in names])
+    )
     for row in np.column_stack((result.ranges, result.overlap.T, result.deviation.T)).tolist():
         lines.append(",".join(repr(float(v)) for v in row))
     with _files.replacing(f"{stem}.csv", "w", encoding="utf-8", newline="\n") as f:
@@ -68,7 +85,9 @@ def compute(scenario: Scenario, mask: ApertureMask, out: Path, method: Optional[
     try:
         from matplotlib.figure import Figure
     except ImportError:
-        notes.append(f"{stem}.png not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'")
+        notes.append(
+            f"{stem}.png not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'"
+        )
     else:
         fig = Figure(figsize=(6.4, 6.4), constrained_layout=True)
         result.plot(axes=fig.subplots(2, 1, sharex=True))
@@ -83,13 +102,25 @@ def summary(name: str, result) -> List[str]:
     """The largest |deviation| of each sector beyond the full-overlap range, one line each."""
     z_full = result.full.full_overlap_range()
     if not math.isfinite(z_full):
-        return [f"{name}: telecover ({result.method}): full overlap nowhere on the grid; no deviations summarised"]
+        return [
+            f"{name}: telecover ({result.method}): full overlap nowhere on the grid; no deviations "
+            "summarised"
+        ]
     beyond = result.ranges >= z_full
-    lines = [f"{name}: telecover ({result.method}), largest |deviation| beyond full overlap ({z_full:.4g} m):"]
+    lines = [
+        f"{name}: telecover ({result.method}), largest |deviation| beyond full overlap "
+        f"({z_full:.4g} m):"
+    ]
     for sector, d in zip(result.names, result.deviation[:, beyond]):
         k = int(np.nanargmax(np.abs(d))) if np.isfinite(d).any() else None
-        lines.append(f"  {sector:<10} " + ("none (no light)" if k is None else
-                                           f"{100 * abs(d[k]):.3g} % at {result.ranges[beyond][k]:.4g} m"))
+        lines.append(
+            f"  {sector:<10} "
+            + (
+                "none (no light)"
+                if k is None
+                else f"{100 * abs(d[k]):.3g} % at {result.ranges[beyond][k]:.4g} m"
+            )
+        )
     return lines
 
 
@@ -98,11 +129,25 @@ def fit(scenario: Scenario, mask: ApertureMask, measurements: Path, free: List[s
     names = [column(n) for n in sector_mask(scenario.system, mask).names]
     data, sigma = read_table(measurements, ["range_m"] + names, signed=names)
     options = scenario.options
-    result = fit_telecover(scenario.system, data[:, 0], data[:, 1:].T, None if sigma is None else sigma[None, :],
-                           free=free, sectors=mask, tolerance=options.get("tolerance", 1e-4),
-                           threads=options.get("threads", 0))
-    header = [f"# scenario: {scenario.name}", f"# measurements: {measurements}",
-              f"# sectors: {' '.join(names)}"]
-    files, note = write_fit(result, out / f"{scenario.name}_telecover_fit", header,
-                            f"{scenario.name}: telecover fit to {Path(measurements).name}")
+    result = fit_telecover(
+        scenario.system,
+        data[:, 0],
+        data[:, 1:].T,
+        None if sigma is None else sigma[None, :],
+        free=free,
+        sectors=mask,
+        tolerance=options.get("tolerance", 1e-4),
+        threads=options.get("threads", 0),
+    )
+    header = [
+        f"# scenario: {scenario.name}",
+        f"# measurements: {measurements}",
+        f"# sectors: {' '.join(names)}",
+    ]
+    files, note = write_fit(
+        result,
+        out / f"{scenario.name}_telecover_fit",
+        header,
+        f"{scenario.name}: telecover fit to {Path(measurements).name}",
+    )
     return result, files, [note] if note else []

@@ -3,24 +3,36 @@
 Ray tracing is exact geometric optics; what it misses is diffraction at the receiver. Its error on G
 is estimated per scene from the receiver geometry alone, before anything is computed
 (:func:`validity.rt_error_bound`, derived in docs/auto_method.md): at each range, the Airy tail of a
-compact image beyond the detector edge, the Fresnel edges of the blur disc and of the obstruction shadow
-near or through the detector, and the boundary waves the pupil edges focus on each image centre, all as
+compact image beyond the detector edge, the Fresnel edges of the blur disc and of the obstruction
+shadow
+near or through the detector, and the boundary waves the pupil edges focus on each image centre, all
+as
 fractions of the coupling a lit detector would have.
 
-Its maximum over the ranges, times a safety factor of 1.5, is the model error. The measured |G_RT - G_FO|
-never exceeded 1.14 times the unscaled estimate at any range (where it exceeds 1 % of its maximum) of
+Its maximum over the ranges, times a safety factor of 1.5, is the model error. The measured |G_RT -
+G_FO|
+never exceeded 1.14 times the unscaled estimate at any range (where it exceeds 1 % of its maximum)
+of
 51 chosen scenes and 157 of 160 drawn at random (4 um to 3 mm detectors, 355-1064 nm,
-0.1-0.4 m telescopes, defocus, obstruction, NA, biaxial, 5-3000 m); in the other three FO's fixed NA cone
-or obstruction shadow is itself the approximation. RT is chosen when the model error leaves at least 1 %
-of ``tolerance`` for RT's quadrature, which then gets the rest; otherwise Fourier optics: the radial path
-for Gaussian beams, whatever their pointing (nominal accuracy 1e-8), the 2-D path for other fields (1e-6). A field
+0.1-0.4 m telescopes, defocus, obstruction, NA, biaxial, 5-3000 m); in the other three FO's fixed NA
+cone
+or obstruction shadow is itself the approximation. RT is chosen when the model error leaves at least
+1 %
+of ``tolerance`` for RT's quadrature, which then gets the rest; otherwise Fourier optics: the radial
+path
+for Gaussian beams, whatever their pointing (nominal accuracy 1e-8), the 2-D path for other fields
+(1e-6). A field
 that is not Gaussian always needs Fourier optics.
 
-With receiver aberrations the estimate is first order in the aberrated ray-traced curve: the Airy tail
-e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves with the detector radius r_d(1 ± 1e-2)
-on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist only in ray tracing.
+With receiver aberrations the estimate is first order in the aberrated ray-traced curve: the Airy
+tail
+e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves with the detector radius
+r_d(1 ± 1e-2)
+on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist only in ray
+tracing.
 
-:func:`decide` only chooses: it computes no overlap curve, and the plan it feeds carries its numbers, so
+:func:`decide` only chooses: it computes no overlap curve, and the plan it feeds carries its
+numbers, so
 nothing is estimated twice (:mod:`lidar_overlap.forward.planning`).
 """
 
@@ -41,41 +53,49 @@ from .validity import rt_diffraction_error, rt_error_bound
 RT_ESTIMATE_SAFETY = 1.5
 #: Least share of the tolerance left to RT's quadrature.
 QUADRATURE_SHARE = 0.01
-#: Nominal accuracy of the Fourier-optics paths, stated as their error estimate: the radial path agrees to
-#: 2e-10 with 8x its nodes and to 4e-9 with a direct quadrature (docs/auto_method.md); the 2-D path to 5.5e-7.
+#: Nominal accuracy of the Fourier-optics paths, stated as their error estimate: the radial path
+#: agrees to
+#: 2e-10 with 8x its nodes and to 4e-9 with a direct quadrature (docs/auto_method.md); the 2-D path
+#: to 5.5e-7.
 FO_RADIAL_ACCURACY = 1e-8
 FO_2D_ACCURACY = 1e-6
-#: Accuracy of the aberrated FO path at its default tail_error, measured against finer sampling (docs/aberrations.md).
+#: Accuracy of the aberrated FO path at its default tail_error, measured against finer sampling
+#: (docs/aberrations.md).
 FO_ABERRATED_ACCURACY = 5e-6
-#: Factor on the first-order estimate of aberrated RT's diffraction error (largest measured actual/estimate).
+#: Factor on the first-order estimate of aberrated RT's diffraction error (largest measured
+#: actual/estimate).
 ABERRATED_ESTIMATE_SAFETY = 1.25
 #: Ranges on which the aberrated edge term is sampled (it varies smoothly along the curve).
 EDGE_SAMPLES = 16
-#: Segments per direction of the two edge curves' beam integrals. They share one adaptive layout, so their
-#: difference settles long before either curve: 8 segments give it within 0.2 % of 4000 segments at a fifth of
+#: Segments per direction of the two edge curves' beam integrals. They share one adaptive layout, so
+#: their
+#: difference settles long before either curve: 8 segments give it within 0.2 % of 4000 segments at
+#: a fifth of
 #: the time (a field-dependent scene at 20 km where each curve stops ~2e-4 short of convergence).
 EDGE_MAX_SEGMENTS = 8
 
 
 @dataclass(frozen=True)
 class Decision:
-    """What ``method="auto"`` chooses, with the estimates behind the choice (no overlap computed)."""
+    """What ``method="auto"`` chooses, with the estimates behind the choice (no overlap
+    computed)."""
 
-    method: str                      # "rt" or "fo"
-    fo_path: str                     # "radial", "2d", "aberrated" or "" for RT
-    rt_model_error: float            # estimated max |G_RT - G_exact| (NaN when RT cannot model the beam)
-    rt_quadrature_tolerance: float   # what the model error leaves to RT's quadrature (0 for FO)
+    method: str  # "rt" or "fo"
+    fo_path: str  # "radial", "2d", "aberrated" or "" for RT
+    rt_model_error: float  # estimated max |G_RT - G_exact| (NaN when RT cannot model the beam)
+    rt_quadrature_tolerance: float  # what the model error leaves to RT's quadrature (0 for FO)
     reasons: List[str] = field(default_factory=list)
-    warning: str = ""                # said when the plan runs (RT chosen beyond its estimated accuracy)
+    warning: str = ""  # said when the plan runs (RT chosen beyond its estimated accuracy)
 
 
 def rt_model_error(system, ranges: np.ndarray) -> float:
-    """Estimated largest |G_RT - G_exact| over ``ranges`` (m), safety factor included (module docstring).
+    """Estimated largest |G_RT - G_exact| over ``ranges`` (m), safety factor included (module
+    docstring).
     Remembered for the last 32 (system, ranges): a curve planned again skips the ~50 µs estimate."""
     z = np.ascontiguousarray(ranges, dtype=float)
     try:
         return _model_error(system, z.tobytes())
-    except TypeError:         # a system that cannot be hashed
+    except TypeError:  # a system that cannot be hashed
         return RT_ESTIMATE_SAFETY * float(np.max(rt_error_bound(system, z)))
 
 
@@ -85,73 +105,123 @@ def _model_error(system, ranges: bytes) -> float:
 
 
 def radial_fo_applies(system) -> bool:
-    """True when the radial FO path models the scene: a Gaussian beam (any pointing: the image offset enters
+    """True when the radial FO path models the scene: a Gaussian beam (any pointing: the image
+    offset enters
     as J0) following the Gaussian width law."""
     return not isinstance(system.beam, FieldBeam) and system.beam.width_law == "gaussian"
 
 
 def decide(system, ranges: np.ndarray, tolerance: float, rt_options=None) -> Decision:
-    """The model ``method="auto"`` takes for ``system`` at ``ranges`` (m, validated by the caller) within
-    ``tolerance``. ``rt_options`` (a :class:`lidar_overlap.RT`) sets the ray fan of the aberrated estimate."""
+    """The model ``method="auto"`` takes for ``system`` at ``ranges`` (m, validated by the caller)
+    within
+    ``tolerance``. ``rt_options`` (a :class:`lidar_overlap.RT`) sets the ray fan of the aberrated
+    estimate."""
     system._native.validate_ranges(ranges)
     radial_ok = radial_fo_applies(system)
     fo_path = "radial" if radial_ok else "2d"
     fo_accuracy = FO_RADIAL_ACCURACY if radial_ok else FO_2D_ACCURACY
     if isinstance(system.beam, FieldBeam):
-        return Decision("fo", fo_path, float("nan"), 0.0, [
-            f"the beam is a {type(system.beam).__name__}: ray tracing models Gaussian beams only",
-            f"Fourier optics on the field's own grid, numerical accuracy ~{fo_accuracy:.0e}"])
+        return Decision(
+            "fo",
+            fo_path,
+            float("nan"),
+            0.0,
+            [
+                f"the beam is a {type(system.beam).__name__}: ray tracing models Gaussian beams "
+                "only",
+                f"Fourier optics on the field's own grid, numerical accuracy ~{fo_accuracy:.0e}",
+            ],
+        )
     if system.aberrated:
         return _decide_aberrated(system, ranges, tolerance, rt_options)
     error = rt_model_error(system, ranges)
-    reasons = [f"diffraction at the receiver: RT misses up to {error:.2g} of G here (Airy tail, Fresnel edges "
-               f"and boundary waves of the blur disc, estimated from the geometry, x {RT_ESTIMATE_SAFETY})"]
+    reasons = [
+        f"diffraction at the receiver: RT misses up to {error:.2g} of G here (Airy tail, Fresnel "
+        "edges "
+        f"and boundary waves of the blur disc, estimated from the geometry, x {RT_ESTIMATE_SAFETY})"
+    ]
     quadrature = tolerance - error
     if quadrature >= QUADRATURE_SHARE * tolerance:
-        reasons.append(f"{error:.2g} + quadrature {quadrature:.2g} <= tolerance {tolerance:g}: ray tracing "
-                       f"({'radial' if system.is_axisymmetric else 'two-dimensional'} integrals) is enough")
+        reasons.append(
+            f"{error:.2g} + quadrature {quadrature:.2g} <= tolerance {tolerance:g}: ray tracing "
+            f"({'radial' if system.is_axisymmetric else 'two-dimensional'} integrals) is enough"
+        )
         return Decision("rt", "", error, quadrature, reasons)
-    if not radial_ok:   # a Gaussian beam on the linear width law: Fourier optics cannot model it
-        reasons.append(f"{error:.2g} > tolerance {tolerance:g}, but width_law 'linear' (the paper's marginal ray) "
-                       "exists only in ray tracing: RT, whose model error may exceed the tolerance")
+    if not radial_ok:  # a Gaussian beam on the linear width law: Fourier optics cannot model it
+        reasons.append(
+            f"{error:.2g} > tolerance {tolerance:g}, but width_law 'linear' (the paper's marginal "
+            "ray) "
+            "exists only in ray tracing: RT, whose model error may exceed the tolerance"
+        )
         return Decision("rt", "", error, QUADRATURE_SHARE * tolerance, reasons)
-    reasons.append(f"{error:.2g} > tolerance {tolerance:g}: diffraction matters, Fourier optics is needed")
-    reasons.append("Gaussian beam: the radial FO path (one integral per range, the beam image's offset as J0)")
+    reasons.append(
+        f"{error:.2g} > tolerance {tolerance:g}: diffraction matters, Fourier optics is needed"
+    )
+    reasons.append(
+        "Gaussian beam: the radial FO path (one integral per range, the beam image's offset as J0)"
+    )
     if fo_accuracy > tolerance:
-        reasons.append(f"warning: the FO path's own accuracy ~{fo_accuracy:.0e} exceeds the tolerance")
+        reasons.append(
+            f"warning: the FO path's own accuracy ~{fo_accuracy:.0e} exceeds the tolerance"
+        )
     return Decision("fo", fo_path, error, 0.0, reasons)
 
 
 def _decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options) -> Decision:
-    # Field-dependent Seidel terms take RT whatever its model error: a quadrature far below the tolerance
+    # Field-dependent Seidel terms take RT whatever its model error: a quadrature far below the
+    # tolerance
     # would only make the ray fan (the slow RT form) slower.
     field_dependent = system.telescope.aberrations.field_dependent
     quadrature = (0.1 if field_dependent else 0.01) * tolerance
     error = aberrated_rt_error(system, z, tolerance, rt_options)
-    reasons = [f"receiver aberrations: ray tracing displaces each ray by d grad W; its diffraction error here is up "
-               f"to {error:.2g} (Airy tail plus edge blur from two coarse aberrated RT curves, "
-               f"x {ABERRATED_ESTIMATE_SAFETY})"]
+    reasons = [
+        "receiver aberrations: ray tracing displaces each ray by d grad W; its diffraction error "
+        "here is up "
+        f"to {error:.2g} (Airy tail plus edge blur from two coarse aberrated RT curves, "
+        f"x {ABERRATED_ESTIMATE_SAFETY})"
+    ]
     if error + quadrature <= tolerance:
-        reasons.append(f"{error:.2g} + quadrature {quadrature:.1g} <= tolerance {tolerance:g}: ray tracing is enough")
+        reasons.append(
+            f"{error:.2g} + quadrature {quadrature:.1g} <= tolerance {tolerance:g}: ray tracing is "
+            "enough"
+        )
         return Decision("rt", "", error, quadrature, reasons)
     if field_dependent:
-        reasons.append("field-dependent Seidel terms exist only in ray tracing: RT, whose model error may exceed the "
-                       "tolerance")
-        return Decision("rt", "", error, quadrature, reasons,
-                        warning=f"field-dependent Seidel terms need ray tracing, whose diffraction error here may "
-                                f"reach {error:.2g} > tolerance {tolerance:g}")
-    reasons.append(f"{error:.2g} > tolerance {tolerance:g}: Fourier optics with the sampled aberrated pupil")
+        reasons.append(
+            "field-dependent Seidel terms exist only in ray tracing: RT, whose model error may "
+            "exceed the "
+            "tolerance"
+        )
+        return Decision(
+            "rt",
+            "",
+            error,
+            quadrature,
+            reasons,
+            warning="field-dependent Seidel terms need ray tracing, whose diffraction error here "
+            "may "
+            f"reach {error:.2g} > tolerance {tolerance:g}",
+        )
+    reasons.append(
+        f"{error:.2g} > tolerance {tolerance:g}: Fourier optics with the sampled aberrated pupil"
+    )
     return Decision("fo", "aberrated", error, 0.0, reasons)
 
 
 def aberrated_rt_error(system, z: np.ndarray, tolerance: float = 1e-3, rt_options=None) -> float:
-    """Largest |G_RT - G_FO| expected of aberrated ray tracing over ``z`` (m): the Airy tail beyond the detector
-    edge, e_tail G, plus the edge blur (λd/D)|∂G/∂r_d|, times ABERRATED_ESTIMATE_SAFETY. Diffraction spreads each
-    point image by λd/D whatever the aberrations; this first-order bound covers the measured RT-FO difference
-    (docs/aberrations.md). G and its derivative come from two RT curves at r_d (1 ± 1e-2) on EDGE_SAMPLES ranges.
+    """Largest |G_RT - G_FO| expected of aberrated ray tracing over ``z`` (m): the Airy tail beyond
+    the detector
+    edge, e_tail G, plus the edge blur (λd/D)|∂G/∂r_d|, times ABERRATED_ESTIMATE_SAFETY. Diffraction
+    spreads each
+    point image by λd/D whatever the aberrations; this first-order bound covers the measured RT-FO
+    difference
+    (docs/aberrations.md). G and its derivative come from two RT curves at r_d (1 ± 1e-2) on
+    EDGE_SAMPLES ranges.
 
-    The two curves are computed to 1e-3 x ``tolerance`` (1e-6 at most): their difference over 2 % of r_d then
-    errs by far less than the tolerance, and a loose tolerance does not pay for a tight derivative."""
+    The two curves are computed to 1e-3 x ``tolerance`` (1e-6 at most): their difference over 2 % of
+    r_d then
+    errs by far less than the tolerance, and a loose tolerance does not pay for a tight
+    derivative."""
     zs = z if z.size <= EDGE_SAMPLES else np.geomspace(z[0], z[-1], EDGE_SAMPLES)
     r_d, h = system.detector.radius, 1e-2 * system.detector.radius
     options = _core.RtAberratedOptions()
@@ -159,9 +229,19 @@ def aberrated_rt_error(system, z: np.ndarray, tolerance: float = 1e-3, rt_option
         options.rings, options.ring_rays = rt_options.rings, rt_options.ring_rays
     options.tolerance, options.max_segments = max(1e-6, 1e-3 * tolerance), EDGE_MAX_SEGMENTS
     ab = system.telescope.aberrations._native
-    up, down = (np.asarray(_core.overlap_rt_aberrated(
-        dataclasses.replace(system, detector=dataclasses.replace(system.detector, radius=r_d + s))._native, ab, zs,
-        options).overlap) for s in (h, -h))
+    up, down = (
+        np.asarray(
+            _core.overlap_rt_aberrated(
+                dataclasses.replace(
+                    system, detector=dataclasses.replace(system.detector, radius=r_d + s)
+                )._native,
+                ab,
+                zs,
+                options,
+            ).overlap
+        )
+        for s in (h, -h)
+    )
     blur = system.diffraction_blur
     log_z, log_zs = np.log(z), np.log(zs)
     edge = np.interp(log_z, log_zs, blur * np.abs(up - down) / (2.0 * h))

@@ -1,15 +1,20 @@
 """How G is computed: method objects, each holding the options of one model and nothing else.
 
-``lo.overlap(system, ranges, method)`` takes one of these (or the shortcuts ``"rt"``, ``"fo"``, ``"auto"``):
+``lo.overlap(system, ranges, method)`` takes one of these (or the shortcuts ``"rt"``, ``"fo"``,
+``"auto"``):
 
 - :class:`RT`: paraxial ray tracing (paper Appendix B) to an absolute tolerance on G;
-- :class:`FO`: Fourier optics (Appendix C), on the radial path (Gaussian beams, one integral per range) or
+- :class:`FO`: Fourier optics (Appendix C), on the radial path (Gaussian beams, one integral per
+  range) or
   the 2-D path (the transmitted field sampled and propagated with FFTW);
-- :class:`Auto`: the cheapest model whose error fits a tolerance (:mod:`lidar_overlap.forward.auto`);
+- :class:`Auto`: the cheapest model whose error fits a tolerance
+  (:mod:`lidar_overlap.forward.auto`);
 - :class:`Turbulent`: any of these through a turbulent atmosphere, as the mean over random draws.
 
-Every default comes from the C++ core's option structs (``_core.RtOptions`` and its kin); ``None`` means
-"the core's default for the path that runs" (the 2-D FO window is 10 waist radii without turbulence and 8
+Every default comes from the C++ core's option structs (``_core.RtOptions`` and its kin); ``None``
+means
+"the core's default for the path that runs" (the 2-D FO window is 10 waist radii without turbulence
+and 8
 long-term radii with it). Objects are immutable and validated on construction, naming the option.
 """
 
@@ -30,9 +35,11 @@ SHORTCUTS = ("rt", "fo", "auto")
 class RT:
     """Ray tracing.
 
-    tolerance : absolute error allowed on G at each range, in (0, 1); the adaptive beam integral stops below it.
+    tolerance : absolute error allowed on G at each range, in (0, 1); the adaptive beam integral
+        stops below it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
-    rings, ring_rays : the ray fan each scatterer sends through an aberrated receiver (rings equally spaced
+    rings, ring_rays : the ray fan each scatterer sends through an aberrated receiver (rings equally
+        spaced
         in area x rays per ring); used only where the aberrations need a fan.
     """
 
@@ -43,7 +50,9 @@ class RT:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "tolerance", _checks.unit_interval("tolerance", self.tolerance))
-        object.__setattr__(self, "max_segments", _checks.count("max_segments", self.max_segments, 1))
+        object.__setattr__(
+            self, "max_segments", _checks.count("max_segments", self.max_segments, 1)
+        )
         object.__setattr__(self, "rings", _checks.count("rings", self.rings, 1))
         object.__setattr__(self, "ring_rays", _checks.count("ring_rays", self.ring_rays, 3))
 
@@ -52,12 +61,17 @@ class RT:
 class FO:
     """Fourier optics.
 
-    path : ``"radial"`` (Gaussian beams of any pointing: one integral per range, the beam image's offset as
-        J0, no grids), ``"2d"`` (the sampled beam propagated on a grid) or ``"auto"`` (radial where it applies).
-    beam_grid, beam_window : 2-D path with a Gaussian beam: samples per side of the transmitted field and its
-        window (waist radii; long-term radii with turbulence). ``None``: the core's default. A FieldBeam brings
+    path : ``"radial"`` (Gaussian beams of any pointing: one integral per range, the beam image's
+        offset as
+        J0, no grids), ``"2d"`` (the sampled beam propagated on a grid) or ``"auto"`` (radial where
+        it applies).
+    beam_grid, beam_window : 2-D path with a Gaussian beam: samples per side of the transmitted
+        field and its
+        window (waist radii; long-term radii with turbulence). ``None``: the core's default. A
+        FieldBeam brings
         its own grid.
-    max_spectrum_grid : cap on the zero-padded beam spectrum (with aberrations, on the pupil transform); a
+    max_spectrum_grid : cap on the zero-padded beam spectrum (with aberrations, on the pupil
+        transform); a
         range that needs more is refused naming it (use ray tracing there).
     """
 
@@ -72,16 +86,25 @@ class FO:
             object.__setattr__(self, "beam_grid", _checks.count("beam_grid", self.beam_grid, 16))
         if self.beam_window is not None:
             object.__setattr__(self, "beam_window", _checks.real("beam_window", self.beam_window))
-        object.__setattr__(self, "max_spectrum_grid", _checks.count("max_spectrum_grid", self.max_spectrum_grid, 16))
+        object.__setattr__(
+            self,
+            "max_spectrum_grid",
+            _checks.count("max_spectrum_grid", self.max_spectrum_grid, 16),
+        )
         if self.path == "radial" and (self.beam_grid is not None or self.beam_window is not None):
-            raise ValueError("beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'")
+            raise ValueError(
+                "beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'"
+            )
 
 
 @dataclass(frozen=True)
 class Auto:
-    """The cheapest model whose error on G stays within ``tolerance`` (absolute, in (0, 1)): ray tracing when
-    its estimated diffraction error leaves room for its quadrature, else Fourier optics. ``rt`` and ``fo`` set
-    the models it may run (RT's tolerance is the share the model error leaves; FO's path is auto's choice, and
+    """The cheapest model whose error on G stays within ``tolerance`` (absolute, in (0, 1)): ray
+    tracing when
+    its estimated diffraction error leaves room for its quadrature, else Fourier optics. ``rt`` and
+    ``fo`` set
+    the models it may run (RT's tolerance is the share the model error leaves; FO's path is auto's
+    choice, and
     its beam_grid and beam_window apply where that is the 2-D path)."""
 
     tolerance: float = _RT.tolerance
@@ -92,8 +115,10 @@ class Auto:
         object.__setattr__(self, "tolerance", _checks.unit_interval("tolerance", self.tolerance))
         for name, kind in (("rt", RT), ("fo", FO)):
             if not isinstance(getattr(self, name), kind):
-                raise ValueError(f"{name} = {_checks.shown(getattr(self, name))} is invalid: expected a "
-                                 f"lidar_overlap.{kind.__name__}")
+                raise ValueError(
+                    f"{name} = {_checks.shown(getattr(self, name))} is invalid: expected a "
+                    f"lidar_overlap.{kind.__name__}"
+                )
 
 
 Model = Union[RT, FO, Auto]
@@ -101,9 +126,12 @@ Model = Union[RT, FO, Auto]
 
 @dataclass(frozen=True)
 class Turbulent:
-    """``method`` through ``turbulence``: the mean G over ``realizations`` random draws of the atmosphere
-    (reproducible with ``seed``), with its spread. Fourier optics carries the beam through ``screens`` phase
-    screens; ray tracing displaces the short-term beam by the random wander (all draws in one core call)."""
+    """``method`` through ``turbulence``: the mean G over ``realizations`` random draws of the
+    atmosphere
+    (reproducible with ``seed``), with its spread. Fourier optics carries the beam through
+    ``screens`` phase
+    screens; ray tracing displaces the short-term beam by the random wander (all draws in one core
+    call)."""
 
     turbulence: object
     method: Model = Auto()
@@ -115,10 +143,14 @@ class Turbulent:
         from ..model.turbulence import Turbulence
 
         if not isinstance(self.turbulence, Turbulence):
-            raise ValueError(f"turbulence = {_checks.shown(self.turbulence)} is invalid: expected a "
-                             "lidar_overlap.Turbulence or None")
+            raise ValueError(
+                f"turbulence = {_checks.shown(self.turbulence)} is invalid: expected a "
+                "lidar_overlap.Turbulence or None"
+            )
         object.__setattr__(self, "method", model(self.method))
-        object.__setattr__(self, "realizations", _checks.count("realizations", self.realizations, 1))
+        object.__setattr__(
+            self, "realizations", _checks.count("realizations", self.realizations, 1)
+        )
         object.__setattr__(self, "seed", _checks.count("seed", self.seed, 0, 2**64 - 1))
         object.__setattr__(self, "screens", _checks.count("screens", self.screens, 1))
 
@@ -127,42 +159,87 @@ Method = Union[RT, FO, Auto, Turbulent]
 
 
 def model(method) -> Model:
-    """``method`` as an RT, FO or Auto object (a shortcut string becomes the object with its defaults)."""
+    """``method`` as an RT, FO or Auto object (a shortcut string becomes the object with its
+    defaults)."""
     if isinstance(method, (RT, FO, Auto)):
         return method
     if isinstance(method, str):
         _checks.choice("method", method, SHORTCUTS)
         return {"rt": RT, "fo": FO, "auto": Auto}[method]()
-    raise ValueError(f"method = {_checks.shown(method)} is invalid: expected one of 'rt', 'fo', 'auto' or a "
-                     "lidar_overlap.RT, FO, Auto or Turbulent")
+    raise ValueError(
+        f"method = {_checks.shown(method)} is invalid: expected one of 'rt', 'fo', 'auto' or a "
+        "lidar_overlap.RT, FO, Auto or Turbulent"
+    )
 
 
-def from_shortcuts(method, *, tolerance=None, max_segments=None, fo_path=None, beam_grid=None, beam_window=None,
-                   max_spectrum_grid=None, turbulence=None, realizations=None, seed=None, screens=None) -> Method:
-    """The method object for ``overlap(system, ranges, method, **options)``: a method object passes unchanged
-    (options given beside it are refused: they belong on the object); a shortcut string takes the options
-    that apply to its model (the others are ignored, so one set of options can serve every method)."""
-    given = {k: v for k, v in dict(tolerance=tolerance, max_segments=max_segments, fo_path=fo_path,
-                                   beam_grid=beam_grid, beam_window=beam_window, max_spectrum_grid=max_spectrum_grid,
-                                   turbulence=turbulence, realizations=realizations, seed=seed,
-                                   screens=screens).items() if v is not None}
+def from_shortcuts(
+    method,
+    *,
+    tolerance=None,
+    max_segments=None,
+    fo_path=None,
+    beam_grid=None,
+    beam_window=None,
+    max_spectrum_grid=None,
+    turbulence=None,
+    realizations=None,
+    seed=None,
+    screens=None,
+) -> Method:
+    """The method object for ``overlap(system, ranges, method, **options)``: a method object passes
+    unchanged
+    (options given beside it are refused: they belong on the object); a shortcut string takes the
+    options
+    that apply to its model (the others are ignored, so one set of options can serve every
+    method)."""
+    given = {
+        k: v
+        for k, v in dict(
+            tolerance=tolerance,
+            max_segments=max_segments,
+            fo_path=fo_path,
+            beam_grid=beam_grid,
+            beam_window=beam_window,
+            max_spectrum_grid=max_spectrum_grid,
+            turbulence=turbulence,
+            realizations=realizations,
+            seed=seed,
+            screens=screens,
+        ).items()
+        if v is not None
+    }
     if not isinstance(method, str):
         if given:
-            raise ValueError(f"{', '.join(given)} given beside method = {_checks.shown(method)}: set them on the "
-                             "method object (lidar_overlap.RT, FO, Auto, Turbulent)")
+            raise ValueError(
+                f"{', '.join(given)} given beside method = {_checks.shown(method)}: set them on "
+                "the "
+                "method object (lidar_overlap.RT, FO, Auto, Turbulent)"
+            )
         return method if isinstance(method, Turbulent) else model(method)
     _checks.choice("method", method, SHORTCUTS)
     if fo_path is not None:
-        _checks.choice("fo_path", fo_path, FO_PATHS)     # named as the caller named it
+        _checks.choice("fo_path", fo_path, FO_PATHS)  # named as the caller named it
     rt = RT(**_only(given, tolerance="tolerance", max_segments="max_segments"))
-    fo = FO(**_only(given, path="fo_path", beam_grid="beam_grid", beam_window="beam_window",
-                    max_spectrum_grid="max_spectrum_grid"))
+    fo = FO(
+        **_only(
+            given,
+            path="fo_path",
+            beam_grid="beam_grid",
+            beam_window="beam_window",
+            max_spectrum_grid="max_spectrum_grid",
+        )
+    )
     chosen = {"rt": rt, "fo": fo, "auto": Auto(tolerance=rt.tolerance, rt=rt, fo=fo)}[method]
     if turbulence is None:
         return chosen
-    return Turbulent(turbulence, chosen, **_only(given, realizations="realizations", seed="seed", screens="screens"))
+    return Turbulent(
+        turbulence,
+        chosen,
+        **_only(given, realizations="realizations", seed="seed", screens="screens"),
+    )
 
 
 def _only(given: dict, **names: str) -> dict:
-    """The options in ``given`` under their method-object names (``names``: object name -> shortcut name)."""
+    """The options in ``given`` under their method-object names (``names``: object name -> shortcut
+    name)."""
     return {field: given[shortcut] for field, shortcut in names.items() if shortcut in given}

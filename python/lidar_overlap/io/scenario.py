@@ -1,17 +1,24 @@
-"""Scenario files: a lidar system, the ranges and the outputs of one computation, in TOML (SI units).
+"""Scenario files: a lidar system, the ranges and the outputs of one computation, in TOML (SI
+units).
 
-A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``, ``[telescope]``,
+A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``,
+``[telescope]``,
 ``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
-``examples/scenarios/table1.toml``. Every error is a :class:`ScenarioError` (a ValueError) that names the
+``examples/scenarios/table1.toml``. Every error is a :class:`ScenarioError` (a ValueError) that
+names the
 file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
-:class:`lidar_overlap.Auto` at the ``[run]`` tolerance: the cheapest model whose error fits it (Fourier
+:class:`lidar_overlap.Auto` at the ``[run]`` tolerance: the cheapest model whose error fits it
+(Fourier
 optics for a beam that is not Gaussian).
 
-A scenario is read as untrusted input: the file must be UTF-8 TOML of at most 10 MB, every number finite,
-every integer within the bounds of :data:`INTEGER_LIMITS` and at most :data:`MAX_RANGES` ranges, so that no
+A scenario is read as untrusted input: the file must be UTF-8 TOML of at most 10 MB, every number
+finite,
+every integer within the bounds of :data:`INTEGER_LIMITS` and at most :data:`MAX_RANGES` ranges, so
+that no
 file can ask for unbounded work or memory before the library's own checks of the physics.
 
-A scenario is planned once (:meth:`Scenario.plan`, :func:`lidar_overlap.plan`) and the plan run in chunks of
+A scenario is planned once (:meth:`Scenario.plan`, :func:`lidar_overlap.plan`) and the plan run in
+chunks of
 ranges for the progress bar: auto decides for the whole curve, and nothing is computed twice.
 """
 
@@ -29,12 +36,12 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
-from ..model.aberrations import Aberrations
 from ..forward.compute import run
-from ..model.field_beam import FieldBeam
-from ..model.flat_top import FlatTopBeam
 from ..forward.planning import Plan, plan
 from ..forward.result import OverlapResult
+from ..model.aberrations import Aberrations
+from ..model.field_beam import FieldBeam
+from ..model.flat_top import FlatTopBeam
 from ..model.system import Detector, GaussianBeam, LidarSystem, Telescope
 
 if sys.version_info >= (3, 11):
@@ -48,7 +55,8 @@ OUTPUTS = ("csv", "netcdf", "plot", "scene")
 MAX_RANGES = 100_000
 #: The largest scenario file read (bytes).
 MAX_FILE_BYTES = 10_000_000
-#: The longest ``name`` (it names the output files, whose names the file system limits to 255 bytes).
+#: The longest ``name`` (it names the output files, whose names the file system limits to 255
+#: bytes).
 MAX_NAME_LENGTH = 100
 
 
@@ -64,7 +72,8 @@ class _Int:
         return f"an integer from {self.low} to {self.high}" + (f" ({self.why})" if self.why else "")
 
 
-#: Bounds of the integer keys: each sizes work or memory (grid sides are squared, threads are started).
+#: Bounds of the integer keys: each sizes work or memory (grid sides are squared, threads are
+#: started).
 INTEGER_LIMITS: Dict[str, _Int] = {
     "ranges.count": _Int(2, MAX_RANGES, "the most ranges one scenario may ask for"),
     "run.threads": _Int(0, 256, "0 uses all cores"),
@@ -76,33 +85,91 @@ INTEGER_LIMITS: Dict[str, _Int] = {
 }
 _NUMBER, _STR, _BOOL, _PAIR = "a finite real number", "a string", "true or false", "pair"
 _SCHEMA: Dict[str, Dict[str, Any]] = {
-    "gaussian": {"wavelength": _NUMBER, "waist_radius": _NUMBER, "divergence": _NUMBER, "offset": _PAIR,
-                 "tilt": _PAIR, "width_law": _STR, "type": _STR},
-    "flat_top": {"wavelength": _NUMBER, "waist_radius": _NUMBER, "angular_diameter": _NUMBER, "offset": _PAIR,
-                 "tilt": _PAIR, "grid": INTEGER_LIMITS["flat_top.grid"], "samples_per_waist": _NUMBER,
-                 "edge_width": _NUMBER, "max_iterations": INTEGER_LIMITS["flat_top.max_iterations"],
-                 "tolerance": _NUMBER, "max_error": _NUMBER, "power": _NUMBER, "type": _STR},
-    "telescope": {"diameter": _NUMBER, "focal_length": _NUMBER, "obstruction_radius": _NUMBER,
-                  "obstruction_distance": _NUMBER, "aberrations": "table"},
-    "telescope.aberrations": {"zernike": "table", "w040": _NUMBER, "w131": _NUMBER, "w222": _NUMBER,
-                              "w220": _NUMBER, "w311": _NUMBER, "field_radius": _NUMBER},
-    "detector": {"fov": _NUMBER, "radius": _NUMBER, "defocus": _NUMBER, "offset": _PAIR,
-                 "numerical_aperture": _NUMBER},
-    "ranges": {"start": _NUMBER, "stop": _NUMBER, "count": INTEGER_LIMITS["ranges.count"], "spacing": _STR,
-               "values": "values"},
-    "run": {"method": _STR, "tolerance": _NUMBER, "beam_window": _NUMBER,
-            **{key: INTEGER_LIMITS[f"run.{key}"] for key in ("threads", "max_segments", "beam_grid",
-                                                            "max_spectrum_grid")}},
+    "gaussian": {
+        "wavelength": _NUMBER,
+        "waist_radius": _NUMBER,
+        "divergence": _NUMBER,
+        "offset": _PAIR,
+        "tilt": _PAIR,
+        "width_law": _STR,
+        "type": _STR,
+    },
+    "flat_top": {
+        "wavelength": _NUMBER,
+        "waist_radius": _NUMBER,
+        "angular_diameter": _NUMBER,
+        "offset": _PAIR,
+        "tilt": _PAIR,
+        "grid": INTEGER_LIMITS["flat_top.grid"],
+        "samples_per_waist": _NUMBER,
+        "edge_width": _NUMBER,
+        "max_iterations": INTEGER_LIMITS["flat_top.max_iterations"],
+        "tolerance": _NUMBER,
+        "max_error": _NUMBER,
+        "power": _NUMBER,
+        "type": _STR,
+    },
+    "telescope": {
+        "diameter": _NUMBER,
+        "focal_length": _NUMBER,
+        "obstruction_radius": _NUMBER,
+        "obstruction_distance": _NUMBER,
+        "aberrations": "table",
+    },
+    "telescope.aberrations": {
+        "zernike": "table",
+        "w040": _NUMBER,
+        "w131": _NUMBER,
+        "w222": _NUMBER,
+        "w220": _NUMBER,
+        "w311": _NUMBER,
+        "field_radius": _NUMBER,
+    },
+    "detector": {
+        "fov": _NUMBER,
+        "radius": _NUMBER,
+        "defocus": _NUMBER,
+        "offset": _PAIR,
+        "numerical_aperture": _NUMBER,
+    },
+    "ranges": {
+        "start": _NUMBER,
+        "stop": _NUMBER,
+        "count": INTEGER_LIMITS["ranges.count"],
+        "spacing": _STR,
+        "values": "values",
+    },
+    "run": {
+        "method": _STR,
+        "tolerance": _NUMBER,
+        "beam_window": _NUMBER,
+        **{
+            key: INTEGER_LIMITS[f"run.{key}"]
+            for key in ("threads", "max_segments", "beam_grid", "max_spectrum_grid")
+        },
+    },
     "output": {name: _BOOL for name in OUTPUTS},
 }
-_TOP = {"name": _STR, "description": _STR, "beam": "table", "telescope": "table", "detector": "table",
-        "ranges": "table", "run": "table", "output": "table"}
-_REQUIRED = {"gaussian": ("wavelength", "waist_radius"), "flat_top": ("wavelength", "waist_radius", "angular_diameter"),
-             "telescope": ("diameter", "focal_length")}
+_TOP = {
+    "name": _STR,
+    "description": _STR,
+    "beam": "table",
+    "telescope": "table",
+    "detector": "table",
+    "ranges": "table",
+    "run": "table",
+    "output": "table",
+}
+_REQUIRED = {
+    "gaussian": ("wavelength", "waist_radius"),
+    "flat_top": ("wavelength", "waist_radius", "angular_diameter"),
+    "telescope": ("diameter", "focal_length"),
+}
 
 
 class ScenarioError(ValueError):
-    """A scenario that cannot be used (or whose computation the library refused); the message names the file,
+    """A scenario that cannot be used (or whose computation the library refused); the message names
+    the file,
     section and key."""
 
 
@@ -110,7 +177,8 @@ class ScenarioError(ValueError):
 class Scenario:
     """One computation: ``lo.overlap(system, ranges, method, **options)`` and the files to write.
 
-    ``method`` is ``"rt"``, ``"fo"`` or ``"auto"``; ``options`` the other ``[run]`` keys (keyword arguments
+    ``method`` is ``"rt"``, ``"fo"`` or ``"auto"``; ``options`` the other ``[run]`` keys (keyword
+    arguments
     of :func:`lidar_overlap.overlap`); ``outputs`` maps csv/netcdf/plot/scene to booleans."""
 
     name: str
@@ -127,7 +195,8 @@ class Scenario:
         return _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
 
     def plan(self, method: Optional[str] = None) -> Plan:
-        """The :class:`lidar_overlap.Plan` of this scenario with ``method`` (default: the scenario's); library
+        """The :class:`lidar_overlap.Plan` of this scenario with ``method`` (default: the
+        scenario's); library
         errors become :class:`ScenarioError`."""
         method = self.resolved_method(method)
         try:
@@ -136,19 +205,31 @@ class Scenario:
             raise self._library_error(exc, 0) from None
 
     def model(self, method: Optional[str] = None) -> str:
-        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) computes with (auto's choice)."""
+        """``"rt"`` or ``"fo"``: the model ``method`` (default: the scenario's) computes with
+        (auto's choice)."""
         return self.plan(method).method
 
-    def compute(self, method: Optional[str] = None, chunk: Optional[int] = None,
-                callback: Optional[Callable[[int], None]] = None, plan: Optional[Plan] = None) -> OverlapResult:
-        """The scenario's curve: its ``plan`` (default: :meth:`plan` of ``method``) run over the ranges in chunks
-        (ranges are independent and the plan's decisions hold for all: the same result as one call), calling
+    def compute(
+        self,
+        method: Optional[str] = None,
+        chunk: Optional[int] = None,
+        callback: Optional[Callable[[int], None]] = None,
+        plan: Optional[Plan] = None,
+    ) -> OverlapResult:
+        """The scenario's curve: its ``plan`` (default: :meth:`plan` of ``method``) run over the
+        ranges in chunks
+        (ranges are independent and the plan's decisions hold for all: the same result as one call),
+        calling
         ``callback(number_done)`` after each; library errors become :class:`ScenarioError`."""
         p = plan if plan is not None else self.plan(method)
         z = self.ranges
         if chunk is None:
             threads = self.options.get("threads") or os.cpu_count() or 1
-            chunk = max(threads, math.ceil(z.size / 100)) if p.method == "fo" else max(50, math.ceil(z.size / 20))
+            chunk = (
+                max(threads, math.ceil(z.size / 100))
+                if p.method == "fo"
+                else max(50, math.ceil(z.size / 20))
+            )
         parts = []
         for start in range(0, z.size, chunk):
             try:
@@ -157,20 +238,29 @@ class Scenario:
                 raise self._library_error(exc, start) from None
             if callback is not None:
                 callback(min(start + chunk, z.size))
-        return dataclasses.replace(parts[0], ranges=z.copy(), overlap=np.concatenate([q.overlap for q in parts]),
-                                   error_estimate=np.concatenate([q.error_estimate for q in parts]))
+        return dataclasses.replace(
+            parts[0],
+            ranges=z.copy(),
+            overlap=np.concatenate([q.overlap for q in parts]),
+            error_estimate=np.concatenate([q.error_estimate for q in parts]),
+        )
 
     def _library_error(self, exc: ValueError, start: int) -> ScenarioError:
-        """The library's ValueError about ranges ``start``, ... as a ScenarioError naming the file, its section
+        """The library's ValueError about ranges ``start``, ... as a ScenarioError naming the file,
+        its section
         and the index in the whole grid."""
-        message = re.sub(r"^(ranges|overlap|error_estimate)\[(\d+)\]",
-                         lambda m: f"{m.group(1)}[{int(m.group(2)) + start}]", str(exc))
+        message = re.sub(
+            r"^(ranges|overlap|error_estimate)\[(\d+)\]",
+            lambda m: f"{m.group(1)}[{int(m.group(2)) + start}]",
+            str(exc),
+        )
         section = "ranges" if message.startswith("ranges") else "run"
         return ScenarioError(_prefixed(self.source, section, message))
 
 
 def load_scenario(path) -> Scenario:
-    """Read a scenario TOML file; raises :class:`ScenarioError` (a ValueError) naming the bad key."""
+    """Read a scenario TOML file; raises :class:`ScenarioError` (a ValueError) naming the bad
+    key."""
     path = Path(path)
     source = path.name
     try:
@@ -179,13 +269,17 @@ def load_scenario(path) -> Scenario:
     except OSError as exc:
         raise ScenarioError(f"{path}: cannot read the scenario: {exc.strerror or exc}") from None
     if len(raw) > MAX_FILE_BYTES:
-        raise ScenarioError(f"{source}: the file is larger than {MAX_FILE_BYTES:,} bytes: expected a scenario "
-                            "(TOML), which needs a few kB")
+        raise ScenarioError(
+            f"{source}: the file is larger than {MAX_FILE_BYTES:,} bytes: expected a scenario "
+            "(TOML), which needs a few kB"
+        )
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except UnicodeDecodeError as exc:
-        raise ScenarioError(f"{source}: not a TOML file: byte {exc.start} (0x{raw[exc.start]:02x}) is not UTF-8 "
-                            "text") from None
+        raise ScenarioError(
+            f"{source}: not a TOML file: byte {exc.start} (0x{raw[exc.start]:02x}) is not UTF-8 "
+            "text"
+        ) from None
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{source}: invalid TOML: {exc}") from None
     except RecursionError:
@@ -195,34 +289,55 @@ def load_scenario(path) -> Scenario:
 
 
 def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scenario:
-    """Build a :class:`Scenario` from the parsed TOML tables (same checks as :func:`load_scenario`)."""
+    """Build a :class:`Scenario` from the parsed TOML tables (same checks as
+    :func:`load_scenario`)."""
     _keys(source, None, data, _TOP)
     for section in ("beam", "telescope", "detector", "ranges"):
         if section not in data:
-            raise ScenarioError(f"{source}: missing section [{section}] (required: [beam], [telescope], "
-                                "[detector], [ranges]; optional: [run], [output])")
+            raise ScenarioError(
+                f"{source}: missing section [{section}] (required: [beam], [telescope], "
+                "[detector], [ranges]; optional: [run], [output])"
+            )
     _require(f"{source}:", data, ("name",))
     name = data["name"]
     if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.+-]*", name) or len(name) > MAX_NAME_LENGTH:
-        raise ScenarioError(f"{source}: name = {_short(name)} is invalid: expected 1 to {MAX_NAME_LENGTH} letters, "
-                            "digits and _ . + - (it names the output files)")
+        raise ScenarioError(
+            f"{source}: name = {_short(name)} is invalid: expected 1 to {MAX_NAME_LENGTH} letters, "
+            "digits and _ . + - (it names the output files)"
+        )
     telescope = _telescope(source, data["telescope"])
-    system = _build(source, None, LidarSystem, beam=_beam(source, data["beam"]), telescope=telescope,
-                    detector=_detector(source, data["detector"], telescope))
+    system = _build(
+        source,
+        None,
+        LidarSystem,
+        beam=_beam(source, data["beam"]),
+        telescope=telescope,
+        detector=_detector(source, data["detector"], telescope),
+    )
     run = dict(_keys(source, "run", data.get("run", {}), _SCHEMA["run"]))
     method = _choice(f"{source}: [run]", "method", run.pop("method", "auto"), METHODS)
     outputs = dict.fromkeys(OUTPUTS, True)
     outputs.update(_keys(source, "output", data.get("output", {}), _SCHEMA["output"]))
-    scenario = Scenario(name=name, description=data.get("description", ""), system=system,
-                        ranges=_ranges(source, data["ranges"]), method=method, options=run, outputs=outputs,
-                        source=source)
+    scenario = Scenario(
+        name=name,
+        description=data.get("description", ""),
+        system=system,
+        ranges=_ranges(source, data["ranges"]),
+        method=method,
+        options=run,
+        outputs=outputs,
+        source=source,
+    )
     if isinstance(system.beam, FieldBeam) and method == "rt":
-        raise ScenarioError(f"{source}: [run] method = 'rt' is invalid for a {data['beam'].get('type')} beam: "
-                            "ray tracing models Gaussian beams only; expected 'fo' or 'auto'")
+        raise ScenarioError(
+            f"{source}: [run] method = 'rt' is invalid for a {data['beam'].get('type')} beam: "
+            "ray tracing models Gaussian beams only; expected 'fo' or 'auto'"
+        )
     return scenario
 
 
-# ----------------------------------------------------------------------------------------------- sections
+# -----------------------------------------------------------------------------------------------
+# sections
 def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
     kind = table.get("type", "gaussian") if isinstance(table, dict) else "gaussian"
     _choice(f"{source}: [beam]", "type", kind, ("gaussian", "flat_top"))
@@ -245,15 +360,18 @@ def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
 
 
 def _aberrations(source: str, table: Dict[str, Any]) -> Aberrations:
-    """[telescope.aberrations]: Seidel coefficients (m), field_radius (rad) and a [..zernike] table of
+    """[telescope.aberrations]: Seidel coefficients (m), field_radius (rad) and a [..zernike] table
+    of
     "Noll index" = m RMS."""
     values = dict(_keys(source, "telescope.aberrations", table, _SCHEMA["telescope.aberrations"]))
     terms = {}
     for key, value in values.pop("zernike", {}).items():
         if not (key.isdigit() and len(key) <= 4 and 1 <= int(key) <= 1000) or not _is_number(value):
-            raise ScenarioError(f"{source}: [telescope.aberrations.zernike] {_short(key, 40)[1:-1]} = "
-                                f'{_short(value)} is invalid: expected "Noll index" (1-1000) = RMS wavefront in m, '
-                                'e.g. "11" = 5e-8')
+            raise ScenarioError(
+                f"{source}: [telescope.aberrations.zernike] {_short(key, 40)[1:-1]} = "
+                f'{_short(value)} is invalid: expected "Noll index" (1-1000) = RMS wavefront in m, '
+                'e.g. "11" = 5e-8'
+            )
         terms[int(key)] = value
     return _build(source, "telescope.aberrations", Aberrations, zernike=terms, **values)
 
@@ -262,12 +380,21 @@ def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detec
     values = dict(_keys(source, "detector", table, _SCHEMA["detector"]))
     if ("fov" in values) == ("radius" in values):
         which = "both" if "fov" in values else "neither"
-        raise ScenarioError(f"{source}: [detector] fov and radius: {which} given: expected exactly one "
-                            "(fov: full field of view in rad, radius: detector radius in m)")
+        raise ScenarioError(
+            f"{source}: [detector] fov and radius: {which} given: expected exactly one "
+            "(fov: full field of view in rad, radius: detector radius in m)"
+        )
     if "offset" in values:
         values["offset"] = tuple(values["offset"])
     if "fov" in values:
-        return _build(source, "detector", Detector.from_fov, values.pop("fov"), telescope.focal_length, **values)
+        return _build(
+            source,
+            "detector",
+            Detector.from_fov,
+            values.pop("fov"),
+            telescope.focal_length,
+            **values,
+        )
     return _build(source, "detector", Detector, **values)
 
 
@@ -275,39 +402,63 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
     t, where = _keys(source, "ranges", table, _SCHEMA["ranges"]), f"{source}: [ranges]"
     if "values" in t:
         z = np.asarray(t["values"], dtype=float)
-        if len(t) > 1 or not 0 < z.size <= MAX_RANGES or not np.all(z > 0) or np.any(np.diff(z) <= 0):
-            raise ScenarioError(f"{where} values = {_short(t['values'])} ({z.size} values) is invalid: expected a "
-                                f"strictly increasing list of 1 to {MAX_RANGES:,} ranges > 0 (m), and no start, stop, "
-                                "count")
+        if (
+            len(t) > 1
+            or not 0 < z.size <= MAX_RANGES
+            or not np.all(z > 0)
+            or np.any(np.diff(z) <= 0)
+        ):
+            raise ScenarioError(
+                f"{where} values = {_short(t['values'])} ({z.size} values) is invalid: expected a "
+                f"strictly increasing list of 1 to {MAX_RANGES:,} ranges > 0 (m), and no start, "
+                "stop, "
+                "count"
+            )
         return z
     _require(where, t, ("start", "stop", "count"), " (or values = [...])")
     start, stop, count = t["start"], t["stop"], t["count"]
-    for key, ok, rule in (("start", 0 < start < math.inf, "a finite value > 0"),
-                          ("stop", start < stop < math.inf, f"a finite value > start = {start!r}"),
-                          ("count", count >= 2, "an integer >= 2")):
+    for key, ok, rule in (
+        ("start", 0 < start < math.inf, "a finite value > 0"),
+        ("stop", start < stop < math.inf, f"a finite value > start = {start!r}"),
+        ("count", count >= 2, "an integer >= 2"),
+    ):
         if not ok:
             raise ScenarioError(f"{where} {key} = {t[key]!r} is invalid: expected {rule}")
     spacing = _choice(where, "spacing", t.get("spacing", "linear"), ("linear", "log"))
     z = (np.geomspace if spacing == "log" else np.linspace)(float(start), float(stop), count)
     if not np.all(np.diff(z) > 0):
-        raise ScenarioError(f"{where} start = {start!r}, stop = {stop!r}, count = {count} are invalid: {count} "
-                            "ranges between them are not distinct in double precision; expected fewer ranges or a "
-                            "wider span")
+        raise ScenarioError(
+            f"{where} start = {start!r}, stop = {stop!r}, count = {count} are invalid: {count} "
+            "ranges between them are not distinct in double precision; expected fewer ranges or a "
+            "wider span"
+        )
     return z
 
 
-# ------------------------------------------------------------------------------------------------ helpers
-def _keys(source: str, section: Optional[str], table: Any, schema: Dict[str, Any], required=()) -> Dict[str, Any]:
-    """Check a table against ``schema`` (key -> expected kind): unknown keys, missing keys and types."""
+# ------------------------------------------------------------------------------------------------
+# helpers
+def _keys(
+    source: str, section: Optional[str], table: Any, schema: Dict[str, Any], required=()
+) -> Dict[str, Any]:
+    """Check a table against ``schema`` (key -> expected kind): unknown keys, missing keys and
+    types."""
     where = f"{source}: [{section}]" if section else f"{source}:"
     if not isinstance(table, dict):
-        raise ScenarioError(f"{where} is {_short(table)}: expected a table of keys ({', '.join(schema)})")
+        raise ScenarioError(
+            f"{where} is {_short(table)}: expected a table of keys ({', '.join(schema)})"
+        )
     for key, value in table.items():
         if key not in schema:
-            raise ScenarioError(f"{where} unknown key {_short(key, 40)} (valid: {', '.join(schema)})")
+            raise ScenarioError(
+                f"{where} unknown key {_short(key, 40)} (valid: {', '.join(schema)})"
+            )
         kind = schema[key]
         if isinstance(kind, _Int):
-            ok = isinstance(value, int) and not isinstance(value, bool) and kind.low <= value <= kind.high
+            ok = (
+                isinstance(value, int)
+                and not isinstance(value, bool)
+                and kind.low <= value <= kind.high
+            )
         elif kind == _PAIR:
             ok = isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value)
             kind = "an (x, y) pair of two finite numbers, e.g. [0.0, 0.0]"
@@ -318,8 +469,11 @@ def _keys(source: str, section: Optional[str], table: Any, schema: Dict[str, Any
             ok = isinstance(value, dict)
             kind = f"a table [{key}]"
         else:
-            ok = {_NUMBER: _is_number, _STR: lambda v: isinstance(v, str),
-                  _BOOL: lambda v: isinstance(v, bool)}[kind](value)
+            ok = {
+                _NUMBER: _is_number,
+                _STR: lambda v: isinstance(v, str),
+                _BOOL: lambda v: isinstance(v, bool),
+            }[kind](value)
         if not ok:
             raise ScenarioError(f"{where} {key} = {_short(value)} is invalid: expected {kind}")
     _require(where, table, required)
@@ -329,13 +483,17 @@ def _keys(source: str, section: Optional[str], table: Any, schema: Dict[str, Any
 def _require(where: str, table: Dict[str, Any], required, alternative: str = "") -> None:
     for key in required:
         if key not in table:
-            raise ScenarioError(f"{where} missing key {key!r} (required: {', '.join(required)}{alternative})")
+            raise ScenarioError(
+                f"{where} missing key {key!r} (required: {', '.join(required)}{alternative})"
+            )
 
 
 def _choice(where: str, key: str, value: Any, valid) -> Any:
     if not isinstance(value, str) or value not in valid:
-        raise ScenarioError(f"{where} {key} = {_short(value)} is invalid: expected one of "
-                            f"{', '.join(map(repr, valid))}")
+        raise ScenarioError(
+            f"{where} {key} = {_short(value)} is invalid: expected one of "
+            f"{', '.join(map(repr, valid))}"
+        )
     return value
 
 
@@ -352,19 +510,22 @@ def _is_number(value: Any) -> bool:
 def _short(value: Any, limit: int = 80) -> str:
     """repr(value), cut to ``limit`` characters so that a message stays one readable line."""
     text = repr(value)
-    return text if len(text) <= limit else f"{text[:limit - 3]}..."
+    return text if len(text) <= limit else f"{text[: limit - 3]}..."
 
 
 def _prefixed(source: str, section: Optional[str], message: str) -> str:
-    """The library's message about ``beam.offset``, ``aberrations.zernike[11]``, ... as the file's section and
+    """The library's message about ``beam.offset``, ``aberrations.zernike[11]``, ... as the file's
+    section and
     key: ``[beam] offset``, ``[telescope.aberrations.zernike] 11``."""
-    for pattern, table in ((r"aberrations\.zernike\[(\d+)\]", "telescope.aberrations.zernike"),
-                           (r"aberrations\.(\w+)", "telescope.aberrations"),
-                           (r"(?:beam|telescope|detector)\.(\w+)", None)):
+    for pattern, table in (
+        (r"aberrations\.zernike\[(\d+)\]", "telescope.aberrations.zernike"),
+        (r"aberrations\.(\w+)", "telescope.aberrations"),
+        (r"(?:beam|telescope|detector)\.(\w+)", None),
+    ):
         match = re.match(pattern, message)
         if match:
             table = table or message.split(".", 1)[0]
-            return f"{source}: [{table}] {match.group(1)}{message[match.end():]}"
+            return f"{source}: [{table}] {match.group(1)}{message[match.end() :]}"
     return f"{source}: [{section}] {message}" if section else f"{source}: {message}"
 
 
@@ -375,13 +536,25 @@ def _build(source: str, section: Optional[str], factory, *args, **kwargs):
         raise ScenarioError(_prefixed(source, section, str(exc))) from None
 
 
-# ------------------------------------------------------------------------------------------------- built-in
+# -------------------------------------------------------------------------------------------------
+# built-in
 TABLE1: Dict[str, Any] = {
     "name": "table1",
-    "description": "Mono-axial lidar of the paper's Table 1: f = 1 m, D = 150 mm, FFOV 0.9 mrad, w0 = 1 mm, 355 nm",
-    "beam": {"type": "gaussian", "wavelength": 355e-9, "waist_radius": 1e-3, "offset": [0.0, 0.0],
-             "tilt": [0.0, 0.0]},
-    "telescope": {"diameter": 0.15, "focal_length": 1.0, "obstruction_radius": 0.0, "obstruction_distance": 0.7},
+    "description": "Mono-axial lidar of the paper's Table 1: f = 1 m, D = 150 mm, FFOV 0.9 mrad, "
+    "w0 = 1 mm, 355 nm",
+    "beam": {
+        "type": "gaussian",
+        "wavelength": 355e-9,
+        "waist_radius": 1e-3,
+        "offset": [0.0, 0.0],
+        "tilt": [0.0, 0.0],
+    },
+    "telescope": {
+        "diameter": 0.15,
+        "focal_length": 1.0,
+        "obstruction_radius": 0.0,
+        "obstruction_distance": 0.7,
+    },
     "detector": {"fov": 0.9e-3, "defocus": 0.0, "offset": [0.0, 0.0]},
     "ranges": {"start": 5.0, "stop": 1000.0, "count": 200, "spacing": "log"},
     "run": {"method": "rt", "tolerance": 1e-4},
@@ -390,12 +563,21 @@ TABLE1: Dict[str, Any] = {
 
 
 def table1_scenarios() -> list:
-    """The paper's Table 1 scenario (as ``examples/scenarios/table1.toml``) and its variants with a central
+    """The paper's Table 1 scenario (as ``examples/scenarios/table1.toml``) and its variants with a
+    central
     obstruction r_obs = 20 mm and a detector defocus of 5 mm."""
     obstructed, defocused = copy.deepcopy(TABLE1), copy.deepcopy(TABLE1)
-    obstructed.update(name="table1_obstruction_20mm",
-                      description="Table 1 with a central obstruction r_obs = 20 mm, 0.7 m before the aperture")
+    obstructed.update(
+        name="table1_obstruction_20mm",
+        description="Table 1 with a central obstruction r_obs = 20 mm, 0.7 m before the aperture",
+    )
     obstructed["telescope"]["obstruction_radius"] = 0.02
-    defocused.update(name="table1_defocus_5mm", description="Table 1 with the detector 5 mm behind the focal plane")
+    defocused.update(
+        name="table1_defocus_5mm",
+        description="Table 1 with the detector 5 mm behind the focal plane",
+    )
     defocused["detector"]["defocus"] = 5e-3
-    return [scenario_from_dict(copy.deepcopy(d), f"<built-in {d['name']}>") for d in (TABLE1, obstructed, defocused)]
+    return [
+        scenario_from_dict(copy.deepcopy(d), f"<built-in {d['name']}>")
+        for d in (TABLE1, obstructed, defocused)
+    ]

@@ -1,17 +1,27 @@
-"""Receiver aberrations (paper Section 3, step 5): Zernike terms in the pupil and Seidel terms across the field.
+"""Receiver aberrations (paper Section 3, step 5): Zernike terms in the pupil and Seidel terms
+across the field.
 
-The wavefront W (m of optical path) is added to the pupil phase as exp(2πi W/λ), over the pupil coordinate
-normalised to the telescope radius D/2. A ray through pupil point a is displaced on the detector plane by
-d ∇_a W (d = f + defocus), which is how ray tracing sees it; Fourier optics puts W into the pupil function.
+The wavefront W (m of optical path) is added to the pupil phase as exp(2πi W/λ), over the pupil
+coordinate
+normalised to the telescope radius D/2. A ray through pupil point a is displaced on the detector
+plane by
+d ∇_a W (d = f + defocus), which is how ray tracing sees it; Fourier optics puts W into the pupil
+function.
 
-- **Zernike** coefficients (Noll's index j ≥ 1, metres of RMS wavefront): the same for every scatterer, as
+- **Zernike** coefficients (Noll's index j ≥ 1, metres of RMS wavefront): the same for every
+  scatterer, as
   for a misaligned or imperfect telescope. Both methods model them.
-- **Seidel** coefficients W040, W131, W222, W220, W311 (metres, at the pupil edge and at the field edge
-  H = 1, reached at the field angle ``field_radius``): they vary with each scatterer's field angle P/z, so
-  only ray tracing models the field-dependent ones; W040 (spherical) is the same everywhere and both do.
+- **Seidel** coefficients W040, W131, W222, W220, W311 (metres, at the pupil edge and at the field
+  edge
+  H = 1, reached at the field angle ``field_radius``): they vary with each scatterer's field angle
+  P/z, so
+  only ray tracing models the field-dependent ones; W040 (spherical) is the same everywhere and both
+  do.
 
-:func:`seidel_to_zernike` gives the Zernike form of the Seidel terms at one field point (exact, for the terms
-they share: spherical, coma, astigmatism, field curvature, distortion, plus the defocus and tilt they imply),
+:func:`seidel_to_zernike` gives the Zernike form of the Seidel terms at one field point (exact, for
+the terms
+they share: spherical, coma, astigmatism, field curvature, distortion, plus the defocus and tilt
+they imply),
 and :func:`zernike_to_seidel` the reverse for a wavefront at H = 1 along +x.
 """
 
@@ -24,8 +34,8 @@ from typing import Dict, Mapping, Tuple
 
 import numpy as np
 
-from .._pickling import ByArguments
 from .. import _checks, _core
+from .._pickling import ByArguments
 
 SEIDEL_TERMS = ("w040", "w131", "w222", "w220", "w311")
 
@@ -39,9 +49,11 @@ class Aberrations(ByArguments):
 
     Parameters
     ----------
-    zernike : {Noll index j: coefficient in m RMS}, j from 1 (piston) to 231 (radial order 20; Fourier optics takes up to 153, radial order 16); e.g. ``{11: 50e-9}`` is
+    zernike : {Noll index j: coefficient in m RMS}, j from 1 (piston) to 231 (radial order 20;
+        Fourier optics takes up to 153, radial order 16); e.g. ``{11: 50e-9}`` is
         50 nm RMS of primary spherical aberration.
-    w040, w131, w222, w220, w311 : m, Seidel coefficients (spherical, coma, astigmatism, field curvature,
+    w040, w131, w222, w220, w311 : m, Seidel coefficients (spherical, coma, astigmatism, field
+        curvature,
         distortion) at the pupil edge and at field height H = 1.
     field_radius : rad, the field angle at H = 1; required (> 0) when a field-dependent term is set.
     """
@@ -57,13 +69,22 @@ class Aberrations(ByArguments):
 
     def __post_init__(self) -> None:
         if not isinstance(self.zernike, Mapping):
-            raise ValueError(f"aberrations.zernike = {self.zernike!r} is invalid: expected a mapping "
-                             "{Noll index: m RMS}")
+            raise ValueError(
+                f"aberrations.zernike = {self.zernike!r} is invalid: expected a mapping "
+                "{Noll index: m RMS}"
+            )
         terms: Dict[int, float] = {}
         for j, c in self.zernike.items():
-            if isinstance(j, bool) or not isinstance(j, (int, np.integer)) or not 1 <= j <= MAX_NOLL_INDEX:
-                raise ValueError(f"aberrations.zernike index {_checks.shown(j)} is invalid: expected a Noll index in "
-                                 f"[1, {MAX_NOLL_INDEX}] (radial order 20)")
+            if (
+                isinstance(j, bool)
+                or not isinstance(j, (int, np.integer))
+                or not 1 <= j <= MAX_NOLL_INDEX
+            ):
+                raise ValueError(
+                    f"aberrations.zernike index {_checks.shown(j)} is invalid: expected a Noll "
+                    "index in "
+                    f"[1, {MAX_NOLL_INDEX}] (radial order 20)"
+                )
             terms[int(j)] = _checks.real(f"aberrations.zernike[{j}]", c)
         object.__setattr__(self, "zernike", dict(sorted(terms.items())))
         for name in SEIDEL_TERMS + ("field_radius",):
@@ -71,8 +92,13 @@ class Aberrations(ByArguments):
         dense = [0.0] * (max(terms) if terms else 0)
         for j, c in terms.items():
             dense[j - 1] = c
-        object.__setattr__(self, "_native", _core.Aberrations(dense, self.w040, self.w131, self.w222, self.w220,
-                                                              self.w311, self.field_radius))
+        object.__setattr__(
+            self,
+            "_native",
+            _core.Aberrations(
+                dense, self.w040, self.w131, self.w222, self.w220, self.w311, self.field_radius
+            ),
+        )
 
     @property
     def none(self) -> bool:
@@ -85,14 +111,17 @@ class Aberrations(ByArguments):
         return self._native.field_dependent()
 
     def wavefront(self, x, y, field_angle: Tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
-        """W (m) at normalised pupil points (x, y) (arrays of one shape) for a scatterer at ``field_angle``
+        """W (m) at normalised pupil points (x, y) (arrays of one shape) for a scatterer at
+        ``field_angle``
         (rad, x and y)."""
-        return self._native.wavefront(np.asarray(x, float), np.asarray(y, float),
-                                      _checks.pair("field_angle", field_angle))
+        return self._native.wavefront(
+            np.asarray(x, float), np.asarray(y, float), _checks.pair("field_angle", field_angle)
+        )
 
     @property
     def rms(self) -> float:
-        """RMS wavefront (m) of the Zernike terms over the pupil, piston excluded (their orthonormality)."""
+        """RMS wavefront (m) of the Zernike terms over the pupil, piston excluded (their
+        orthonormality)."""
         return math.sqrt(sum(c * c for j, c in self.zernike.items() if j > 1))
 
 
@@ -103,13 +132,16 @@ def noll_index(j: int) -> Tuple[int, int]:
 
 
 def zernike(j: int, x, y) -> np.ndarray:
-    """Zernike polynomial Z_j (Noll, unit RMS over the unit disc) at normalised pupil points (x, y)."""
+    """Zernike polynomial Z_j (Noll, unit RMS over the unit disc) at normalised pupil points (x,
+    y)."""
     return _core.zernike(int(j), np.asarray(x, float), np.asarray(y, float))
 
 
 def seidel_to_zernike(aberrations: Aberrations, field_angle: Tuple[float, float]) -> Aberrations:
-    """The Zernike form (terms 1-11) of ``aberrations``' Seidel terms at one field point (rad, x and y), added
-    to its own Zernike terms: the pupil a scatterer at that field angle sees. Exact (the Seidel polynomials
+    """The Zernike form (terms 1-11) of ``aberrations``' Seidel terms at one field point (rad, x and
+    y), added
+    to its own Zernike terms: the pupil a scatterer at that field angle sees. Exact (the Seidel
+    polynomials
     are sums of Zernike terms j <= 11), up to piston."""
     if not isinstance(aberrations, Aberrations):
         raise ValueError(f"aberrations = {aberrations!r} is invalid: expected an Aberrations")
@@ -125,22 +157,26 @@ def seidel_to_zernike(aberrations: Aberrations, field_angle: Tuple[float, float]
         c[j] = c.get(j, 0.0) + value
 
     s3, s5, s6, s8 = math.sqrt(3), math.sqrt(5), math.sqrt(6), math.sqrt(8)
-    add(11, a.w040 / (6 * s5))                       # rho^4 = Z11/(6 sqrt5) + rho^2 - 1/6
-    add(4, a.w040 / (2 * s3))                        # rho^2 = Z4/(2 sqrt3) + 1/2
-    coma, astig, curvature, distortion = a.w131 * h, a.w222 * h ** 2, a.w220 * h ** 2, a.w311 * h ** 3
-    add(8, coma * math.cos(phi) / (3 * s8))          # rho^3 cos = Z8/(3 sqrt8) + Z2/3
+    add(11, a.w040 / (6 * s5))  # rho^4 = Z11/(6 sqrt5) + rho^2 - 1/6
+    add(4, a.w040 / (2 * s3))  # rho^2 = Z4/(2 sqrt3) + 1/2
+    coma, astig, curvature, distortion = a.w131 * h, a.w222 * h**2, a.w220 * h**2, a.w311 * h**3
+    add(8, coma * math.cos(phi) / (3 * s8))  # rho^3 cos = Z8/(3 sqrt8) + Z2/3
     add(7, coma * math.sin(phi) / (3 * s8))
-    add(2, coma * math.cos(phi) / 3 + distortion * math.cos(phi) / 2)   # rho cos = Z2/2
+    add(2, coma * math.cos(phi) / 3 + distortion * math.cos(phi) / 2)  # rho cos = Z2/2
     add(3, coma * math.sin(phi) / 3 + distortion * math.sin(phi) / 2)
-    add(6, astig * math.cos(2 * phi) / (2 * s6))     # rho^2 cos^2 = rho^2/2 + (Z6 cos2phi + Z5 sin2phi)/(2 sqrt6)
+    add(
+        6, astig * math.cos(2 * phi) / (2 * s6)
+    )  # rho^2 cos^2 = rho^2/2 + (Z6 cos2phi + Z5 sin2phi)/(2 sqrt6)
     add(5, astig * math.sin(2 * phi) / (2 * s6))
     add(4, astig / (4 * s3) + curvature / (2 * s3))
     return Aberrations(zernike={j: v for j, v in c.items() if v != 0.0})
 
 
 def zernike_to_seidel(aberrations: Aberrations, field_radius: float) -> Aberrations:
-    """The Seidel form of a Zernike wavefront seen at the field edge H = 1 along +x (``field_radius`` rad):
-    W040 = 6√5 c11, W131 = 3√8 c8, W222 = 2√6 c6, W311 = 2 c2 - 2√8 c8, W220 = 2√3 c4 - W040 - W222/2.
+    """The Seidel form of a Zernike wavefront seen at the field edge H = 1 along +x
+    (``field_radius`` rad):
+    W040 = 6√5 c11, W131 = 3√8 c8, W222 = 2√6 c6, W311 = 2 c2 - 2√8 c8, W220 = 2√3 c4 - W040 -
+    W222/2.
     Raises ValueError for terms with no Seidel counterpart (y-oriented, trefoil, j > 11)."""
     if not isinstance(aberrations, Aberrations):
         raise ValueError(f"aberrations = {aberrations!r} is invalid: expected an Aberrations")
@@ -149,14 +185,24 @@ def zernike_to_seidel(aberrations: Aberrations, field_radius: float) -> Aberrati
     c = aberrations.zernike
     foreign = sorted(j for j, v in c.items() if v != 0.0 and j not in (1, 2, 4, 6, 8, 11))
     if foreign:
-        raise ValueError(f"aberrations.zernike terms {foreign} have no Seidel counterpart along +x: "
-                         "expected only Noll 1, 2, 4, 6, 8 and 11")
+        raise ValueError(
+            f"aberrations.zernike terms {foreign} have no Seidel counterpart along +x: "
+            "expected only Noll 1, 2, 4, 6, 8 and 11"
+        )
     g = lambda j: c.get(j, 0.0)  # noqa: E731
     w040, w131, w222 = 6 * math.sqrt(5) * g(11), 3 * math.sqrt(8) * g(8), 2 * math.sqrt(6) * g(6)
-    return Aberrations(w040=w040, w131=w131, w222=w222, w220=2 * math.sqrt(3) * g(4) - w040 - w222 / 2,
-                       w311=2 * g(2) - 2 * math.sqrt(8) * g(8), field_radius=_checks.real("field_radius", field_radius))
+    return Aberrations(
+        w040=w040,
+        w131=w131,
+        w222=w222,
+        w220=2 * math.sqrt(3) * g(4) - w040 - w222 / 2,
+        w311=2 * g(2) - 2 * math.sqrt(8) * g(8),
+        field_radius=_checks.real("field_radius", field_radius),
+    )
 
 
 def with_aberrations(system, aberrations):
     """``system`` with ``aberrations`` (an :class:`Aberrations` or None) on its telescope."""
-    return dataclasses.replace(system, telescope=dataclasses.replace(system.telescope, aberrations=aberrations))
+    return dataclasses.replace(
+        system, telescope=dataclasses.replace(system.telescope, aberrations=aberrations)
+    )

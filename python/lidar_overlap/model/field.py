@@ -1,7 +1,10 @@
-"""A sampled optical field: the complex amplitude of a beam on a square grid (paper Appendix A; SI units).
+"""A sampled optical field: the complex amplitude of a beam on a square grid (paper Appendix A; SI
+units).
 
-A :class:`Field` is an (n, n) complex array U on a grid centred so that index n//2 is x = 0; |U|² is the
-irradiance in W/m². It is immutable and checked on construction; :func:`lidar_overlap.propagate` moves it.
+A :class:`Field` is an (n, n) complex array U on a grid centred so that index n//2 is x = 0; |U|² is
+the
+irradiance in W/m². It is immutable and checked on construction; :func:`lidar_overlap.propagate`
+moves it.
 """
 
 from __future__ import annotations
@@ -14,7 +17,8 @@ import numpy as np
 from .. import _checks, _core
 from .._pickling import ByArguments
 
-#: Largest power (W) of a field, the core's bound for ``Field.gaussian``: irradiances stay far inside
+#: Largest power (W) of a field, the core's bound for ``Field.gaussian``: irradiances stay far
+#: inside
 #: double precision.
 MAX_POWER = 1e30
 
@@ -26,8 +30,10 @@ class Field(ByArguments):
 
     Parameters
     ----------
-    values : (n, n) array of numbers (complex, real or integer; not strings, objects or bools), n even from 8
-        to 65536, finite; row index is y, column index is x; |values|² in W/m², their power Σ|U|² spacing²
+    values : (n, n) array of numbers (complex, real or integer; not strings, objects or bools), n
+        even from 8
+        to 65536, finite; row index is y, column index is x; |values|² in W/m², their power Σ|U|²
+        spacing²
         at most 1e30 W.
     spacing : m, grid spacing, 1e-10 to 1e10 m.
     wavelength : m, 1e-10 to 1e10 m.
@@ -43,10 +49,12 @@ class Field(ByArguments):
         set_(self, "wavelength", _checks.length("wavelength", self.wavelength))
         arr = _complex_grid(self.values)
         with np.errstate(over="ignore"):
-            power = float(np.sum(arr.real ** 2 + arr.imag ** 2)) * self.spacing ** 2
+            power = float(np.sum(arr.real**2 + arr.imag**2)) * self.spacing**2
         if not power <= MAX_POWER:
-            raise ValueError(f"values is invalid: its power Σ|U|² spacing² is {power:.4g} W; expected at most "
-                             f"{MAX_POWER:g} W")
+            raise ValueError(
+                f"values is invalid: its power Σ|U|² spacing² is {power:.4g} W; expected at most "
+                f"{MAX_POWER:g} W"
+            )
         arr.flags.writeable = False
         set_(self, "values", arr)
 
@@ -55,19 +63,35 @@ class Field(ByArguments):
         """Wrap an array the core has just made (checked there), without another copy."""
         field = cls.__new__(cls)
         values.flags.writeable = False
-        for name, value in (("values", values), ("spacing", float(spacing)), ("wavelength", float(wavelength))):
+        for name, value in (
+            ("values", values),
+            ("spacing", float(spacing)),
+            ("wavelength", float(wavelength)),
+        ):
             object.__setattr__(field, name, value)
         return field
 
     @classmethod
-    def gaussian(cls, wavelength: float, waist_radius: float, n: int, spacing: float,
-                 center: Tuple[float, float] = (0.0, 0.0), power: float = 1.0) -> "Field":
+    def gaussian(
+        cls,
+        wavelength: float,
+        waist_radius: float,
+        n: int,
+        spacing: float,
+        center: Tuple[float, float] = (0.0, 0.0),
+        power: float = 1.0,
+    ) -> "Field":
         """TEM00 beam at its waist (flat phase): 1/e² irradiance radius ``waist_radius`` (m), total
         ``power`` (W), centred at ``center`` (m)."""
         n = _checks.count("n", n, 8)
-        values = _core.gaussian_field(_checks.real("wavelength", wavelength), _checks.real("waist_radius", waist_radius),
-                                      n, _checks.real("spacing", spacing), _checks.pair("center", center),
-                                      _checks.real("power", power))
+        values = _core.gaussian_field(
+            _checks.real("wavelength", wavelength),
+            _checks.real("waist_radius", waist_radius),
+            n,
+            _checks.real("spacing", spacing),
+            _checks.pair("center", center),
+            _checks.real("power", power),
+        )
         return cls._from_core(values, spacing, wavelength)
 
     @property
@@ -109,22 +133,37 @@ class Field(ByArguments):
         return self._moments()[2]
 
     def __repr__(self) -> str:
-        return f"Field(n={self.n}, spacing={self.spacing:.4g} m, wavelength={self.wavelength:.4g} m)"
+        return (
+            f"Field(n={self.n}, spacing={self.spacing:.4g} m, wavelength={self.wavelength:.4g} m)"
+        )
 
 
 def _complex_grid(values) -> np.ndarray:
-    """``values`` as a fresh (n, n) complex128 array, n even from 8 to MAX_GRID_SIDE, with finite numbers. Only
+    """``values`` as a fresh (n, n) complex128 array, n even from 8 to MAX_GRID_SIDE, with finite
+    numbers. Only
     numeric arrays are taken: strings, objects and bools are refused before any conversion."""
     try:
         raw = np.asarray(values)
-    except (ValueError, TypeError, OverflowError) as exc:      # ragged nesting, unconvertible objects
-        raise ValueError(f"values is invalid: expected a square (n, n) array of numbers ({exc})") from None
+    except (ValueError, TypeError, OverflowError) as exc:  # ragged nesting, unconvertible objects
+        raise ValueError(
+            f"values is invalid: expected a square (n, n) array of numbers ({exc})"
+        ) from None
     if raw.dtype == np.bool_ or not np.issubdtype(raw.dtype, np.number):
-        raise ValueError(f"values has dtype {raw.dtype}: expected an array of numbers (complex, real or integer)")
+        raise ValueError(
+            f"values has dtype {raw.dtype}: expected an array of numbers (complex, real or integer)"
+        )
     n_max = _core.MAX_GRID_SIDE
-    if raw.ndim != 2 or raw.shape[0] != raw.shape[1] or not 8 <= raw.shape[0] <= n_max or raw.shape[0] % 2:
-        raise ValueError(f"values has shape {raw.shape}: expected a square (n, n) array with n even from 8 to {n_max}")
-    with np.errstate(over="ignore"):                            # long doubles beyond double range become inf
+    if (
+        raw.ndim != 2
+        or raw.shape[0] != raw.shape[1]
+        or not 8 <= raw.shape[0] <= n_max
+        or raw.shape[0] % 2
+    ):
+        raise ValueError(
+            f"values has shape {raw.shape}: expected a square (n, n) array with n even from 8 to "
+            f"{n_max}"
+        )
+    with np.errstate(over="ignore"):  # long doubles beyond double range become inf
         arr = np.array(raw, dtype=np.complex128, copy=True)
     if not np.all(np.isfinite(arr)):
         raise ValueError("values contains NaN or infinity: expected finite complex numbers")

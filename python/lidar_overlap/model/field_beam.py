@@ -4,17 +4,20 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass, field as dataclass_field
+from dataclasses import dataclass
+from dataclasses import field as dataclass_field
 from typing import Optional, Tuple
 
-from .._pickling import ByArguments
 from .. import _checks, _core
+from .._pickling import ByArguments
 from .field import Field
 
 Pair = Tuple[float, float]
 
-#: Least power (W) of a transmitted field: much weaker fields make the FO path's products of irradiances
-#: underflow (a 1e-165 W Gaussian of 1 mm gave G = 0 at 1 km); 1e-100 W keeps 1e-150 W/m² on any grid
+#: Least power (W) of a transmitted field: much weaker fields make the FO path's products of
+#: irradiances
+#: underflow (a 1e-165 W Gaussian of 1 mm gave G = 0 at 1 km); 1e-100 W keeps 1e-150 W/m² on any
+#: grid
 #: the length limits allow.
 MIN_BEAM_POWER = 1e-100
 
@@ -26,9 +29,12 @@ class FieldBeam(ByArguments):
 
     Parameters
     ----------
-    field : :class:`Field` at the transmitting plane, centred on the beam axis (index n//2 is the axis).
-        Its grid is also the grid it is propagated on: leave room for the beam to spread to the angular
-        spectrum's critical distance n dx²/λ, beyond which Fresnel's growing output grid takes over. Its power
+    field : :class:`Field` at the transmitting plane, centred on the beam axis (index n//2 is the
+        axis).
+        Its grid is also the grid it is propagated on: leave room for the beam to spread to the
+        angular
+        spectrum's critical distance n dx²/λ, beyond which Fresnel's growing output grid takes over.
+        Its power
         must be at least 1e-100 W and spread over more than one sample.
     offset : (x, y) in m, beam axis at z = 0 relative to the telescope axis.
     tilt : (x, y) in rad, beam axis angle relative to the telescope axis.
@@ -44,21 +50,33 @@ class FieldBeam(ByArguments):
     def __post_init__(self) -> None:
         field = self.field
         if not isinstance(field, Field):
-            raise ValueError(f"field = {_checks.shown(field)} is invalid: expected a lidar_overlap.Field")
+            raise ValueError(
+                f"field = {_checks.shown(field)} is invalid: expected a lidar_overlap.Field"
+            )
         power, _, radius = field._moments()
         if not MIN_BEAM_POWER <= power < math.inf:
-            raise ValueError(f"field = {field!r} is invalid: its power is {power:.4g} W; expected a finite transmitted "
-                             f"power of at least {MIN_BEAM_POWER:g} W")
+            raise ValueError(
+                f"field = {field!r} is invalid: its power is {power:.4g} W; expected a finite "
+                "transmitted "
+                f"power of at least {MIN_BEAM_POWER:g} W"
+            )
         if not radius >= _core.MIN_LENGTH:
-            raise ValueError(f"field = {field!r} is invalid: its second-moment radius is {radius:.4g} m (the power sits "
-                             f"in one sample); expected a beam of at least {_core.MIN_LENGTH:g} m sampled over "
-                             "several points")
+            raise ValueError(
+                f"field = {field!r} is invalid: its second-moment radius is {radius:.4g} m (the "
+                "power sits "
+                f"in one sample); expected a beam of at least {_core.MIN_LENGTH:g} m sampled over "
+                "several points"
+            )
         set_ = object.__setattr__
         set_(self, "offset", _checks.pair("beam.offset", self.offset))
         set_(self, "tilt", _checks.pair("beam.tilt", self.tilt))
         # The system model carries the pointing and wavelength in a Gaussian beam of the field's
         # second-moment radius; the FO path propagates the field itself.
-        set_(self, "_native", _core.GaussianBeam(field.wavelength, radius, None, self.offset, self.tilt, "gaussian"))
+        set_(
+            self,
+            "_native",
+            _core.GaussianBeam(field.wavelength, radius, None, self.offset, self.tilt, "gaussian"),
+        )
 
     @property
     def wavelength(self) -> float:
@@ -69,12 +87,19 @@ class FieldBeam(ByArguments):
         """Beam axis (x, y) in m at range z (m): offset + tilt·z (paraxial)."""
         return (self.offset[0] + self.tilt[0] * z, self.offset[1] + self.tilt[1] * z)
 
-    def with_pointing(self, offset: Optional[Pair] = None, tilt: Optional[Pair] = None) -> "FieldBeam":
-        """A copy of this beam (of its own type, a :class:`FlatTopBeam` too) with ``offset`` (m) and ``tilt``
+    def with_pointing(
+        self, offset: Optional[Pair] = None, tilt: Optional[Pair] = None
+    ) -> "FieldBeam":
+        """A copy of this beam (of its own type, a :class:`FlatTopBeam` too) with ``offset`` (m) and
+        ``tilt``
         (rad) replaced where given, checked as in the constructor."""
         beam = copy.copy(self)
-        FieldBeam.__init__(beam, self.field, self.offset if offset is None else offset,
-                           self.tilt if tilt is None else tilt)
+        FieldBeam.__init__(
+            beam,
+            self.field,
+            self.offset if offset is None else offset,
+            self.tilt if tilt is None else tilt,
+        )
         return beam
 
     def __repr__(self) -> str:

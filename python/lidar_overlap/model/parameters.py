@@ -1,14 +1,21 @@
-"""Scalars of a :class:`LidarSystem` addressed by path, for maps, sensitivities, fits and studies (SI units).
+"""Scalars of a :class:`LidarSystem` addressed by path, for maps, sensitivities, fits and studies
+(SI units).
 
-A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"beam.divergence"`` (rad, the
-1/e² half-angle; read as the actual divergence when the beam is diffraction-limited), ``"beam.waist_radius"``,
-``"beam.wavelength"``, ``"telescope.diameter"``, ``"telescope.focal_length"``, ``"telescope.obstruction_radius"``,
-``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``, ``"detector.offset[0]"``,
+A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"beam.divergence"``
+(rad, the
+1/e² half-angle; read as the actual divergence when the beam is diffraction-limited),
+``"beam.waist_radius"``,
+``"beam.wavelength"``, ``"telescope.diameter"``, ``"telescope.focal_length"``,
+``"telescope.obstruction_radius"``,
+``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``,
+``"detector.offset[0]"``,
 ``"detector.numerical_aperture"``, ``"telescope.aberrations.zernike[11]"`` (m RMS, Noll index) and
-``"telescope.aberrations.w040"`` (and the other Seidel terms). A pair without an index (``"beam.tilt"``)
+``"telescope.aberrations.w040"`` (and the other Seidel terms). A pair without an index
+(``"beam.tilt"``)
 stands for both of its scalars where a list of parameters is asked for (:func:`expand`).
 
-Systems are immutable: :func:`replace` builds a new one, validated like any other, so a value outside the
+Systems are immutable: :func:`replace` builds a new one, validated like any other, so a value
+outside the
 model's range is refused naming the path.
 """
 
@@ -34,14 +41,22 @@ _ABERRATION = re.compile(r"^telescope\.aberrations\.(?:zernike\[(\d+)\]|(\w+))$"
 
 
 def valid_paths() -> List[str]:
-    """Every path form :func:`get` and :func:`replace` accept (``zernike[j]`` for any Noll index j)."""
+    """Every path form :func:`get` and :func:`replace` accept (``zernike[j]`` for any Noll index
+    j)."""
     paths = [f"{part}.{name}" for part, names in SCALARS.items() for name in names]
-    paths += [f"{part}.{name}[{i}]" for part, names in PAIRS.items() for name in names for i in (0, 1)]
-    return paths + ["telescope.aberrations.zernike[j]"] + [f"telescope.aberrations.{t}" for t in SEIDEL_TERMS]
+    paths += [
+        f"{part}.{name}[{i}]" for part, names in PAIRS.items() for name in names for i in (0, 1)
+    ]
+    return (
+        paths
+        + ["telescope.aberrations.zernike[j]"]
+        + [f"telescope.aberrations.{t}" for t in SEIDEL_TERMS]
+    )
 
 
 def expand(paths: Iterable[str]) -> List[str]:
-    """``paths`` with each bare pair (``"beam.tilt"``) replaced by its two scalars; each path checked."""
+    """``paths`` with each bare pair (``"beam.tilt"``) replaced by its two scalars; each path
+    checked."""
     if isinstance(paths, str):
         paths = [paths]
     out: List[str] = []
@@ -58,11 +73,14 @@ def expand(paths: Iterable[str]) -> List[str]:
 
 
 def plain_paths(paths, name: str, why: str) -> List[str]:
-    """:func:`expand` of ``paths`` (the argument ``name``), refused when empty or naming aberration terms (``why``
+    """:func:`expand` of ``paths`` (the argument ``name``), refused when empty or naming aberration
+    terms (``why``
     says why the caller cannot vary them)."""
     out = expand(paths)
     if not out:
-        raise ValueError(f"{name} = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']")
+        raise ValueError(
+            f"{name} = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']"
+        )
     aberrations = [path for path in out if path.startswith("telescope.aberrations.")]
     if aberrations:
         raise ValueError(f"{name}: {', '.join(aberrations)} is not available: {why}")
@@ -84,12 +102,15 @@ def get(system: LidarSystem, path: str) -> float:
     _check_owner(owner, part, name, path)
     value = getattr(owner, name)
     if value is None:
-        raise ValueError(f"{path} is not set in this system (None): give it a value before varying it")
+        raise ValueError(
+            f"{path} is not set in this system (None): give it a value before varying it"
+        )
     return float(value[index] if index is not None else value)
 
 
 def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
-    """A new system with each path in ``values`` set to its value (SI units); refused naming the path when a
+    """A new system with each path in ``values`` set to its value (SI units); refused naming the
+    path when a
     value is not a real number or the system it makes is invalid."""
     changes: Dict[str, Dict[str, object]] = {"beam": {}, "telescope": {}, "detector": {}}
     aberrations: Dict[str, object] = {}
@@ -110,11 +131,15 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
             changes[part][name] = value
     try:
         if aberrations:
-            changes["telescope"]["aberrations"] = dataclasses.replace(_aberrations(system), **aberrations)
+            changes["telescope"]["aberrations"] = dataclasses.replace(
+                _aberrations(system), **aberrations
+            )
         parts = {part: _replaced(getattr(system, part), part, c) for part, c in changes.items()}
         return LidarSystem(**parts)
     except ValueError as exc:
-        raise ValueError(f"{', '.join(values)} = {_shown(values)} makes an invalid system: {exc}") from None
+        raise ValueError(
+            f"{', '.join(values)} = {_shown(values)} makes an invalid system: {exc}"
+        ) from None
 
 
 def _parse(path) -> Tuple[str, str, str, object]:
@@ -134,17 +159,23 @@ def _parse(path) -> Tuple[str, str, str, object]:
                 return "plain", part, name, None
             if index is not None and name in PAIRS.get(part, ()) and int(index) in (0, 1):
                 return "plain", part, name, int(index)
-    raise ValueError(f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}")
+    raise ValueError(
+        f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}"
+    )
 
 
 def _check_owner(owner, part: str, name: str, path: str) -> None:
     if isinstance(owner, FieldBeam) and name not in ("offset", "tilt"):
-        raise ValueError(f"{path} is invalid for a {type(owner).__name__}: only its offset and tilt can vary "
-                         "(its field is given)")
+        raise ValueError(
+            f"{path} is invalid for a {type(owner).__name__}: only its offset and tilt can vary "
+            "(its field is given)"
+        )
 
 
 def _aberrations(system) -> Aberrations:
-    return system.telescope.aberrations if system.telescope.aberrations is not None else Aberrations()
+    return (
+        system.telescope.aberrations if system.telescope.aberrations is not None else Aberrations()
+    )
 
 
 def _replaced(owner, part: str, changes: Dict[str, object]):

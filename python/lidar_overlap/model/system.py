@@ -6,7 +6,8 @@ cannot reach a computation. Use :func:`dataclasses.replace` to vary one paramete
 One rule across the public classes (these, :class:`Field`, :class:`FieldBeam`, :class:`FlatTopBeam`,
 :class:`Turbulence`, :class:`Aberrations`, :class:`DetectorImage`): a derived quantity that needs no
 argument is a property (``LidarSystem.fov``, ``Field.beam_radius``); one that needs an argument is a
-method (``Detector.fov(focal_length)``, ``GaussianBeam.radius(z)``). Arguments go wavelength first, then
+method (``Detector.fov(focal_length)``, ``GaussianBeam.radius(z)``). Arguments go wavelength first,
+then
 beam sizes, then path length or range: ``(wavelength, waist_radius, path_length)``.
 """
 
@@ -17,8 +18,8 @@ from typing import Literal, Optional, Tuple
 
 import numpy as np
 
-from .._pickling import ByArguments
 from .. import _checks, _core
+from .._pickling import ByArguments
 from .aberrations import Aberrations
 from .aperture_mask import ApertureMask
 from .field_beam import FieldBeam
@@ -37,7 +38,8 @@ class GaussianBeam(ByArguments):
     divergence : rad, 1/e² far-field *half*-angle θ; ``None`` means diffraction-limited λ/(π w0).
     offset : (x, y) in m, beam centroid at z = 0 relative to the telescope axis (biaxial systems).
     tilt : (x, y) in rad, centroid angle relative to the telescope axis (misalignment, paper B3-B4).
-    width_law : ``"gaussian"``: w(z)² = w0² + (θz)²; ``"linear"``: w(z) = w0 + θz, the paper's marginal
+    width_law : ``"gaussian"``: w(z)² = w0² + (θz)²; ``"linear"``: w(z) = w0 + θz, the paper's
+        marginal
         ray of Appendix B, kept to reproduce its figures.
     """
 
@@ -57,8 +59,18 @@ class GaussianBeam(ByArguments):
         set_(self, "offset", _checks.pair("beam.offset", self.offset))
         set_(self, "tilt", _checks.pair("beam.tilt", self.tilt))
         _checks.choice("beam.width_law", self.width_law, ("gaussian", "linear"))
-        set_(self, "_native", _core.GaussianBeam(self.wavelength, self.waist_radius, self.divergence,
-                                                 self.offset, self.tilt, self.width_law))
+        set_(
+            self,
+            "_native",
+            _core.GaussianBeam(
+                self.wavelength,
+                self.waist_radius,
+                self.divergence,
+                self.offset,
+                self.tilt,
+                self.width_law,
+            ),
+        )
 
     @property
     def half_angle_divergence(self) -> float:
@@ -84,9 +96,12 @@ class Telescope(ByArguments):
     focal_length : m, effective focal length f.
     obstruction_radius : m, radius of the opaque central obstruction (secondary mirror), < D/2.
     obstruction_distance : m, its distance in front of the aperture stop, towards the sky.
-    aberrations : :class:`Aberrations` of the receiver (Zernike and Seidel terms), or ``None`` (ideal lens).
-    mask : :class:`ApertureMask`, the open part of the aperture stop (the telecover test), or ``None`` (all of
-        it). G stays normalised to the full aperture; ray tracing, or Fourier optics through the sampled pupil.
+    aberrations : :class:`Aberrations` of the receiver (Zernike and Seidel terms), or ``None``
+        (ideal lens).
+    mask : :class:`ApertureMask`, the open part of the aperture stop (the telecover test), or
+        ``None`` (all of
+        it). G stays normalised to the full aperture; ray tracing, or Fourier optics through the
+        sampled pupil.
     """
 
     diameter: float = 0.15
@@ -99,15 +114,23 @@ class Telescope(ByArguments):
 
     def __post_init__(self) -> None:
         if self.mask is not None and not isinstance(self.mask, ApertureMask):
-            raise ValueError(f"telescope.mask = {self.mask!r} is invalid: expected an ApertureMask or None")
+            raise ValueError(
+                f"telescope.mask = {self.mask!r} is invalid: expected an ApertureMask or None"
+            )
         if self.aberrations is not None and not isinstance(self.aberrations, Aberrations):
-            raise ValueError(f"telescope.aberrations = {self.aberrations!r} is invalid: expected an Aberrations "
-                             "or None")
+            raise ValueError(
+                f"telescope.aberrations = {self.aberrations!r} is invalid: expected an Aberrations "
+                "or None"
+            )
         for name in ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"):
             object.__setattr__(self, name, _checks.real(f"telescope.{name}", getattr(self, name)))
-        object.__setattr__(self, "_native", _core.Telescope(self.diameter, self.focal_length,
-                                                            self.obstruction_radius,
-                                                            self.obstruction_distance))
+        object.__setattr__(
+            self,
+            "_native",
+            _core.Telescope(
+                self.diameter, self.focal_length, self.obstruction_radius, self.obstruction_distance
+            ),
+        )
         if self.mask is not None:
             self.mask._native.validate(self._native)
 
@@ -136,19 +159,35 @@ class Detector(ByArguments):
         set_(self, "radius", _checks.real("detector.radius", self.radius))
         set_(self, "defocus", _checks.real("detector.defocus", self.defocus))
         set_(self, "offset", _checks.pair("detector.offset", self.offset))
-        set_(self, "numerical_aperture",
-             _checks.optional_real("detector.numerical_aperture", self.numerical_aperture))
-        set_(self, "_native", _core.Detector(self.radius, self.defocus, self.offset,
-                                             self.numerical_aperture))
+        set_(
+            self,
+            "numerical_aperture",
+            _checks.optional_real("detector.numerical_aperture", self.numerical_aperture),
+        )
+        set_(
+            self,
+            "_native",
+            _core.Detector(self.radius, self.defocus, self.offset, self.numerical_aperture),
+        )
 
     @classmethod
-    def from_fov(cls, fov: float, focal_length: float, defocus: float = 0.0,
-                 offset: Pair = (0.0, 0.0), numerical_aperture: Optional[float] = None) -> "Detector":
+    def from_fov(
+        cls,
+        fov: float,
+        focal_length: float,
+        defocus: float = 0.0,
+        offset: Pair = (0.0, 0.0),
+        numerical_aperture: Optional[float] = None,
+    ) -> "Detector":
         """The detector that gives a full field of view ``fov`` (rad, full angle, as in the paper's
         Table 1) behind a lens of ``focal_length`` (m): radius = fov · f / 2."""
-        native = _core.Detector.from_fov(_checks.real("fov", fov), _checks.real("focal_length", focal_length),
-                                         _checks.real("defocus", defocus), _checks.pair("offset", offset),
-                                         _checks.optional_real("numerical_aperture", numerical_aperture))
+        native = _core.Detector.from_fov(
+            _checks.real("fov", fov),
+            _checks.real("focal_length", focal_length),
+            _checks.real("defocus", defocus),
+            _checks.pair("offset", offset),
+            _checks.optional_real("numerical_aperture", numerical_aperture),
+        )
         return cls(native.radius, defocus, offset, numerical_aperture)
 
     def fov(self, focal_length: float) -> float:
@@ -160,7 +199,8 @@ class Detector(ByArguments):
 class LidarSystem(ByArguments):
     """A lidar: transmitted beam, receiving telescope and detector, validated together
     (obstruction inside the aperture, detector plane behind the lens). The beam is a
-    :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier optics)."""
+    :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier
+    optics)."""
 
     beam: GaussianBeam | FieldBeam = field(default_factory=GaussianBeam)
     telescope: Telescope = field(default_factory=Telescope)
@@ -168,12 +208,21 @@ class LidarSystem(ByArguments):
     _native: object = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        for name, kinds in (("beam", (GaussianBeam, FieldBeam)), ("telescope", (Telescope,)), ("detector", (Detector,))):
+        for name, kinds in (
+            ("beam", (GaussianBeam, FieldBeam)),
+            ("telescope", (Telescope,)),
+            ("detector", (Detector,)),
+        ):
             if not isinstance(getattr(self, name), kinds):
                 expected = " or ".join(k.__name__ for k in kinds)
-                raise ValueError(f"{name} = {getattr(self, name)!r} is invalid: expected a {expected}")
-        object.__setattr__(self, "_native", _core.LidarSystem(self.beam._native, self.telescope._native,
-                                                              self.detector._native))
+                raise ValueError(
+                    f"{name} = {getattr(self, name)!r} is invalid: expected a {expected}"
+                )
+        object.__setattr__(
+            self,
+            "_native",
+            _core.LidarSystem(self.beam._native, self.telescope._native, self.detector._native),
+        )
 
     @property
     def aberrated(self) -> bool:
@@ -207,16 +256,23 @@ class LidarSystem(ByArguments):
         return 1.22 * self.diffraction_blur
 
     def confusion_radius(self, z):
-        """R |1 + d/z − d/f| (m) at range(s) z (m): the circle of confusion on the detector plane, the
-        geometric image of a point at range z through the whole aperture R = D/2 (no obstruction, no NA)."""
+        """R |1 + d/z − d/f| (m) at range(s) z (m): the circle of confusion on the detector plane,
+        the
+        geometric image of a point at range z through the whole aperture R = D/2 (no obstruction, no
+        NA)."""
         return 0.5 * self.telescope.diameter * _defocus_factor(self, z)
 
     def shadow_radius(self, z):
-        """|1 + d/z − d/f| r_obs z / (z − z_obs) (m) at range(s) z (m): the obstruction's shadow inside the
+        """|1 + d/z − d/f| r_obs z / (z − z_obs) (m) at range(s) z (m): the obstruction's shadow
+        inside the
         circle of confusion of an on-axis point; 0 where z <= obstruction_distance."""
         t, z = self.telescope, np.asarray(z, dtype=float)
         behind = z > t.obstruction_distance
-        r = np.where(behind, t.obstruction_radius * z / np.where(behind, z - t.obstruction_distance, 1.0), 0.0)
+        r = np.where(
+            behind,
+            t.obstruction_radius * z / np.where(behind, z - t.obstruction_distance, 1.0),
+            0.0,
+        )
         return _scalar_or_array(_defocus_factor(self, z) * r)
 
 

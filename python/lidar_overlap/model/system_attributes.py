@@ -1,4 +1,5 @@
-"""A lidar system as flat, numeric file attributes (SI units in the names) and back: what result files carry."""
+"""A lidar system as flat, numeric file attributes (SI units in the names) and back: what result
+files carry."""
 
 from __future__ import annotations
 
@@ -23,40 +24,68 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
     beam, tel, det = system.beam, system.telescope, system.detector
     a: Dict[str, Any] = {}
     if isinstance(beam, GaussianBeam):
-        a.update(beam_type="gaussian", beam_wavelength_m=beam.wavelength, beam_waist_radius_m=beam.waist_radius)
+        a.update(
+            beam_type="gaussian",
+            beam_wavelength_m=beam.wavelength,
+            beam_waist_radius_m=beam.waist_radius,
+        )
         if beam.divergence is not None:
             a["beam_divergence_rad"] = beam.divergence
         a["beam_half_angle_divergence_rad"] = float(beam.half_angle_divergence)
         a["beam_width_law"] = beam.width_law
     elif isinstance(beam, FieldBeam):
-        a.update(beam_type="flat_top" if isinstance(beam, FlatTopBeam) else "field", beam_wavelength_m=beam.wavelength)
+        a.update(
+            beam_type="flat_top" if isinstance(beam, FlatTopBeam) else "field",
+            beam_wavelength_m=beam.wavelength,
+        )
         if isinstance(beam, FlatTopBeam):
-            a.update(beam_waist_radius_m=beam.waist_radius, beam_angular_diameter_rad=beam.angular_diameter,
-                     beam_edge_width_rad=float(beam.edge_width), beam_efficiency=float(beam.efficiency),
-                     beam_uniformity_rms=float(beam.uniformity_rms))
-        a.update(beam_grid_size=int(beam.field.n), beam_grid_spacing_m=float(beam.field.spacing),
-                 beam_second_moment_radius_m=float(beam.field.beam_radius))
+            a.update(
+                beam_waist_radius_m=beam.waist_radius,
+                beam_angular_diameter_rad=beam.angular_diameter,
+                beam_edge_width_rad=float(beam.edge_width),
+                beam_efficiency=float(beam.efficiency),
+                beam_uniformity_rms=float(beam.uniformity_rms),
+            )
+        a.update(
+            beam_grid_size=int(beam.field.n),
+            beam_grid_spacing_m=float(beam.field.spacing),
+            beam_second_moment_radius_m=float(beam.field.beam_radius),
+        )
     a.update(_pair_attributes("beam_offset", beam.offset, "m"))
     a.update(_pair_attributes("beam_tilt", beam.tilt, "rad"))
-    a.update(telescope_diameter_m=tel.diameter, telescope_focal_length_m=tel.focal_length,
-             telescope_obstruction_radius_m=tel.obstruction_radius,
-             telescope_obstruction_distance_m=tel.obstruction_distance,
-             detector_radius_m=det.radius, detector_defocus_m=det.defocus)
+    a.update(
+        telescope_diameter_m=tel.diameter,
+        telescope_focal_length_m=tel.focal_length,
+        telescope_obstruction_radius_m=tel.obstruction_radius,
+        telescope_obstruction_distance_m=tel.obstruction_distance,
+        detector_radius_m=det.radius,
+        detector_defocus_m=det.defocus,
+    )
     a.update(_pair_attributes("detector_offset", det.offset, "m"))
     if det.numerical_aperture is not None:
         a["detector_numerical_aperture"] = det.numerical_aperture
     a["detector_fov_rad"] = float(system.fov)
     if tel.aberrations is not None:
         a.update({f"aberration_zernike_{j}_m": c for j, c in tel.aberrations.zernike.items()})
-        a.update({f"aberration_{name}_m": getattr(tel.aberrations, name) for name in SEIDEL_TERMS
-                  if getattr(tel.aberrations, name) != 0.0})
+        a.update(
+            {
+                f"aberration_{name}_m": getattr(tel.aberrations, name)
+                for name in SEIDEL_TERMS
+                if getattr(tel.aberrations, name) != 0.0
+            }
+        )
         if tel.aberrations.field_radius:
             a["aberration_field_radius_rad"] = tel.aberrations.field_radius
     if tel.mask is not None:
         for i, (sector, name) in enumerate(zip(tel.mask.sectors, tel.mask.names)):
-            a.update({f"mask_sector_{i}_name": name, f"mask_sector_{i}_start_angle_rad": sector.start_angle,
-                      f"mask_sector_{i}_stop_angle_rad": sector.stop_angle,
-                      f"mask_sector_{i}_inner_radius_m": sector.inner_radius})
+            a.update(
+                {
+                    f"mask_sector_{i}_name": name,
+                    f"mask_sector_{i}_start_angle_rad": sector.start_angle,
+                    f"mask_sector_{i}_stop_angle_rad": sector.stop_angle,
+                    f"mask_sector_{i}_inner_radius_m": sector.inner_radius,
+                }
+            )
             if sector.outer_radius is not None:
                 a[f"mask_sector_{i}_outer_radius_m"] = sector.outer_radius
     return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in a.items()}
@@ -65,9 +94,13 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
 def _aberrations_from_attributes(attrs: Dict[str, Any]) -> Optional[Aberrations]:
     if not any(k.startswith("aberration_") for k in attrs):
         return None
-    zernike = {int(k.split("_")[2]): v for k, v in attrs.items() if k.startswith("aberration_zernike_")}
+    zernike = {
+        int(k.split("_")[2]): v for k, v in attrs.items() if k.startswith("aberration_zernike_")
+    }
     seidel = {name: attrs.get(f"aberration_{name}_m", 0.0) for name in SEIDEL_TERMS}
-    return Aberrations(zernike=zernike, field_radius=attrs.get("aberration_field_radius_rad", 0.0), **seidel)
+    return Aberrations(
+        zernike=zernike, field_radius=attrs.get("aberration_field_radius_rad", 0.0), **seidel
+    )
 
 
 def _mask_from_attributes(attrs: Dict[str, Any]) -> Optional[ApertureMask]:
@@ -75,9 +108,18 @@ def _mask_from_attributes(attrs: Dict[str, Any]) -> Optional[ApertureMask]:
     if n == 0:
         return None
     keys = [f"mask_sector_{i}_" for i in range(n)]
-    return ApertureMask(tuple(Sector(attrs[k + "start_angle_rad"], attrs[k + "stop_angle_rad"],
-                                     attrs[k + "inner_radius_m"], attrs.get(k + "outer_radius_m")) for k in keys),
-                        tuple(str(attrs[k + "name"]) for k in keys))
+    return ApertureMask(
+        tuple(
+            Sector(
+                attrs[k + "start_angle_rad"],
+                attrs[k + "stop_angle_rad"],
+                attrs[k + "inner_radius_m"],
+                attrs.get(k + "outer_radius_m"),
+            )
+            for k in keys
+        ),
+        tuple(str(attrs[k + "name"]) for k in keys),
+    )
 
 
 def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
@@ -90,16 +132,28 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
         return (attrs[f"{prefix}_x_{unit}"], attrs[f"{prefix}_y_{unit}"])
 
     try:
-        beam = GaussianBeam(wavelength=attrs["beam_wavelength_m"], waist_radius=attrs["beam_waist_radius_m"],
-                            divergence=attrs.get("beam_divergence_rad"), offset=pair("beam_offset", "m"),
-                            tilt=pair("beam_tilt", "rad"), width_law=str(attrs.get("beam_width_law", "gaussian")))
-        telescope = Telescope(diameter=attrs["telescope_diameter_m"], focal_length=attrs["telescope_focal_length_m"],
-                              obstruction_radius=attrs["telescope_obstruction_radius_m"],
-                              obstruction_distance=attrs["telescope_obstruction_distance_m"],
-                              aberrations=_aberrations_from_attributes(attrs), mask=_mask_from_attributes(attrs))
-        detector = Detector(radius=attrs["detector_radius_m"], defocus=attrs["detector_defocus_m"],
-                            offset=pair("detector_offset", "m"),
-                            numerical_aperture=attrs.get("detector_numerical_aperture"))
+        beam = GaussianBeam(
+            wavelength=attrs["beam_wavelength_m"],
+            waist_radius=attrs["beam_waist_radius_m"],
+            divergence=attrs.get("beam_divergence_rad"),
+            offset=pair("beam_offset", "m"),
+            tilt=pair("beam_tilt", "rad"),
+            width_law=str(attrs.get("beam_width_law", "gaussian")),
+        )
+        telescope = Telescope(
+            diameter=attrs["telescope_diameter_m"],
+            focal_length=attrs["telescope_focal_length_m"],
+            obstruction_radius=attrs["telescope_obstruction_radius_m"],
+            obstruction_distance=attrs["telescope_obstruction_distance_m"],
+            aberrations=_aberrations_from_attributes(attrs),
+            mask=_mask_from_attributes(attrs),
+        )
+        detector = Detector(
+            radius=attrs["detector_radius_m"],
+            defocus=attrs["detector_defocus_m"],
+            offset=pair("detector_offset", "m"),
+            numerical_aperture=attrs.get("detector_numerical_aperture"),
+        )
         return LidarSystem(beam=beam, telescope=telescope, detector=detector)
     except (KeyError, ValueError):
         return None

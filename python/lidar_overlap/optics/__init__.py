@@ -1,2 +1,3 @@
-"""Optics of sampled fields: free-space propagation, beam fields, phase screens, point and detector-plane
+"""Optics of sampled fields: free-space propagation, beam fields, phase screens, point and
+detector-plane
 images."""

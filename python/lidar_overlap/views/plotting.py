@@ -14,12 +14,13 @@ def _pyplot():
 
 
 def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
-    """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G, only where the
+    """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G, only
+    where the
     curve shows its far-range limit) and first-signal (G >= 1e-3) ranges. Returns the Axes."""
     plt = _pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
-    line, = ax.plot(result.ranges, result.overlap, label=label or result.method, **line_kwargs)
+    (line,) = ax.plot(result.ranges, result.overlap, label=label or result.method, **line_kwargs)
     if mark_ranges:
         z_full = result.full_overlap_range() if result.reaches_far_range() else float("nan")
         for z, style in ((z_full, "--"), (result.first_signal_range(), ":")):
@@ -36,7 +37,8 @@ def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
 
 
 def plot_detector_image(system, z, ax=None, n=192):
-    """Draw the geometric detector-plane image at range ``z`` (m) (:func:`detector_image`) with the detector
+    """Draw the geometric detector-plane image at range ``z`` (m) (:func:`detector_image`) with the
+    detector
     disc outlined and the fraction it collects in the title. Returns the Axes."""
     from ..optics.detector_image import detector_image
 
@@ -48,8 +50,12 @@ def plot_detector_image(system, z, ax=None, n=192):
     extent = (img.u[-1] * mm, img.u[0] * mm, img.v[-1] * mm, img.v[0] * mm)
     ax.imshow(img.image[::-1, ::-1], extent=extent, origin="lower", cmap="inferno")
     phi = np.linspace(0, 2 * np.pi, 200)
-    ax.plot((img.detector_offset[0] + img.detector_radius * np.cos(phi)) * mm,
-            (img.detector_offset[1] + img.detector_radius * np.sin(phi)) * mm, color="cyan", linewidth=1)
+    ax.plot(
+        (img.detector_offset[0] + img.detector_radius * np.cos(phi)) * mm,
+        (img.detector_offset[1] + img.detector_radius * np.sin(phi)) * mm,
+        color="cyan",
+        linewidth=1,
+    )
     ax.set_xlabel("detector plane x (mm)")
     ax.set_ylabel("detector plane y (mm)")
     ax.set_title(f"z = {z:g} m: {img.fraction:.3f} of the image on the detector")
@@ -57,17 +63,33 @@ def plot_detector_image(system, z, ax=None, n=192):
 
 
 def plot_signal(sig, ax=None):
-    """The dynamic-range view of a :class:`LidarSignal` on log axes: expected photons per bin and shot with the
-    overlap and without it (G = 1), the background, the noise level (its standard deviation over the shots) and,
+    """The dynamic-range view of a :class:`LidarSignal` on log axes: expected photons per bin and
+    shot with the
+    overlap and without it (G = 1), the background, the noise level (its standard deviation over the
+    shots) and,
     where positive, the noisy realisation. Returns the Axes."""
     plt = _pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
     z = sig.ranges
     if sig.noisy is not None:
-        shown = np.where(sig.noisy > 0, sig.noisy, np.nan)   # a log axis cannot show the negative draws
-        ax.plot(z, shown, color="0.6", linewidth=0.6, label=f"noisy, {sig.shots} shots (background subtracted)")
-    ax.plot(z, sig.range_corrected_full_overlap / z**2, "--", color="tab:blue", label="without overlap (G = 1)")
+        shown = np.where(
+            sig.noisy > 0, sig.noisy, np.nan
+        )  # a log axis cannot show the negative draws
+        ax.plot(
+            z,
+            shown,
+            color="0.6",
+            linewidth=0.6,
+            label=f"noisy, {sig.shots} shots (background subtracted)",
+        )
+    ax.plot(
+        z,
+        sig.range_corrected_full_overlap / z**2,
+        "--",
+        color="tab:blue",
+        label="without overlap (G = 1)",
+    )
     ax.plot(z, sig.photons, color="tab:blue", label="with overlap G(z)")
     ax.plot(z, sig.std, color="tab:red", linewidth=1, label="noise standard deviation")
     if sig.background > 0:
@@ -82,9 +104,12 @@ def plot_signal(sig, ax=None):
 
 
 def plot_telecover(result, band=0.05, axes=None):
-    """The conventional telecover figure of a :class:`TelecoverResult`: top, the range-corrected signal of
-    each sector (∝ its G, the atmosphere being common) and the full aperture's over 4 (the mean of four
-    quadrants); bottom, the normalised deviations G_i / mean G - 1 in % with the ±``band`` lines. Returns the
+    """The conventional telecover figure of a :class:`TelecoverResult`: top, the range-corrected
+    signal of
+    each sector (∝ its G, the atmosphere being common) and the full aperture's over 4 (the mean of
+    four
+    quadrants); bottom, the normalised deviations G_i / mean G - 1 in % with the ±``band`` lines.
+    Returns the
     two Axes."""
     plt = _pyplot()
     if axes is None:
@@ -92,10 +117,16 @@ def plot_telecover(result, band=0.05, axes=None):
     top, bottom = axes
     n = len(result.names)
     for name, g, dev in zip(result.names, result.overlap, result.deviation):
-        line, = top.plot(result.ranges, g, label=name)
+        (line,) = top.plot(result.ranges, g, label=name)
         bottom.plot(result.ranges, 100.0 * dev, color=line.get_color(), label=name)
-    top.plot(result.ranges, result.full.overlap / n, color="black", linestyle="--", linewidth=0.8,
-             label=f"full aperture / {n}")
+    top.plot(
+        result.ranges,
+        result.full.overlap / n,
+        color="black",
+        linestyle="--",
+        linewidth=0.8,
+        label=f"full aperture / {n}",
+    )
     top.set_ylabel("range-corrected signal ∝ G (a.u.)")
     top.legend(fontsize="small")
     for sign in (-1.0, 1.0):
@@ -111,13 +142,17 @@ def plot_telecover(result, band=0.05, axes=None):
         ax.grid(True, which="both", alpha=0.3)
     return axes
 
+
 _READABLE = {"rad": (1e3, "mrad"), "m": (1e3, "mm")}
 
 
 def plot_alignment_map(ds, range=None, ax=None, cmap="viridis"):
-    """Draw an alignment map (:func:`lidar_overlap.alignment_map`) at each chosen range (m; the nearest range of
-    the map, all of them when None): a heat map of G with a colorbar for two axes, G against the axis for one.
-    Axes are labelled with their names and units (angles in mrad, lengths in mm). Returns the Axes, or an array
+    """Draw an alignment map (:func:`lidar_overlap.alignment_map`) at each chosen range (m; the
+    nearest range of
+    the map, all of them when None): a heat map of G with a colorbar for two axes, G against the
+    axis for one.
+    Axes are labelled with their names and units (angles in mrad, lengths in mm). Returns the Axes,
+    or an array
     of Axes (one per range) when several ranges are drawn."""
     plt = _pyplot()
     names = [d for d in ds["overlap"].dims if d != "range"]
@@ -126,13 +161,17 @@ def plot_alignment_map(ds, range=None, ax=None, cmap="viridis"):
         raise ValueError(f"range = {range!r}: one Axes given, so choose one range")
     if ax is None:
         count = chosen.size if len(names) == 2 else 1
-        _, axes = plt.subplots(1, count, figsize=(4.2 * count, 3.6), constrained_layout=True, squeeze=False)
+        _, axes = plt.subplots(
+            1, count, figsize=(4.2 * count, 3.6), constrained_layout=True, squeeze=False
+        )
         axes = axes[0]
     else:
         axes = np.array([ax])
     scaled = []
     for name in names:
-        factor, unit = _READABLE.get(ds[name].attrs.get("units", ""), (1.0, ds[name].attrs.get("units", "")))
+        factor, unit = _READABLE.get(
+            ds[name].attrs.get("units", ""), (1.0, ds[name].attrs.get("units", ""))
+        )
         scaled.append((ds[name].values * factor, f"{name} ({unit})"))
     for i, z in enumerate(chosen):
         g = ds["overlap"].sel(range=z, method="nearest")

@@ -1,8 +1,10 @@
 """3-D view of a lidar's geometry with PyVista (optional: ``pip install 'lidar-overlap[viz]'``).
 
 The range z runs along the telescope axis, to scale; the transverse axes x, y are multiplied by
-``exaggeration`` (default 100), because a lidar is millimetres to decimetres wide and hundreds of metres
-long. Everything transverse is scaled alike: beam, field of view, aperture, obstruction, detector. The
+``exaggeration`` (default 100), because a lidar is millimetres to decimetres wide and hundreds of
+metres
+long. Everything transverse is scaled alike: beam, field of view, aperture, obstruction, detector.
+The
 axes are labelled with true (unexaggerated) coordinates in m. PyVista is imported only inside the
 functions, so the rest of the package works without it.
 """
@@ -16,21 +18,32 @@ import sys
 import numpy as np
 
 from .. import _checks
-from ..optics.detector_image import beam_image, blurred, fov_cone, window_about
-from ..model.field_beam import FieldBeam
-from ..optics.propagation import propagate
 from ..forward.compute import overlap
 from ..forward.result import OverlapResult
+from ..model.field_beam import FieldBeam
 from ..model.system import LidarSystem
+from ..optics.detector_image import beam_image, blurred, fov_cone, window_about
+from ..optics.propagation import propagate
 
 COLOR_BY = ("irradiance", "overlap")
-N_PHI = 72          # samples around every circle
-N_IMAGE = 192       # samples per side of the plane textures
+N_PHI = 72  # samples around every circle
+N_IMAGE = 192  # samples per side of the plane textures
 PLANE_SCALARS = "panels:\nrelative\nirradiance"
-VIEW, ZOOM = (0.5, 1.0, -1.2), 1.4    # default camera: direction from the focal point, zoom
-BAR = dict(vertical=True, position_y=0.25, width=0.06, height=0.5, title_font_size=14, label_font_size=12,
-           fmt="%.3g", n_labels=5)
-_MISSING = "the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' (or pip install pyvista)"
+VIEW, ZOOM = (0.5, 1.0, -1.2), 1.4  # default camera: direction from the focal point, zoom
+BAR = dict(
+    vertical=True,
+    position_y=0.25,
+    width=0.06,
+    height=0.5,
+    title_font_size=14,
+    label_font_size=12,
+    fmt="%.3g",
+    n_labels=5,
+)
+_MISSING = (
+    "the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' "
+    "(or pip install pyvista)"
+)
 
 
 def _pyvista():
@@ -42,7 +55,8 @@ def _pyvista():
 
 
 def _tube(pv, z, center, radius, scale):
-    """Surface made of circles of ``radius`` (m) about ``center`` ((nz, 2), m) at each z; x, y scaled."""
+    """Surface made of circles of ``radius`` (m) about ``center`` ((nz, 2), m) at each z; x, y
+    scaled."""
     phi = np.linspace(0.0, 2.0 * np.pi, N_PHI, endpoint=False)
     x = scale * (center[:, :1] + radius[:, None] * np.cos(phi))
     y = scale * (center[:, 1:] + radius[:, None] * np.sin(phi))
@@ -56,14 +70,20 @@ def _tube(pv, z, center, radius, scale):
 
 def _ring(pv, center, radius):
     phi = np.linspace(0.0, 2.0 * np.pi, N_PHI, endpoint=False)
-    points = np.asarray(center, float) + radius * np.stack([np.cos(phi), np.sin(phi), 0 * phi], axis=-1)
+    points = np.asarray(center, float) + radius * np.stack(
+        [np.cos(phi), np.sin(phi), 0 * phi], axis=-1
+    )
     return pv.PolyData(points, lines=np.r_[N_PHI + 1, np.arange(N_PHI), 0])
 
 
 def _image(pv, values, origin, spacing):
-    """A textured plane (normal z) from a (ny, nx) array; ``origin`` is the (x, y, z) of values[0, 0]."""
-    mesh = pv.ImageData(dimensions=(values.shape[1], values.shape[0], 1), spacing=(spacing, spacing, 1.0),
-                        origin=origin)
+    """A textured plane (normal z) from a (ny, nx) array; ``origin`` is the (x, y, z) of values[0,
+    0]."""
+    mesh = pv.ImageData(
+        dimensions=(values.shape[1], values.shape[0], 1),
+        spacing=(spacing, spacing, 1.0),
+        origin=origin,
+    )
     mesh.point_data[PLANE_SCALARS] = values.ravel()
     return mesh
 
@@ -71,7 +91,8 @@ def _image(pv, values, origin, spacing):
 def _beam_profile(system, zmax):
     """w(z) (m, 1/e²) and on-axis peak irradiance (W/m² for P = 1 W) as functions of z.
 
-    Gaussian beam: w(z) of the beam, peak 2/(π w²). Field beam: the second-moment radius and the peak of
+    Gaussian beam: w(z) of the beam, peak 2/(π w²). Field beam: the second-moment radius and the
+    peak of
     the propagated field at z = 0 and 11 ranges up to ``zmax`` (geometric), interpolated."""
     beam = system.beam
     if not isinstance(beam, FieldBeam):
@@ -85,7 +106,8 @@ def _beam_profile(system, zmax):
 
 
 def _planes(pv, plotter, meshes, system, planes, result, scale, width):
-    """Scattering-plane irradiance and detector-plane image at each range in ``planes``, as two panels
+    """Scattering-plane irradiance and detector-plane image at each range in ``planes``, as two
+    panels
     stacked above the FOV cone (+x) at that range."""
     det, d = system.detector, system.image_distance
     n = N_IMAGE
@@ -93,14 +115,16 @@ def _planes(pv, plotter, meshes, system, planes, result, scale, width):
     for z in planes:
         key, c, w = f"{z:g}", np.array(system.beam.center(z)), float(width(z))
         s, fov_r = (a[0] for a in fov_cone(system, np.array([z])))
-        # Scattering plane: the beam to 2.5 w and the FOV section, at the scene's scale, lifted by `lift`.
+        # Scattering plane: the beam to 2.5 w and the FOV section, at the scene's scale, lifted by
+        # `lift`.
         mid, half = window_about([(c, 2.5 * w), (s, fov_r)])
         x, y = (mid[k] + grid * 2 * half / n for k in (0, 1))
         g = propagate(system.beam.field, z) if isinstance(system.beam, FieldBeam) else None
         e = beam_image(system, z, x, y, g)
         lift = np.array([max(c[0] + 2.5 * w, s[0] + fov_r) + 1.15 * half - mid[0], 0.0])
-        meshes[f"plane_{key}"] = _image(pv, e / e.max(), (scale * (x[0] + lift[0]), scale * y[0], z),
-                                        scale * 2 * half / n)
+        meshes[f"plane_{key}"] = _image(
+            pv, e / e.max(), (scale * (x[0] + lift[0]), scale * y[0], z), scale * 2 * half / n
+        )
         meshes[f"fov_outline_{key}"] = _ring(pv, (*(scale * (s + lift)), z), scale * fov_r)
         # Detector plane, computed back-projected into the scattering plane (u = −x d/z): the beam
         # convolved with the circle of confusion (radius R|m|, less the on-axis obstruction shadow).
@@ -109,61 +133,106 @@ def _planes(pv, plotter, meshes, system, planes, result, scale, width):
         dmid, dhalf = window_about([(c, 2.5 * w + blur), (o_back, r_back)])
         h = 2 * dhalf / n
         xd, yd = (dmid[k] + grid * h for k in (0, 1))
-        img = blurred(beam_image(system, z, xd, yd, g), h, blur, min(shadow, blur))[::-1, ::-1]  # flip: u = −x d/z
-        # Shown above the plane, the same size, at its own scale k (its width in the detector plane labelled).
+        img = blurred(beam_image(system, z, xd, yd, g), h, blur, min(shadow, blur))[
+            ::-1, ::-1
+        ]  # flip: u = −x d/z
+        # Shown above the plane, the same size, at its own scale k (its width in the detector plane
+        # labelled).
         k, centre = half / dhalf, mid + lift + np.array([2.6 * half, 0.0])
         origin = (*(scale * (centre - half + h * k / 2)), z)
-        meshes[f"detector_image_{key}"] = _image(pv, img / max(img.max(), 1e-300), origin, scale * h * k)
-        # Detector-plane point u sits at centre + k (u − u_mid) z/d, u_mid = −dmid d/z at the panel centre.
+        meshes[f"detector_image_{key}"] = _image(
+            pv, img / max(img.max(), 1e-300), origin, scale * h * k
+        )
+        # Detector-plane point u sits at centre + k (u − u_mid) z/d, u_mid = −dmid d/z at the panel
+        # centre.
         outline_c = scale * (centre + k * (np.asarray(det.offset) * z / d + dmid))
         meshes[f"detector_outline_{key}"] = _ring(pv, (*outline_c, z), scale * k * r_back)
         g = np.interp(z, result.ranges, result.overlap, left=np.nan, right=np.nan)
         for name in (f"plane_{key}", f"detector_image_{key}"):
-            plotter.add_mesh(meshes[name], name=name, scalars=PLANE_SCALARS, cmap="inferno", clim=(0, 1),
-                             scalar_bar_args=dict(BAR, title=PLANE_SCALARS, position_x=0.9))
+            plotter.add_mesh(
+                meshes[name],
+                name=name,
+                scalars=PLANE_SCALARS,
+                cmap="inferno",
+                clim=(0, 1),
+                scalar_bar_args=dict(BAR, title=PLANE_SCALARS, position_x=0.9),
+            )
         for name in (f"fov_outline_{key}", f"detector_outline_{key}"):
             plotter.add_mesh(meshes[name], name=name, color="cyan", line_width=2)
-        tops = scale * np.array([[mid[0] + lift[0] + half, mid[1] - half, z / scale],
-                                 [centre[0] + half, centre[1] - half, z / scale]])
-        texts = [f"z = {z:g} m, G = {np.round(g, 2) + 0.0:.2f}", f"detector plane {2e3 * dhalf * d / z:.3g} mm"]
-        plotter.add_point_labels(tops, texts,
-                                 name=f"labels_{key}", font_size=11, shape_opacity=0.4, always_visible=True)
+        tops = scale * np.array(
+            [
+                [mid[0] + lift[0] + half, mid[1] - half, z / scale],
+                [centre[0] + half, centre[1] - half, z / scale],
+            ]
+        )
+        texts = [
+            f"z = {z:g} m, G = {np.round(g, 2) + 0.0:.2f}",
+            f"detector plane {2e3 * dhalf * d / z:.3g} mm",
+        ]
+        plotter.add_point_labels(
+            tops, texts, name=f"labels_{key}", font_size=11, shape_opacity=0.4, always_visible=True
+        )
 
 
-def scene(system: LidarSystem, ranges=None, *, result: OverlapResult | None = None, exaggeration: float = 100.0,
-          color_by: str = "irradiance", planes=(), method: str | None = None, off_screen: bool | None = None):
-    """A 3-D PyVista view of ``system``, to scale in range z, transverse x, y times ``exaggeration``.
+def scene(
+    system: LidarSystem,
+    ranges=None,
+    *,
+    result: OverlapResult | None = None,
+    exaggeration: float = 100.0,
+    color_by: str = "irradiance",
+    planes=(),
+    method: str | None = None,
+    off_screen: bool | None = None,
+):
+    """A 3-D PyVista view of ``system``, to scale in range z, transverse x, y times
+    ``exaggeration``.
 
     Shown (actor names in quotes; the same meshes, in displayed coordinates, are in the dict
     ``plotter.lidar_meshes``):
 
     - "beam": the transmitted beam's 1/e² envelope, a tube of radius w(z) about beam.center(z) =
-      offset + tilt·z from z = 0 (a field beam: second-moment radius of the propagated field at 12 ranges,
-      interpolated). Coloured by the on-axis peak irradiance (W/m² for 1 W; 2/(π w²) for a Gaussian) or by
+      offset + tilt·z from z = 0 (a field beam: second-moment radius of the propagated field at 12
+      ranges,
+      interpolated). Coloured by the on-axis peak irradiance (W/m² for 1 W; 2/(π w²) for a Gaussian)
+      or by
       G(z) (``color_by="overlap"``; grey outside the computed ranges).
-    - "fov": the receiver's full field of view, translucent: the paraxial envelope of the scatterers that
-      send some light to the detector, radius R|1 + z(1/d − 1/f)| + r_d z/d about the line of sight −o_d z/d
+    - "fov": the receiver's full field of view, translucent: the paraxial envelope of the scatterers
+      that
+      send some light to the detector, radius R|1 + z(1/d − 1/f)| + r_d z/d about the line of sight
+      −o_d z/d
       (d = f + defocus; in focus: R + z r_d/f, half-angle r_d/f).
-    - "aperture" (disc of radius R = D/2 at z = 0, the thin lens), "obstruction" (disc of radius r_obs at
-      z = +obstruction_distance, in front of the aperture, when r_obs > 0), "detector" (disc of radius
+    - "aperture" (disc of radius R = D/2 at z = 0, the thin lens), "obstruction" (disc of radius
+      r_obs at
+      z = +obstruction_distance, in front of the aperture, when r_obs > 0), "detector" (disc of
+      radius
       r_d at detector.offset, at z = −(f + defocus), behind the lens), "axis" (the telescope axis).
     - "full_overlap": a ring around the FOV at result.full_overlap_range(), labelled.
-    - for each z in ``planes``, two panels stacked above the FOV cone (displaced along +x so the beam tube
+    - for each z in ``planes``, two panels stacked above the FOV cone (displaced along +x so the
+      beam tube
       does not hide them; labelled with z and G(z)): "plane_<z>" (z formatted with ``:g``), the beam
-      irradiance in the scattering plane at the scene's scale (a Gaussian averaged exactly over each pixel;
-      a field beam: ``propagate(field, z)``, interpolated), with "fov_outline_<z>", the FOV section; above
-      it "detector_image_<z>", the geometric-optics image on the detector plane: the irradiance scaled by
-      −d/z (flipped) and convolved (FFT) with the uniform circle of confusion of radius R|1 + d/z − d/f|,
-      less the obstruction's shadow taken for an on-axis scatterer (exact on axis; the shadow's shift with
+      irradiance in the scattering plane at the scene's scale (a Gaussian averaged exactly over each
+      pixel;
+      a field beam: ``propagate(field, z)``, interpolated), with "fov_outline_<z>", the FOV section;
+      above
+      it "detector_image_<z>", the geometric-optics image on the detector plane: the irradiance
+      scaled by
+      −d/z (flipped) and convolved (FFT) with the uniform circle of confusion of radius R|1 + d/z −
+      d/f|,
+      less the obstruction's shadow taken for an on-axis scatterer (exact on axis; the shadow's
+      shift with
       the scatterer's position and any fibre NA are ignored), at its own scale (its width in mm is
-      labelled), with "detector_outline_<z>", the detector. Without obstruction or NA, the image's power
+      labelled), with "detector_outline_<z>", the detector. Without obstruction or NA, the image's
+      power
       inside the outline over its total is G(z). Panels are normalised to their peak.
 
     exaggeration : factor (> 0) on x and y; 1.0 is true scale.
     color_by : "irradiance" or "overlap", the beam's colours.
     planes : ranges (m) in (0, end of the scene] for the panels.
-    ranges : m, increasing; default ``result.ranges``, else 200 ranges (40 for Fourier optics) from 1 m (1.5
-        z_obs if the obstruction is farther) to 1000 m, with the scene cut at twice the full-overlap range.
+    ranges : m, increasing; default ``result.ranges``, else 200 ranges (40 for Fourier optics) from
+        1 m (1.5
+        z_obs if the obstruction is farther) to 1000 m, with the scene cut at twice the full-overlap
+        range.
         The scene extends from the detector plane to the last range.
     result : an OverlapResult for the colours and the full-overlap marker; default
         ``overlap(system, ranges, method)``.
@@ -178,41 +247,61 @@ def scene(system: LidarSystem, ranges=None, *, result: OverlapResult | None = No
     _checks.choice("color_by", color_by, COLOR_BY)
     if result is not None and not isinstance(result, OverlapResult):
         raise ValueError(f"result = {result!r} is invalid: expected an OverlapResult or None")
-    planes = tuple(_checks.positive(f"planes[{i}]", p)
-                   for i, p in enumerate(np.atleast_1d(() if planes is None else planes).tolist()))
+    planes = tuple(
+        _checks.positive(f"planes[{i}]", p)
+        for i, p in enumerate(np.atleast_1d(() if planes is None else planes).tolist())
+    )
     if method is None:
         method = "fo" if isinstance(system.beam, FieldBeam) else "rt"
     cut, z_obs = ranges is None and result is None, system.telescope.obstruction_distance
     if ranges is None:
-        ranges = result.ranges if result is not None else np.geomspace(
-            1.0 if z_obs < 1.0 else 1.5 * z_obs, 1000.0, 40 if method == "fo" else 200)
+        ranges = (
+            result.ranges
+            if result is not None
+            else np.geomspace(
+                1.0 if z_obs < 1.0 else 1.5 * z_obs, 1000.0, 40 if method == "fo" else 200
+            )
+        )
     z = _checks.ranges("ranges", ranges)
     if z[0] <= 0:
         raise ValueError(f"ranges[0] = {z[0]} is invalid: expected ranges > 0 m")
     if result is None:
         result = overlap(system, z, method=method)
-    # No full-overlap ring for a curve still rising at its last range: its "full overlap" would be a guess.
+    # No full-overlap ring for a curve still rising at its last range: its "full overlap" would be a
+    # guess.
     z_full = result.full_overlap_range() if result.reaches_far_range() else float("nan")
     zmax = float(z[-1])
     if cut and np.isfinite(z_full) and 2 * z_full < zmax:
         zmax = 2 * z_full
     for i, p in enumerate(planes):
         if p > zmax:
-            raise ValueError(f"planes[{i}] = {p} is invalid: expected a range in (0, {zmax:g}] m, the scene's extent")
+            raise ValueError(
+                f"planes[{i}] = {p} is invalid: expected a range in (0, {zmax:g}] m, the scene's "
+                "extent"
+            )
 
     if off_screen is None:
-        off_screen = bool(pv.OFF_SCREEN) or (sys.platform.startswith("linux") and not os.environ.get("DISPLAY")
-                                             and not os.environ.get("WAYLAND_DISPLAY"))
+        off_screen = bool(pv.OFF_SCREEN) or (
+            sys.platform.startswith("linux")
+            and not os.environ.get("DISPLAY")
+            and not os.environ.get("WAYLAND_DISPLAY")
+        )
     plotter = pv.Plotter(off_screen=off_screen)
     tel, det = system.telescope, system.detector
     radius, d = 0.5 * tel.diameter, system.image_distance
     extra = [z_full] if np.isfinite(z_full) and z_full <= zmax else []
-    zt = np.unique(np.concatenate(([0.0], z[z <= zmax], np.linspace(0.0, zmax, 121), planes, extra)))
+    zt = np.unique(
+        np.concatenate(([0.0], z[z <= zmax], np.linspace(0.0, zmax, 121), planes, extra))
+    )
     width, peak = _beam_profile(system, zmax)
     centers = np.array(system.beam.offset) + np.outer(zt, system.beam.tilt)
     meshes = {"beam": _tube(pv, zt, centers, width(zt), scale)}
     if color_by == "overlap":
-        label, values, log = "beam:\noverlap G(z)", np.interp(zt, result.ranges, result.overlap, np.nan, np.nan), False
+        label, values, log = (
+            "beam:\noverlap G(z)",
+            np.interp(zt, result.ranges, result.overlap, np.nan, np.nan),
+            False,
+        )
     else:
         label, values, log = "beam: on-axis\nirradiance\n(W/m^2, 1 W)", peak(zt), True
     meshes["beam"].point_data[label] = np.repeat(values, N_PHI)
@@ -220,15 +309,30 @@ def scene(system: LidarSystem, ranges=None, *, result: OverlapResult | None = No
     meshes["fov"] = _tube(pv, zt, fov_c, fov_r, scale)
     meshes["aperture"] = pv.Disc(center=(0, 0, 0), inner=0.0, outer=scale * radius, c_res=N_PHI)
     if tel.obstruction_radius > 0:
-        meshes["obstruction"] = pv.Disc(center=(0, 0, tel.obstruction_distance), inner=0.0,
-                                        outer=scale * tel.obstruction_radius, c_res=N_PHI)
-    meshes["detector"] = pv.Disc(center=(scale * det.offset[0], scale * det.offset[1], -d), inner=0.0,
-                                 outer=scale * det.radius, c_res=N_PHI)
+        meshes["obstruction"] = pv.Disc(
+            center=(0, 0, tel.obstruction_distance),
+            inner=0.0,
+            outer=scale * tel.obstruction_radius,
+            c_res=N_PHI,
+        )
+    meshes["detector"] = pv.Disc(
+        center=(scale * det.offset[0], scale * det.offset[1], -d),
+        inner=0.0,
+        outer=scale * det.radius,
+        c_res=N_PHI,
+    )
     meshes["axis"] = pv.Line((0, 0, -d), (0, 0, zmax))
 
-    plotter.add_mesh(meshes["beam"], name="beam", scalars=label, cmap="viridis" if color_by == "overlap" else "plasma",
-                     clim=(0, 1) if color_by == "overlap" else None, log_scale=log, nan_color="lightgrey",
-                     scalar_bar_args=dict(BAR, title=label, position_x=0.02))
+    plotter.add_mesh(
+        meshes["beam"],
+        name="beam",
+        scalars=label,
+        cmap="viridis" if color_by == "overlap" else "plasma",
+        clim=(0, 1) if color_by == "overlap" else None,
+        log_scale=log,
+        nan_color="lightgrey",
+        scalar_bar_args=dict(BAR, title=label, position_x=0.02),
+    )
     plotter.add_mesh(meshes["fov"], name="fov", color="lightskyblue", opacity=0.25)
     plotter.add_mesh(meshes["aperture"], name="aperture", color="silver", opacity=0.6)
     if "obstruction" in meshes:
@@ -238,26 +342,48 @@ def scene(system: LidarSystem, ranges=None, *, result: OverlapResult | None = No
     if extra:
         i = np.searchsorted(zt, z_full)
         ring_r = scale * fov_r[i] * 1.05
-        meshes["full_overlap"] = _ring(pv, (scale * fov_c[i, 0], scale * fov_c[i, 1], z_full), ring_r)
+        meshes["full_overlap"] = _ring(
+            pv, (scale * fov_c[i, 0], scale * fov_c[i, 1], z_full), ring_r
+        )
         plotter.add_mesh(meshes["full_overlap"], name="full_overlap", color="red", line_width=4)
-        plotter.add_point_labels(np.array([[scale * fov_c[i, 0] + ring_r, scale * fov_c[i, 1], z_full]]),
-                                 [f"full overlap {z_full:.4g} m"], name="full_overlap_label", font_size=12,
-                                 text_color="red", shape_opacity=0.4, always_visible=True)
-    bounds = np.array(plotter.bounds).reshape(3, 2)        # the physical scene, without the panels
+        plotter.add_point_labels(
+            np.array([[scale * fov_c[i, 0] + ring_r, scale * fov_c[i, 1], z_full]]),
+            [f"full overlap {z_full:.4g} m"],
+            name="full_overlap_label",
+            font_size=12,
+            text_color="red",
+            shape_opacity=0.4,
+            always_visible=True,
+        )
+    bounds = np.array(plotter.bounds).reshape(3, 2)  # the physical scene, without the panels
     _planes(pv, plotter, meshes, system, planes, result, scale, width)
     true = bounds / np.array([[scale], [scale], [1.0]])
-    plotter.show_bounds(bounds=bounds.ravel(), axes_ranges=true.ravel(), xtitle="x (m)", ytitle="y (m)",
-                        ztitle="range z (m)", location="outer", font_size=10)
-    note = (f"transverse x, y exaggerated x{scale:g} (range z to scale); beam: 1/e^2 envelope; "
-            "blue: receiver field of view")
+    plotter.show_bounds(
+        bounds=bounds.ravel(),
+        axes_ranges=true.ravel(),
+        xtitle="x (m)",
+        ytitle="y (m)",
+        ztitle="range z (m)",
+        location="outer",
+        font_size=10,
+    )
+    note = (
+        f"transverse x, y exaggerated x{scale:g} (range z to scale); beam: 1/e^2 envelope; "
+        "blue: receiver field of view"
+    )
     if planes:
-        note += ("\npanels above the cone at each range: beam irradiance in the scattering plane (cyan: FOV), "
-                 "above it its image on the detector plane (cyan: detector)")
+        note += (
+            "\npanels above the cone at each range: beam irradiance in the scattering plane (cyan: "
+            "FOV), "
+            "above it its image on the detector plane (cyan: detector)"
+        )
     plotter.add_text(note, position="upper_left", font_size=9)
-    plotter.view_vector(VIEW, viewup=(1.0, 0.0, 0.0))   # z across, x up, from the near side
+    plotter.view_vector(VIEW, viewup=(1.0, 0.0, 0.0))  # z across, x up, from the near side
     plotter.reset_camera()
     plotter.camera.zoom(ZOOM)
-    (pv.set_new_attribute if hasattr(pv, "set_new_attribute") else setattr)(plotter, "lidar_meshes", meshes)
+    (pv.set_new_attribute if hasattr(pv, "set_new_attribute") else setattr)(
+        plotter, "lidar_meshes", meshes
+    )
     return plotter
 
 
@@ -267,7 +393,9 @@ def save_scene(system: LidarSystem, filename, *, window_size=(1200, 800), **kwar
     if "off_screen" in kwargs:
         raise ValueError("off_screen is invalid for save_scene: it always renders off-screen")
     if np.ndim(window_size) != 1 or len(window_size) != 2:
-        raise ValueError(f"window_size = {window_size!r} is invalid: expected (width, height) in pixels")
+        raise ValueError(
+            f"window_size = {window_size!r} is invalid: expected (width, height) in pixels"
+        )
     size = tuple(_checks.count(f"window_size[{i}]", v, 16) for i, v in enumerate(window_size))
     plotter = scene(system, off_screen=True, **kwargs)
     try:

@@ -1,5 +1,7 @@
-"""The code that computes a :class:`lidar_overlap.forward.planning.Plan`: one module per family of paths, each function
-taking a plan and returning an :class:`OverlapResult`. None calls a public entry point or plans anything."""
+"""The code that computes a :class:`lidar_overlap.forward.planning.Plan`: one module per family of
+paths, each function
+taking a plan and returning an :class:`OverlapResult`. None calls a public entry point or plans
+anything."""
 
 from __future__ import annotations
 
@@ -22,11 +24,14 @@ RUNNERS = {
 
 
 def run(plan) -> OverlapResult:
-    """Compute ``plan``: its warnings, then its backend (a turbulent plan along a path without turbulence runs
+    """Compute ``plan``: its warnings, then its backend (a turbulent plan along a path without
+    turbulence runs
     the plain backend and repeats its curve for every draw)."""
-    if plan.backend not in RUNNERS:      # a Plan built by hand
-        raise ValueError(f"plan.backend = {_checks.shown(plan.backend)} is invalid: expected one of "
-                         f"{', '.join(map(repr, RUNNERS))} (make plans with lidar_overlap.plan)")
+    if plan.backend not in RUNNERS:  # a Plan built by hand
+        raise ValueError(
+            f"plan.backend = {_checks.shown(plan.backend)} is invalid: expected one of "
+            f"{', '.join(map(repr, RUNNERS))} (make plans with lidar_overlap.plan)"
+        )
     for message in plan.warnings:
         _checks.warn(message)
     result = RUNNERS[plan.backend](plan)

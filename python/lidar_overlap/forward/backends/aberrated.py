@@ -1,12 +1,18 @@
-"""Receivers with aberrations (:class:`lidar_overlap.Aberrations` on the telescope), docs/aberrations.md.
+"""Receivers with aberrations (:class:`lidar_overlap.Aberrations` on the telescope),
+docs/aberrations.md.
 
-- Ray tracing: rays through the pupil displaced by d ∇W on the detector plane. For Zernike terms and W040 (the
-  same for every scatterer) with no NA cone and no obstruction in front of the aperture, G is one smooth pupil
-  integral of the share of the Gaussian beam image each ray leaves on the detector; otherwise each scatterer
+- Ray tracing: rays through the pupil displaced by d ∇W on the detector plane. For Zernike terms and
+  W040 (the
+  same for every scatterer) with no NA cone and no obstruction in front of the aperture, G is one
+  smooth pupil
+  integral of the share of the Gaussian beam image each ray leaves on the detector; otherwise each
+  scatterer
   sends a ray fan whose detector-edge crossings are interpolated.
 - Fourier optics: the aberrated pupil sampled and its OTF computed by FFT at each range; G is the
-  aberration-free radial result plus the Parseval sum of the OTF's change. Field-dependent Seidel terms need
-  ray tracing; near ranges whose defocus blur needs a transform beyond ``max_spectrum_grid`` are refused.
+  aberration-free radial result plus the Parseval sum of the OTF's change. Field-dependent Seidel
+  terms need
+  ray tracing; near ranges whose defocus blur needs a transform beyond ``max_spectrum_grid`` are
+  refused.
 """
 
 from __future__ import annotations
@@ -20,7 +26,9 @@ from ._result import result
 def run_rt(plan):
     """G by aberrated ray tracing; error: the beam integral's plus auto's model error (if any)."""
     system, z = plan.system, plan.ranges
-    raw = _core.overlap_rt_aberrated(system._native, system.telescope.aberrations._native, z, plan.options)
+    raw = _core.overlap_rt_aberrated(
+        system._native, system.telescope.aberrations._native, z, plan.options
+    )
     warn_if_rt_invalid(system, z, diffraction=plan.rt_diffraction_warning)
     warn_if_rt_unconverged(raw, z, plan.rt_quadrature_tolerance, "loosen the tolerance")
     return result(plan, raw.overlap, raw.error_estimate + plan.rt_model_error)
@@ -29,5 +37,7 @@ def run_rt(plan):
 def run_fo(plan):
     """G by Fourier optics through the sampled aberrated pupil."""
     system = plan.system
-    raw = _core.overlap_fo_aberrated(system._native, system.telescope.aberrations._native, plan.ranges, plan.options)
+    raw = _core.overlap_fo_aberrated(
+        system._native, system.telescope.aberrations._native, plan.ranges, plan.options
+    )
     return result(plan, raw.overlap, FO_ABERRATED_ACCURACY)

@@ -1,11 +1,12 @@
-"""Fourier optics (paper Appendix C) of a plan: the radial path, the 2-D path of a Gaussian beam, and the 2-D
+"""Fourier optics (paper Appendix C) of a plan: the radial path, the 2-D path of a Gaussian beam,
+and the 2-D
 path of any transmitted field on its own grid."""
 
 from __future__ import annotations
 
 from ... import _checks, _core
-from ..auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY
 from ...optics.propagation import EDGE_POWER_LIMIT, SamplingWarning
+from ..auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY
 from ._result import result
 
 
@@ -25,16 +26,23 @@ def run_2d(plan):
 def run_field(plan):
     """Any transmitted field (flat-top, annular, vortex, ...) propagated on its own grid."""
     f = plan.system.beam.field
-    raw = _core.overlap_fo_field(plan.system._native, plan.ranges, f.values, f.spacing, f.wavelength, plan.options)
+    raw = _core.overlap_fo_field(
+        plan.system._native, plan.ranges, f.values, f.spacing, f.wavelength, plan.options
+    )
     _warn_if_clipped(plan, raw, "enlarge the field's grid (zero-pad it)")
     return result(plan, raw.overlap, FO_2D_ACCURACY)
 
 
 def _warn_if_clipped(plan, raw, fix: str) -> None:
-    """SamplingWarning where the transmitted field loses more than EDGE_POWER_LIMIT of its power to the window
+    """SamplingWarning where the transmitted field loses more than EDGE_POWER_LIMIT of its power to
+    the window
     edge or the band limit on its way to a range."""
     for z, report in zip(plan.ranges, raw.beam_reports):
         worst = max(report.output_edge_power, report.input_edge_power, report.band_limit_loss)
         if worst > EDGE_POWER_LIMIT:
-            _checks.warn(f"overlap(fo): the transmitted field at {z:.4g} m loses {worst:.2g} of its power to the "
-                         f"window edge or the band limit; {fix}", SamplingWarning)
+            _checks.warn(
+                f"overlap(fo): the transmitted field at {z:.4g} m loses {worst:.2g} of its power "
+                "to the "
+                f"window edge or the band limit; {fix}",
+                SamplingWarning,
+            )

@@ -1,13 +1,18 @@
 """Overlap through a turbulent atmosphere (paper Section 3, step 2; the model in
-:mod:`lidar_overlap.model.turbulence`): the mean over random draws of the atmosphere, with its spread.
+:mod:`lidar_overlap.model.turbulence`): the mean over random draws of the atmosphere, with its
+spread.
 
-- Fourier optics: the beam carried through phase screens by split-step Fresnel propagation, one draw per
+- Fourier optics: the beam carried through phase screens by split-step Fresnel propagation, one draw
+  per
   realisation of the screens (C++, in parallel).
-- Ray tracing: each draw is the short-term beam (radius W_ST) displaced by a random wander from a Gaussian
-  whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it, the long-term beam
+- Ray tracing: each draw is the short-term beam (radius W_ST) displaced by a random wander from a
+  Gaussian
+  whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it, the
+  long-term beam
   W_LT. All K x N draws are traced in one core call (``overlap_rt_batch``).
 
-Both compute any slice of realisations bit for bit as the whole run does (``fo_rows``, ``rt_rows`` with a slice
+Both compute any slice of realisations bit for bit as the whole run does (``fo_rows``, ``rt_rows``
+with a slice
 of ``wander``'s offsets): :mod:`lidar_overlap.analysis.turbulent_study` runs them as tasks.
 """
 
@@ -28,7 +33,8 @@ from ._result import result
 BAND = (5.0, 95.0)
 #: Realisations one turbulent overlap may draw (the core's bound on the FO path).
 MAX_REALIZATIONS = 1_000_000
-#: Bytes per draw (realisation x range) of the RT path: the drawn system, its result, and the copies the
+#: Bytes per draw (realisation x range) of the RT path: the drawn system, its result, and the copies
+#: the
 #: statistics make.
 BYTES_PER_DRAW = 512
 
@@ -39,19 +45,31 @@ def run_fo(plan) -> TurbulentOverlapResult:
 
 
 def fo_rows(plan, first: int, count: int) -> np.ndarray:
-    """Realisations ``first .. first + count - 1`` of the FO run of ``plan`` (count x ranges): bit for bit those rows
+    """Realisations ``first .. first + count - 1`` of the FO run of ``plan`` (count x ranges): bit
+    for bit those rows
     of the whole run (the core's ``first_realization``), on ``plan.options.threads`` threads."""
     o = plan.options
-    part = _core.TurbulenceOptions(realizations=count, first_realization=first, screens=o.screens, seed=o.seed,
-                                   beam_grid=o.beam_grid, beam_window=o.beam_window,
-                                   max_spectrum_grid=o.max_spectrum_grid, threads=o.threads)
-    raw = _core.overlap_fo_turbulent(plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part)
+    part = _core.TurbulenceOptions(
+        realizations=count,
+        first_realization=first,
+        screens=o.screens,
+        seed=o.seed,
+        beam_grid=o.beam_grid,
+        beam_window=o.beam_window,
+        max_spectrum_grid=o.max_spectrum_grid,
+        threads=o.threads,
+    )
+    raw = _core.overlap_fo_turbulent(
+        plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
+    )
     return np.asarray(raw.overlap)
 
 
 def run_rt(plan) -> TurbulentOverlapResult:
-    """The RT draws: one wandering beam per realisation and range, in one batched core call. A range where the
-    turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or lengths) is refused
+    """The RT draws: one wandering beam per realisation and range, in one batched core call. A range
+    where the
+    turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or lengths) is
+    refused
     naming ``ranges[i]`` and the turbulence."""
     check_work(plan.ranges, plan.turbulence.realizations)
     short_term, offsets = wander(plan)
@@ -61,105 +79,172 @@ def run_rt(plan) -> TurbulentOverlapResult:
 
 
 def wander(plan):
-    """The short-term beam radius W_ST at each range (m) and the wander offsets of every draw (m, realisations x
-    ranges x 2): drawn from ``numpy.random.default_rng(seed)``, range after range, all realisations of a range
-    (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2. A range where the short-term beam spreads beyond
+    """The short-term beam radius W_ST at each range (m) and the wander offsets of every draw (m,
+    realisations x
+    ranges x 2): drawn from ``numpy.random.default_rng(seed)``, range after range, all realisations
+    of a range
+    (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2. A range where the short-term beam
+    spreads beyond
     the paraxial model is refused by name."""
     system, z, request = plan.system, plan.ranges, plan.turbulence
     beam, lam, turbulence = system.beam, system.beam.wavelength, request.turbulence
     short_term, sigma = np.empty(z.size), np.empty(z.size)
     for i, zi in enumerate(z):
-        st = turbulence.short_term_radius(wavelength=lam, waist_radius=beam.waist_radius, path_length=zi)
-        lt = turbulence.long_term_radius(wavelength=lam, waist_radius=beam.waist_radius, path_length=zi)
+        st = turbulence.short_term_radius(
+            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
+        )
+        lt = turbulence.long_term_radius(
+            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
+        )
         if spread(beam, zi, st) > _core.MAX_ANGLE:
-            raise ValueError(f"{_where(plan, i)} is invalid: the short-term beam there ({st:.4g} m) spreads at "
-                             f"{spread(beam, zi, st):.4g} rad, beyond the paraxial model's {_core.MAX_ANGLE:g} rad; "
-                             "expected weaker turbulence (cn2) or shorter ranges")
+            raise ValueError(
+                f"{_where(plan, i)} is invalid: the short-term beam there ({st:.4g} m) spreads at "
+                f"{spread(beam, zi, st):.4g} rad, beyond the paraxial model's {_core.MAX_ANGLE:g} "
+                "rad; "
+                "expected weaker turbulence (cn2) or shorter ranges"
+            )
         short_term[i] = st
-        sigma[i] = 0.5 * math.sqrt(max(lt**2 - st**2, 0.0))   # per axis: W_LT^2 / 4 = W_ST^2 / 4 + sigma^2
-    # 0 + sigma z: numpy's normal(0, sigma) for each draw, bit for bit, in the same order of the one stream
+        sigma[i] = 0.5 * math.sqrt(
+            max(lt**2 - st**2, 0.0)
+        )  # per axis: W_LT^2 / 4 = W_ST^2 / 4 + sigma^2
+    # 0 + sigma z: numpy's normal(0, sigma) for each draw, bit for bit, in the same order of the one
+    # stream
     drawn = 0.0 + sigma[:, None, None] * np.random.default_rng(request.seed).standard_normal(
-        (z.size, request.realizations, 2))
+        (z.size, request.realizations, 2)
+    )
     return short_term, drawn.transpose(1, 0, 2)
 
 
 def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
-    """G of the RT draws whose wander offsets are ``offsets`` (realisations x ranges x 2, m; a slice of
-    :func:`wander`'s), in one batched core call on ``plan.options.threads`` threads: G (realisations x ranges) and
-    the core's convergence flags and error estimates (flat). Each draw's G depends on its offset alone, so the rows
+    """G of the RT draws whose wander offsets are ``offsets`` (realisations x ranges x 2, m; a slice
+    of
+    :func:`wander`'s), in one batched core call on ``plan.options.threads`` threads: G (realisations
+    x ranges) and
+    the core's convergence flags and error estimates (flat). Each draw's G depends on its offset
+    alone, so the rows
     of a slice are those of the whole run, bit for bit."""
     system, z = plan.system, plan.ranges
     beam, telescope, detector = system.beam, system.telescope._native, system.detector._native
     count = offsets.shape[0]
-    draws = [None] * (count * z.size)        # realisation-major, so that G reshapes to (count, ranges)
-    for i, zi in enumerate(z):               # range by range: an invalid draw is named by its first range
+    draws = [None] * (count * z.size)  # realisation-major, so that G reshapes to (count, ranges)
+    for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
         for r in range(count):
             try:
-                draws[r * z.size + i] = _core.LidarSystem(beam_for(beam, zi, short_term[i], offsets[r, i])._native,
-                                                          telescope, detector)
-            except ValueError as exc:       # the drawn beam's offset or divergence beyond the core's scales
-                raise ValueError(f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering beam there "
-                                 f"({exc}); its axis (offset + tilt x range) and wander must stay within the model's "
-                                 "lengths and angles: expected shorter ranges, a smaller tilt or weaker turbulence "
-                                 "(cn2)") from None
+                draws[r * z.size + i] = _core.LidarSystem(
+                    beam_for(beam, zi, short_term[i], offsets[r, i])._native, telescope, detector
+                )
+            except (
+                ValueError
+            ) as exc:  # the drawn beam's offset or divergence beyond the core's scales
+                raise ValueError(
+                    f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering beam "
+                    "there "
+                    f"({exc}); its axis (offset + tilt x range) and wander must stay within the "
+                    "model's "
+                    "lengths and angles: expected shorter ranges, a smaller tilt or weaker "
+                    "turbulence "
+                    "(cn2)"
+                ) from None
     raw = _core.overlap_rt_batch(draws, np.tile(z, count), plan.options)
-    return (np.asarray(raw.overlap).reshape(count, z.size), np.asarray(raw.converged, dtype=bool),
-            np.asarray(raw.error_estimate))
+    return (
+        np.asarray(raw.overlap).reshape(count, z.size),
+        np.asarray(raw.converged, dtype=bool),
+        np.asarray(raw.error_estimate),
+    )
 
 
 def warn_rt(plan, converged: np.ndarray, error: np.ndarray) -> None:
-    """RT's validity warnings for the system, and its convergence warning over all draws (``rt_rows``' flags)."""
+    """RT's validity warnings for the system, and its convergence warning over all draws
+    (``rt_rows``' flags)."""
     warn_if_rt_invalid(plan.system, plan.ranges)
-    draws = np.tile(plan.ranges, converged.size // plan.ranges.size)    # each draw's range, as rt_rows orders them
-    warn_if_rt_unconverged(SimpleNamespace(converged=converged, error_estimate=error), draws,
-                           plan.rt_quadrature_tolerance, "loosen the tolerance")
+    draws = np.tile(
+        plan.ranges, converged.size // plan.ranges.size
+    )  # each draw's range, as rt_rows orders them
+    warn_if_rt_unconverged(
+        SimpleNamespace(converged=converged, error_estimate=error),
+        draws,
+        plan.rt_quadrature_tolerance,
+        "loosen the tolerance",
+    )
 
 
 def _where(plan, i: int) -> str:
-    return f"ranges[{i}] = {float(plan.ranges[i])!r} m with turbulence = {plan.turbulence.turbulence!r}"
+    z, turbulence = float(plan.ranges[i]), plan.turbulence.turbulence
+    return f"ranges[{i}] = {z!r} m with turbulence = {turbulence!r}"
 
 
 def without_turbulence(plan, plain) -> TurbulentOverlapResult:
     """A path without turbulence: every draw is the plain curve, the spread zero."""
     zero = np.zeros(plan.ranges.size)
     samples = np.tile(plain.overlap, (plan.turbulence.realizations, 1))
-    return result(plan, plain.overlap, zero, TurbulentOverlapResult, realizations=samples, std=zero.copy(),
-                  low=plain.overlap.copy(), high=plain.overlap.copy())
+    return result(
+        plan,
+        plain.overlap,
+        zero,
+        TurbulentOverlapResult,
+        realizations=samples,
+        std=zero.copy(),
+        low=plain.overlap.copy(),
+        high=plain.overlap.copy(),
+    )
 
 
 def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
-    """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples`` (C-contiguous:
+    """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples``
+    (C-contiguous:
     the reductions then sum in one order, whoever computed the rows)."""
     samples = np.ascontiguousarray(samples)
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
     std = samples.std(axis=0, ddof=1) if k > 1 else np.zeros(plan.ranges.size)
-    return result(plan, samples.mean(axis=0), std / math.sqrt(k), TurbulentOverlapResult, realizations=samples,
-                  std=std, low=low, high=high)
+    return result(
+        plan,
+        samples.mean(axis=0),
+        std / math.sqrt(k),
+        TurbulentOverlapResult,
+        realizations=samples,
+        std=std,
+        low=low,
+        high=high,
+    )
 
 
 def spread(beam, z: float, radius: float) -> float:
-    """Far-field half-angle (rad) of a beam from ``beam``'s waist, on its width law, whose 1/e² radius at range
+    """Far-field half-angle (rad) of a beam from ``beam``'s waist, on its width law, whose 1/e²
+    radius at range
     z (m) is ``radius``."""
     w0 = beam.waist_radius
-    if beam.width_law == "linear":                          # w = w0 + θz
+    if beam.width_law == "linear":  # w = w0 + θz
         return max(radius - w0, 0.0) / z
-    return math.sqrt(max(radius**2 - w0**2, 0.0)) / z      # w² = w0² + (θz)²
+    return math.sqrt(max(radius**2 - w0**2, 0.0)) / z  # w² = w0² + (θz)²
 
 
 def beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
-    """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is ``beam``'s axis moved
+    """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is
+    ``beam``'s axis moved
     by ``center`` (m): the short-term beam of one draw."""
     axis = beam.center(z)
     offset = (axis[0] + float(center[0]), axis[1] + float(center[1]))
-    return dataclasses.replace(beam, divergence=max(spread(beam, z, radius), beam.half_angle_divergence),
-                               offset=offset, tilt=(0.0, 0.0))
+    return dataclasses.replace(
+        beam,
+        divergence=max(spread(beam, z, radius), beam.half_angle_divergence),
+        offset=offset,
+        tilt=(0.0, 0.0),
+    )
 
 
 def check_work(z: np.ndarray, realizations: int) -> None:
-    """Refuse, naming ``realizations``, more draws than the FO path allows or draws beyond the memory budget (RT:
+    """Refuse, naming ``realizations``, more draws than the FO path allows or draws beyond the
+    memory budget (RT:
     the drawn systems and their results; a study of either path: the rows it gathers)."""
     if realizations > MAX_REALIZATIONS:
-        raise ValueError(f"realizations = {realizations} is invalid: expected a count from 1 to {MAX_REALIZATIONS}")
-    _checks.check_memory("realizations", realizations, BYTES_PER_DRAW * realizations * z.size,
-                         "lower realizations or the number of ranges")
+        raise ValueError(
+            f"realizations = {realizations} is invalid: expected a count from 1 to "
+            f"{MAX_REALIZATIONS}"
+        )
+    _checks.check_memory(
+        "realizations",
+        realizations,
+        BYTES_PER_DRAW * realizations * z.size,
+        "lower realizations or the number of ranges",
+    )
