@@ -21,8 +21,8 @@ def best_time(fn, repeats, setup=None):
 
 def alternated_best(runs, repeats):
     """Each callable of ``runs`` (name -> function) run ``repeats`` + 1 times in turn, so that all
-    see the same
-    load, the first round untimed. Returns ({name: best time in s}, {name: last result})."""
+    see the same load, the first round untimed. Returns ({name: best time in s}, {name: last
+    result})."""
     times, last = {name: [] for name in runs}, {}
     for i in range(repeats + 1):
         for name, fn in runs.items():

@@ -1,19 +1,15 @@
 """Receiver aberrations: the point image of an aberrated pupil against poppy, hcipy and LightPipes,
-the
-aberrated overlap curve by its three paths (RT pupil form, RT ray fan, FO), and field-dependent
+the aberrated overlap curve by its three paths (RT pupil form, RT ray fan, FO), and field-dependent
 Seidel coma.
 
 1. Point image: Table 1 telescope (D = 0.15 m, 355 nm) with 0.05, 0.03, 0.05 um RMS of Noll Z6, Z8,
 Z11,
    the detector in the image plane (defocus 1 mm, z = z_opt), 512 x 512 samples at lambda d / (2D),
-   256
-   pupil samples across D. Time per PSF (warm, best of N), Strehl ratio (central intensity over the
-   ideal
-   one's) against |<exp(2 pi i W / lambda)>|^2 by a polar Gauss rule, and the largest difference of
-   the
-   PSFs, each in units of its own ideal peak. Every peer's wavefront is checked against closed-form
-   Zernike polynomials on its own pupil samples, in lo's sign (exp(+2 pi i W / lambda), +Z2 images
-   at +x).
+   256 pupil samples across D. Time per PSF (warm, best of N), Strehl ratio (central intensity over
+   the ideal one's) against |<exp(2 pi i W / lambda)>|^2 by a polar Gauss rule, and the largest
+   difference of the PSFs, each in units of its own ideal peak. Every peer's wavefront is checked
+   against closed-form Zernike polynomials on its own pupil samples, in lo's sign (exp(+2 pi i W /
+   lambda), +Z2 images at +x).
 2. Overlap curve, Table 1 with 0.5 um RMS each of Z6 and Z11, 20 ranges 150-3000 m.
 3. Seidel coma W131 (ray fan per scatterer), alone (radial) and with Z6 (a 2-D beam integral over
 directions).

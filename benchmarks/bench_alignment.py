@@ -1,18 +1,13 @@
 """Alignment map: a 41 x 41 tilt_x x tilt_y map of the paper's Table 1 lidar at 50 ranges (84,050
-overlap
-values) by ray tracing, in one lo.alignment_map call, against 1681 separate lo.overlap calls (one
-per grid
-point, all 50 ranges each) giving the same values bit for bit.
+overlap values) by ray tracing, in one lo.alignment_map call, against 1681 separate lo.overlap calls
+(one per grid point, all 50 ranges each) giving the same values bit for bit.
 
 Tilts +-1 mrad (the half FOV is 0.45 mrad), ranges geomspace(20, 2000, 50) m, threads = 0 (all
 cores).
 Times: the map best of 3 warm runs per tolerance (1e-4, the default, and 1e-3) and on one thread at
-1e-4; the
-separate calls once, at 1e-4. The symmetric grid's mirror images share their beam-centre distance
-and are traced
-once (231 distinct points of 1681); the same map on a grid shifted by a third and a seventh of a
-step, where no
-two points share a distance, shows the cost without that.
+1e-4; the separate calls once, at 1e-4. The symmetric grid's mirror images share their beam-centre
+distance and are traced once (231 distinct points of 1681); the same map on a grid shifted by a
+third and a seventh of a step, where no two points share a distance, shows the cost without that.
 Target: the map under 0.5 s on 2 cores. Writes results/bench_alignment.json.
 """
 

@@ -1,13 +1,11 @@
 """Fit: four parameters of a biaxial lidar (beam tilt x and y, beam offset x, fibre defocus) fitted
-by lo.fit
-to a noisy 200-range curve (geomspace(40, 4000, 200) m, sigma = 0.005), ray tracing at tolerance
-1e-4.
+by lo.fit to a noisy 200-range curve (geomspace(40, 4000, 200) m, sigma = 0.005), ray tracing at
+tolerance 1e-4.
 
 Each model evaluation is one overlap_rt call over the 200 ranges, each Jacobian one overlap_rt_batch
-call
-over 8 shifted systems x 200 ranges. Times: best of 3 warm fits from the same start, with threads =
-0 (all
-cores) and threads = 1. Target: under 1 s on 2 cores. Writes results/bench_fit.json.
+call over 8 shifted systems x 200 ranges. Times: best of 3 warm fits from the same start, with
+threads = 0 (all cores) and threads = 1. Target: under 1 s on 2 cores. Writes
+results/bench_fit.json.
 """
 
 from __future__ import annotations

@@ -1,29 +1,22 @@
 """Design time of the paper's flat-top phase plate (Gerchberg-Saxton) against FFTs and a NumPy peer.
 
 All in this process: ``lo.FlatTopBeam(355e-9, 1e-3, 0.36e-3)`` (TEM00 w0 = 1 mm at 355 nm to a
-far-field
-disc of 0.36 mrad full angle; N = 512, w0 / 8 spacing, edge 1.5 theta_d with theta_d = lambda / (pi
-w0)).
+far-field disc of 0.36 mrad full angle; N = 512, w0 / 8 spacing, edge 1.5 theta_d with theta_d =
+lambda / (pi w0)).
 
 - ``default``: the first call of the process (it includes FFTW's planning of the 512^2 transforms)
-  and
-  the best warm call; iterations, time per iteration (warm time / iterations), stop reason, final
-  amplitude error, efficiency, plateau uniformity and edge width. ``fixed`` is the same design
-  stopped
-  after one iteration (set-up, one FFT pair, metrics), so (warm - fixed) / (iterations - 1) is the
-  marginal cost of an iteration.
+  and the best warm call; iterations, time per iteration (warm time / iterations), stop reason,
+  final amplitude error, efficiency, plateau uniformity and edge width. ``fixed`` is the same design
+  stopped after one iteration (set-up, one FFT pair, metrics), so (warm - fixed) / (iterations - 1)
+  is the marginal cost of an iteration.
 - ``reference``: ``_core.fft2d_roundtrip`` on a 512^2 array, one forward and one backward FFT on the
-  same
-  cached plans: the FFT work of one iteration.
+  same cached plans: the FFT work of one iteration.
 - ``edge`` sweep (0.5, 1, 1.5, 2 theta_d at N = 512) and ``grid`` sweep (256, 512, 1024, default
   edge).
 - ``numpy``: the same error-reduction algorithm written plainly with numpy.fft (single-threaded),
-  from
-  the same ray-optics start, grid and target, for the same number of iterations as lo's design; its
-  time
-  includes its set-up (target, start phase) and the final plate, not lo's metrics. The peer and lo
-  run in
-  alternating rounds so that a change of machine load hits both alike.
+  from the same ray-optics start, grid and target, for the same number of iterations as lo's design;
+  its time includes its set-up (target, start phase) and the final plate, not lo's metrics. The peer
+  and lo run in alternating rounds so that a change of machine load hits both alike.
 
 Run:  python benchmarks/bench_flat_top.py   (writes benchmarks/results/bench_flat_top.json). SI
 units.
@@ -67,8 +60,7 @@ def timed_once(fn):
 
 def numpy_gs(iterations, n=GRID, edge=1.5 * THETA_D):
     """Error-reduction Gerchberg-Saxton with numpy.fft: plate plane centred (index n/2 at r = 0),
-    far
-    field in FFT order at angles lambda * f. Returns (plate phase, amplitude error per
+    far field in FFT order at angles lambda * f. Returns (plate phase, amplitude error per
     iteration)."""
     dx = WAIST / SAMPLES_PER_WAIST
     x = (np.arange(n) - n / 2) * dx

@@ -1,46 +1,33 @@
 """Speed and accuracy of the Fourier-optics propagation against an FFT round trip and against peers.
 
 All in this process, for grids N = 256, 512, 1024, 2048: a TEM00 field at its waist (w0 = 5 mm, 355
-nm)
-on a square window of +-5 w0 (spacing 10 w0 / N), propagated
+nm) on a square window of +-5 w0 (spacing 10 w0 / N), propagated
 
 - ``angular_spectrum`` (Eq. (A1)) over 2 m, inside the angular-spectrum region of every grid (the
   critical distance N dx^2 / lambda is 3.4 m at N = 2048, 27.5 m at N = 256);
 - ``fresnel`` (single-FFT Eq. (A5), output spacing lambda z / (N dx)) over 100 m, beyond the
-  critical
-  distance of every grid.
+  critical distance of every grid.
 
 lo is timed against ``_core.fft2d_roundtrip`` on the same values: the same copies in and out, one
 forward and one backward FFT on the same cached FFTW plans, nothing else (target: lo <= 1.3x of it).
 Warm times are the best of several calls after one untimed call (the cached propagation plan
-exists);
-lo, the reference and lo's native call are timed in interleaved rounds so that a change of machine
-load
-hits all of them alike. Cold times are reported separately: ``cold`` is the first call of the
-process
-for that N and method (for the angular spectrum it includes FFTW's planning of the forward and
-backward
-2-D transforms; Fresnel then reuses the forward plan), ``new z`` the best call at a distance not
-seen
-before (FFTW plans exist, the propagation plan -- transfer function or chirps -- is made anew),
-which is
-what every range of an overlap curve pays today.
+exists); lo, the reference and lo's native call are timed in interleaved rounds so that a change of
+machine load hits all of them alike. Cold times are reported separately: ``cold`` is the first call
+of the process for that N and method (for the angular spectrum it includes FFTW's planning of the
+forward and backward 2-D transforms; Fresnel then reuses the forward plan), ``new z`` the best call
+at a distance not seen before (FFTW plans exist, the propagation plan -- transfer function or chirps
+-- is made anew), which is what every range of an overlap curve pays today.
 
 Peers (optional, benchmark-only; each is skipped with the reason when it does not import):
-LightPipes
-(Forvard: spectral, paraxial transfer function; Fresnel: convolution with Fresnel-integral kernel on
-a
-2N grid), hcipy (AngularSpectrumPropagator / FresnelPropagator, default num_oversampling = 2 and
-with 1)
-and poppy (FresnelWavefront.propagate_fresnel; inside its pilot beam's Rayleigh range this is its
-plane-to-plane transfer-function step). Each gets the same N, window, spacing, wavelength and
-distance,
-is timed warm like lo (its own cached set-up, e.g. hcipy's transfer function, exists; set-up done
-outside the timed call, e.g. a fresh poppy wavefront, is not timed), and its accuracy is measured
-the
-same way as lo's: the relative error |1 - w_D1 / w| (Eq. (D2) without the factor 100) of the
-second-moment radius w = sqrt(2 (var x + var y)) computed here from the returned irradiance on the
-peer's own grid coordinates, against Eq. (D1).
+LightPipes (Forvard: spectral, paraxial transfer function; Fresnel: convolution with
+Fresnel-integral kernel on a 2N grid), hcipy (AngularSpectrumPropagator / FresnelPropagator, default
+num_oversampling = 2 and with 1) and poppy (FresnelWavefront.propagate_fresnel; inside its pilot
+beam's Rayleigh range this is its plane-to-plane transfer-function step). Each gets the same N,
+window, spacing, wavelength and distance, is timed warm like lo (its own cached set-up, e.g. hcipy's
+transfer function, exists; set-up done outside the timed call, e.g. a fresh poppy wavefront, is not
+timed), and its accuracy is measured the same way as lo's: the relative error |1 - w_D1 / w| (Eq.
+(D2) without the factor 100) of the second-moment radius w = sqrt(2 (var x + var y)) computed here
+from the returned irradiance on the peer's own grid coordinates, against Eq. (D1).
 
 Run:  python benchmarks/bench_fo.py   (writes benchmarks/results/bench_fo.json). SI units
 throughout.
@@ -80,8 +67,7 @@ def d1_radius(z):
 
 def second_moment_radius(intensity, x, y):
     """sqrt(2 (var x + var y)) of an irradiance on the grid x (columns) by y (rows), about its
-    centroid:
-    the 1/e^2 radius of a TEM00 beam."""
+    centroid: the 1/e^2 radius of a TEM00 beam."""
     i = np.asarray(intensity, dtype=float)
     total = i.sum()
     px, py = i.sum(axis=0), i.sum(axis=1)
@@ -95,8 +81,7 @@ def d1_error(intensity, x, y, z):
 
 def interleaved_best(fns, repeats):
     """Best wall time of each function in `fns` (name -> callable), timed in `repeats` rounds that
-    call
-    every function once, after one untimed round."""
+    call every function once, after one untimed round."""
     for fn in fns.values():
         fn()
     best = {name: float("inf") for name in fns}

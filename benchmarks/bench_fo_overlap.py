@@ -4,19 +4,15 @@ One process, the paper's Table 1 lidar (355 nm, TEM00 w0 = 1 mm, f = 1 m, D = 15
 mrad):
 - lo: `lo.overlap(system, ranges, method="fo", fo_path=...)` for 200 ranges (5-1000 m geometric and
   linear, 30-1000 m), on the 2-D path (sampled beam, Parseval sum on a grid) and the radial path
-  (one
-  integral per range, axisymmetric scenes), threads = 0 and 1, best of 3 warm runs (the first call
-  also
-  makes the FFTW plans; its time is reported apart); each against a radial reference with 4x the
-  nodes.
+  (one integral per range, axisymmetric scenes), threads = 0 and 1, best of 3 warm runs (the first
+  call also makes the FFTW plans; its time is reported apart); each against a radial reference with
+  4x the nodes.
 - direct: Appendix C one emitter at a time (C3-C6) at a few ranges: for each of 7 x 7 Gauss-Hermite
   scatterers of the Gaussian beam, the aperture field exp(i psi |A|^2) exp(-i k A.P/z) (spherical
-  wave,
-  lens C4 and the propagation phase to the detector plane combined into psi; sampled at 4 points per
-  radian of its steepest phase), propagated to the detector plane by lo.propagate (Fraunhofer form,
-  chirp-z to 1 um samples over the detector), |U|^2 summed over the detector disc. Its time per
-  range
-  is extrapolated to the 200-range curve, and its G is compared with lo's.
+  wave, lens C4 and the propagation phase to the detector plane combined into psi; sampled at 4
+  points per radian of its steepest phase), propagated to the detector plane by lo.propagate
+  (Fraunhofer form, chirp-z to 1 um samples over the detector), |U|^2 summed over the detector disc.
+  Its time per range is extrapolated to the 200-range curve, and its G is compared with lo's.
 Prints a table and writes results/bench_fo_overlap.json. Run: python benchmarks/bench_fo_overlap.py
 """
 

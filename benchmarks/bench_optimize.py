@@ -7,8 +7,7 @@ Problems (the paper's Table 1 lidar, tolerance 1e-4):
 - the same with radius and defocus free;
 - maximum G at 150 m over beam tilt x, y, the beam misaligned by (0.3, -0.2) mrad;
 - automatic alignment of the defocused design, so misaligned, on its noisy 1 km signal (20 µJ, 30 %,
-  7.5 m bins,
-  100 shots per measurement): raster and gradient, seeds 0-4.
+  7.5 m bins, 100 shots per measurement): raster and gradient, seeds 0-4.
 Times: best of 3 warm runs. Writes results/bench_optimize.json.
 """
 

@@ -1,7 +1,6 @@
 """Phase screens: one 512 x 512 modified von Karman screen with subharmonics, lo against aotools'
 `ft_sh_phase_screen` (benchmark-only dependency), in one process, with the structure function of
-both
-against 6.88 (r/r0)^(5/3) so that the comparison is at equal quality.
+both against 6.88 (r/r0)^(5/3) so that the comparison is at equal quality.
 
 lo: `_core.phase_screen(n, spacing, r0, L0, l0, seed, index)` (C++, FFT screen plus three levels of
 subharmonics, one screen per call; `generate_pair` in C++ gives two per FFT). aotools: the same

@@ -99,8 +99,7 @@ def circle_intersection(delta, rho, rho_d):
 
 def baseline_overlap(system, ranges, n=N_EMITTERS, half_width=GRID_HALF_WIDTH):
     """G(z) on `ranges` (m) by Appendix B with an n x n emitter grid, and the obstruction's two
-    extra
-    rays of Section 4A (shadow circle assumed inside the aperture, as there). No fibre NA."""
+    extra rays of Section 4A (shadow circle assumed inside the aperture, as there). No fibre NA."""
     beam, tel, det = system.beam, system.telescope, system.detector
     if det.numerical_aperture is not None:
         raise ValueError("the baseline transcribes Appendix B and Section 4A only: no fibre NA")

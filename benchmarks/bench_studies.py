@@ -1,12 +1,9 @@
 """Tolerance study, locally against a Dask LocalCluster on the same cores.
 
 The study of examples/tolerance_study.py: 1,000 members of the Table 1 lidar with normal offsets of
-the beam tilt
-(sd 20 µrad, x and y), the detector defocus (sd 0.2 mm) and the detector offset (sd 10 µm, x and y);
-RT to 1e-3
-at 60 ranges 10 m-3 km. Timed three ways, best of REPEATS after one untimed run each (local and
-cluster runs
-alternate, so that both see the same load from other processes):
+the beam tilt (sd 20 µrad, x and y), the detector defocus (sd 0.2 mm) and the detector offset (sd 10
+µm, x and y); RT to 1e-3 at 60 ranges 10 m-3 km. Timed three ways, best of REPEATS after one untimed
+run each (local and cluster runs alternate, so that both see the same load from other processes):
 
 - local: `lo.tolerance_study(...)` with no client: dask's threaded scheduler, one member per core at
   a time;
@@ -15,8 +12,7 @@ alternate, so that both see the same load from other processes):
 - loop: the plain loop used without dask (one member after the other), for reference.
 
 The ratio cluster / local is the cost of the cluster's processes, pickling and scheduling (target:
-within 1.5x).
-All three results are checked equal bit for bit. Writes results/bench_studies.json.
+within 1.5x). All three results are checked equal bit for bit. Writes results/bench_studies.json.
 Run: python benchmarks/bench_studies.py (the package must be importable by the worker processes
 too).
 """

@@ -2,16 +2,13 @@
 curve.
 
 The paper's Table 1 lidar with its beam tilted by 50 µrad in y (the full-aperture coupling keeps a
-centre of
-symmetry, so the full curve is one Rice-weighted radial integral per range; a quadrant breaks the
-rotation,
-so each masked curve needs the exact areas of the back-projected detector disc inside it, integrated
-against the
-Marcum-Q kernel), 100 ranges geomspace(10 m, 3000 m), tolerance 1e-4. Timed, best of 5 warm repeats:
+centre of symmetry, so the full curve is one Rice-weighted radial integral per range; a quadrant
+breaks the rotation, so each masked curve needs the exact areas of the back-projected detector disc
+inside it, integrated against the Marcum-Q kernel), 100 ranges geomspace(10 m, 3000 m), tolerance
+1e-4. Timed, best of 5 warm repeats:
 - through the public API on all cores: one full curve (lo.overlap), the four quadrants one
-  lo.overlap call
-  each, and lo.telecover (the four quadrants in one core call sharing their nodes, plus the full
-  curve);
+  lo.overlap call each, and lo.telecover (the four quadrants in one core call sharing their nodes,
+  plus the full curve);
 - the core alone on one thread (no Python, no thread start-up): the full curve, and the four
   quadrants in one call.
 The quadrant sum is checked against the full curve. Target: the four quadrants within 4x one full

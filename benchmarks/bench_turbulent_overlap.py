@@ -2,16 +2,12 @@
 256^2 grids.
 
 `lo.overlap(system, ranges, method="fo", turbulence=lo.Turbulence(1e-14), realizations=100, seed=1)`
-with
-the paper's Table 1 lidar (355 nm, w0 = 1 mm, f = 1 m, D = 150 mm, FFOV 0.9 mrad), 50 ranges 50-2000
-m
-(geometric), constant Cn^2 = 1e-14 m^-2/3 (the moderate case of examples/turbulence_overlap.py), 10
-screens,
-beam_grid = 256, all cores. One untimed call with 2 realisations first makes the FFTW plans; then
-the full
-call (best of REPEATS) and a 1-realisation call, whose difference gives the cost of one more
-realisation
-(the per-range coupling maps are made once per call). Writes results/bench_turbulent_overlap.json.
+with the paper's Table 1 lidar (355 nm, w0 = 1 mm, f = 1 m, D = 150 mm, FFOV 0.9 mrad), 50 ranges
+50-2000 m (geometric), constant Cn^2 = 1e-14 m^-2/3 (the moderate case of
+examples/turbulence_overlap.py), 10 screens, beam_grid = 256, all cores. One untimed call with 2
+realisations first makes the FFTW plans; then the full call (best of REPEATS) and a 1-realisation
+call, whose difference gives the cost of one more realisation (the per-range coupling maps are made
+once per call). Writes results/bench_turbulent_overlap.json.
 Run: python benchmarks/bench_turbulent_overlap.py
 """
 

@@ -1,31 +1,25 @@
 """Turbulence realisations on a Dask LocalCluster against one local call, on the same cores.
 
 The turbulent FO overlap of the Table 1 lidar: constant Cn^2 = 1e-14 m^-2/3, 10 phase screens,
-beam_grid = 256,
-REALIZATIONS realisations at 20 ranges 50-2000 m, seed 1. Timed four ways, best of REPEATS after one
-untimed run
-each, the runs alternated so that all see the same load from other processes:
+beam_grid = 256, REALIZATIONS realisations at 20 ranges 50-2000 m, seed 1. Timed four ways, best of
+REPEATS after one untimed run each, the runs alternated so that all see the same load from other
+processes:
 
 - overlap: `lo.overlap(system, ranges, lo.Turbulent(...))`, one core call, its OpenMP threads over
-  the realisations
-  (the reference: what a cluster has to beat per core);
+  the realisations (the reference: what a cluster has to beat per core);
 - threads: `lo.turbulent_realizations(...)` with no client: dask's threaded scheduler, one task per
   core;
 - cluster: the same with `client=` a LocalCluster of 2 worker processes x 1 thread (started before
-  timing), the
-  chunk the study chooses (the first realisation here, the others one task per worker);
+  timing), the chunk the study chooses (the first realisation here, the others one task per worker);
 - cluster_chunk16: the cluster with chunk=16, the same even split without the first realisation
-  timed here first
-  (the cost of that timing: one realisation and a set-up before the tasks start);
+  timed here first (the cost of that timing: one realisation and a set-up before the tasks start);
 - cluster_chunk4: the cluster with chunk=4 (8 tasks: the cost of making the FO set-up once per
   task).
 
 The ratio cluster / overlap is the cost of the cluster's processes, pickling, scheduling and the
-set-up made once
-more per worker. All results are checked equal to lo.overlap's bit for bit. Writes
+set-up made once more per worker. All results are checked equal to lo.overlap's bit for bit. Writes
 results/bench_turbulent_study.json. Run: python benchmarks/bench_turbulent_study.py (the package
-must be
-importable by the worker processes too).
+must be importable by the worker processes too).
 """
 
 from __future__ import annotations

@@ -1,10 +1,7 @@
 """Failure map: where RT and the 2-D FO path err by more than 1e-3 against the radial FO reference
-on the
-coaxial Table 1 telescope (range x detector radius in Airy radii), and the 2-D path against its grid
-and
-window. Part of speed_accuracy.py, which runs it and writes failure_map.png;
-tests/test_failure_map.py
-checks its boundary points."""
+on the coaxial Table 1 telescope (range x detector radius in Airy radii), and the 2-D path against
+its grid and window. Part of speed_accuracy.py, which runs it and writes failure_map.png;
+tests/test_failure_map.py checks its boundary points."""
 
 from __future__ import annotations
 

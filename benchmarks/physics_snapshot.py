@@ -1,14 +1,13 @@
 """G(z) of every overlap path on fixed scenes, written to JSON and compared with an earlier
 snapshot.
 
-A refactoring that keeps the algorithms must keep these numbers: run it before the change
-(``--write before.json``) and after (``--compare before.json``); the comparison prints the largest
+A refactoring that keeps the algorithms must keep these numbers: run it before the change (``--write
+before.json``) and after (``--compare before.json``); the comparison prints the largest
 |ΔG| of each case and fails (exit 1) above ``--tolerance`` (default 1e-12).
 
 Cases: RT (coaxial, tilted with obstruction, biaxial with defocus and fibre NA), FO radial and 2-D,
 a FieldBeam (annulus), aberrated RT (pupil form and ray fan) and FO, auto at two tolerances (plain
-and
-aberrated), turbulent RT and FO, and single-scatterer couplings.
+and aberrated), turbulent RT and FO, and single-scatterer couplings.
 """
 
 from __future__ import annotations

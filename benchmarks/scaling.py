@@ -1,6 +1,5 @@
 """Scaling: time against the number of ranges (RT, FO radial, FO 2-D), against the 2-D grid size,
-and
-two threads against one. Part of speed_accuracy.py, which runs it and writes scaling.png."""
+and two threads against one. Part of speed_accuracy.py, which runs it and writes scaling.png."""
 
 from __future__ import annotations
 

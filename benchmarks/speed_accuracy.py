@@ -8,27 +8,22 @@ scene,
    each method a series whose points are its accuracy settings:
    - RT, ``lo.overlap(method="rt", tolerance=tol)`` for tol = 1e-2 ... 1e-9;
    - FO radial, ``_core.overlap_fo_radial(system, z, RadialFoOptions(periods_per_panel=p))`` for
-     periods per
-     panel 24, 16, 12, 8 (8 is what ``lo.overlap(method="fo")`` uses) and 4 (every Gaussian scene:
-     the
-     beam image's offset enters as J0);
+     periods per panel 24, 16, 12, 8 (8 is what ``lo.overlap(method="fo")`` uses) and 4 (every
+     Gaussian scene: the beam image's offset enters as J0);
    - FO 2-D, ``lo.overlap(method="fo", fo_path="2d", beam_grid=N)`` for N = 64 ... 512 (window 10
      w0);
    - the NumPy transcription of Appendix B (``bench_rt.baseline_overlap``) on n x n emitters;
    - Appendix C one emitter at a time (``bench_fo_overlap.direct_overlap``, 3 x 3 Gauss-Hermite
      emitters) at two ranges of the first scene, its time extrapolated to the whole curve and its
-     error
-     taken over those two ranges;
+     error taken over those two ranges;
    - ``lo.overlap(method="auto", tolerance=tol)`` for tol = 1e-2, 1e-3, 1e-4, marked apart and
-     compared
-     with the fastest single library method whose measured error meets the same tolerance (the
-     requirement: auto no more than 2x slower than it), the two timed again in alternating rounds
-     (best
-     of 7 for sub-second calls, 3 for longer ones) so that both see the same machine load.
+     compared with the fastest single library method whose measured error meets the same tolerance
+     (the requirement: auto no more than 2x slower than it), the two timed again in alternating
+     rounds (best of 7 for sub-second calls, 3 for longer ones) so that both see the same machine
+     load.
    The reference is FO radial at 1 period per panel (every scene here has a Gaussian beam; on the
-   biaxial
-   one FO 2-D at N = 1024 over 12 w0 agrees with it to ~3e-7). Times: best of 3 warm calls, threads
-   = 0.
+   biaxial one FO 2-D at N = 1024 over 12 w0 agrees with it to ~3e-7). Times: best of 3 warm calls,
+   threads = 0.
 2. ``failure_map.png``: error of RT and of FO 2-D (N = 128, 256) at each (range, detector radius in
 Airy
    radii 1.22 lambda f / D) on the coaxial Table 1 telescope, with the 1e-3 contour; and the FO 2-D
@@ -38,10 +33,8 @@ grid
    size, and the speed-up of two threads over one.
 
 Parts 2 and 3 live in failure_map.py and scaling.py, the helpers shared by all three in
-_speed_common.py;
-this script runs them all. Writes ``results/speed_accuracy.json`` (with a ``meta`` block: date,
-versions,
-commit, cores, load).
+_speed_common.py; this script runs them all. Writes ``results/speed_accuracy.json`` (with a ``meta``
+block: date, versions, commit, cores, load).
 Run:  python benchmarks/speed_accuracy.py     (about 3.5 minutes on 2 idle cores, 5 under load).
 """
 
@@ -169,10 +162,8 @@ def timed_point(method, knob, value, call, g_ref, public=True):
 
 def paired_best(call_a, call_b, threads, rounds):
     """Best times (s) of call_a(threads) and call_b(threads), timed in rounds that alternate their
-    order,
-    each after a pause and an untimed call (threads and caches awake): on a shared machine both then
-    see
-    the same load, so their ratio is what is compared."""
+    order, each after a pause and an untimed call (threads and caches awake): on a shared machine
+    both then see the same load, so their ratio is what is compared."""
     calls, best = (call_a, call_b), [float("inf"), float("inf")]
     for r in range(rounds):
         time.sleep(PAIRED_PAUSE_S)

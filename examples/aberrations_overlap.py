@@ -1,14 +1,11 @@
 """Overlap of the paper's Table 1 lidar with spherical aberration and astigmatism in the receiver.
 
 The telescope (f = 1 m, D = 150 mm, full FOV 0.9 mrad at 355 nm) gets 0.5 um RMS of primary
-spherical
-aberration (Zernike Z11), 0.5 um RMS of astigmatism (Z6), or both (about 1.4 waves RMS each). Their
-blur on
-the detector plane (~0.1-0.3 mm) is a large part of the 0.45 mm detector radius and ~100 Airy radii,
-so
-ray tracing (rays displaced by d grad W) and Fourier optics (the aberrated pupil's OTF) should agree
-to
-RT's diffraction floor of a few 1e-3, and both show how much later the lidar reaches full overlap.
+spherical aberration (Zernike Z11), 0.5 um RMS of astigmatism (Z6), or both (about 1.4 waves RMS
+each). Their blur on the detector plane (~0.1-0.3 mm) is a large part of the 0.45 mm detector radius
+and ~100 Airy radii, so ray tracing (rays displaced by d grad W) and Fourier optics (the aberrated
+pupil's OTF) should agree to RT's diffraction floor of a few 1e-3, and both show how much later the
+lidar reaches full overlap.
 
 (a) G(z): RT lines over 5-3000 m, FO markers from 150 m (nearer, the defocus blur needs transforms
 beyond

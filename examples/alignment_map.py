@@ -1,14 +1,11 @@
 """Alignment maps of the paper's Table 1 lidar and of a biaxial one: G over beam tilt_x x tilt_y.
 
 Table 1 (f = 1 m, D = 150 mm, full FOV 0.9 mrad, w0 = 1 mm at 355 nm) is coaxial: its maps are
-round, and the
-tilt it tolerates shrinks with range towards the half FOV (0.45 mrad) minus the beam divergence. The
-biaxial
-lidar is the same with the beam 0.1 m beside the telescope axis, parallel to it: the map's centre
-moves, to
-negative tilt_x at near range (where tilting the beam towards the axis brings it into the field of
-view
-earlier) and back towards zero far away. Tilts are added to the system's own (zero) tilt.
+round, and the tilt it tolerates shrinks with range towards the half FOV (0.45 mrad) minus the beam
+divergence. The biaxial lidar is the same with the beam 0.1 m beside the telescope axis, parallel to
+it: the map's centre moves, to negative tilt_x at near range (where tilting the beam towards the
+axis brings it into the field of view earlier) and back towards zero far away. Tilts are added to
+the system's own (zero) tilt.
 
 Units: SI in the code; plots in mrad. Writes alignment_map.png to the current directory.
 """

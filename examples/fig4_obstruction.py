@@ -2,14 +2,13 @@
 
 System: the paper's Table 1 mono-axial lidar (f = 1 m, D = 150 mm, full FOV 0.9 mrad, TEM00 beam at
 355 nm with w0 = 1 mm, diffraction-limited divergence), with an opaque disc of radius r_obs = 0, 20
-and
-40 mm placed z_obs = 0.7 m in front of the aperture stop (Section 4A). Ranges 5-1000 m, log grid.
+and 40 mm placed z_obs = 0.7 m in front of the aperture stop (Section 4A). Ranges 5-1000 m, log
+grid.
 
 Panel (a) sketches the four rays of one emitter (not to scale): two to the aperture edges (signal)
-and
-two grazing the obstruction's edge (its shadow), each pair imaged to a circle on the detector plane.
-Panel (b) shows G(z). Printed per case: first-signal range (G >= 1e-3), full-overlap range
-(G >= 0.99 max G), max G, the far-range limit 1 - (r_obs/R)^2 and the thin-beam onset range.
+and two grazing the obstruction's edge (its shadow), each pair imaged to a circle on the detector
+plane. Panel (b) shows G(z). Printed per case: first-signal range (G >= 1e-3), full-overlap range (G
+>= 0.99 max G), max G, the far-range limit 1 - (r_obs/R)^2 and the thin-beam onset range.
 
 Units: SI in the code (m, rad); the plot shows ranges in m and radii in mm.
 Writes fig4_obstruction.png to the current directory.
@@ -38,11 +37,9 @@ def sketch_four_rays(ax):
     """Four-ray construction for one emitter (Section 4A), drawn in schematic units (not to scale).
 
     The optical axis runs horizontally: detector plane (DP) at x = -d, thin lens / aperture stop
-    (AS)
-    at x = 0, obstruction at x = z_obs, scattering plane at x = z. A ray from emitter P through
-    aperture
-    height A reaches the DP at A (1 + d/z - d/f) - P d/z (the ABCD chain B13-B16); it meets the
-    obstruction plane at A + (P - A) z_obs / z."""
+    (AS) at x = 0, obstruction at x = z_obs, scattering plane at x = z. A ray from emitter P through
+    aperture height A reaches the DP at A (1 + d/z - d/f) - P d/z (the ABCD chain B13-B16); it meets
+    the obstruction plane at A + (P - A) z_obs / z."""
     f, d, z, z_obs = 1.0, 1.0, 2.6, 0.9  # schematic lengths
     radius, r_obs, p = 0.5, 0.16, 0.25  # aperture and obstruction radii, emitter height
 

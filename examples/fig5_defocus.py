@@ -4,14 +4,11 @@ Fig. 5).
 (a) The paper's Table 1 lidar (f = 1 m, D = 150 mm, full FOV 0.9 mrad, TEM00 beam at 355 nm, w0 = 1
 mm,
     diffraction-limited divergence) with the detector defocus delta_f = 0, 2, 5 and 8 mm, ranges
-    5-1000 m.
-    The vertical lines mark z_opt = f (f + delta_f) / delta_f, the paper's Eq. (5).
+    5-1000 m. The vertical lines mark z_opt = f (f + delta_f) / delta_f, the paper's Eq. (5).
 (b) HELIX, the helium resonance-fluorescence lidar of Section 4B: full FOV 61 urad, D = 762 mm,
     f = 1875 mm, w0 = 7.2 mm, delta_f = 0.22 mm and 0 mm, ranges 1-1000 km (the instrument studies
-    the
-    300-800 km band, shaded). Wavelength and divergence are not given in the paper; the assumptions
-    are
-    stated in HELIX_* below and printed.
+    the 300-800 km band, shaded). Wavelength and divergence are not given in the paper; the
+    assumptions are stated in HELIX_* below and printed.
 
 Units: SI in the code (m, rad); the plots show ranges in m (a) and km (b).
 Writes fig5_defocus.png to the current directory.

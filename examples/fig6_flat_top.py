@@ -1,34 +1,26 @@
 """A flat-top beam from a Gerchberg-Saxton phase plate and its irradiance along the path (the
-paper's
-Section 4C and Fig. 6).
+paper's Section 4C and Fig. 6).
 
 A TEM00 laser at 355 nm with waist w0 = 1 mm passes a phase plate designed so that its far-field
 irradiance is a uniform disc of full angular diameter Psi = 0.36 mrad (``lo.FlatTopBeam``). The
-plate's
-field is propagated with ``lo.propagate(..., method="auto")`` (angular spectrum up to the critical
-distance n dx^2 / lambda = 22.5 m, Fresnel beyond it) to three ranges. Near the plate the beam is
-still
-the Gaussian, now carrying the plate's phase; beyond the Rayleigh range pi w0^2 / lambda = 8.9 m its
-centre dips (by about 11 % at 15 m, a shallow ring); far away it is the disc of diameter Psi z. The
-disc's
-edge cannot be sharper than the laser's own diffraction angle lambda / (pi w0) = 0.11 mrad,
-comparable with
-Psi / 2, so the design's target is a disc with a soft (Fermi-Dirac) edge: only about 68 % of the
-power lies
-inside Psi, and the plateau is narrow.
+plate's field is propagated with ``lo.propagate(..., method="auto")`` (angular spectrum up to the
+critical distance n dx^2 / lambda = 22.5 m, Fresnel beyond it) to three ranges. Near the plate the
+beam is still the Gaussian, now carrying the plate's phase; beyond the Rayleigh range pi w0^2 /
+lambda = 8.9 m its centre dips (by about 11 % at 15 m, a shallow ring); far away it is the disc of
+diameter Psi z. The disc's edge cannot be sharper than the laser's own diffraction angle lambda /
+(pi w0) = 0.11 mrad, comparable with Psi / 2, so the design's target is a disc with a soft
+(Fermi-Dirac) edge: only about 68 % of the power lies inside Psi, and the plateau is narrow.
 
 Panels: (a) the plate's phase, (b)-(e) irradiance at 0, 5, 15 and 1000 m (axes in mm, each
 normalised
 to its peak, dashed circle: diameter Psi z), (f) far-field radiant intensity through the centre
-against
-the design target (angle in mrad), with the 1000 m cut rescaled to the same units (I z^2 against x /
-z).
+against the design target (angle in mrad), with the 1000 m cut rescaled to the same units (I z^2
+against x / z).
 Printed: the design summary and, at each range, the beam's diameters (half maximum, D4sigma) against
 Psi z.
 
 Units: SI in the code (m, rad, W); the plots show mm and mrad. Writes fig6_flat_top.png to the
-current
-directory.
+current directory.
 """
 
 import time

@@ -1,13 +1,10 @@
 """Overlap of the Table 1 lidar for a flat-top beam and for Gaussian beams of growing divergence
-(the
-paper's Fig. 7, Section 4C).
+(the paper's Fig. 7, Section 4C).
 
 System: f = 1 m, D = 150 mm, full FOV 0.9 mrad (``lo.paper_table1()``), 355 nm, ranges 5-1000 m (200
-on
-a linear grid, as the paper plots). Beams, all from a w0 = 1 mm waist at z = 0:
+on a linear grid, as the paper plots). Beams, all from a w0 = 1 mm waist at z = 0:
   - flat top: the Gerchberg-Saxton phase plate of ``examples/fig6_flat_top.py`` (far-field disc of
-    full
-    angle Psi = 0.36 mrad at half plateau, soft edge), Fourier optics only (FO);
+    full angle Psi = 0.36 mrad at half plateau, soft edge), Fourier optics only (FO);
   - Gaussian 0.23 mrad full angle: the diffraction-limited TEM00 (half angle lambda / (pi w0)), ray
     tracing (RT) and FO;
   - Gaussians 0.45 and 0.60 mrad full angle (``divergence`` is the 1/e^2 half angle: 0.225 and 0.30
@@ -16,19 +13,14 @@ Lower panel: eps_G = 100 |1 - G_RT / G_FO| (Eq. 6) of the TEM00 beam, in percent
 
 Up to about R / alpha = 167 m (R = D / 2, alpha = half FOV) every curve follows the thin-beam limit
 (alpha z / R)^2: the detector sees only the central part of the aperture's defocus blur, whatever
-the
-beam. Full overlap then comes when the beam's outer power fits inside the cone alpha z - R, so it is
-set
-by the beam's tail rather than by its nominal width: the flat top's soft edge puts as much power
-beyond
-0.3 mrad as the 0.45 mrad Gaussian (3 %), and more beyond the 0.45 mrad half FOV. Printed per curve:
-full-overlap range (G >= 0.99 max G, on the 5 m grid), first-signal range (G >= 1e-3), G at 1000 m
-and
-compute time.
+the beam. Full overlap then comes when the beam's outer power fits inside the cone alpha z - R, so
+it is set by the beam's tail rather than by its nominal width: the flat top's soft edge puts as much
+power beyond 0.3 mrad as the 0.45 mrad Gaussian (3 %), and more beyond the 0.45 mrad half FOV.
+Printed per curve: full-overlap range (G >= 0.99 max G, on the 5 m grid), first-signal range (G >=
+1e-3), G at 1000 m and compute time.
 
 Units: SI in the code (m, rad); the plot shows ranges in m. Writes fig7_beam_shapes.png to the
-current
-directory.
+current directory.
 """
 
 import dataclasses

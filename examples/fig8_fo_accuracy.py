@@ -3,36 +3,27 @@ Fig. 8).
 
 A TEM00 beam with waist w0 = 5 mm (flat phase at z = 0) is propagated at 355 nm and 1064 nm to 200
 ranges from 1 mm to 100 km (log grid) with ``lo.propagate(field, z, method="auto")``, always from
-the
-same input grid, and its second-moment radius (D4sigma/2, the 1/e^2 radius of a TEM00 beam) is
-compared
-with Eq. (D1) by the relative error eps_w of Eq. (D2), in percent.
+the same input grid, and its second-moment radius (D4sigma/2, the 1/e^2 radius of a TEM00 beam) is
+compared with Eq. (D1) by the relative error eps_w of Eq. (D2), in percent.
 
 Grid: n = 512 samples of spacing 10 w0 / n = 97.7 um, i.e. a window of +-5 w0 (the input Gaussian is
 down to exp(-50) of its peak irradiance at the edge) with 51 samples per w0. ``auto`` uses the
-angular
-spectrum, Eq. (A1), up to the critical distance n dx^2 / lambda (13.8 m at 355 nm, 4.6 m at 1064 nm)
-and the single-FFT Fresnel integral, Eq. (A5), beyond it; the Fresnel output spacing lambda z / (n
-dx)
-grows with z, so the beam always holds L / (pi w0) = 3.2 output samples per radius in the far field,
-enough for its second moment. The method auto used is read from the output spacing (the angular
-spectrum keeps the input grid) and checked against the critical distance.
+angular spectrum, Eq. (A1), up to the critical distance n dx^2 / lambda (13.8 m at 355 nm, 4.6 m at
+1064 nm) and the single-FFT Fresnel integral, Eq. (A5), beyond it; the Fresnel output spacing lambda
+z / (n dx) grows with z, so the beam always holds L / (pi w0) = 3.2 output samples per radius in the
+far field, enough for its second moment. The method auto used is read from the output spacing (the
+angular spectrum keeps the input grid) and checked against the critical distance.
 
 ``auto`` never switches to Fraunhofer: beyond the critical distance the single-FFT Fresnel integral
-costs
-the same and does not drop the input chirp. For comparison, ``method="fraunhofer"`` (Eq. (A7)) is
-run at
-every range too, as the paper's blue dotted line: it is only right where the phase pi a^2 / (lambda
-z) it
-neglects (Eq. (A6), a = radius holding all but 1e-6 of the power) is small. The library warns
-(``lo.SamplingWarning``) where that phase exceeds 0.1 rad; the warnings are caught and counted, and
-the
-bars at the top of the lower panel mark the ranges where they fire.
+costs the same and does not drop the input chirp. For comparison, ``method="fraunhofer"`` (Eq. (A7))
+is run at every range too, as the paper's blue dotted line: it is only right where the phase pi a^2
+/ (lambda z) it neglects (Eq. (A6), a = radius holding all but 1e-6 of the power) is small. The
+library warns (``lo.SamplingWarning``) where that phase exceeds 0.1 rad; the warnings are caught and
+counted, and the bars at the top of the lower panel mark the ranges where they fire.
 
 Printed per wavelength: the worst eps_w of auto in each method's region and at lidar ranges (>= 100
-m),
-the SamplingWarnings of auto (expected: none), the Fraunhofer warnings and the ranges from which its
-eps_w stays below the paper's 0.2 % and the project's 0.01 %.
+m), the SamplingWarnings of auto (expected: none), the Fraunhofer warnings and the ranges from which
+its eps_w stays below the paper's 0.2 % and the project's 0.01 %.
 
 Units: SI in the code (m); the plot shows ranges in m and radii in mm.
 Writes fig8_fo_accuracy.png to the current directory.

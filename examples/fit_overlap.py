@@ -1,14 +1,11 @@
 """The Raman method measures the overlap only from where the Raman signal is strong enough, here 150
 m: fit the
 Table 1 lidar's beam tilt and fibre defocus to that noisy partial curve, then extrapolate the fitted
-model to
-the near range with its 1-sigma band (the covariance propagated through the Jacobian).
+model to the near range with its 1-sigma band (the covariance propagated through the Jacobian).
 
 Truth: tilt 0.30 mrad, defocus 2.0 mm; measured G from 150 m to 3 km with noise sigma = 0.01; the
-fit starts at
-tilt 0.10 mrad (not 0: G of a coaxial lidar is even in the tilt, so its slope there is zero) and
-defocus 0.
-Writes fit_overlap.png. SI units.
+fit starts at tilt 0.10 mrad (not 0: G of a coaxial lidar is even in the tilt, so its slope there is
+zero) and defocus 0. Writes fit_overlap.png. SI units.
 """
 
 import matplotlib

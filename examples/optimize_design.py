@@ -4,10 +4,8 @@ signals.
 1. The smallest field of view (detector radius, f = 1 m) for full overlap by 150 m: G >= 0.99
 G_limit from
    150 m to 10 km and a far-range loss below 1 %, with the detector radius free alone, then with the
-   fibre
-   defocus free as well (a defocused detector sees the near range earlier, so a smaller one suffices
-   until the
-   far-range blur costs more than 1 %).
+   fibre defocus free as well (a defocused detector sees the near range earlier, so a smaller one
+   suffices until the far-range blur costs more than 1 %).
 2. The defocused design, its beam tilted by an unknown (0.3, -0.2) mrad, aligned automatically on
 its 1 km
    signal (20 µJ pulses, 30 % efficiency, 7.5 m bins, 100 shots per measurement, photon noise), by a

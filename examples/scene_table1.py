@@ -2,20 +2,14 @@
 
 System: the paper's Table 1 lidar (f = 1 m, D = 150 mm, full FOV 0.9 mrad, TEM00 beam at 355 nm with
 w0 = 1 mm, diffraction-limited divergence). The biaxial variant moves the beam 0.2 m off the
-telescope axis
-(along x) and tilts it by -0.4 mrad, so that its axis crosses the receiver's line of sight at 500 m:
-the
-beam enters the field of view at about 150 m.
+telescope axis (along x) and tilts it by -0.4 mrad, so that its axis crosses the receiver's line of
+sight at 500 m: the beam enters the field of view at about 150 m.
 
 Each picture shows, with the transverse axes exaggerated x100 and the range to scale: the beam's
-1/e^2
-envelope coloured by the overlap G(z), the receiver's full field of view (translucent), the aperture
-and
-detector, the full-overlap range (red ring) and, at two ranges, the beam irradiance in the
-scattering plane
-with the field of view (cyan) and its image on the detector plane with the detector (cyan). Printed:
-G at
-the two ranges and the full-overlap range (G >= 0.99 max G).
+1/e^2 envelope coloured by the overlap G(z), the receiver's full field of view (translucent), the
+aperture and detector, the full-overlap range (red ring) and, at two ranges, the beam irradiance in
+the scattering plane with the field of view (cyan) and its image on the detector plane with the
+detector (cyan). Printed: G at the two ranges and the full-overlap range (G >= 0.99 max G).
 
 Units: SI (m, rad). Needs PyVista (pip install 'lidar-overlap[viz]'); renders off-screen.
 Writes scene_table1.png and scene_biaxial.png to the current directory.

@@ -1,15 +1,12 @@
 """The Table 1 lidar (355 nm, 0.1 mJ pulses) as an instrument: its elastic signal through a standard
-atmosphere with a
-boundary layer and an aerosol layer at 2 km, 1000 shots with photon noise, and the overlap
-correction.
+atmosphere with a boundary layer and an aerosol layer at 2 km, 1000 shots with photon noise, and the
+overlap correction.
 
 Left: the dynamic-range view, expected photons per 7.5 m bin and shot with and without the overlap,
 the
 background and the noise level. Right: the range-corrected noisy signal before and after dividing by
-G, with
-the propagated 1-σ band, against the overlap-free truth; ranges where G < 0.1 are masked (not
-corrected).
-Writes signal_correction.png. SI units.
+G, with the propagated 1-σ band, against the overlap-free truth; ranges where G < 0.1 are masked
+(not corrected). Writes signal_correction.png. SI units.
 """
 
 import matplotlib

@@ -1,16 +1,13 @@
 """The telecover test (EARLINET quality assurance; Freudenthaler et al., 2018) of the paper's Table
-1 lidar
-with its beam tilted by 50 µrad towards +y (north).
+1 lidar with its beam tilted by 50 µrad towards +y (north).
 
 Each quadrant of the aperture is opened in turn (north = +y, east = +x of the aperture plane). The
-sectors
-see the same atmosphere, so their range-corrected signals differ only through their overlap G_i(z)
-(each
+sectors see the same atmosphere, so their range-corrected signals differ only through their overlap
+G_i(z) (each
 normalised to the full aperture: the four add up to the full G). The conventional figure shows the
-signals
-per sector and their normalised deviations G_i / mean G - 1 with the ±5 % band: the tilt shows up as
-a
-north-south split of about ±20 % in the near range that closes where the lidar reaches full overlap.
+signals per sector and their normalised deviations G_i / mean G - 1 with the ±5 % band: the tilt
+shows up as a north-south split of about ±20 % in the near range that closes where the lidar reaches
+full overlap.
 
 Units: SI in the code; plots in m and %. Writes telecover.png to the current directory.
 """

@@ -2,14 +2,11 @@
 its tolerances.
 
 1,000 members, each the Table 1 lidar (355 nm, w0 = 1 mm, f = 1 m, D = 150 mm, FFOV 0.9 mrad) with
-normal
-offsets drawn for the beam tilt (x and y, sd 20 µrad), the detector defocus (sd 0.2 mm) and the
-detector offset
-(x and y, sd 10 µm); G by ray tracing to 1e-3 at 60 ranges from 10 m to 3 km, on a Dask LocalCluster
-of two
+normal offsets drawn for the beam tilt (x and y, sd 20 µrad), the detector defocus (sd 0.2 mm) and
+the detector offset (x and y, sd 10 µm); G by ray tracing to 1e-3 at 60 ranges from 10 m to 3 km, on
+a Dask LocalCluster of two
 worker processes. Shaded: the 5-95 % band of the members; the median and the nominal system drawn
-over it.
-Writes tolerance_study.png. SI units.
+over it. Writes tolerance_study.png. SI units.
 """
 
 import time

@@ -1,14 +1,11 @@
 """Chebyshev coefficients of exp(-x) I0(x) and exp(-x) I1(x) for cpp/src/core/special_functions.hpp
-(standard
-library only).
+(standard library only).
 
 Near, x in [0, 8]: f(t) = exp(-x) In(x) / x^n with x = 4 (t + 1). Far, x in [8, inf): g(t) = sqrt(x)
-exp(-x) In(x) with
-x = 16 / (t + 1), analytic in 1/x. Each is interpolated at 40 Chebyshev nodes (computed, like
-everything here,
+exp(-x) In(x) with x = 16 / (t + 1), analytic in 1/x. Each is interpolated at 40 Chebyshev nodes
+(computed, like everything here,
 to 50 digits: nodes rounded to doubles would alias the high coefficients to ~1e-15) with In from its
-power series
-of positive terms, and printed up to the last coefficient above 1e-18.
+power series of positive terms, and printed up to the last coefficient above 1e-18.
 """
 
 from decimal import Decimal, getcontext

@@ -1,13 +1,10 @@
 """Random hostile-input campaign against lidar_overlap, through the same worker as the test suite.
 
 Draws N probes across the public API (the strategies of tests/_hostile_probes.py, shared between
-entry
-points in the proportions of the test suite), runs each in a worker process, and prints the probe
-table:
-tried / clean error / finite result / bad error / crash / hang / silent wrong, per entry point and
-in
-total, then the probes that broke the contract grouped by cause, with the shortest reproducer of
-each.
+entry points in the proportions of the test suite), runs each in a worker process, and prints the
+probe table: tried / clean error / finite result / bad error / crash / hang / silent wrong, per
+entry point and in total, then the probes that broke the contract grouped by cause, with the
+shortest reproducer of each.
 
     PYTHONPATH=python .venv/bin/python scripts/probe_table.py [-n 3000] [--seed 1] [--time-limit 20]
 """

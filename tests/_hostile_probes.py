@@ -2,10 +2,9 @@
 examples each gets.
 
 Each strategy draws a :class:`Call` tree: a sane call near the paper's Table 1 with (usually) one or
-two
-hostile values in the system, the ranges or the options. Valid work is kept small (at most 6 ranges,
-8-128 sample grids, 1-3 turbulence realisations and screens) so that a probe costs milliseconds; the
-expensive valid Fourier-optics paths get fewer examples.
+two hostile values in the system, the ranges or the options. Valid work is kept small (at most 6
+ranges, 8-128 sample grids, 1-3 turbulence realisations and screens) so that a probe costs
+milliseconds; the expensive valid Fourier-optics paths get fewer examples.
 """
 
 from __future__ import annotations
@@ -228,8 +227,7 @@ _rt_or_fo = st.sampled_from(("rt", "fo"))
 @st.composite
 def overlap_call(draw, kind: str, max_ranges: int = 6, low: float = 2.0):
     """overlap(system, ranges, method, **options) for one kind of computation, with the hostile
-    values
-    in the system, the ranges or the options."""
+    values in the system, the ranges or the options."""
     count, where = draw(corruptions), draw(_where)
     bad = {w: (count if w == where else 0) for w in ("system", "ranges", "options")}
     beam = field_beam(bad=0) if kind == "field_beam" else None
@@ -288,8 +286,7 @@ METHOD_HOSTILITY = {
 @st.composite
 def overlap_method_object(draw):
     """overlap(system, ranges, <RT | FO | Auto object>), the hostile values in the method object's
-    options
-    (aberrated systems have their own probe: their ray fans cost seconds)."""
+    options (aberrated systems have their own probe: their ray fans cost seconds)."""
     count = draw(corruptions)
     sys_ = draw(system(bad=0))
     z = draw(ranges(low=20.0, bad=0, max_size=3))
@@ -373,8 +370,7 @@ _result_methods = st.sampled_from(("full_overlap_range", "first_signal_range"))
 @st.composite
 def result_method(draw):
     """full_overlap_range / first_signal_range of a sane RT result, with a hostile threshold or a
-    curve too
-    short to reach full overlap."""
+    curve too short to reach full overlap."""
     obj = call("overlap", draw(system(bad=0)), draw(ranges(bad=0)), "rt")
     threshold = draw(hostile_real) if draw(corruptions) else draw(sanes).real(1e-3, 0.999)
     return call(Attr(obj, draw(_result_methods)), threshold)

@@ -1,7 +1,6 @@
 """Hypothesis strategies for the probes of the analysis layer on top of the forward model (alignment
-maps,
-the telecover test, sensitivities, overlap correction); see _hostile_probes.py, which lists them in
-PROBES."""
+maps, the telecover test, sensitivities, overlap correction); see _hostile_probes.py, which lists
+them in PROBES."""
 
 from __future__ import annotations
 
@@ -39,8 +38,7 @@ _alignment_where = st.sampled_from(("system", "ranges", "axis", "tolerance"))
 @st.composite
 def alignment_map(draw):
     """lo.alignment_map over one or two sane or hostile axes (values, order, sizes), of a hostile
-    system or
-    ranges, or at a hostile tolerance."""
+    system or ranges, or at a hostile tolerance."""
     count, where, r = draw(corruptions), draw(_alignment_where), draw(sanes)
     axes = r.sample(ALIGNMENT_AXES, r.randint(1, 2))
     kwargs = {}
@@ -79,8 +77,7 @@ _telecover_where = st.sampled_from(("system", "ranges", "options", "mask"))
 @st.composite
 def telecover(draw):
     """lo.telecover of a hostile system or ranges, with hostile options, or through a mask with a
-    hostile
-    sector (angles, radii)."""
+    hostile sector (angles, radii)."""
     count, where, r = draw(corruptions), draw(_telecover_where), draw(sanes)
     sane = {"sectors": "quadrants", "tolerance": tolerance(r), "threads": r.choice((0, 1, 2))}
     kwargs = corrupt(draw, sane, TELECOVER_HOSTILITY, count if where == "options" else 0)

@@ -1,18 +1,13 @@
 """Hypothesis strategies for hostile-input probes: pools of hostile values, sane values near the
-paper's
-Table 1, and the lidar system's parts built from them as :class:`Call` trees.
+paper's Table 1, and the lidar system's parts built from them as :class:`Call` trees.
 
 A probe is mostly sane with one or two hostile values in it, so that each hostile value reaches the
-code
-behind the checks it passes instead of stopping at the first check of a call full of garbage.
+code behind the checks it passes instead of stopping at the first check of a call full of garbage.
 
 Hypothesis draws the structure of a probe: which parameters turn hostile and their hostile values.
-The
-sane values around them come from a :class:`Sane` generator seeded by one hypothesis draw per part,
-since a
-hypothesis draw costs ~0.1 ms and a system has some twenty sane values: this keeps generation at
-about a
-millisecond a probe, well below what most probes cost to run.
+The sane values around them come from a :class:`Sane` generator seeded by one hypothesis draw per
+part, since a hypothesis draw costs ~0.1 ms and a system has some twenty sane values: this keeps
+generation at about a millisecond a probe, well below what most probes cost to run.
 """
 
 from __future__ import annotations
@@ -172,8 +167,8 @@ def _names(names: tuple):
 
 
 def corrupt(draw, sane: dict, hostile: dict, bad=None) -> dict:
-    """``sane`` kwargs with ``bad`` (default: drawn from ``corruptions``) of the parameters named in
-    ``hostile`` replaced by a draw of their hostile strategy (``draw`` is a composite
+    """``sane`` kwargs with ``bad`` (default: drawn from ``corruptions``) of the parameters named
+    in ``hostile`` replaced by a draw of their hostile strategy (``draw`` is a composite
     strategy's)."""
     kwargs = dict(sane)
     count = draw(corruptions) if bad is None else bad
@@ -324,8 +319,7 @@ _part_names = st.sampled_from(("beam", "telescope", "detector"))
 @st.composite
 def system(draw, bad=None, aberrated=False, beam=None):
     """A LidarSystem with ``bad`` (default: drawn) hostile values in one of its parts, or a hostile
-    part;
-    ``beam``: a strategy for its beam (default: a Gaussian beam)."""
+    part; ``beam``: a strategy for its beam (default: a Gaussian beam)."""
     count = draw(corruptions) if bad is None else bad
     part = draw(_parts) if count else None
     parts = {

@@ -1,10 +1,7 @@
 """Parent side of the hostile-input probes: one long-lived worker process runs the probes, and a
-probe
-that kills it (signal, abort) or stops answering within the time limit is recorded as a crash or a
-hang
-and the worker is replaced. A crash therefore never takes pytest down, and a probe costs
-milliseconds,
-not a Python start-up.
+probe that kills it (signal, abort) or stops answering within the time limit is recorded as a crash
+or a hang and the worker is replaced. A crash therefore never takes pytest down, and a probe costs
+milliseconds, not a Python start-up.
 """
 
 from __future__ import annotations
@@ -126,10 +123,9 @@ class _Worker:
 
 class ProbeRunner:
     """Runs probes (:class:`Call` trees) in a worker process; ``run`` returns the worker's
-    judgement,
-    or a crash or hang verdict with the worker's last stderr lines. A spare worker starts in the
-    background
-    as soon as one is in use, so that replacing a crashed or hung worker costs no start-up."""
+    judgement, or a crash or hang verdict with the worker's last stderr lines. A spare worker starts
+    in the background as soon as one is in use, so that replacing a crashed or hung worker costs no
+    start-up."""
 
     def __init__(self, time_limit: float = DEFAULT_TIME_LIMIT) -> None:
         self.time_limit = time_limit
@@ -164,8 +160,8 @@ class ProbeRunner:
 
     def run(self, probe: Call, time_limit: float | None = None) -> dict:
         """Run one probe; the outcome dict has ``verdict`` (one of VERDICTS), ``why`` and, by
-        verdict,
-        ``type``/``message`` (errors), ``summary`` (results) or ``signal``/``stderr`` (crashes)."""
+        verdict, ``type``/``message`` (errors), ``summary`` (results) or ``signal``/``stderr``
+        (crashes)."""
         limit = self.time_limit if time_limit is None else time_limit
         worker = self._active()
         request = pickle.dumps(probe)
@@ -265,8 +261,7 @@ def describe(probe: Call, outcome: dict) -> str:
 
 def cause(probe: Call, outcome: dict) -> tuple:
     """What a broken probe has in common with others that break the same way: entry point, verdict,
-    and
-    the error or the reason with its numbers blanked."""
+    and the error or the reason with its numbers blanked."""
     text = outcome.get("message") if outcome["verdict"] == BAD_ERROR else outcome.get("why", "")
     text = re.sub(r"\(np\.float64\(([^)]*)\)", r"(\1", text or "")
     return (
@@ -332,11 +327,9 @@ class Tally:
 
 class Campaign:
     """Probes run through one runner and tallied. A build that hangs or crashes on many probes would
-    make a
-    campaign slow (a hang costs the whole time limit), so past ``max_hangs`` hangs or
-    ``max_crashes``
-    crashes the remaining probes are only counted as not run; the campaign has failed by then
-    anyway."""
+    make a campaign slow (a hang costs the whole time limit), so past ``max_hangs`` hangs or
+    ``max_crashes`` crashes the remaining probes are only counted as not run; the campaign has
+    failed by then anyway."""
 
     def __init__(self, runner: ProbeRunner, max_hangs: int = 2, max_crashes: int = 40) -> None:
         self.runner, self.max_hangs, self.max_crashes = runner, max_hangs, max_crashes

@@ -1,20 +1,16 @@
 """Worker process of the hostile-input probes: builds one call from a plain description, runs it,
-and
-judges the outcome against the input contract.
+and judges the outcome against the input contract.
 
 The contract: every public entry point ends either in a ValueError or TypeError whose message names
-one
-of the parameters the caller set, or in a result whose numbers are finite, with every overlap in [0,
-1].
-Warnings are allowed. Anything else (another exception type, a crash, a hang, a NaN or out-of-range
-number) breaks it.
+one of the parameters the caller set, or in a result whose numbers are finite, with every overlap in
+[0, 1]. Warnings are allowed. Anything else (another exception type, a crash, a hang, a NaN or
+out-of-range number) breaks it.
 
 A probe is a :class:`Call` tree of plain values (floats, ints, strings, tuples, dicts, numpy
-arrays), so
-it pickles small and reads back as the Python expression that reproduces it (see ``_probe_runner``).
-The worker reads length-prefixed pickles on stdin and answers on a private copy of its stdout; its
-own
-fd 1 is pointed at stderr so that anything the library prints cannot corrupt the protocol.
+arrays), so it pickles small and reads back as the Python expression that reproduces it (see
+``_probe_runner``). The worker reads length-prefixed pickles on stdin and answers on a private copy
+of its stdout; its own fd 1 is pointed at stderr so that anything the library prints cannot corrupt
+the protocol.
 
 Run as ``python -c "import _probe_worker; _probe_worker.serve()"`` with this directory on sys.path.
 """
@@ -139,8 +135,7 @@ def entry_name(node) -> str:
 # ------------------------------------------------------------------------------------------ judging
 def names_a_parameter(message: str, names) -> bool:
     """True when ``message`` names one of ``names`` as a word ("beam.wavelength" and "ranges[2]"
-    name
-    "wavelength" and "ranges"; "wavelengths" names neither)."""
+    name "wavelength" and "ranges"; "wavelengths" names neither)."""
     return any(
         re.search(rf"(?<![A-Za-z0-9_]){re.escape(n)}(?![A-Za-z0-9_])", message) for n in names
     )

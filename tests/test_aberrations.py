@@ -1,6 +1,5 @@
 """Receiver aberrations: Zernike polynomials, Seidel conversion, point image and the aberrated
-overlap paths,
-against closed forms and independent computations."""
+overlap paths, against closed forms and independent computations."""
 
 import dataclasses
 import math
@@ -142,9 +141,8 @@ def test_strehl_ratio_against_quadrature_and_marechal(term):
 
 def test_point_image_keeps_the_power_the_pupil_passes():
     """A phase aberration moves light, never removes it: the aberrated image holds the ideal one's
-    power (the
-    transform is unitary), which is the pupil's area up to its edge pixels (about 0.42 spacing / R
-    short)."""
+    power (the transform is unitary), which is the pupil's area up to its edge pixels (about 0.42
+    spacing / R short)."""
     system = lo.paper_table1(defocus=1e-3)
 
     def power(s):
@@ -161,9 +159,8 @@ def test_point_image_keeps_the_power_the_pupil_passes():
 @pytest.mark.parametrize("defocus", [1e-3, -0.5e-3])
 def test_zernike_defocus_reproduces_detector_defocus(defocus):
     """Z4 in the pupil of a receiver focused at infinity is the detector moved by `defocus`, with
-    the whole
-    detector-plane picture scaled by f/d: the same overlap once the detector radius is scaled
-    too."""
+    the whole detector-plane picture scaled by f/d: the same overlap once the detector radius is
+    scaled too."""
     z = np.array([30.0, 100.0, 300.0, 1000.0, 3000.0])
     moved = lo.paper_table1(defocus=defocus)
     d = F + defocus
@@ -192,8 +189,7 @@ def test_rt_and_fo_agree_when_the_blur_dwarfs_the_airy_disc():
 
 def test_ray_fan_agrees_with_the_pupil_form():
     """Seidel W040 traced ray by ray (an NA of 0.99 filters nothing but forces the ray fan) against
-    its
-    Zernike form in the pupil integral."""
+    its Zernike form in the pupil integral."""
     w040 = 2e-6
     z = np.array([100.0, 400.0, 2000.0])
     fan = dataclasses.replace(

@@ -1,8 +1,6 @@
 """Alignment maps: each grid point is lo.overlap of the misaligned system bit for bit; the physics
-of tilts and
-offsets (mirror and swap symmetry, a tilt equal to the offset that puts the beam at the same place);
-bad axes
-refused naming the axis and the value."""
+of tilts and offsets (mirror and swap symmetry, a tilt equal to the offset that puts the beam at the
+same place); bad axes refused naming the axis and the value."""
 
 import sys
 import warnings

@@ -1,6 +1,5 @@
 """Alignment maps of many systems through Dask: each map bit for bit the single call's, the same on
-a two-worker
-cluster, in threads and in a plain loop; bad arguments refused by name."""
+a two-worker cluster, in threads and in a plain loop; bad arguments refused by name."""
 
 import numpy as np
 import pytest

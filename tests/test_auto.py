@@ -1,11 +1,8 @@
 """method="auto": on scenes of every kind its error estimate distinguishes (focused, defocused,
-obstructed,
-overfilled fibres, a blur edge through a fibre, biaxial), the chosen model stays within the
-tolerance of a
-converged Fourier-optics reference, reports an error estimate that covers its error, and explains
-itself.
-(The estimate's calibration and its check on 160 random scenes: docs/auto_method.md; its speed
-against the
+obstructed, overfilled fibres, a blur edge through a fibre, biaxial), the chosen model stays within
+the tolerance of a converged Fourier-optics reference, reports an error estimate that covers its
+error, and explains itself. (The estimate's calibration and its check on 160 random scenes:
+docs/auto_method.md; its speed against the
 single methods: benchmarks/speed_accuracy.py.)
 """
 
@@ -23,8 +20,7 @@ Z = np.geomspace(10.0, 3000.0, 60)
 
 def reference(system):
     """Converged FO: the radial path (any Gaussian pointing) with 4x its nodes; the 2-D path on a
-    finer beam
-    grid agrees with it to 3e-7 on the biaxial scene (tests/test_overlap_fo.py)."""
+    finer beam grid agrees with it to 3e-7 on the biaxial scene (tests/test_overlap_fo.py)."""
     return _core.overlap_fo_radial(
         system._native, Z, _core.RadialFoOptions(periods_per_panel=2.0)
     ).overlap
@@ -105,8 +101,7 @@ def test_decisions_follow_the_physics():
 @pytest.mark.filterwarnings("ignore:ray tracing outside its validity")
 def test_edge_through_the_detector_refuses_rt(references):
     """Where the blur disc's edge crosses a small detector, diffraction shifts that edge: RT is
-    refused at a
-    tolerance below its error there, and accepted above it."""
+    refused at a tolerance below its error there, and accepted above it."""
     system = SCENES["edge through fibre"]
     rt = lo.overlap(system, Z, method="rt", tolerance=1e-8).overlap
     assert np.max(np.abs(rt - references["edge through fibre"])) > CROSSING_RT_ERROR

@@ -2,14 +2,10 @@
 
 Checked against:
 - LG_p^l vortices: the phase winds by 2 pi l around the axis and the on-axis irradiance is 0 (l !=
-  0), at the
-  waist and in the far field (Fresnel, 50 Rayleigh ranges); LG_0^0 is the TEM00 of Field.gaussian;
-  the
-  second-moment radius is w0 sqrt(2p + |l| + 1);
-- a uniformly lit annulus (radii b < a, eps = b/a): Fraunhofer pattern
-  I/I(0) = [(2 J1(v)/v - eps^2 2 J1(eps v)/(eps v)) / (1 - eps^2)]^2, v = k a theta; its area pi
-  (a^2 - b^2);
-  power conservation;
+  0), at the waist and in the far field (Fresnel, 50 Rayleigh ranges); LG_0^0 is the TEM00 of
+  Field.gaussian; the second-moment radius is w0 sqrt(2p + |l| + 1);
+- a uniformly lit annulus (radii b < a, eps = b/a): Fraunhofer pattern I/I(0) = [(2 J1(v)/v - eps^2
+  2 J1(eps v)/(eps v)) / (1 - eps^2)]^2, v = k a theta; its area pi (a^2 - b^2); power conservation;
 - super-Gaussian I = I0 exp(-2 (r/R)^(2N)): N = 1 is TEM00, N = 10 is flat inside R/2 and exp(-2) I0
   at R;
 - every profile carries the requested power; bad arguments raise ValueError naming the parameter.
@@ -83,8 +79,7 @@ def lg(l, p=0, n=N, spacing=DX, power=1.0):
 
 def winding(field, radius, curvature=math.inf):
     """Total phase change / 2 pi once around a closed loop of the samples nearest the circle of
-    ``radius``
-    (m) about the grid centre, after removing a spherical phase k r^2 / (2 curvature)."""
+    ``radius`` (m) about the grid centre, after removing a spherical phase k r^2 / (2 curvature)."""
     c, t = field.n // 2, np.linspace(0, 2 * np.pi, 512, endpoint=False)
     ix = c + np.rint(radius * np.cos(t) / field.spacing).astype(int)
     iy = c + np.rint(radius * np.sin(t) / field.spacing).astype(int)

@@ -1,12 +1,9 @@
 """The command line: `run` on the bundled Table 1 scenario writes CSV, NetCDF and plot with the
-numbers of
-lo.overlap to the last digit, --method overrides the file, bad scenarios and failed computations
-exit with
-code 1 and a one-line message naming the key (command-line syntax errors with 2, Ctrl-C with 130), a
-full
-disk leaves no file, the summary prints no range that does not exist, `demo` writes the three Table
-1
-variants, and the module runs as a script. Hostile scenario files: test_cli_hostile.py."""
+numbers of lo.overlap to the last digit, --method overrides the file, bad scenarios and failed
+computations exit with code 1 and a one-line message naming the key (command-line syntax errors with
+2, Ctrl-C with 130), a full disk leaves no file, the summary prints no range that does not exist,
+`demo` writes the three Table 1 variants, and the module runs as a script. Hostile scenario files:
+test_cli_hostile.py."""
 
 import errno
 import os
@@ -365,8 +362,7 @@ def _one_error_line(err, *words):
 
 def test_a_nan_curve_is_a_failure_not_a_file(tmp_path, capsys, monkeypatch):
     """A computation that returns NaN (as the core once did for extreme inputs) ends in exit 1: the
-    result
-    refuses it on construction, and nothing is written."""
+    result refuses it on construction, and nothing is written."""
     from lidar_overlap.io import scenario as scenario_module
 
     def nan_overlap(plan):

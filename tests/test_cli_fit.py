@@ -1,8 +1,6 @@
 """`lidar-overlap fit`: a scenario and a measurements CSV give <name>_fit.csv (the parameters of
-lo.fit to the
-last digit) and <name>_fit.png; bad files exit with code 1 and one line naming the file, line and
-column;
-a fit that does not converge is a failure, not a file."""
+lo.fit to the last digit) and <name>_fit.png; bad files exit with code 1 and one line naming the
+file, line and column; a fit that does not converge is a failure, not a file."""
 
 import sys
 from pathlib import Path

@@ -2,14 +2,11 @@
 ``lidar-overlap: error: ...`` naming the file and the key, with no traceback and no output written.
 
 Files the scenario loader refuses (bytes that are not UTF-8 TOML, missing sections, wrong types, NaN
-and
-infinities in every numeric key, integers outside their bounds in every integer key, too many
-ranges) run
-in-process. Extreme finite values that reach the compiled core run the command in a subprocess with
-a
-memory cap and a timeout, so that a crash or a hang of the core fails the test instead of the test
-run; for
-those a clean result (exit 0, G finite and within [0, 1]) is also accepted."""
+and infinities in every numeric key, integers outside their bounds in every integer key, too many
+ranges) run in-process. Extreme finite values that reach the compiled core run the command in a
+subprocess with a memory cap and a timeout, so that a crash or a hang of the core fails the test
+instead of the test run; for those a clean result (exit 0, G finite and within [0, 1]) is also
+accepted."""
 
 import os
 import re

@@ -1,8 +1,6 @@
 """`lidar-overlap telecover`: the scenario's telecover written as CSV (lo.telecover's numbers to the
-last
-digit) and PNG with a summary; a fit round-trips deviations taken from such a CSV; bad files and
-arguments
-fail with one line (exit 1, or 2 for the command line's syntax) and write nothing."""
+last digit) and PNG with a summary; a fit round-trips deviations taken from such a CSV; bad files
+and arguments fail with one line (exit 1, or 2 for the command line's syntax) and write nothing."""
 
 import re
 from pathlib import Path

@@ -1,6 +1,5 @@
 """The core's Python API: option classes carry the C++ defaults and are checked by the core; results
-are
-classes with NumPy properties; overlap_rt_batch is the single-system RT call, entry by entry."""
+are classes with NumPy properties; overlap_rt_batch is the single-system RT call, entry by entry."""
 
 import numpy as np
 import pytest

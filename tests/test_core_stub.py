@@ -1,7 +1,6 @@
 """The typed stub lidar_overlap/_core.pyi matches the compiled module: mypy's stubtest, run on the
-package
-that is imported (source tree or installed), fails on any name, class, property or signature it gets
-wrong."""
+package that is imported (source tree or installed), fails on any name, class, property or signature
+it gets wrong."""
 
 import os
 import pathlib

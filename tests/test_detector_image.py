@@ -1,6 +1,6 @@
 """Geometric detector-plane images: power conserved, the beam centre imaged at -c d/z, and the
-fraction on
-the detector equal to the RT overlap (which integrates the same circles of confusion exactly)."""
+fraction on the detector equal to the RT overlap (which integrates the same circles of confusion
+exactly)."""
 
 import dataclasses
 import math

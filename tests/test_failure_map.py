@@ -1,9 +1,8 @@
 """Boundary points of the failure map drawn by benchmarks/speed_accuracy.py (failure_map.png).
 
 Coaxial Table 1 lidar (355 nm, w0 = 1 mm, f = 1 m, D = 150 mm), detector radius r_d given in Airy
-radii
-a = 1.22 lambda f / D = 2.89 um, compared at one range with the radial Fourier-optics path (exact to
-~1e-9, far below every tolerance here). The map's failure tolerance on |G - G_FO| is 1e-3.
+radii a = 1.22 lambda f / D = 2.89 um, compared at one range with the radial Fourier-optics path
+(exact to ~1e-9, far below every tolerance here). The map's failure tolerance on |G - G_FO| is 1e-3.
 
 Ray tracing at 1000 m fails (error > 1e-3) for detectors of about 25 to 175 Airy radii:
 - above ~175 Airy radii the image of the beam is well inside the detector and RT's error is the Airy
@@ -11,15 +10,13 @@ Ray tracing at 1000 m fails (error > 1e-3) for detectors of about 25 to 175 Airy
   ~166;
 - below ~25 Airy radii the beam image (0.11 mm) overfills the detector; light diffracted out of the
   detector is replaced by light diffracted in from the lit surroundings, and G itself is small, so
-  the
-  absolute error stays small (a detector of a few Airy radii is NOT in RT's failure region at this
-  range).
+  the absolute error stays small (a detector of a few Airy radii is NOT in RT's failure region at
+  this range).
 
 The 2-D Fourier-optics path's accuracy is set by its window (the Gaussian field is cut at +-window/2
 waist radii), not by its grid size: a 64-point grid over 10 w0 is within 1e-6 at 1000 m, while a
-window
-of 4 w0 fails there (the cut field's diffraction rings spill out of the field of view) and passes at
-50 m.
+window of 4 w0 fails there (the cut field's diffraction rings spill out of the field of view) and
+passes at 50 m.
 """
 
 import dataclasses

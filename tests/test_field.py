@@ -6,9 +6,8 @@ Checked against:
   column = x;
 - intensity = |values|^2 and power = sum(intensity) * spacing^2 for arbitrary values;
 - the TEM00 irradiance at its waist, I(r) = 2 P / (pi w0^2) exp(-2 r^2 / w0^2), with flat phase: its
-  integral
-  is P, its centroid is its centre and its second-moment radius sqrt(2 (sigma_x^2 + sigma_y^2)) is
-  w0;
+  integral is P, its centroid is its centre and its second-moment radius sqrt(2 (sigma_x^2 +
+  sigma_y^2)) is w0;
 - an elliptical Gaussian (radius sqrt((wx^2 + wy^2) / 2)) and two unequal spots (power-weighted
   centroid);
 - bad arguments raise ValueError naming the parameter.
@@ -269,8 +268,7 @@ def test_field_refuses_ragged_values_by_name():
 @pytest.mark.parametrize("amplitude", [1e200, 1e300, 1e17])
 def test_field_refuses_values_whose_power_leaves_double_range(amplitude):
     """Σ|U|² spacing² must stay <= 1e30 W, the core's power bound: 64 samples of 1e17 on 1 cm carry
-    6.4e31 W,
-    larger amplitudes overflow to inf."""
+    6.4e31 W, larger amplitudes overflow to inf."""
     spacing = 1e-2
     with pytest.raises(ValueError, match=r"^values is invalid: its power"):
         lo.Field(np.full((8, 8), amplitude), spacing, 355e-9)

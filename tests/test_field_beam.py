@@ -1,18 +1,14 @@
 """Fourier-optics overlap of arbitrary transmitted fields (FieldBeam, FlatTopBeam, built-in shapes)
-and of
-Gaussian beams with M^2 > 1, against computations made here:
+and of Gaussian beams with M^2 > 1, against computations made here:
 
 - any beam: G(z) = sum_P E(P) C(|P|) / sum E with E the irradiance from an independent lo.propagate
-  call
-  and C the single-scatterer coupling (lo.emitter_coupling, a Hankel integral of OTF x disc^, a
-  route
-  separate from the overlap's Parseval sum), for a flat-top, a vortex and a super-Gaussian beam;
+  call and C the single-scatterer coupling (lo.emitter_coupling, a Hankel integral of OTF x disc^, a
+  route separate from the overlap's Parseval sum), for a flat-top, a vortex and a super-Gaussian
+  beam;
 - a FieldBeam of a sampled TEM00 on another grid against GaussianBeam; pointing (offset, tilt) as
-  for
-  GaussianBeam;
+  for GaussianBeam;
 - M^2 > 1 (Gaussian Schell model, Gaussian irradiance at every range) against RT, and at M^2 -> 1
-  against
-  the propagated TEM00;
+  against the propagated TEM00;
 - invalid combinations raise ValueError naming what to change.
 """
 
@@ -58,8 +54,7 @@ DIRECT_RANGE = 60.0
 @pytest.fixture(scope="module")
 def coupling_at_60m():
     """Single-scatterer coupling of the Table 1 receiver at 60 m against the radius (the beam does
-    not
-    enter it), tabulated once for every beam below."""
+    not enter it), tabulated once for every beam below."""
     system = lo.paper_table1()
     table = np.linspace(0.0, 0.08, 24)
     coupling = np.array(

@@ -1,8 +1,7 @@
 """lo.fit: known parameters recovered from noisy synthetic curves within their stated uncertainties
-(and the
-1-sigma coverage over 100 noise draws), the Jacobian covariance against a bootstrap, degeneracy
-warned, the
-near-range extrapolation band, robust loss against outliers, hostile inputs and non-convergence."""
+(and the 1-sigma coverage over 100 noise draws), the Jacobian covariance against a bootstrap,
+degeneracy warned, the near-range extrapolation band, robust loss against outliers, hostile inputs
+and non-convergence."""
 
 import warnings
 

@@ -1,8 +1,6 @@
 """propagate(..., grid_size=...): zero padding chosen by the library (or given) so that a
-propagation
-neither wraps around nor loses power, checked against the TEM00 closed form (paper D1) and against
-an
-independent NumPy zero padding."""
+propagation neither wraps around nor loses power, checked against the TEM00 closed form (paper D1)
+and against an independent NumPy zero padding."""
 
 import warnings
 

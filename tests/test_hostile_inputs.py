@@ -1,10 +1,8 @@
 """Hostile input never crashes, hangs or returns a silent wrong number: property-based probes of
-every
-public entry point (hypothesis, fixed seed), run in a worker process so that a crash cannot take the
-test session down (see tests/_probe_worker.py for the contract and tests/_hostile_probes.py for what
-is
-drawn). All of an entry point's probes run; its test then fails with the table of outcomes and the
-broken probes grouped by cause, with the shortest reproducer of each.
+every public entry point (hypothesis, fixed seed), run in a worker process so that a crash cannot
+take the test session down (see tests/_probe_worker.py for the contract and tests/_hostile_probes.py
+for what is drawn). All of an entry point's probes run; its test then fails with the table of
+outcomes and the broken probes grouped by cause, with the shortest reproducer of each.
 
 LIDAR_OVERLAP_PROBE_TIME_LIMIT (s, default 20) sets when a probe counts as a hang.
 """

@@ -1,11 +1,9 @@
 """Limits every entry point enforces, Ctrl-C, reproducibility and the public phase screens.
 
 Physical scales, thread counts and the memory budget are refused before any work with a ValueError
-naming
-the parameter; a computation interrupted by SIGINT stops within a second; the 2-D FO path gives the
-same
-bits for any thread count and in another process; lo.phase_screen has the Kolmogorov structure
-function.
+naming the parameter; a computation interrupted by SIGINT stops within a second; the 2-D FO path
+gives the same bits for any thread count and in another process; lo.phase_screen has the Kolmogorov
+structure function.
 """
 
 import math
@@ -94,8 +92,7 @@ def test_huge_grids_are_refused_without_allocating(grid):
 
 def _interrupted_run(code: str) -> tuple[float, str]:
     """Run ``code`` in a fresh interpreter, SIGINT it once it has printed 'started', and return the
-    seconds
-    from the signal to the process's end and its stderr."""
+    seconds from the signal to the process's end and its stderr."""
     proc = subprocess.Popen(
         [sys.executable, "-c", textwrap.dedent(code)],
         stdout=subprocess.PIPE,

@@ -1,7 +1,6 @@
 """Design optimisation: the smallest field of view is feasible and tight, a known misalignment is
-recovered within
-the flatness of G at its maximum, the generic objective agrees, unreachable targets and bad input
-are refused."""
+recovered within the flatness of G at its maximum, the generic objective agrees, unreachable targets
+and bad input are refused."""
 
 import numpy as np
 import pytest
@@ -66,9 +65,8 @@ def _curvature(system, z, h=1e-5):
 
 def _tilt_tolerance(c):
     """How far from the maximum a search that resolves G to TOL can stop: G there may lie TOL
-    (quadrature) plus
-    TOL (Nelder-Mead's fatol) plus TOL (the comparison of candidates) below the maximum, so |t| <=
-    sqrt(3 TOL / c)."""
+    (quadrature) plus TOL (Nelder-Mead's fatol) plus TOL (the comparison of candidates) below the
+    maximum, so |t| <= sqrt(3 TOL / c)."""
     return np.sqrt(3 * TOL / c)
 
 

@@ -1,29 +1,22 @@
 """Fourier-optics (FO) overlap G(z) and single-scatterer coupling, checked against closed forms and
 against computations made here, independently of the library's FO path.
 
-- in-focus point, unobstructed pupil: coupling = Airy encircled energy 1 - J0(v)^2 - J1(v)^2,
-  v = pi D r_d / (lambda f); annular pupil (obscuration eps): (1 - eps^2) x Mahajan's annular
-  encircled
+- in-focus point, unobstructed pupil: coupling = Airy encircled energy 1 - J0(v)^2 - J1(v)^2, v = pi
+  D r_d / (lambda f); annular pupil (obscuration eps): (1 - eps^2) x Mahajan's annular encircled
   energy, its cross term integrated with scipy quad;
 - Table 1 system: RT vs FO within the paper's Eq. (6) error where G_RT > 0.05, and far away the FO
-  loss
-  1 - G_FO against the Airy tail beyond the detector edge, J0^2(v) + J1^2(v) ~ 2/(pi v);
+  loss 1 - G_FO against the Airy tail beyond the detector edge, J0^2(v) + J1^2(v) ~ 2/(pi v);
 - the Parseval sum of the FO overlap against the beam-weighted mean of single-scatterer couplings
   (radial Gauss-Legendre quadrature with the Gaussian irradiance at z);
 - the shift-invariant formulation against direct per-emitter propagation (paper Appendix C, C3-C6):
-  a
-  spherical wave cut by the aperture and the obstruction's shadow, the lens phase, Fresnel
-  propagation to
-  the detector plane with lo.propagate, power summed over the detector disc. With the shadow held
-  centred
-  (the library's approximation) the two must agree to the pixelation error; with the true shadow,
-  which
-  moves with the scatterer, the neglected move is measured and bounded. Then G from the direct
-  values
-  (Gauss-Hermite over the beam) against lo.overlap, and the image position via a detector offset;
+  a spherical wave cut by the aperture and the obstruction's shadow, the lens phase, Fresnel
+  propagation to the detector plane with lo.propagate, power summed over the detector disc. With the
+  shadow held centred (the library's approximation) the two must agree to the pixelation error; with
+  the true shadow, which moves with the scatterer, the neglected move is measured and bounded. Then
+  G from the direct values (Gauss-Hermite over the beam) against lo.overlap, and the image position
+  via a detector offset;
 - a tilted beam with a detector offset: FO against RT, and the offsets' signs against the geometric
-  image
-  of the beam centre, -tilt d;
+  image of the beam centre, -tilt d;
 - invalid input: ValueError naming the parameter.
 """
 
@@ -224,10 +217,9 @@ def disc_coverage(x, centre, radius):
 def direct_coupling(z, p, shadow_moves=True, det_offset=(0.0, 0.0)):
     """Appendix C for one scatterer at (p, z): unit spherical wave at the aperture stop, cut by the
     aperture and by the obstruction (ray P->A blocked where |A + (P - A) z_obs/z| < r_obs, i.e. a
-    disc of
-    radius r_obs z/(z - z_obs) centred at -P z_obs/(z - z_obs)), lens phase (C4), Fresnel to the
-    detector
-    plane (C5), |U|^2 over the detector disc (C6), over the power into the full aperture, pi R^2."""
+    disc of radius r_obs z/(z - z_obs) centred at -P z_obs/(z - z_obs)), lens phase (C4), Fresnel to
+    the detector plane (C5), |U|^2 over the detector disc (C6), over the power into the full
+    aperture, pi R^2."""
     k = 2.0 * np.pi / S_LAM
     dx = PUPIL_WINDOW / PUPIL_N
     x = (np.arange(PUPIL_N) - PUPIL_N // 2) * dx
@@ -355,9 +347,8 @@ RADIAL_VS_2D_ATOL = 2e-6  # the 2-D path's own accuracy (5.5e-7 on Table 1) with
 @pytest.mark.parametrize("case", ["tilted beam", "offset detector", "biaxial"])
 def test_radial_path_takes_the_beam_image_offset(case):
     """A Gaussian beam's image is a Gaussian wherever it lies on the detector plane: the radial path
-    weights
-    it by J0(2 pi q s) for an image centre s off the detector centre, and matches the 2-D Parseval
-    sum."""
+    weights it by J0(2 pi q s) for an image centre s off the detector centre, and matches the 2-D
+    Parseval sum."""
     base = lo.paper_table1()
     system = {
         "tilted beam": tilted((0.0, 0.0)),

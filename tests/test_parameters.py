@@ -1,6 +1,5 @@
 """Parameter paths: every path reads back what was set, pairs expand to their scalars, and bad
-paths, values
-and systems are refused naming the path."""
+paths, values and systems are refused naming the path."""
 
 import math
 

@@ -1,6 +1,6 @@
 """Value types pickle (for process pools and Dask clusters): the copy is equal, computes the same G
-bit for bit,
-keeps its invariants (read-only arrays, frozen), and is validated again when it is unpickled."""
+bit for bit, keeps its invariants (read-only arrays, frozen), and is validated again when it is
+unpickled."""
 
 import dataclasses
 import pickle

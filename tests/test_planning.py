@@ -1,7 +1,6 @@
 """Plan, then run: a plan computes no curve, running it computes each curve once (core calls
-counted), method
-objects and shortcut strings are the same computation, and a plan run in parts equals the plan run
-whole."""
+counted), method objects and shortcut strings are the same computation, and a plan run in parts
+equals the plan run whole."""
 
 import dataclasses
 from collections import defaultdict
@@ -69,8 +68,7 @@ def test_auto_runs_one_curve(calls, system, tolerance, model):
 
 def test_aberrated_auto_runs_rt_once_beside_its_two_coarse_estimate_curves(calls):
     """The estimate takes two coarse curves (detector radius ± 1 %, at most 16 ranges); RT of the
-    system itself
-    runs once, over all ranges, and is the result."""
+    system itself runs once, over all ranges, and is the result."""
     res = lo.overlap(ABERRATED, Z, "auto", tolerance=1e-2)
     assert res.method == "rt"
     own = [z for system, z in calls["overlap_rt_aberrated"] if system is ABERRATED._native]
@@ -84,8 +82,7 @@ def test_aberrated_auto_runs_rt_once_beside_its_two_coarse_estimate_curves(calls
 
 def test_turbulent_rt_is_one_batched_core_call_equal_to_one_call_per_draw(calls):
     """K x N draws in one overlap_rt_batch call, each bit-identical to ray tracing that draw alone
-    (the draws
-    rebuilt here from the same seed with the documented wander law)."""
+    (the draws rebuilt here from the same seed with the documented wander law)."""
     from lidar_overlap.forward.backends.turbulent import beam_for
 
     z, k, seed = np.array([300.0, 900.0]), 3, 7

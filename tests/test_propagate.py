@@ -1,18 +1,15 @@
 """Fourier-optics propagation (paper Appendix A, Eqs. A1-A7) against closed forms.
 
 - TEM00 radius w(z) = w0 sqrt(1 + (lambda z/(pi w0^2))^2) (paper D1, error D2), w0 = 5 mm, 355/1064
-  nm, 1 mm to
-  100 km, with "auto" and each method in its region; far-field divergence lambda/(pi w0);
+  nm, 1 mm to 100 km, with "auto" and each method in its region; far-field divergence lambda/(pi
+  w0);
 - complex fields: TEM00 a0 exp(ikz)/q exp(-r^2/(w0^2 q)), q = 1 + i z/zR (full phase kept), the
-  exact A7 integral
-  of a Gaussian, a 1-D quadrature of A1 (non-paraxial); power conservation; AS(z1) AS(z2) = AS(z1 +
-  z2);
+  exact A7 integral of a Gaussian, a 1-D quadrature of A1 (non-paraxial); power conservation; AS(z1)
+  AS(z2) = AS(z1 + z2);
 - on-axis irradiance behind a uniformly lit disc, I/I0 = 4 sin^2(pi a^2/(2 lambda z)); Airy focal
-  plane
-  I0 [2 J1(v)/v]^2 with I0 = P pi a^2/(lambda f)^2, encircled energy 1 - J0(v)^2 - J1(v)^2;
+  plane I0 [2 J1(v)/v]^2 with I0 = P pi a^2/(lambda f)^2, encircled energy 1 - J0(v)^2 - J1(v)^2;
 - validity: no SamplingWarning inside each method's region, one naming the reason outside it; bad
-  arguments
-  raise ValueError naming the parameter.
+  arguments raise ValueError naming the parameter.
 """
 
 import math

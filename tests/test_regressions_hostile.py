@@ -1,14 +1,11 @@
 """Named regressions for hostile inputs that crashed the process, hung, returned a silent wrong
-number or
-blamed the wrong parameter. Each probe runs in the worker process of tests/_probe_runner.py, so a
-crash
-fails its test instead of the session, and a hang is cut at the time limit (20 s).
+number or blamed the wrong parameter. Each probe runs in the worker process of
+tests/_probe_runner.py, so a crash fails its test instead of the session, and a hang is cut at the
+time limit (20 s).
 
 The contract (tests/_probe_worker.py): a ValueError or TypeError naming a parameter the call set, or
-a
-result whose numbers are finite with every overlap in [0, 1]. Where a test asks for more (the
-parameter
-that must be named, the value that is correct), it says so.
+a result whose numbers are finite with every overlap in [0, 1]. Where a test asks for more (the
+parameter that must be named, the value that is correct), it says so.
 """
 
 import math
@@ -452,10 +449,8 @@ def test_fo_2d_does_not_depend_on_threads_or_process(runner):
 
 def test_an_obstruction_shadow_covering_the_na_pupil_gives_zero_in_every_path():
     """Found by the sanitizer build: with the obstruction's shadow wider than the NA cone's pupil no
-    light
-    passes; the 2-D FO path then sized its grid from a zero cutoff (20 / 0) and refused the range
-    naming
-    max_spectrum_grid. G = 0 exactly is the answer, and each path gives it."""
+    light passes; the 2-D FO path then sized its grid from a zero cutoff (20 / 0) and refused the
+    range naming max_spectrum_grid. G = 0 exactly is the answer, and each path gives it."""
     import lidar_overlap as lo
 
     system = lo.LidarSystem(

@@ -1,6 +1,5 @@
 """OverlapResult: contents, the derived ranges checked against their definitions on the returned
-curve,
-the cases where they do not exist (NaN), threshold validation, and the matplotlib plot."""
+curve, the cases where they do not exist (NaN), threshold validation, and the matplotlib plot."""
 
 import dataclasses
 

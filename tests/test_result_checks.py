@@ -1,9 +1,7 @@
 """OverlapResult checks itself on construction (no NaN or out-of-range G can pass as a result;
-round-off
-within the stated error is clipped into [0, 1]), and full_overlap_range warns when the curve is
-still rising
-at the end of the ranges, by the rule its docstring states, checked here on curves of known
-shape."""
+round-off within the stated error is clipped into [0, 1]), and full_overlap_range warns when the
+curve is still rising at the end of the ranges, by the rule its docstring states, checked here on
+curves of known shape."""
 
 import math
 import warnings
@@ -130,8 +128,7 @@ def test_missing_estimates_and_tolerance_are_allowed():
 # warning
 def _algebraic(limit, gap_at_last, z):
     """G(z) = limit (1 - a / z), a curve approaching its limit as 1/z (the slowest the rule
-    assumes), with its
-    relative gap at the last range given."""
+    assumes), with its relative gap at the last range given."""
     a = gap_at_last * z[-1]
     return limit * (1.0 - a / z)
 

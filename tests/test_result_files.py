@@ -1,10 +1,8 @@
 """OverlapResult files: CSV and NetCDF round trips are exact (ranges, G, error estimates, method,
-tolerance),
-the files carry units and the system description, a Gaussian system is rebuilt from the attributes,
-a
-missing xarray gives an ImportError saying what to install; a file appears only once complete (a
-full disk
-leaves nothing, or the previous file), and files with NaN or out-of-range values are refused."""
+tolerance), the files carry units and the system description, a Gaussian system is rebuilt from the
+attributes, a missing xarray gives an ImportError saying what to install; a file appears only once
+complete (a full disk leaves nothing, or the previous file), and files with NaN or out-of-range
+values are refused."""
 
 import dataclasses
 import errno

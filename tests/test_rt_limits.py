@@ -1,16 +1,14 @@
 """Ray-tracing overlap G(z) against closed forms derived from the paraxial geometry.
 
 Geometry (receiver aperture stop at z = 0, thin lens f, aperture radius R, detector plane d = f +
-defocus
-behind the lens, detector radius r_d): a ray from scatterer P at range z through aperture point A
-lands on
-the detector plane at A c - P d/z with c = 1 + d/z - d/f.  The limits checked here are:
+defocus behind the lens, detector radius r_d): a ray from scatterer P at range z through aperture
+point A lands on the detector plane at A c - P d/z with c = 1 + d/z - d/f.  The limits checked here
+are:
 
 - point aperture (R -> 0): G = 1 - exp(-2 (r_d z/d)^2 / w(z)^2), the Gaussian power inside the field
   of view;
 - thin beam (w -> 0): G = coupling of one scatterer = (detector disc ∩ circle of confusion) / circle
-  area,
-  computed with the two-circle lens-area formula (paper B19), min(1, (r_d / (R|c|))^2) when
+  area, computed with the two-circle lens-area formula (paper B19), min(1, (r_d / (R|c|))^2) when
   concentric;
 - central obstruction: far-range plateau 1 - (r_obs/R)^2, on-axis signal onset z = r_obs f / r_d +
   z_obs;

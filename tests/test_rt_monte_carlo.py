@@ -2,18 +2,17 @@
 trace.
 
 The Monte-Carlo here follows the paraxial geometry of the design notes directly: random scatterers P
-from
-the Gaussian beam at range z (each coordinate ~ Normal(centre, w/2), centre = offset + tilt z),
-random
-aperture points A uniform over the aperture disc, one ray per (P, A) pair. A ray counts when it
+from the Gaussian beam at range z (each coordinate ~ Normal(centre, w/2), centre = offset + tilt z),
+random aperture points A uniform over the aperture disc, one ray per (P, A) pair. A ray counts when
+it
 
 - misses the obstruction disc: |A + (P - A) z_obs / z| >= r_obs,
 - lands on the detector: |A (1 + d/z - d/f) - P d/z - detector.offset| <= r_d, with d = f + defocus,
 - is within the numerical aperture: |(A - P)/z - A/f| <= tan(asin(NA)).
 
 G is the fraction of rays that count (rays through the whole aperture are the denominator). Each
-case is
-checked at a few ranges where G is neither 0 nor 1, within 5 binomial sigma plus a small floor.
+case is checked at a few ranges where G is neither 0 nor 1, within 5 binomial sigma plus a small
+floor.
 """
 
 import dataclasses

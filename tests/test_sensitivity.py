@@ -1,7 +1,6 @@
 """Sensitivities dG/dp: against a finer finite difference at a much tighter tolerance, against
-closed forms
-(a point aperture; G depending on the beam centre offset + tilt z only), and bad parameters refused
-by name."""
+closed forms (a point aperture; G depending on the beam centre offset + tilt z only), and bad
+parameters refused by name."""
 
 import warnings
 

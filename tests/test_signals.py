@@ -1,6 +1,6 @@
 """Atmosphere, lidar signal and overlap correction: the physics against published values, closed
-forms and
-independent computations (scipy quadrature, Monte Carlo), and bad input refused by name."""
+forms and independent computations (scipy quadrature, Monte Carlo), and bad input refused by
+name."""
 
 import dataclasses
 import math

@@ -1,7 +1,6 @@
 """Tolerance studies: the same members bit for bit on a cluster, in threads and in a plain loop,
-whatever the
-chunking; percentiles and members as separate overlap calls give them; hostile input refused by
-name."""
+whatever the chunking; percentiles and members as separate overlap calls give them; hostile input
+refused by name."""
 
 import math
 import sys
@@ -43,8 +42,7 @@ def assert_same_study(a, b):
 
 def hide_dask(monkeypatch):
     """``import dask`` raises ImportError from now on; xarray, which sees dask installed and imports
-    dask.base
-    itself, still finds that submodule loaded."""
+    dask.base itself, still finds that submodule loaded."""
     try:
         import dask.base  # noqa: F401
     except ImportError:

@@ -1,7 +1,6 @@
 """LidarSystem's receiver geometry against its closed forms: the image distance d = f + defocus, the
 diffraction blur λd/D and Airy radius 1.22 λd/D, the circle of confusion R|1 + d/z − d/f| and the
-on-axis
-obstruction shadow |1 + d/z − d/f| r_obs z/(z − z_obs); and the property/method rule."""
+on-axis obstruction shadow |1 + d/z − d/f| r_obs z/(z − z_obs); and the property/method rule."""
 
 import dataclasses
 import math

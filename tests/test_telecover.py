@@ -1,8 +1,6 @@
 """Aperture masks and the telecover test: partitions add up to the full aperture, sector couplings
-against an
-independent Monte-Carlo ray trace, symmetry and the sign and size of a tilt's north-south asymmetry,
-the
-planner's choices and bad input."""
+against an independent Monte-Carlo ray trace, symmetry and the sign and size of a tilt's north-south
+asymmetry, the planner's choices and bad input."""
 
 import dataclasses
 import math

@@ -1,8 +1,6 @@
 """lo.fit_telecover: a known tilt of the Table 1 lidar recovered from its quadrant deviations
-(noise-free to
-1e-3, noisy within the stated uncertainty), north = +tilt[1], the constraint's degrees of freedom,
-the
-TelecoverResult input, and bad input refused naming the argument."""
+(noise-free to 1e-3, noisy within the stated uncertainty), north = +tilt[1], the constraint's
+degrees of freedom, the TelecoverResult input, and bad input refused naming the argument."""
 
 import importlib.util
 import math

@@ -1,18 +1,14 @@
 """Turbulence (paper Section 3, step 2): the Python layer over the C++ atmosphere, the turbulent
-overlap in
-both paths, and the split-step FO beam against weak-fluctuation theory.
+overlap in both paths, and the split-step FO beam against weak-fluctuation theory.
 
 - no turbulence reproduces the turbulence-free result exactly (both methods) and the split-step beam
   radius equals Eq. (D1);
 - path quantities for a constant Cn^2 against their closed forms;
 - RT: the mean over wander realisations against the overlap of the long-term beam (G is linear in
-  the
-  irradiance, and the long-term beam is the short-term one averaged over the wander);
+  the irradiance, and the long-term beam is the short-term one averaged over the wander);
 - FO through phase screens: the split-step beam without screens gives the turbulence-free FO
-  overlap; the
-  centroid variance and the long-term second moment of a collimated beam (w0 = 5 cm, z_R = 7.4 km >
-  L = 1 km)
-  against the second-order laws of the screen model.
+  overlap; the centroid variance and the long-term second moment of a collimated beam (w0 = 5 cm,
+  z_R = 7.4 km > L = 1 km) against the second-order laws of the screen model.
 """
 
 import dataclasses
@@ -126,10 +122,9 @@ def test_split_step_without_screens_gives_the_fo_overlap():
 
 def gradient_law(cn2, L, width2, inner_scale):
     """4 pi^2 int_0^L (L - z)^2 dz int_0^inf kappa^3 Phi_n exp(-kappa^2 (width2 / 4 + 1 /
-    kappa_m^2)) dkappa
-    for Phi_n = 0.033 Cn^2 kappa^(-11/3) and kappa_m = 5.92 / l0: the displacement at L of layers'
-    phase
-    gradients averaged over a Gaussian of 1/e^2 radius^2 width2 (m^2)."""
+    kappa_m^2)) dkappa for Phi_n = 0.033 Cn^2 kappa^(-11/3) and kappa_m = 5.92 / l0: the
+    displacement at L of layers' phase gradients averaged over a Gaussian of 1/e^2 radius^2 width2
+    (m^2)."""
     scale2 = width2 / 4 + (inner_scale / 5.92) ** 2
     return 4 * math.pi**2 * 0.033 * math.gamma(1 / 6) / 6 * cn2 * L**3 * scale2 ** (-1 / 6)
 
@@ -138,19 +133,14 @@ def test_fo_screens_wander_and_spread_a_collimated_beam():
     """Second-order laws of thin screens (paraxial, any strength). A screen tilts the centroid by
     its phase
     gradient averaged over the irradiance: <r_c^2> (2-D) = gradient_law(W0^2), 1.52 Cn^2 L^3
-    W0^(-1/3) for
-    l0 = 0 (Klyatskin & Kon 1972). It adds its whole gradient variance to the mean-square angle: the
-    second
-    moment of the long-term irradiance grows by W_LT^2 - W^2 = 2 gradient_law(0) (1/e^2 radii, W^2 =
-    2 <rho^2>), per realisation W_ST^2 + 2 |r_c|^2. With l0 = 0 that moment diverges (wings of
-    scattered
-    light) and the grid's Nyquist frequency sets it: 1.40 and 1.68 times 1.33 sigma_R^2 Lambda^(5/6)
-    W^2
-    on 128^2 and 256^2 grids. Andrews & Phillips' W_LT is the Gaussian core of the mean irradiance
-    (the FO
-    core gives their T within 10 %), and their 2.42 Cn^2 L^3 W0^(-1/3) is 2 gradient_law(4 W0^2),
-    the
-    large-scale part of that W_LT^2: 2^(2/3) = 1.59 times the centroid variance."""
+    W0^(-1/3) for l0 = 0 (Klyatskin & Kon 1972). It adds its whole gradient variance to the
+    mean-square angle: the second moment of the long-term irradiance grows by W_LT^2 - W^2 = 2
+    gradient_law(0) (1/e^2 radii, W^2 = 2 <rho^2>), per realisation W_ST^2 + 2 |r_c|^2. With l0 = 0
+    that moment diverges (wings of scattered light) and the grid's Nyquist frequency sets it: 1.40
+    and 1.68 times 1.33 sigma_R^2 Lambda^(5/6) W^2 on 128^2 and 256^2 grids. Andrews & Phillips'
+    W_LT is the Gaussian core of the mean irradiance (the FO core gives their T within 10 %), and
+    their 2.42 Cn^2 L^3 W0^(-1/3) is 2 gradient_law(4 W0^2), the large-scale part of that W_LT^2:
+    2^(2/3) = 1.59 times the centroid variance."""
     w0, L, cn2, l0 = 5e-2, 1000.0, 1e-14, 0.02
     s, t = lo.paper_table1(wavelength=LAM, waist_radius=w0), lo.Turbulence(cn2, inner_scale=l0)
     raw = _core.overlap_fo_turbulent(
@@ -199,8 +189,7 @@ def test_bad_turbulence_input():
 )
 def test_beam_quantities_take_wavelength_first(cn2, w0, L):
     """(wavelength, waist_radius, path_length): the closed form 2.42 Cn² L³ W0^(-1/3) of the wander,
-    and the
-    same numbers as the core's (waist_radius, wavelength, path_length) for the same physical
+    and the same numbers as the core's (waist_radius, wavelength, path_length) for the same physical
     inputs."""
     t = lo.Turbulence(cn2)
     assert (
@@ -321,8 +310,7 @@ def test_rt_realisation_beam_has_the_short_term_radius_on_either_width_law(law):
 @pytest.mark.parametrize("cn2, z", [(1e-9, 1e9), (1e-9, 1e10)])
 def test_rt_turbulence_beyond_the_paraxial_model_names_ranges_and_turbulence(cn2, z):
     """Strong turbulence over a long path spreads the short-term beam beyond 1 rad: refused naming
-    the range
-    and the turbulence, not the internal beam.divergence."""
+    the range and the turbulence, not the internal beam.divergence."""
     with pytest.raises(
         ValueError, match=r"^ranges\[0\] = .* with turbulence = Turbulence\(cn2="
     ) as info:

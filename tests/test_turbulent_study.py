@@ -1,8 +1,7 @@
 """Turbulence realisations through Dask: bit for bit lo.overlap's turbulent result on the FO and RT
-paths, on a
-two-worker cluster, in threads and in a plain loop, whatever the chunking; the statistics those of
-NumPy on the
-samples; the core's first_realization and hostile input refused by name."""
+paths, on a two-worker cluster, in threads and in a plain loop, whatever the chunking; the
+statistics those of NumPy on the samples; the core's first_realization and hostile input refused by
+name."""
 
 import dataclasses
 import importlib

@@ -1,11 +1,10 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout).
 
-The package is built in layers, each importing only those below it (docs/architecture.md):
-``model`` (value types), ``optics`` (fields and their propagation), ``overlap`` (methods, plans,
-backends,
+The package is built in layers, each importing only those below it (docs/architecture.md): ``model``
+(value types), ``optics`` (fields and their propagation), ``overlap`` (methods, plans, backends,
 results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, studies), ``io``
-(scenario
-files), ``cli`` and ``views`` (plots, 3-D scenes). This namespace re-exports what users call.
+(scenario files), ``cli`` and ``views`` (plots, 3-D scenes). This namespace re-exports what users
+call.
 """
 
 from ._core import __version__, max_memory, max_threads, set_max_memory

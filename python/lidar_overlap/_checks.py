@@ -2,8 +2,7 @@
 
 Value ranges (positive sizes, obstruction inside the aperture, ...) are checked once, in C++; this
 module checks types and shapes, which the core cannot see, and applies the core's rules (its length
-scales
-and memory budget) to the arrays Python builds itself.
+scales and memory budget) to the arrays Python builds itself.
 """
 
 from __future__ import annotations
@@ -164,8 +163,7 @@ def length(name: str, value) -> float:
 
 def check_memory(name: str, value, needed: float, fix: str) -> None:
     """Refuse, naming ``name``, work whose arrays need more than ``lo.max_memory()`` bytes (the
-    core's rule
-    for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
+    core's rule for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
     budget = _core.max_memory()
     if not needed <= budget:
         raise ValueError(
@@ -182,9 +180,8 @@ def _bytes_shown(size: float) -> str:
 
 def system_range(system, z: float, name: str) -> None:
     """Refuse, as the overlap paths refuse ``ranges[i]`` but naming ``name``, a range ``z`` (m)
-    outside the core's
-    lengths or, behind an obstruction, not beyond its distance (``LidarSystem.validate_ranges`` in
-    C++)."""
+    outside the core's lengths or, behind an obstruction, not beyond its distance
+    (``LidarSystem.validate_ranges`` in C++)."""
     try:
         system._native.validate_ranges([z])
     except ValueError as exc:
@@ -196,9 +193,8 @@ def system_range(system, z: float, name: str) -> None:
 
 def warn(message: str, category: type = RuntimeWarning) -> None:
     """``warnings.warn`` attributed to the first caller outside this package, however deep the call
-    that warns
-    (so the warning points at the user's line, and filters on the package's modules see only
-    misplaced ones)."""
+    that warns (so the warning points at the user's line, and filters on the package's modules see
+    only misplaced ones)."""
     package = os.path.dirname(os.path.abspath(__file__)) + os.sep
     frame, level = sys._getframe(1), 2
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):

@@ -1,17 +1,14 @@
 """Writing a file so that its final name only ever holds a complete file.
 
 The data go to a temporary file beside the target (same directory, so the same file system) that is
-flushed
-to disk and then renamed over the target with :func:`os.replace`, which is atomic. If anything fails
-on the
-way (a full disk, an error in the writer, Ctrl-C) the temporary file is removed and the target is
-left as it
+flushed to disk and then renamed over the target with :func:`os.replace`, which is atomic. If
+anything fails on the way (a full disk, an error in the writer, Ctrl-C) the temporary file is
+removed and the target is left as it
 was: absent, or the previous complete file.
 
 A target that exists and is not a regular file (``/dev/stdout``, ``/dev/full``, a FIFO) cannot be
-replaced
-and is written in place; a symbolic link is followed, so the file it points to is replaced and the
-link kept.
+replaced and is written in place; a symbolic link is followed, so the file it points to is replaced
+and the link kept.
 """
 
 from __future__ import annotations
@@ -33,10 +30,8 @@ _NAME_KEPT = 200
 @contextmanager
 def replacing_path(path) -> Iterator[Path]:
     """Yield a temporary path for a writer that takes a file name (xarray, matplotlib); on success
-    the file
-    written there replaces ``path``. The temporary name keeps the target's suffix, for writers that
-    choose
-    their format by it. OSErrors name ``path``, not the temporary file."""
+    the file written there replaces ``path``. The temporary name keeps the target's suffix, for
+    writers that choose their format by it. OSErrors name ``path``, not the temporary file."""
     target = Path(os.path.realpath(path))
     if _is_special(target):
         try:
@@ -74,8 +69,8 @@ def _is_special(target: Path) -> bool:
 
 def _create_beside(target: Path, path) -> Path:
     """Create (exclusively, so no other writer shares it) an empty temporary file in the target's
-    directory,
-    with the permissions the target has, or else the ones a new file gets (0666 less the umask)."""
+    directory, with the permissions the target has, or else the ones a new file gets (0666 less the
+    umask)."""
     try:
         mode = stat.S_IMODE(os.stat(target).st_mode)
     except FileNotFoundError:
@@ -102,8 +97,7 @@ def _create_beside(target: Path, path) -> Path:
 
 def _sync(temporary: Path) -> None:
     """Flush the written data to disk before the rename, so a crash cannot leave a short file under
-    the
-    final name."""
+    the final name."""
     fd = os.open(
         temporary, os.O_RDWR if os.name == "nt" else os.O_RDONLY
     )  # Windows syncs writable handles
@@ -122,8 +116,7 @@ def _remove(temporary: Path) -> None:
 
 def _naming(exc: OSError, path, temporary: Path) -> OSError:
     """The same error, naming the target instead of the temporary file (or naming it at all: a
-    failed write
-    names no file)."""
+    failed write names no file)."""
     if exc.filename not in (None, str(temporary), temporary):
         return exc
     code = exc.errno if exc.errno is not None else errno.EIO

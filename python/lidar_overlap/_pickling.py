@@ -1,7 +1,6 @@
 """Pickling of the value types (for process pools and distributed clusters): a copy is built again
-from the
-constructor arguments and validated again; the core's object inside a value is never pickled (it
-cannot be)."""
+from the constructor arguments and validated again; the core's object inside a value is never
+pickled (it cannot be)."""
 
 from __future__ import annotations
 

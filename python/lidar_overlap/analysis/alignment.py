@@ -1,13 +1,10 @@
 """Alignment maps: the overlap G over a grid of misalignments, at chosen ranges.
 
 Each axis (``tilt_x``, ``beam_offset_y``, ``defocus``, ...) is a 1-D array of values **added to the
-system's
-own value** of that scalar (a tilt of 0 on the axis is the system as given). One or two axes; the
-whole grid is
-computed by ray tracing in one parallel call of the C++ core, each grid point bit for bit what
-``lo.overlap(misaligned system, ranges, "rt", tolerance=..., threads=...)`` gives (with
-``method="fo"``, one
-Fourier-optics computation per grid point instead).
+system's own value** of that scalar (a tilt of 0 on the axis is the system as given). One or two
+axes; the whole grid is computed by ray tracing in one parallel call of the C++ core, each grid
+point bit for bit what ``lo.overlap(misaligned system, ranges, "rt", tolerance=..., threads=...)``
+gives (with ``method="fo"``, one Fourier-optics computation per grid point instead).
 """
 
 from __future__ import annotations
@@ -62,31 +59,24 @@ def alignment_map(
     system : the lidar (a Gaussian beam, no receiver aberrations: the map is ray traced).
     ranges : m, strictly increasing, each > 0 and beyond the obstruction.
     tilt_x, tilt_y : rad, added to ``beam.tilt``; beam_offset_x, beam_offset_y : m, added to
-        ``beam.offset``;
-        detector_offset_x, detector_offset_y : m, added to ``detector.offset``; defocus : m, added
+        ``beam.offset``; detector_offset_x, detector_offset_y : m, added to ``detector.offset``;
+        defocus : m, added
             to
         ``detector.defocus``. Give one or two, each a non-empty, strictly increasing 1-D array of
-        finite values;
-        at most :data:`MAX_POINTS` grid points.
+        finite values; at most :data:`MAX_POINTS` grid points.
     method : ``"rt"`` or an :class:`lidar_overlap.RT`: the whole grid in one parallel core call.
-        ``"fo"`` or an
-        :class:`lidar_overlap.FO`: one Fourier-optics computation per grid point (each
-        ``lo.overlap``, run
-        from Python: at most :data:`MAX_FO_POINTS` points). Auto is refused: it could pick another
-        model at
-        each grid point.
+        ``"fo"`` or an :class:`lidar_overlap.FO`: one Fourier-optics computation per grid point
+        (each ``lo.overlap``, run from Python: at most :data:`MAX_FO_POINTS` points). Auto is
+        refused: it could pick another model at each grid point.
     tolerance : absolute error allowed on G at each grid point and range (RT's quadrature), used
         with ``"rt"``.
     threads : OpenMP threads over all grid points and ranges; 0 uses all cores.
 
     Returns an ``xarray.Dataset`` (needs ``pip install 'lidar-overlap[io]'``) with dims (the axes in
-    the
-    order of the keywords above, ``range``), coordinates with ``units`` (and the system's own value
-    of each
-    axis as its ``system_value`` attribute), variables ``overlap`` and ``error_estimate`` (its
-    estimated
-    absolute error), and attributes ``method``, ``fo_path``, ``tolerance`` and ``error_kind`` (as
-    :class:`lidar_overlap.OverlapResult` states them).
+    the order of the keywords above, ``range``), coordinates with ``units`` (and the system's own
+    value of each axis as its ``system_value`` attribute), variables ``overlap`` and
+    ``error_estimate`` (its estimated absolute error), and attributes ``method``, ``fo_path``,
+    ``tolerance`` and ``error_kind`` (as :class:`lidar_overlap.OverlapResult` states them).
     """
     given = dict(
         tilt_x=tilt_x,
@@ -271,20 +261,16 @@ def _axis(name: str, values) -> np.ndarray:
 
 def alignment_maps(systems, ranges, *, client=None, threads: int = 0, **axes_and_options):
     """:func:`alignment_map` of each system in ``systems`` (a sequence of LidarSystems: a fleet of
-    lidars, the
-    members of a study, design variants), one task per system, through Dask: on ``client`` (a
-    ``dask.distributed.Client``), else in dask's threaded scheduler here (``threads`` maps at once,
-    each with one
-    core thread), else in a loop (dask not installed; then ``threads`` go to each map). The other
-    keywords are
-    :func:`alignment_map`'s (the axes, ``method``, ``tolerance``). Each map is bit for bit the
-    single call's.
+    lidars, the members of a study, design variants), one task per system, through Dask: on
+    ``client`` (a ``dask.distributed.Client``), else in dask's threaded scheduler here (``threads``
+    maps at once, each with one core thread), else in a loop (dask not installed; then ``threads``
+    go to each map). The other keywords are :func:`alignment_map`'s (the axes, ``method``,
+    ``tolerance``). Each map is bit for bit the single call's.
 
     Returns an ``xarray.Dataset`` with a leading ``system`` dimension (index into ``systems``):
-    ``overlap`` and
-    ``error_estimate`` (system, axes..., range), ``system_value_<axis>`` (system: each system's own
-    value of the
-    axis; the axis coordinates are offsets from it), and the attributes of the maps plus ``engine``.
+    ``overlap`` and ``error_estimate`` (system, axes..., range), ``system_value_<axis>`` (system:
+    each system's own value of the axis; the axis coordinates are offsets from it), and the
+    attributes of the maps plus ``engine``.
     """
     from ..model.system import LidarSystem
     from .engines import engine, run_tasks, workers

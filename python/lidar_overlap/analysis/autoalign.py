@@ -2,26 +2,19 @@
 at one range.
 
 The lidar's own beam tilt is the unknown misalignment; the search sets the absolute tilt (rad) and
-sees only
-the shot-averaged, background-subtracted photon count in the range bin at ``range``
-(``lo.signal(...,
-noise=True)``), which is proportional to G there plus photon noise. Two searches:
+sees only the shot-averaged, background-subtracted photon count in the range bin at ``range``
+(``lo.signal(..., noise=True)``), which is proportional to G there plus photon noise. Two searches:
 
 - ``"raster"``: a 5 x 5 grid over the box about the lidar's own tilt, then boxes of one grid step
-  about the
-  brightest cell, each level a finer grid (what an operator does by hand), until the step is below
-  ``resolution``;
+  about the brightest cell, each level a finer grid (what an operator does by hand), until the step
+  is below ``resolution``;
 - ``"gradient"``: from the lidar's own tilt, central differences of the signal along x and y (4
-  measurements
-  per step, probes one step apart: a probe much shorter than the peak's width would see only noise),
-  a step of
-  length ``step`` along the gradient, halved whenever the signal at the new tilt is not higher than
-  at the old
-  one, until it is below ``resolution``.
+  measurements per step, probes one step apart: a probe much shorter than the peak's width would see
+  only noise), a step of length ``step`` along the gradient, halved whenever the signal at the new
+  tilt is not higher than at the old one, until it is below ``resolution``.
 
 The G of each candidate comes from the ray tracer (a grid in one core call); the best G (for judging
-how far a
-search got) from :func:`lidar_overlap.analysis.optimize` with :class:`MaximumOverlapAt`.
+how far a search got) from :func:`lidar_overlap.analysis.optimize` with :class:`MaximumOverlapAt`.
 """
 
 from __future__ import annotations
@@ -46,13 +39,11 @@ WITHIN = 0.99
 @dataclass(frozen=True, eq=False)
 class AlignResult:
     """tilt : the (x, y) tilt the search ends at (rad). tilts : the search's estimate after each
-    step (n x 2,
-    rad); shots : the shots fired by then (n); overlap : G at each estimate; best_overlap : the best
-    G in the
+    step (n x 2, rad); shots : the shots fired by then (n); overlap : G at each estimate;
+    best_overlap : the best G in the
     box (at ``best_tilt``). shots_to_within : shots after which every estimate has G >= 0.99
-    best_overlap
-    (None if the search never got there). steps : measurements taken (each ``shots_per_step``
-    shots)."""
+    best_overlap (None if the search never got there). steps : measurements taken (each
+    ``shots_per_step`` shots)."""
 
     tilt: tuple
     tilts: np.ndarray
@@ -79,14 +70,12 @@ def align(
     seed: int = 0,
 ) -> AlignResult:
     """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m), within ``box``
-    (rad) of its own
-    tilt in x and y (the actuator's travel about where it starts).
+    (rad) of its own tilt in x and y (the actuator's travel about where it starts).
 
     signal : keywords of :func:`lidar_overlap.signal` (pulse_energy, receiver_efficiency,
         range_resolution,
     atmosphere, background), required. shots_per_step : shots averaged per measurement. resolution
-    (rad):
-    the raster's last grid step and the gradient's smallest step (and probe); step (rad): the
+    (rad): the raster's last grid step and the gradient's smallest step (and probe); step (rad): the
     gradient's first
     step. seed : of the photon noise (measurement k uses seed + k).
     """

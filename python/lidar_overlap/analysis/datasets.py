@@ -1,6 +1,5 @@
 """xarray, imported when a dataset is built (maps, sensitivities, studies, telecover; the ``[io]``
-extra), and
-the variables they share."""
+extra), and the variables they share."""
 
 from __future__ import annotations
 

@@ -9,10 +9,8 @@ Every distribution draws an **offset added to the system's value** of its path (
   (``scipy.stats.norm(0, 20e-6)``, ``scipy.stats.truncnorm(...)``).
 
 A bare pair (``"beam.tilt"``) stands for both of its scalars, drawn independently from the same
-distribution.
-All draws come from one ``numpy.random.Generator``, parameter by parameter in the mapping's order, n
-at a
-time, so they depend on the seed, n and the mapping only.
+distribution. All draws come from one ``numpy.random.Generator``, parameter by parameter in the
+mapping's order, n at a time, so they depend on the seed, n and the mapping only.
 """
 
 from __future__ import annotations

@@ -1,10 +1,8 @@
 """Where many independent tasks run: on a ``dask.distributed.Client`` (``client=``), in dask's
-threaded
-scheduler in this process (dask installed, no set-up; the core releases the GIL), or in a plain loop
-(no dask).
-Tasks run at the same time each pass ``threads=1`` to the core (its threading contract: N callers
-with
-threads=0 start N teams of all cores); the results do not depend on where they ran."""
+threaded scheduler in this process (dask installed, no set-up; the core releases the GIL), or in a
+plain loop (no dask). Tasks run at the same time each pass ``threads=1`` to the core (its threading
+contract: N callers with threads=0 start N teams of all cores); the results do not depend on where
+they ran."""
 
 from __future__ import annotations
 
@@ -54,8 +52,7 @@ def workers(client, threads: int) -> int:
 
 def items_per_task(seconds_per_item: float, remaining: int, parallel: int) -> int:
     """Items per task: as many as run for :data:`TASK_SECONDS` at ``seconds_per_item``, but no more
-    than spreads
-    the ``remaining`` items over ``parallel`` workers; at least one."""
+    than spreads the ``remaining`` items over ``parallel`` workers; at least one."""
     return min(
         max(1, math.ceil(TASK_SECONDS / max(seconds_per_item, 1e-9))),
         max(1, math.ceil(remaining / parallel)),
@@ -66,10 +63,9 @@ def run_tasks(
     kind: str, client, function: Callable, shared, arguments: Sequence[tuple], parallel: int
 ) -> list:
     """``[function(shared, *args) for args in arguments]``, in order, on the engine ``kind``.
-    ``shared`` (a system:
-    it pickles as its constructor arguments) goes to each cluster worker once. A task that fails
-    raises its error
-    here; when several fail, the first in order, as in the loop (not the first to fail in time)."""
+    ``shared`` (a system: it pickles as its constructor arguments) goes to each cluster worker once.
+    A task that fails raises its error here; when several fail, the first in order, as in the loop
+    (not the first to fail in time)."""
     if kind == "loop":
         return [function(shared, *args) for args in arguments]
     if kind == "distributed":

@@ -1,40 +1,30 @@
 """Fitting a lidar system to a measured overlap curve: the free scalars (paths of
-:mod:`lidar_overlap.model.parameters`) by
-weighted least squares (``scipy.optimize.least_squares``, trust-region reflective with bounds).
+:mod:`lidar_overlap.model.parameters`) by weighted least squares (``scipy.optimize.least_squares``,
+trust-region reflective with bounds).
 
 Model. Planned once, on the starting system: auto's choice (RT or FO, and RT's quadrature tolerance)
-holds
-for the whole fit, so the model cannot switch between RT and FO while the parameters move (a switch
-would
-put a step of the size of the model error into the cost). Each evaluation runs that plan with the
-trial
-system.
+holds for the whole fit, so the model cannot switch between RT and FO while the parameters move (a
+switch would put a step of the size of the model error into the cost). Each evaluation runs that
+plan with the trial system.
 
 Jacobian. Central differences with the step rule of :mod:`lidar_overlap.analysis.sensitivity` (h = s
-(3 tolerance)^(1/3), s the
-parameter's natural scale); on ray tracing all 2 k shifted systems go through one
-``overlap_rt_batch``
-call, so one Jacobian is one core call. The optimiser works on p / s, so a tilt (1e-4 rad) and a
-defocus
-(1e-3 m) are of one order for it.
+(3 tolerance)^(1/3), s the parameter's natural scale); on ray tracing all 2 k shifted systems go
+through one ``overlap_rt_batch`` call, so one Jacobian is one core call. The optimiser works on p /
+s, so a tilt (1e-4 rad) and a defocus (1e-3 m) are of one order for it.
 
 Covariance. (Jᵀ J)⁻¹ of the sigma-normalised residuals at the solution (Gauss-Newton). With
-``sigma=None``
-the points have unit weights and the covariance is scaled by the reduced chi-square: the noise is
-then
-estimated from the scatter of the residuals. With a robust loss it is the same form with every point
-counted (outliers included): an approximation, on the large side.
+``sigma=None`` the points have unit weights and the covariance is scaled by the reduced chi-square:
+the noise is then estimated from the scatter of the residuals. With a robust loss it is the same
+form with every point counted (outliers included): an approximation, on the large side.
 
 Driver. :func:`solve` is shared by the fits (:func:`fit` here, :func:`.fit_telecover`): each gives a
 :class:`Model` (its vector and Jacobian as functions of a trial system); the optimiser, covariance,
 degeneracy warnings and convergence error are the same.
 
 Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar
-whose
-beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
+whose beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
 ``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; any
-other
-(positive) scalar from a tenth to ten times its start.
+other (positive) scalar from a tenth to ten times its start.
 """
 
 from __future__ import annotations
@@ -85,21 +75,18 @@ def fit(
     or one per range, > 0); None: unit weights, covariance scaled by the reduced chi-square. free :
     parameter
     paths (``"beam.tilt"`` stands for both components). bounds : {path: (low, high)} in SI units,
-    replacing
-    :func:`default_bounds` for those paths; the start must lie within. method : ``"rt"``, ``"fo"``,
-    ``"auto"`` or a method object, planned once on the start (module docstring). tolerance : the
-    model's
-    absolute tolerance on G (RT and auto); keep it below 0.1 x the median sigma (warned otherwise).
+    replacing :func:`default_bounds` for those paths; the start must lie within. method : ``"rt"``,
+    ``"fo"``, ``"auto"`` or a method object, planned once on the start (module docstring). tolerance
+    : the model's absolute tolerance on G (RT and auto); keep it below 0.1 x the median sigma
+    (warned otherwise).
     loss : as
     in least_squares (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"`` resist outliers; the
     residual
     scale is 1 sigma). max_evaluations : most model evaluations. allow_unconverged : return a result
-    with
-    ``converged=False`` instead of raising RuntimeError when the optimiser stops short.
+    with ``converged=False`` instead of raising RuntimeError when the optimiser stops short.
 
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
-    pair
-    of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
+    pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
     paths = free_paths(free)
     p = fit_plan(system, ranges, method, tolerance, threads)
@@ -135,12 +122,9 @@ def fit(
 @dataclass(frozen=True)
 class Model:
     """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured
-    point;
-    ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` -> (the
-    result kept as
-    ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by the FitResult;
-    ``tolerance``, the
-    model's error on the vector (compared with sigma)."""
+    point; ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` ->
+    (the result kept as ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by
+    the FitResult; ``tolerance``, the model's error on the vector (compared with sigma)."""
 
     evaluate: Callable
     jacobian: Callable
@@ -164,10 +148,9 @@ def solve(
     independent: Optional[int] = None,
 ) -> FitResult:
     """The least-squares driver shared by the fits: the free ``paths`` of ``system`` (the start) so
-    that
-    ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of independent
-    points
-    (default ``y.size``), which sets the degrees of freedom. See :func:`fit` for the rest."""
+    that ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of
+    independent points (default ``y.size``), which sets the degrees of freedom. See :func:`fit` for
+    the rest."""
     optimize = _scipy()
     k = len(paths)
     n = y.size if independent is None else independent

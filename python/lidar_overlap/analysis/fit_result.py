@@ -1,8 +1,7 @@
 """The result of :func:`lidar_overlap.analysis.fit` (and
-:func:`lidar_overlap.analysis.fit_telecover`): the parameters, their
-covariance, the fitted curve, and the model's prediction at other ranges with its 1-sigma band (the
-covariance
-propagated through the Jacobian)."""
+:func:`lidar_overlap.analysis.fit_telecover`): the parameters, their covariance, the fitted curve,
+and the model's prediction at other ranges with its 1-sigma band (the covariance propagated through
+the Jacobian)."""
 
 from __future__ import annotations
 
@@ -64,11 +63,9 @@ class FitResult:
         fitted
     :class:`OverlapResult`. measured, sigma : the data (sigma None when unit weights were used; then
     ``covariance_scaled`` is True: the covariance is scaled by the reduced chi-square).
-    degenerate_pairs :
-    (path, path, correlation) with |correlation| > 0.95. evaluations, jacobian_evaluations : model
-    curves
-    and Jacobians computed (one core call each on ray tracing). status, message, converged : the
-    optimiser's.
+    degenerate_pairs : (path, path, correlation) with |correlation| > 0.95. evaluations,
+    jacobian_evaluations : model curves and Jacobians computed (one core call each on ray tracing).
+    status, message, converged : the optimiser's.
     """
 
     parameters: Dict[str, float]
@@ -105,10 +102,8 @@ class FitResult:
 
     def predict(self, ranges) -> Prediction:
         """The fitted model at ``ranges`` (m) and its 1-sigma band, sqrt(diag(J C Jᵀ)) with J =
-        dG/dp there:
-        e.g. the near range of a curve measured only from 150 m. The fit's plan (model and options)
-        is kept;
-        the band covers the parameters' uncertainty, not the model's own error
+        dG/dp there: e.g. the near range of a curve measured only from 150 m. The fit's plan (model
+        and options) is kept; the band covers the parameters' uncertainty, not the model's own error
         (``result.error_estimate``)."""
         z = _checks.ranges("ranges", ranges)
         self.system._native.validate_ranges(z)
@@ -151,12 +146,10 @@ class FitResult:
 
     def plot(self, ranges=None, fig=None):
         """Data with error bars, the fitted curve with its 1-sigma band over ``ranges`` (default:
-        from a quarter
-        of the first measured range, where valid, to the last) and the residuals below. Returns the
-        matplotlib
-        Figure (needs ``pip install 'lidar-overlap[plot]'``). A telecover fit: the measured and
-        fitted deviations
-        per sector (at the measured ranges) and the residuals."""
+        from a quarter of the first measured range, where valid, to the last) and the residuals
+        below. Returns the matplotlib Figure (needs ``pip install 'lidar-overlap[plot]'``). A
+        telecover fit: the measured and fitted deviations per sector (at the measured ranges) and
+        the residuals."""
         from matplotlib.figure import Figure
 
         if isinstance(self.result, TelecoverResult):

@@ -1,21 +1,16 @@
 """Fitting misalignment to a measured telecover test: the free scalars of a system such that its
-sectors'
-normalised deviations G_i / mean G - 1 (:func:`.telecover`) match the measured ones, by the
-least-squares
-driver of :mod:`lidar_overlap.analysis.fit` (:func:`.fit.solve`: optimiser, covariance, degeneracy
-warnings, convergence error).
+sectors' normalised deviations G_i / mean G - 1 (:func:`.telecover`) match the measured ones, by the
+least-squares driver of :mod:`lidar_overlap.analysis.fit` (:func:`.fit.solve`: optimiser,
+covariance, degeneracy warnings, convergence error).
 
 Model. Ray tracing through each sector's mask, planned once per sector on the start (RT at
-``tolerance``);
-the vector is the deviations, sector-major (sector x range, flattened). Jacobian: central
-differences of the
-deviations, from :func:`.sensitivity.central_differences` of each sector's G (the same steps for
-every sector).
+``tolerance``); the vector is the deviations, sector-major (sector x range, flattened). Jacobian:
+central differences of the deviations, from :func:`.sensitivity.central_differences` of each
+sector's G (the same steps for every sector).
 
 Constraint. The deviations of a range sum to zero over the sectors, so a range carries (sectors - 1)
 independent points: the measured deviations are centred per range (a no-op on deviations computed
-from
-signals, the projection of independent noise otherwise), and the degrees of freedom are
+from signals, the projection of independent noise otherwise), and the degrees of freedom are
 (sectors - 1) x ranges - free parameters.
 """
 
@@ -52,14 +47,11 @@ def fit_telecover(
     ``measured_deviation``.
 
     The deviations are ratios of the sectors' G: they constrain what breaks the symmetry between the
-    sectors
-    (beam tilt, beam and detector offsets: north = +y, east = +x, so a beam tilted north fits as
-    tilt[1] > 0),
-    not the absolute level of G (an overall scale, a symmetric defocus or field of view are weakly
-    or not at
+    sectors (beam tilt, beam and detector offsets: north = +y, east = +x, so a beam tilted north
+    fits as tilt[1] > 0), not the absolute level of G (an overall scale, a symmetric defocus or
+    field of view are weakly or not at
     all constrained: expect degeneracy warnings). Unlike G, the deviations are odd in a tilt, so a
-    start at
-    tilt 0 is fine.
+    start at tilt 0 is fine.
 
     ranges : m, strictly increasing. measured_deviation : array (sector x range) in the order of the
         sectors'
@@ -68,14 +60,10 @@ def fit_telecover(
     of each deviation: a number, one per range or one per (sector, range), > 0; None: unit weights
     and the
     covariance scaled by the reduced chi-square. sectors : ``"quadrants"`` or an
-    :class:`ApertureMask` (as in
-    :func:`.telecover`). tolerance : RT's absolute tolerance on each sector's G. Other arguments as
-    in
-    :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is the fitted
-    :class:`TelecoverResult` and
-    whose ``measured``, ``sigma`` and ``residuals`` are sector-major (sector x range, flattened);
-    ``predict``
-    gives the full aperture's G. Needs scipy.
+    :class:`ApertureMask` (as in :func:`.telecover`). tolerance : RT's absolute tolerance on each
+    sector's G. Other arguments as in :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is
+    the fitted :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are
+    sector-major (sector x range, flattened); ``predict`` gives the full aperture's G. Needs scipy.
     """
     paths = free_paths(free)
     mask = sector_mask(system, sectors)

@@ -3,8 +3,8 @@ constraints must hold (SI units).
 
 Each objective states the ranges it needs G at (``ranges``, m), the number it minimises from an
 :class:`OverlapResult` there (``score``), the number it reports (``value``, in ``unit``) and its
-constraints
-(``constraint_values``: name -> value, satisfied when >= 0). Constraints on G use its lower bound G
+constraints (``constraint_values``: name -> value, satisfied when >= 0). Constraints on G use its
+lower bound G
 - error_estimate,
 so a design found feasible stays feasible for the exact G of the model.
 """
@@ -44,15 +44,13 @@ class SmallestFieldOfView:
     ``detector.defocus``, ``beam.offset[i]`` or ``beam.tilt[i]``) subject to
 
     - full overlap: G(z) >= ``fraction`` G_limit at every z of ``ranges``, from
-      ``full_overlap_range`` (m) to
-      ``far_range`` (m), G_limit = 1 - (r_obs / R)² the far-range limit of the obstructed aperture;
+      ``full_overlap_range`` (m) to ``far_range`` (m), G_limit = 1 - (r_obs / R)² the far-range
+      limit of the obstructed aperture;
     - far loss: 1 - G(far_range) / G_limit <= ``max_far_loss`` (dimensionless).
 
     G grows with the detector radius at every range (a larger disc about the same centre contains
-    the smaller
-    one, and the coupling integrand is >= 0), so for fixed other parameters the smallest radius is
-    found by
-    bisection; the others are searched for the smallest such radius.
+    the smaller one, and the coupling integrand is >= 0), so for fixed other parameters the smallest
+    radius is found by bisection; the others are searched for the smallest such radius.
     """
 
     full_overlap_range: float = 150.0
@@ -92,8 +90,7 @@ class SmallestFieldOfView:
 @dataclass(frozen=True)
 class MaximumOverlapAt:
     """The free parameters (tilt, offsets, defocus, ...) that maximise G at one ``range`` (m): the
-    alignment
-    question. Reports G there (dimensionless); no constraints."""
+    alignment question. Reports G there (dimensionless); no constraints."""
 
     range: float
     unit: str = field(default="1", init=False)
@@ -118,12 +115,10 @@ class MaximumOverlapAt:
 @dataclass(frozen=True)
 class Objective:
     """Any design question: ``function(result) -> float`` to minimise, ``result`` the
-    :class:`OverlapResult` of a
-    candidate system at ``ranges`` (m; None: the ``ranges`` given to :func:`optimize`).
-    ``constraints`` maps
-    names to functions of the same result that must be >= 0 (use ``result.overlap -
-    result.error_estimate`` for
-    bounds on G that hold for the exact G). ``unit`` is the unit of the function's value."""
+    :class:`OverlapResult` of a candidate system at ``ranges`` (m; None: the ``ranges`` given to
+    :func:`optimize`). ``constraints`` maps names to functions of the same result that must be >= 0
+    (use ``result.overlap - result.error_estimate`` for bounds on G that hold for the exact G).
+    ``unit`` is the unit of the function's value."""
 
     function: Callable[[OverlapResult], float]
     ranges: Optional[Tuple[float, ...]] = None

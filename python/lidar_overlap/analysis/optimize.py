@@ -2,21 +2,18 @@
 (:mod:`lidar_overlap.analysis.objectives`).
 
 Search. Every candidate is ray traced at the objective's ranges; many candidates at once go through
-one
-parallel core call (``lo.alignment_map`` for one or two tilts, offsets or defocus, else
-``overlap_rt_batch``).
-A grid over the bounds comes first (G need not be unimodal: a biaxial lidar, a plateau), then a
-local refine
+one parallel core call (``lo.alignment_map`` for one or two tilts, offsets or defocus, else
+``overlap_rt_batch``). A grid over the bounds comes first (G need not be unimodal: a biaxial lidar,
+a plateau), then a local refine
 from its best point: ``scipy.optimize.minimize_scalar(method="bounded")`` for one parameter,
-Nelder-Mead with
-bounds for several, COBYLA when a generic objective has constraints. :class:`SmallestFieldOfView`
-minimises the
-detector radius by bisection, valid because G grows with the radius at every range (the objective's
-docstring), for each grid point of the other free parameters at once, then refines those others.
+Nelder-Mead with bounds for several, COBYLA when a generic objective has constraints.
+:class:`SmallestFieldOfView` minimises the detector radius by bisection, valid because G grows with
+the radius at every range (the objective's docstring), for each grid point of the other free
+parameters at once, then refines those others.
 
 A target no candidate within the bounds meets is a ValueError that says so, with the best value
-found; a
-search that stops on its evaluation budget returns ``converged=False`` with scipy's message.
+found; a search that stops on its evaluation budget returns ``converged=False`` with scipy's
+message.
 """
 
 from __future__ import annotations
@@ -52,9 +49,8 @@ class OptimizeResult:
     values : best value of each free parameter path (SI units). objective : the objective's value
         there, in
     ``unit`` (the radius for SmallestFieldOfView, G for MaximumOverlapAt). constraints : each
-    constraint's value
-    there (>= 0: met). system : the optimised system; result : its OverlapResult (at ``ranges``,
-    else the
+    constraint's value there (>= 0: met). system : the optimised system; result : its OverlapResult
+    (at ``ranges``, else the
     objective's). evaluations : candidate systems ray traced; core_calls : the parallel calls they
     took.
     converged : the search reached its tolerance; message : how it ended.
@@ -128,9 +124,8 @@ def optimize(
     system, objective, free, bounds, *, method="rt", tolerance: float = 1e-4, ranges=None, x0=None
 ) -> OptimizeResult:
     """The values of the ``free`` parameter paths (:mod:`lidar_overlap.model.parameters`;
-    ``"beam.tilt"`` stands for
-    both components) within ``bounds`` that answer ``objective`` (:class:`SmallestFieldOfView`,
-    :class:`MaximumOverlapAt` or :class:`Objective`).
+    ``"beam.tilt"`` stands for both components) within ``bounds`` that answer ``objective``
+    (:class:`SmallestFieldOfView`, :class:`MaximumOverlapAt` or :class:`Objective`).
 
     bounds : one (low, high) per free path in order, or a mapping path -> (low, high) (SI units).
     method : ``"rt"`` or an :class:`lidar_overlap.RT`; tolerance : RT's absolute tolerance on each

@@ -1,8 +1,6 @@
 """The two stages of a design search over free parameters within bounds: a full grid (G need not be
-unimodal:
-a biaxial lidar, a plateau), then a local refine from its best point (bounded Brent for one
-parameter,
-Nelder-Mead for several, COBYLA with constraints; scipy, the ``[fit]`` extra)."""
+unimodal: a biaxial lidar, a plateau), then a local refine from its best point (bounded Brent for
+one parameter, Nelder-Mead for several, COBYLA with constraints; scipy, the ``[fit]`` extra)."""
 
 from __future__ import annotations
 
@@ -19,14 +17,11 @@ GRID_POINTS, MAX_AXIS_POINTS = 300, 33
 
 def refine(score, x, lower, upper, cell, xtol, fatol, constraints=()):
     """A local search for the minimum of ``score`` (a function of a parameter vector) from ``x``,
-    within the
-    bounds; ``cell`` is the grid's spacing about ``x`` (the first step), ``xtol`` the step per
-    parameter and
-    ``fatol`` the score change below which it stops; ``constraints`` are functions that must stay >=
-    0.
-    Bounded Brent for one parameter, Nelder-Mead for several, COBYLA with constraints (in
-    coordinates scaled
-    to the bounds, so one step size fits all parameters). Returns (x, scipy's result)."""
+    within the bounds; ``cell`` is the grid's spacing about ``x`` (the first step), ``xtol`` the
+    step per parameter and ``fatol`` the score change below which it stops; ``constraints`` are
+    functions that must stay >= 0. Bounded Brent for one parameter, Nelder-Mead for several, COBYLA
+    with constraints (in coordinates scaled to the bounds, so one step size fits all parameters).
+    Returns (x, scipy's result)."""
     so = _scipy_optimize()
 
     n, span = len(x), upper - lower
@@ -95,10 +90,9 @@ def grid_points(lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
 
 def refine_tolerance(problem) -> np.ndarray:
     """Per free path, the step below which G cannot tell two candidates apart: near a maximum G
-    falls as
-    (dx / s)² for a parameter of natural scale s (:func:`sensitivity.step_scale`), so by the
-    quadrature
-    tolerance at dx = s sqrt(tolerance). A path without a natural scale uses its bounds' span."""
+    falls as (dx / s)² for a parameter of natural scale s (:func:`sensitivity.step_scale`), so by
+    the quadrature tolerance at dx = s sqrt(tolerance). A path without a natural scale uses its
+    bounds' span."""
     out = []
     for path, lo, hi in zip(problem.paths, problem.lower, problem.upper):
         try:

@@ -2,11 +2,9 @@
 G.
 
 Step rule. The central difference D(h) = (G(p + h) - G(p - h)) / 2h errs by the truncation h² G'''/6
-plus
-the quadrature error of the two values, up to ``tolerance``/h. With G''' ~ 1/s³ for a parameter
-whose
-natural scale is s (G changes by O(1) over s), the sum is smallest at h = s (3 tolerance)^(1/3). The
-scales:
+plus the quadrature error of the two values, up to ``tolerance``/h. With G''' ~ 1/s³ for a parameter
+whose natural scale is s (G changes by O(1) over s), the sum is smallest at h = s (3
+tolerance)^(1/3). The scales:
 
 - ``beam.tilt[i]``: the receiver's half field of view r_d / f (rad);
 - ``beam.offset[i]``: the aperture radius D/2; ``detector.offset[i]``: the detector radius r_d;
@@ -15,10 +13,8 @@ scales:
 
 The error stated for each derivative is measured, not assumed: the truncation from D(h) and D(2h)
 (Richardson's leading-order estimate |D(2h) - D(h)| / 3, doubled as a margin for the h⁴ terms, which
-can
-make it short when they oppose the h² term) plus the core's error estimates of the two values over
-2h.
-All 4 perturbed systems of every parameter go through one ``overlap_rt_batch`` call.
+can make it short when they oppose the h² term) plus the core's error estimates of the two values
+over 2h. All 4 perturbed systems of every parameter go through one ``overlap_rt_batch`` call.
 """
 
 from __future__ import annotations
@@ -68,23 +64,19 @@ def sensitivity(
     system, ranges, parameters, method="rt", tolerance: float = 1e-4, *, threads: int = 0
 ):
     """dG/dp at each range for each parameter path (:mod:`lidar_overlap.model.parameters`; a bare
-    pair such as
-    ``"beam.tilt"`` stands for both components), by central differences of ray-traced G.
+    pair such as ``"beam.tilt"`` stands for both components), by central differences of ray-traced
+    G.
 
     ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier
         optics is
     refused: its curves state no error to set the step and the derivative's error from). tolerance :
-    RT's
-    absolute tolerance on each G; the steps follow from it (module docstring). threads : OpenMP
-    threads; 0 uses
-    all cores.
+    RT's absolute tolerance on each G; the steps follow from it (module docstring). threads : OpenMP
+    threads; 0 uses all cores.
 
     Returns an ``xarray.Dataset`` (``pip install 'lidar-overlap[io]'``) with dims (``parameter``,
-    ``range``):
-    ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its estimated absolute
-    error),
-    ``step`` (h per parameter, in its unit), ``value`` (the system's value) and ``unit`` (per
-    parameter).
+    ``range``): ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its
+    estimated absolute error), ``step`` (h per parameter, in its unit), ``value`` (the system's
+    value) and ``unit`` (per parameter).
     """
     paths = _parameters.plain_paths(
         parameters,
@@ -154,14 +146,12 @@ def sensitivity(
 
 def central_differences(p, system, paths, multiples, tolerance: float):
     """G of ``system`` with each path shifted by k h for each k in ``multiples``, on the model of
-    plan ``p``
-    (its backend, options and ranges): (steps h, G and its error estimate, each (path, k, range)).
+    plan ``p`` (its backend, options and ranges): (steps h, G and its error estimate, each (path, k,
+    range)).
 
     h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). On the
-    ray-tracing
-    backend all shifted systems go through one ``overlap_rt_batch`` call; on any other, each is a
-    run of ``p``
-    with the shifted system (the plan's decisions kept)."""
+    ray-tracing backend all shifted systems go through one ``overlap_rt_batch`` call; on any other,
+    each is a run of ``p`` with the shifted system (the plan's decisions kept)."""
     factor = (3.0 * tolerance) ** (1.0 / 3.0)
     steps = np.array([step_scale(system, path) * factor for path in paths])
     values = [_parameters.get(system, path) for path in paths]
@@ -194,8 +184,7 @@ def central_differences(p, system, paths, multiples, tolerance: float):
 
 def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
     """dG/dp of ``system`` on plan ``p``'s model and ranges, shape (range, path): central
-    differences with
-    :func:`central_differences` (one core call on ray tracing)."""
+    differences with :func:`central_differences` (one core call on ray tracing)."""
     steps, g, _ = central_differences(p, system, paths, (1, -1), tolerance)
     return ((g[:, 0] - g[:, 1]) / (2.0 * steps[:, None])).T
 

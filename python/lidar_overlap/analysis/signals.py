@@ -6,14 +6,12 @@ equation
     P(z) = N₀ Δz A η G(z) β(z) T(z)² / z²,    N₀ = E₀ / (h c / λ),
 
 with E₀ the pulse energy (J), N₀ the photons it carries, Δz the range resolution (m; the bin the
-detector
-integrates, cτ/2 of its sampling time τ; each value is sampled at the bin's centre, with no
-convolution with the
-pulse), A = π D²/4 the full aperture (G is normalised to the full, unobstructed aperture, so an
-obstruction
+detector integrates, cτ/2 of its sampling time τ; each value is sampled at the bin's centre, with no
+convolution with the pulse), A = π D²/4 the full aperture (G is normalised to the full, unobstructed
+aperture, so an obstruction
 is in G already: see :mod:`lidar_overlap.forward.compute`), η the receiver efficiency (optics times
-detector quantum
-efficiency), β and T the backscatter and one-way transmission of an :class:`Atmosphere`.
+detector quantum efficiency), β and T the backscatter and one-way transmission of an
+:class:`Atmosphere`.
 """
 
 from __future__ import annotations
@@ -53,10 +51,9 @@ class LidarSignal:
     range_corrected : photons · z² (photons m²), the range-corrected signal.
     range_corrected_full_overlap : the same with G = 1 (what an overlap correction should recover).
     std : photons per bin and shot, the standard deviation of the shot-averaged,
-        background-subtracted signal:
-        sqrt((photons + background) / shots) (Poisson counts summed over the shots; the background
-        is taken as
-        known exactly, so subtracting it adds no variance).
+        background-subtracted signal: sqrt((photons + background) / shots) (Poisson counts summed
+        over the shots; the background is taken as known exactly, so subtracting it adds no
+        variance).
     noisy : one such shot-averaged, background-subtracted realisation (photons per bin and shot), or
         None.
     background : photons per bin and shot (sky light and dark counts), subtracted from ``noisy``.
@@ -80,8 +77,8 @@ class LidarSignal:
 
     def plot(self, ax=None):
         """The dynamic-range view on log axes: expected photons per bin and shot with and without
-        the overlap,
-        the background, the noise level and the noisy realisation. Returns the matplotlib Axes."""
+        the overlap, the background, the noise level and the noisy realisation. Returns the
+        matplotlib Axes."""
         from ..views.plotting import plot_signal
 
         return plot_signal(self, ax=ax)
@@ -129,10 +126,8 @@ def signal(
     seed: int = 0,
 ) -> LidarSignal:
     """Expected photons per range bin and shot of the lidar of ``result`` (its ``system``'s
-    wavelength and
-    telescope diameter, its overlap at its ranges) looking through ``atmosphere``, by the lidar
-    equation of
-    :mod:`lidar_overlap.analysis.signals`.
+    wavelength and telescope diameter, its overlap at its ranges) looking through ``atmosphere``, by
+    the lidar equation of :mod:`lidar_overlap.analysis.signals`.
 
     Parameters
     ----------
@@ -235,20 +230,15 @@ def correct(
     overlap : G at each range: an :class:`OverlapResult` at the same ranges, or an array of values
         in [0, 1].
     min_overlap : (0, 1]: where G < min_overlap the signal is not corrected (too little of it
-        reaches the
-        detector, and S/G would amplify every error): ``values`` and ``std`` are NaN there and
-        ``mask`` True.
+        reaches the detector, and S/G would amplify every error): ``values`` and ``std`` are NaN
+        there and ``mask`` True.
     signal_std : the standard deviation of S, in its unit: a scalar or one per range, finite and >=
-        0; None
-        means 0 (an exact signal).
+        0; None means 0 (an exact signal).
     overlap_std : the uncertainty of G: a scalar or one per range in [0, 1]. None means the result's
         ``error_estimate`` when ``overlap`` is an :class:`OverlapResult` (for ``error_kind``
-        "bound", RT's
-        quadrature bound, that is a bound on the error, not a standard deviation, so ``std`` is then
-        a
-        conservative bound too; for "nominal" and "standard_error" it is used as a standard
-        deviation), and 0
-        for an array.
+        "bound", RT's quadrature bound, that is a bound on the error, not a standard deviation, so
+        ``std`` is then a conservative bound too; for "nominal" and "standard_error" it is used as a
+        standard deviation), and 0 for an array.
     """
     z = _checks.ranges("ranges", ranges)
     s = _profile("signal", signal, z.size)

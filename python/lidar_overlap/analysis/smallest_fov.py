@@ -1,16 +1,11 @@
 """The search behind :class:`SmallestFieldOfView`: bisection on the detector radius, nested in a
-grid and a local
-refine over the other free parameters.
+grid and a local refine over the other free parameters.
 
 Bisection is valid because every constraint is monotone in the radius: G at each range grows with it
-(a larger
-detector disc about the same centre contains the smaller one). The radius is bisected to a relative
-width of
-``tolerance`` (RT's absolute tolerance on G: near the edge G changes by O(1) over a relative change
-of O(1) of
-the radius, so narrower brackets would be decided by quadrature error). Every grid point is bisected
-at
-once, each bisection step one parallel core call.
+(a larger detector disc about the same centre contains the smaller one). The radius is bisected to a
+relative width of ``tolerance`` (RT's absolute tolerance on G: near the edge G changes by O(1) over
+a relative change of O(1) of the radius, so narrower brackets would be decided by quadrature error).
+Every grid point is bisected at once, each bisection step one parallel core call.
 """
 
 from __future__ import annotations
@@ -66,10 +61,8 @@ def search(problem, start: np.ndarray):
 
 def smallest(problem, points: np.ndarray, full):
     """The smallest feasible radius for each row of ``points`` (the other free parameters), and
-    whether it was
-    feasible at all. Where even the upper bound fails, the upper bound times (1 + the constraints'
-    deficit), so
-    an outer search still sees which way is better."""
+    whether it was feasible at all. Where even the upper bound fails, the upper bound times (1 + the
+    constraints' deficit), so an outer search still sees which way is better."""
     rk = problem.paths.index(RADIUS)
     m = len(points)
     lo, hi = np.full(m, problem.lower[rk]), np.full(m, problem.upper[rk])

@@ -2,29 +2,23 @@
 Dask.
 
 :func:`tolerance_study` draws every member up front (:mod:`lidar_overlap.analysis.distributions`),
-so the result depends
-on the system, the distributions, n, the ranges, the method and the seed only: not on the chunk size
-nor on
-where the members run. Each member is planned from its own system and run by
-:func:`lidar_overlap.run`.
+so the result depends on the system, the distributions, n, the ranges, the method and the seed only:
+not on the chunk size nor on where the members run. Each member is planned from its own system and
+run by :func:`lidar_overlap.run`.
 
 Where they run:
 
 - ``client=`` a ``dask.distributed.Client``: chunks of members are tasks on that cluster;
 - else, with dask installed: dask's threaded scheduler in this process (no set-up; the core releases
-  the GIL),
-  ``threads`` members at once (its synchronous scheduler for one);
+  the GIL), ``threads`` members at once (its synchronous scheduler for one);
 - else a plain loop, one member after the other.
 
 Threads: members that run at the same time each pass ``threads=1`` to the core (N callers with
 threads=0
 would start N teams of all cores: the core's threading contract). The plain loop gives the core
-``threads``
-only when a member takes :data:`TASK_SECONDS` or more: for the short calls of most studies an OpenMP
-team
-per call costs more than it saves (RT, 60 ranges: 12 ms per member with 2 threads, 1 ms with 1, on 2
-busy
-cores). Results do not depend on it.
+``threads`` only when a member takes :data:`TASK_SECONDS` or more: for the short calls of most
+studies an OpenMP team per call costs more than it saves (RT, 60 ranges: 12 ms per member with 2
+threads, 1 ms with 1, on 2 busy cores). Results do not depend on it.
 """
 
 from __future__ import annotations
@@ -63,13 +57,12 @@ def tolerance_study(
     threads: int = 0,
 ):
     """G(z) of ``n`` systems drawn around ``system``, and its percentiles per range (needs ``[io]``;
-    ``[dask]``
-    to run in parallel).
+    ``[dask]`` to run in parallel).
 
     distributions : parameter path -> distribution of the *offset* from the system's value
         (:mod:`lidar_overlap.analysis.distributions`): ``("normal", mean_offset, sd)``,
-        ``("uniform", low, high)`` or an
-        object with ``rvs(size, random_state)`` (a frozen ``scipy.stats`` distribution). SI units.
+        ``("uniform", low, high)`` or an object with ``rvs(size, random_state)`` (a frozen
+        ``scipy.stats`` distribution). SI units.
     n : members, 1 to :data:`MAX_MEMBERS`. ranges : m, as for :func:`lidar_overlap.overlap`.
     method : ``"rt"``, ``"fo"``, ``"auto"`` or an RT, FO or Auto object; each member gets its own
         plan.
@@ -77,18 +70,15 @@ def tolerance_study(
     seed : of the one ``numpy.random.Generator`` every draw comes from.
     client : a ``dask.distributed.Client`` to run on; None runs in this process (see the module).
     chunk : members per task; None: as many as run for :data:`TASK_SECONDS` (timed on the first
-        members, which
-        run here), but no more than spreads the members over every worker.
+        members, which run here), but no more than spreads the members over every worker.
     threads : cores used in this process, 0 for all; ignored with a client (its workers' threads
         decide).
 
     Returns an ``xarray.Dataset``: ``overlap`` (member x range), ``value`` (member x parameter: the
-    drawn
-    values, SI), ``nominal`` (parameter), ``overlap_percentile`` (percentile x range); attributes n,
-    seed,
-    method, distributions (text), members_per_task and engine. A member whose draw makes an invalid
-    system (or
-    range) is an error naming the member and the parameter; none is dropped.
+    drawn values, SI), ``nominal`` (parameter), ``overlap_percentile`` (percentile x range);
+    attributes n, seed, method, distributions (text), members_per_task and engine. A member whose
+    draw makes an invalid system (or range) is an error naming the member and the parameter; none is
+    dropped.
     """
     xr = xarray("tolerance_study")  # before any work: the result needs it
     if not isinstance(system, LidarSystem):
@@ -230,8 +220,7 @@ def _head(system, paths, values, z, request):
 
 def _chunk(system, paths, values, z, request, threads: int, start: int) -> np.ndarray:
     """G of members ``start, start + 1, ...`` (rows), each built from ``system`` and its draw, and
-    planned from its
-    own system; an error names the member."""
+    planned from its own system; an error names the member."""
     out = np.empty((len(values), z.size))
     for k, row in enumerate(values):
         member = _member(system, paths, row, start + k)

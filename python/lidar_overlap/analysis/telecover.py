@@ -2,13 +2,11 @@
 11, 4713).
 
 The receiver's aperture is covered but for one sector at a time (classically four quadrants); the
-range-corrected signals of the sectors are compared through their normalised deviations
-S_i(z) / mean_j S_j(z) - 1. The atmosphere is the same for every sector, so the signals differ only
-through
+range-corrected signals of the sectors are compared through their normalised deviations S_i(z) /
+mean_j S_j(z) - 1. The atmosphere is the same for every sector, so the signals differ only through
 the overlap: S_i ∝ G_i, and the deviations are ratios of G's. :func:`telecover` computes each
-sector's G
-(one plan per sector; by ray tracing all sectors in one core call sharing their nodes) and the
-full-aperture G.
+sector's G (one plan per sector; by ray tracing all sectors in one core call sharing their nodes)
+and the full-aperture G.
 """
 
 from __future__ import annotations
@@ -75,8 +73,7 @@ class TelecoverResult:
 
     def to_xarray(self):
         """An ``xarray.Dataset`` (sector x range): ``overlap``, ``error_estimate``, ``deviation``
-        and
-        ``full_overlap`` (range), with units and the method in the attributes (needs the ``io``
+        and ``full_overlap`` (range), with units and the method in the attributes (needs the ``io``
         extra)."""
         xr = xarray("TelecoverResult.to_xarray")
         dims = ("sector", "range")
@@ -113,8 +110,7 @@ class TelecoverResult:
 
     def plot(self, band: float = 0.05, axes=None):
         """The conventional telecover figure: range-corrected signals per sector (∝ G_i) and the
-        normalised
-        deviations with the ±``band`` lines. Returns the two Axes (needs ``pip install
+        normalised deviations with the ±``band`` lines. Returns the two Axes (needs ``pip install
         lidar-overlap[plot]``)."""
         from ..views.plotting import plot_telecover
 
@@ -131,16 +127,12 @@ def telecover(
     threads: int = 0,
 ) -> TelecoverResult:
     """The telecover test of ``system`` at ``ranges`` (m). ``sectors``: ``"quadrants"`` (north = +y,
-    east = +x:
-    :meth:`ApertureMask.quadrants`) or an :class:`ApertureMask` whose sectors are measured one at a
-    time.
-    ``method``: ``"rt"``, ``"fo"``, ``"auto"`` or a method object; ``tolerance`` applies to ``"rt"``
-    and
-    ``"auto"``. G of each sector stays normalised to the full aperture: by ray tracing the sectors
-    of a partition
-    add up to the full G; in Fourier optics diffraction at the sectors' edges makes their sum fall
-    short of it by
-    about RT's diffraction error (1e-3 on Table 1)."""
+    east = +x: :meth:`ApertureMask.quadrants`) or an :class:`ApertureMask` whose sectors are
+    measured one at a time. ``method``: ``"rt"``, ``"fo"``, ``"auto"`` or a method object;
+    ``tolerance`` applies to ``"rt"`` and ``"auto"``. G of each sector stays normalised to the full
+    aperture: by ray tracing the sectors of a partition add up to the full G; in Fourier optics
+    diffraction at the sectors' edges makes their sum fall short of it by about RT's diffraction
+    error (1e-3 on Table 1)."""
     mask = sector_mask(system, sectors)
     options = dict(threads=threads)
     if isinstance(method, str) and method != "fo":
@@ -167,8 +159,7 @@ def with_mask(system: LidarSystem, mask: ApertureMask) -> LidarSystem:
 
 def sector_mask(system, sectors) -> ApertureMask:
     """The mask of :func:`telecover`'s ``sectors`` (``"quadrants"`` or an :class:`ApertureMask`),
-    checked against
-    ``system`` (a LidarSystem without a mask)."""
+    checked against ``system`` (a LidarSystem without a mask)."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     if system.telescope.mask is not None:

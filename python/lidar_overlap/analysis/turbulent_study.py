@@ -1,14 +1,11 @@
 """Turbulence realisations through Dask: the draws of ``lo.overlap(system, ranges,
-lo.Turbulent(...))`` split into
-tasks, on one machine or many, bit for bit the single call's.
+lo.Turbulent(...))`` split into tasks, on one machine or many, bit for bit the single call's.
 
 A turbulent run is a fixed sequence of realisations, set by its seed: the FO path's realisation k
-takes the
-phase screens (seed, k) whatever else the call computes (the core's ``first_realization``), and the
-RT path draws
-every wander offset up front from ``numpy.random.default_rng(seed)``, so a task computes any slice
-of them. The
-rows are gathered in order and the statistics made once, over all of them, as ``lo.overlap`` makes
+takes the phase screens (seed, k) whatever else the call computes (the core's
+``first_realization``), and the RT path draws every wander offset up front from
+``numpy.random.default_rng(seed)``, so a task computes any slice of them. The rows are gathered in
+order and the statistics made once, over all of them, as ``lo.overlap`` makes
 them: the
 result does not depend on the chunk size nor on where the tasks ran.
 
@@ -18,22 +15,19 @@ Where they run (:mod:`lidar_overlap.analysis.engines`, as for
 - ``client=`` a ``dask.distributed.Client``: chunks of realisations are tasks on that cluster;
 - else, with dask installed: dask's threaded scheduler in this process, ``threads`` tasks at once;
 - else (no dask) one core call in this process, its threads over the realisations, as ``lo.overlap``
-  makes it
-  (or one call per chunk, with ``chunk``).
+  makes it (or one call per chunk, with ``chunk``).
 
 Task size: each core call makes its set-up once, then its realisations, each costing the same (the
-FO path's
-set-up, a coupling map per range and a screen generator per screen, takes as long as 3 to 20
+FO path's set-up, a coupling map per range and a screen generator per screen, takes as long as 3 to
+20
 realisations: 0.05 s
 for a 64² beam grid and 4 ranges, 0.5 s for 256² and 20 ranges, on one core). Unless ``chunk`` is
-given, the first
-realisation runs here (on ``threads``) and the others are spread evenly over the workers, one task
-each, in tasks
-of no less than :data:`~lidar_overlap.analysis.engines.TASK_SECONDS` at that realisation's time: the
-set-up is then made
-once per worker, as by one call per machine. (A tolerance study's members share no set-up: it cuts
-them into many
-tasks of ~0.1 s instead.) A smaller ``chunk`` balances the load on a cluster of unequal workers.
+given, the first realisation runs here (on ``threads``) and the others are spread evenly over the
+workers, one task each, in tasks of no less than
+:data:`~lidar_overlap.analysis.engines.TASK_SECONDS` at that realisation's time: the set-up is then
+made once per worker, as by one call per machine. (A tolerance study's members share no set-up: it
+cuts them into many tasks of ~0.1 s instead.) A smaller ``chunk`` balances the load on a cluster of
+unequal workers.
 """
 
 from __future__ import annotations
@@ -66,32 +60,25 @@ def turbulent_realizations(
     threads: int = 0,
 ):
     """The realisations of ``lo.overlap(system, ranges, method)`` and their statistics, computed as
-    tasks through
-    Dask (needs ``[io]``; ``[dask]`` to run them in parallel).
+    tasks through Dask (needs ``[io]``; ``[dask]`` to run them in parallel).
 
     system : a LidarSystem (a Gaussian beam; no aperture mask or receiver aberrations, as for any
-        turbulent
-        overlap). ranges : m, as for :func:`lidar_overlap.overlap`.
+        turbulent overlap). ranges : m, as for :func:`lidar_overlap.overlap`.
     method : a :class:`lidar_overlap.Turbulent`: the turbulence, the model (RT, FO or Auto, planned
-        once, as
-        ``lo.overlap`` plans it), realisations K (up to :data:`MAX_REALIZATIONS`), seed and screens.
+        once, as ``lo.overlap`` plans it), realisations K (up to :data:`MAX_REALIZATIONS`), seed and
+        screens.
     client : a ``dask.distributed.Client`` to run on; None runs in this process (see the module).
     chunk : realisations per task, 1 to :data:`MAX_REALIZATIONS`; None: the realisations after the
-        first, which
-        runs here, spread evenly over the workers in tasks of at least 0.1 s (see the module).
+        first, which runs here, spread evenly over the workers in tasks of at least 0.1 s (see the
+        module).
     threads : cores used in this process, 0 for all; with a client only by the first realisation,
-        timed here (the
-        workers' threads decide).
+        timed here (the workers' threads decide).
 
     Returns an ``xarray.Dataset``, bit for bit ``lo.overlap(system, ranges, method)``: ``overlap``
-    (realization x
-    range, G of each draw of the atmosphere), and per range ``mean`` (the overlap G),
-    ``standard_error`` (of the
-    mean), ``std`` (over the draws, ddof=1; 0 for one draw), ``low`` and ``high`` (the 5 and 95 %
-    percentiles); the
-    attributes realizations, seed, screens, method, model (``"rt"`` or ``"fo"``), turbulence,
-    error_kind, engine
-    and realizations_per_task.
+    (realization x range, G of each draw of the atmosphere), and per range ``mean`` (the overlap G),
+    ``standard_error`` (of the mean), ``std`` (over the draws, ddof=1; 0 for one draw), ``low`` and
+    ``high`` (the 5 and 95 % percentiles); the attributes realizations, seed, screens, method, model
+    (``"rt"`` or ``"fo"``), turbulence, error_kind, engine and realizations_per_task.
     """
     xr = xarray("turbulent_realizations")  # before any work: the result needs it
     if not isinstance(system, LidarSystem):
@@ -193,8 +180,7 @@ def turbulent_realizations(
 
 def _rows(kind, client, system, p, wander, chunk, threads):
     """The rows of every realisation, as (G, RT convergence flags, RT error estimates) per part in
-    order, and the
-    realisations per task."""
+    order, and the realisations per task."""
     k, request, z = p.turbulence.realizations, p.request, p.ranges
     if kind == "loop" and chunk is None:  # one call: the core's threads over the realisations
         return [_part(system, z, request, threads, 0, k, _slice(wander, 0, k))], k
@@ -229,8 +215,7 @@ def _slice(wander, first: int, count: int):
 
 def _part(system, z, request, threads: int, first: int, count: int, wander):
     """Rows first .. first + count - 1 of the run (the task): planned here as the caller planned it;
-    (G, and for RT
-    the core's convergence flags and error estimates, else None)."""
+    (G, and for RT the core's convergence flags and error estimates, else None)."""
     p = plan(system, z, request, threads=threads)
     if wander is None:
         return turbulent.fo_rows(p, first, count), None, None

@@ -1,27 +1,18 @@
 """Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see
-:mod:`lidar_overlap.io.scenario`),
-``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see
-:mod:`lidar_overlap.analysis.fit`) and
-``lidar-overlap telecover SCENARIO.toml [--measurements CSV --free PATH ...]`` (see
-:mod:`lidar_overlap.analysis.telecover`).
+:mod:`lidar_overlap.io.scenario`), ``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH
+...`` (see :mod:`lidar_overlap.analysis.fit`) and ``lidar-overlap telecover SCENARIO.toml
+[--measurements CSV --free PATH ...]`` (see :mod:`lidar_overlap.analysis.telecover`).
 
 Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library
-refuses, a
-file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted
-(Ctrl-C). A
-failure prints exactly one line on stderr, ``lidar-overlap: error: ...``, naming the file, the
-section and
-the key where it can, and never a traceback.
+refuses, a file that cannot be read or written; 2 a command-line syntax error (argparse); 130
+interrupted (Ctrl-C). A failure prints exactly one line on stderr, ``lidar-overlap: error: ...``,
+naming the file, the section and the key where it can, and never a traceback.
 
 Nothing is written before the computation has succeeded, and every file (CSV, NetCDF, PNG) is
-written
-under a temporary name beside its final one and renamed only when complete, so a failure (a full
-disk,
-Ctrl-C) never leaves a partial file. Results are checked on construction (:class:`OverlapResult`),
-so a
-curve with a NaN or out-of-range G is a failure, not a file. Warnings are printed, one line each,
-once the
-scenario has succeeded.
+written under a temporary name beside its final one and renamed only when complete, so a failure (a
+full disk, Ctrl-C) never leaves a partial file. Results are checked on construction
+(:class:`OverlapResult`), so a curve with a NaN or out-of-range G is a failure, not a file. Warnings
+are printed, one line each, once the scenario has succeeded.
 """
 
 from __future__ import annotations
@@ -362,9 +353,8 @@ class _NothingWritten(Exception):
 
 def _progress(label: str, total: int):
     """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its
-    closer
-    close(completed), which erases the counter of a failed run so that the error stays the only
-    line."""
+    closer close(completed), which erases the counter of a failed run so that the error stays the
+    only line."""
     try:
         from tqdm import tqdm
     except ImportError:
@@ -401,9 +391,8 @@ def _note(written_and_note):
 @contextmanager
 def _printed_warnings():
     """Collect the warnings of a block and print them, one line each and each once, if the block
-    succeeds
-    (a failure prints its error alone). Runtime warnings are always shown, whatever filters the
-    caller set."""
+    succeeds (a failure prints its error alone). Runtime warnings are always shown, whatever filters
+    the caller set."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", RuntimeWarning)
         warnings.simplefilter("always", UserWarning)

@@ -1,13 +1,10 @@
 """``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...``: the scenario's system is
-the start,
-its ``[run]`` method and options the model, the CSV the data; writes ``<name>_fit.csv`` (the
-parameters with
-their uncertainties) and ``<name>_fit.png``, and prints the summary.
+the start, its ``[run]`` method and options the model, the CSV the data; writes ``<name>_fit.csv``
+(the parameters with their uncertainties) and ``<name>_fit.png``, and prints the summary.
 
 The measurements file is UTF-8 CSV: ``#`` lines are comments, then a header ``range_m,overlap`` or
 ``range_m,overlap,sigma`` (m, G, the 1-sigma error of G), then one row per range. Every error names
-the
-file, the line and the column.
+the file, the line and the column.
 """
 
 from __future__ import annotations
@@ -39,10 +36,9 @@ def read_table(
     path, columns: Sequence[str], signed: Sequence[str] = ()
 ) -> Tuple[np.ndarray, np.ndarray | None]:
     """(rows x ``columns``, the optional last column ``sigma`` or None) from a CSV whose header is
-    ``columns``
-    (the first ``range_m``, strictly increasing), optionally followed by ``sigma``. Values are
-    finite, and > 0
-    but in the ``signed`` columns. ValueError naming file, line and column."""
+    ``columns`` (the first ``range_m``, strictly increasing), optionally followed by ``sigma``.
+    Values are finite, and > 0 but in the ``signed`` columns. ValueError naming file, line and
+    column."""
     name, header_text = str(path), ",".join(columns)
     try:
         with open(path, encoding="utf-8") as f:
@@ -121,8 +117,7 @@ def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: P
 
 def write_fit(result, stem: Path, header: List[str], title: str):
     """``<stem>.csv`` (``header`` lines, the model and chi-square, then the parameters) and
-    ``<stem>.png``
-    (the result's plot); returns (files, note about a plot not written, or None)."""
+    ``<stem>.png`` (the result's plot); returns (files, note about a plot not written, or None)."""
     stem.parent.mkdir(parents=True, exist_ok=True)
     lines = header + [
         f"# model: {result.result.method}, loss {result.loss}",

@@ -2,20 +2,16 @@
 ...]``.
 
 Without measurements: the telecover of the scenario's system at its ranges, with its ``[run]``
-model, written
-to ``<name>_telecover.csv`` (``# key: value`` header, then ``range_m``, one ``G_<sector>`` column
-per sector and
-one ``deviation_<sector>`` column per sector) and ``<name>_telecover.png`` (the conventional
-figure).
+model, written to ``<name>_telecover.csv`` (``# key: value`` header, then ``range_m``, one
+``G_<sector>`` column per sector and one ``deviation_<sector>`` column per sector) and
+``<name>_telecover.png`` (the conventional figure).
 
 With measurements: a UTF-8 CSV with the header ``range_m,<sector>,...`` (one deviation column per
 sector, in
 the order of the sectors: ``north,east,south,west`` for quadrants, ``sector_0,...`` for N sectors)
-and an
-optional last column ``sigma`` (the 1-sigma error of each deviation); :func:`.fit_telecover` fits
-the free
-parameters (ray tracing at the ``[run]`` tolerance) and ``<name>_telecover_fit.csv`` and ``.png``
-are written.
+and an optional last column ``sigma`` (the 1-sigma error of each deviation); :func:`.fit_telecover`
+fits the free parameters (ray tracing at the ``[run]`` tolerance) and ``<name>_telecover_fit.csv``
+and ``.png`` are written.
 """
 
 from __future__ import annotations

@@ -4,36 +4,25 @@ Ray tracing is exact geometric optics; what it misses is diffraction at the rece
 is estimated per scene from the receiver geometry alone, before anything is computed
 (:func:`validity.rt_error_bound`, derived in docs/auto_method.md): at each range, the Airy tail of a
 compact image beyond the detector edge, the Fresnel edges of the blur disc and of the obstruction
-shadow
-near or through the detector, and the boundary waves the pupil edges focus on each image centre, all
-as
-fractions of the coupling a lit detector would have.
+shadow near or through the detector, and the boundary waves the pupil edges focus on each image
+centre, all as fractions of the coupling a lit detector would have.
 
 Its maximum over the ranges, times a safety factor of 1.5, is the model error. The measured |G_RT -
-G_FO|
-never exceeded 1.14 times the unscaled estimate at any range (where it exceeds 1 % of its maximum)
-of
-51 chosen scenes and 157 of 160 drawn at random (4 um to 3 mm detectors, 355-1064 nm,
+G_FO| never exceeded 1.14 times the unscaled estimate at any range (where it exceeds 1 % of its
+maximum) of 51 chosen scenes and 157 of 160 drawn at random (4 um to 3 mm detectors, 355-1064 nm,
 0.1-0.4 m telescopes, defocus, obstruction, NA, biaxial, 5-3000 m); in the other three FO's fixed NA
-cone
-or obstruction shadow is itself the approximation. RT is chosen when the model error leaves at least
-1 %
-of ``tolerance`` for RT's quadrature, which then gets the rest; otherwise Fourier optics: the radial
-path
-for Gaussian beams, whatever their pointing (nominal accuracy 1e-8), the 2-D path for other fields
-(1e-6). A field
-that is not Gaussian always needs Fourier optics.
+cone or obstruction shadow is itself the approximation. RT is chosen when the model error leaves at
+least 1 % of ``tolerance`` for RT's quadrature, which then gets the rest; otherwise Fourier optics:
+the radial path for Gaussian beams, whatever their pointing (nominal accuracy 1e-8), the 2-D path
+for other fields (1e-6). A field that is not Gaussian always needs Fourier optics.
 
 With receiver aberrations the estimate is first order in the aberrated ray-traced curve: the Airy
-tail
-e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves with the detector radius
-r_d(1 ± 1e-2)
-on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist only in ray
-tracing.
+tail e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves with the detector radius
+r_d(1 ± 1e-2) on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist
+only in ray tracing.
 
 :func:`decide` only chooses: it computes no overlap curve, and the plan it feeds carries its
-numbers, so
-nothing is estimated twice (:mod:`lidar_overlap.forward.planning`).
+numbers, so nothing is estimated twice (:mod:`lidar_overlap.forward.planning`).
 """
 
 from __future__ import annotations
@@ -90,8 +79,8 @@ class Decision:
 
 def rt_model_error(system, ranges: np.ndarray) -> float:
     """Estimated largest |G_RT - G_exact| over ``ranges`` (m), safety factor included (module
-    docstring).
-    Remembered for the last 32 (system, ranges): a curve planned again skips the ~50 µs estimate."""
+    docstring). Remembered for the last 32 (system, ranges): a curve planned again skips the ~50 µs
+    estimate."""
     z = np.ascontiguousarray(ranges, dtype=float)
     try:
         return _model_error(system, z.tobytes())
@@ -106,16 +95,14 @@ def _model_error(system, ranges: bytes) -> float:
 
 def radial_fo_applies(system) -> bool:
     """True when the radial FO path models the scene: a Gaussian beam (any pointing: the image
-    offset enters
-    as J0) following the Gaussian width law."""
+    offset enters as J0) following the Gaussian width law."""
     return not isinstance(system.beam, FieldBeam) and system.beam.width_law == "gaussian"
 
 
 def decide(system, ranges: np.ndarray, tolerance: float, rt_options=None) -> Decision:
     """The model ``method="auto"`` takes for ``system`` at ``ranges`` (m, validated by the caller)
-    within
-    ``tolerance``. ``rt_options`` (a :class:`lidar_overlap.RT`) sets the ray fan of the aberrated
-    estimate."""
+    within ``tolerance``. ``rt_options`` (a :class:`lidar_overlap.RT`) sets the ray fan of the
+    aberrated estimate."""
     system._native.validate_ranges(ranges)
     radial_ok = radial_fo_applies(system)
     fo_path = "radial" if radial_ok else "2d"
@@ -210,17 +197,13 @@ def _decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options) -> De
 
 def aberrated_rt_error(system, z: np.ndarray, tolerance: float = 1e-3, rt_options=None) -> float:
     """Largest |G_RT - G_FO| expected of aberrated ray tracing over ``z`` (m): the Airy tail beyond
-    the detector
-    edge, e_tail G, plus the edge blur (λd/D)|∂G/∂r_d|, times ABERRATED_ESTIMATE_SAFETY. Diffraction
-    spreads each
-    point image by λd/D whatever the aberrations; this first-order bound covers the measured RT-FO
-    difference
-    (docs/aberrations.md). G and its derivative come from two RT curves at r_d (1 ± 1e-2) on
-    EDGE_SAMPLES ranges.
+    the detector edge, e_tail G, plus the edge blur (λd/D)|∂G/∂r_d|, times
+    ABERRATED_ESTIMATE_SAFETY. Diffraction spreads each point image by λd/D whatever the
+    aberrations; this first-order bound covers the measured RT-FO difference (docs/aberrations.md).
+    G and its derivative come from two RT curves at r_d (1 ± 1e-2) on EDGE_SAMPLES ranges.
 
     The two curves are computed to 1e-3 x ``tolerance`` (1e-6 at most): their difference over 2 % of
-    r_d then
-    errs by far less than the tolerance, and a loose tolerance does not pay for a tight
+    r_d then errs by far less than the tolerance, and a loose tolerance does not pay for a tight
     derivative."""
     zs = z if z.size <= EDGE_SAMPLES else np.geomspace(z[0], z[-1], EDGE_SAMPLES)
     r_d, h = system.detector.radius, 1e-2 * system.detector.radius

@@ -1,10 +1,8 @@
 """Overlap function G(z): plan the computation, then run it.
 
 G(z) is the power reaching the detector over the power entering the full, unobstructed aperture,
-summed over
-all scatterers at range z weighted by the beam irradiance (so a central obstruction lowers the
-far-range value
-to 1 - (r_obs/R)²).
+summed over all scatterers at range z weighted by the beam irradiance (so a central obstruction
+lowers the far-range value to 1 - (r_obs/R)²).
 """
 
 from __future__ import annotations
@@ -46,41 +44,32 @@ def overlap(
         string:
 
         - ``lo.RT(tolerance=1e-4, max_segments=...)`` / ``"rt"``: paraxial ray tracing (paper
-          Appendix B) with
-          exact circle geometry, to an absolute tolerance on G.
+          Appendix B) with exact circle geometry, to an absolute tolerance on G.
         - ``lo.FO(path="auto"|"radial"|"2d", beam_grid=, beam_window=)`` / ``"fo"``: Fourier optics
-          (Appendix C), with
-          diffraction at the receiver. A :class:`FieldBeam` or :class:`FlatTopBeam` needs it; a
-          Gaussian beam
-          with M² > 1 is taken as a Gaussian Schell-model beam.
+          (Appendix C), with diffraction at the receiver. A :class:`FieldBeam` or
+          :class:`FlatTopBeam` needs it; a Gaussian beam with M² > 1 is taken as a Gaussian
+          Schell-model beam.
         - ``lo.Auto(tolerance=...)`` / ``"auto"``: the cheapest model whose error stays within the
-          tolerance
-          (:mod:`lidar_overlap.forward.auto`; :func:`explain` says what it chose and why).
+          tolerance (:mod:`lidar_overlap.forward.auto`; :func:`explain` says what it chose and why).
         - ``lo.Turbulent(turbulence, method, realizations=, seed=, screens=)``: through a turbulent
-          atmosphere;
-          the result is a :class:`TurbulentOverlapResult` (mean over the draws, ``std`` and a 5–95 %
-          band).
+          atmosphere; the result is a :class:`TurbulentOverlapResult` (mean over the draws, ``std``
+          and a 5–95 % band).
 
         With ``system.telescope.aberrations`` set, both models include them (field-dependent Seidel
-        terms need
-        ray tracing).
+        terms need ray tracing).
     threads : OpenMP threads across ranges; 0 uses all cores. Results do not depend on it. A caller
-        that runs
-        computations from several threads passes 1 (or its share).
+        that runs computations from several threads passes 1 (or its share).
 
     The other keywords are shortcuts, used with a method string only (beside a method object they
-    are
-    refused): ``tolerance`` and ``max_segments`` (RT and auto), ``fo_path``, ``beam_grid``,
-    ``beam_window``,
-    ``max_spectrum_grid`` (FO), and ``turbulence``, ``realizations``, ``seed``, ``screens`` (which
-    make it a
-    :class:`Turbulent` method). Options that do not apply to the method's model are ignored.
+    are refused): ``tolerance`` and ``max_segments`` (RT and auto), ``fo_path``, ``beam_grid``,
+    ``beam_window``, ``max_spectrum_grid`` (FO), and ``turbulence``, ``realizations``, ``seed``,
+    ``screens`` (which make it a :class:`Turbulent` method). Options that do not apply to the
+    method's model are ignored.
 
     Warns (RuntimeWarning) when ray tracing is used outside its validity (a detector within a few
-    tens of Airy
-    radii, or ranges so short that paraxial slopes err by more than 1 %; see
-    :mod:`lidar_overlap.forward.validity`),
-    and (SamplingWarning) when a Fourier-optics grid clips the beam.
+    tens of Airy radii, or ranges so short that paraxial slopes err by more than 1 %; see
+    :mod:`lidar_overlap.forward.validity`), and (SamplingWarning) when a Fourier-optics grid clips
+    the beam.
     """
     return run(
         plan(

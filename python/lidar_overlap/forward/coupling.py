@@ -15,14 +15,11 @@ def emitter_coupling(
     system: LidarSystem, z: float, position: Sequence[float] = (0.0, 0.0), method: str = "rt"
 ) -> float:
     """Coupling of one point scatterer at transverse ``position`` (x, y in m) and range ``z`` (m):
-    power reaching
-    the detector over the power it sends into the full, unobstructed aperture. ``method="rt"``:
-    geometric (a
-    uniform circle of confusion; with aberrations, a ray fan displaced by d ∇W, finer than the
-    overlap's since
-    one scatterer is not averaged over a beam; with ``telescope.mask``, the part through the mask);
-    ``"fo"``: with diffraction (for an in-focus point, the Airy
-    encircled energy within the detector)."""
+    power reaching the detector over the power it sends into the full, unobstructed aperture.
+    ``method="rt"``: geometric (a uniform circle of confusion; with aberrations, a ray fan displaced
+    by d ∇W, finer than the overlap's since one scatterer is not averaged over a beam; with
+    ``telescope.mask``, the part through the mask); ``"fo"``: with diffraction (for an in-focus
+    point, the Airy encircled energy within the detector)."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {system!r} is invalid: expected a LidarSystem")
     _checks.choice("method", method, METHODS + ("auto",))
@@ -51,9 +48,8 @@ def emitter_coupling(
 
 def optimal_focus_range(focal_length: float, defocus: float) -> float:
     """Range (m) best focused on a detector displaced ``defocus`` (m, >= 0) behind the focal plane
-    of a
-    lens of ``focal_length`` (m): z_opt = f (f + δf) / δf, the paper's Eq. (5); ``inf`` for δf =
-    0."""
+    of a lens of ``focal_length`` (m): z_opt = f (f + δf) / δf, the paper's Eq. (5); ``inf`` for δf
+    = 0."""
     return _core.optimal_focus_range(
         _checks.real("focal_length", focal_length), _checks.real("defocus", defocus)
     )

@@ -5,17 +5,15 @@
 
 - :class:`RT`: paraxial ray tracing (paper Appendix B) to an absolute tolerance on G;
 - :class:`FO`: Fourier optics (Appendix C), on the radial path (Gaussian beams, one integral per
-  range) or
-  the 2-D path (the transmitted field sampled and propagated with FFTW);
+  range) or the 2-D path (the transmitted field sampled and propagated with FFTW);
 - :class:`Auto`: the cheapest model whose error fits a tolerance
   (:mod:`lidar_overlap.forward.auto`);
 - :class:`Turbulent`: any of these through a turbulent atmosphere, as the mean over random draws.
 
 Every default comes from the C++ core's option structs (``_core.RtOptions`` and its kin); ``None``
-means
-"the core's default for the path that runs" (the 2-D FO window is 10 waist radii without turbulence
-and 8
-long-term radii with it). Objects are immutable and validated on construction, naming the option.
+means "the core's default for the path that runs" (the 2-D FO window is 10 waist radii without
+turbulence and 8 long-term radii with it). Objects are immutable and validated on construction,
+naming the option.
 """
 
 from __future__ import annotations
@@ -39,8 +37,7 @@ class RT:
         stops below it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
     rings, ring_rays : the ray fan each scatterer sends through an aberrated receiver (rings equally
-        spaced
-        in area x rays per ring); used only where the aberrations need a fan.
+        spaced in area x rays per ring); used only where the aberrations need a fan.
     """
 
     tolerance: float = _RT.tolerance
@@ -62,17 +59,13 @@ class FO:
     """Fourier optics.
 
     path : ``"radial"`` (Gaussian beams of any pointing: one integral per range, the beam image's
-        offset as
-        J0, no grids), ``"2d"`` (the sampled beam propagated on a grid) or ``"auto"`` (radial where
-        it applies).
+        offset as J0, no grids), ``"2d"`` (the sampled beam propagated on a grid) or ``"auto"``
+        (radial where it applies).
     beam_grid, beam_window : 2-D path with a Gaussian beam: samples per side of the transmitted
-        field and its
-        window (waist radii; long-term radii with turbulence). ``None``: the core's default. A
-        FieldBeam brings
-        its own grid.
+        field and its window (waist radii; long-term radii with turbulence). ``None``: the core's
+        default. A FieldBeam brings its own grid.
     max_spectrum_grid : cap on the zero-padded beam spectrum (with aberrations, on the pupil
-        transform); a
-        range that needs more is refused naming it (use ray tracing there).
+        transform); a range that needs more is refused naming it (use ray tracing there).
     """
 
     path: str = "auto"
@@ -100,12 +93,10 @@ class FO:
 @dataclass(frozen=True)
 class Auto:
     """The cheapest model whose error on G stays within ``tolerance`` (absolute, in (0, 1)): ray
-    tracing when
-    its estimated diffraction error leaves room for its quadrature, else Fourier optics. ``rt`` and
-    ``fo`` set
-    the models it may run (RT's tolerance is the share the model error leaves; FO's path is auto's
-    choice, and
-    its beam_grid and beam_window apply where that is the 2-D path)."""
+    tracing when its estimated diffraction error leaves room for its quadrature, else Fourier
+    optics. ``rt`` and ``fo`` set the models it may run (RT's tolerance is the share the model error
+    leaves; FO's path is auto's choice, and its beam_grid and beam_window apply where that is the
+    2-D path)."""
 
     tolerance: float = _RT.tolerance
     rt: RT = RT()
@@ -127,11 +118,9 @@ Model = Union[RT, FO, Auto]
 @dataclass(frozen=True)
 class Turbulent:
     """``method`` through ``turbulence``: the mean G over ``realizations`` random draws of the
-    atmosphere
-    (reproducible with ``seed``), with its spread. Fourier optics carries the beam through
-    ``screens`` phase
-    screens; ray tracing displaces the short-term beam by the random wander (all draws in one core
-    call)."""
+    atmosphere (reproducible with ``seed``), with its spread. Fourier optics carries the beam
+    through ``screens`` phase screens; ray tracing displaces the short-term beam by the random
+    wander (all draws in one core call)."""
 
     turbulence: object
     method: Model = Auto()
@@ -187,11 +176,9 @@ def from_shortcuts(
     screens=None,
 ) -> Method:
     """The method object for ``overlap(system, ranges, method, **options)``: a method object passes
-    unchanged
-    (options given beside it are refused: they belong on the object); a shortcut string takes the
-    options
-    that apply to its model (the others are ignored, so one set of options can serve every
-    method)."""
+    unchanged (options given beside it are refused: they belong on the object); a shortcut string
+    takes the options that apply to its model (the others are ignored, so one set of options can
+    serve every method)."""
     given = {
         k: v
         for k, v in dict(

@@ -1,14 +1,11 @@
 """Plan, then run: what one overlap computation will do, decided before anything is computed.
 
 :func:`plan` turns (system, ranges, method) into a :class:`Plan`: the checked inputs, the backend
-that
-will compute G (ray tracing, radial / 2-D / field / aberrated Fourier optics, or their turbulent
-forms),
-the core's options for it, and the error the result will state. It may make cheap estimates (auto's
-diffraction bound; for aberrated receivers two coarse RT curves on at most 16 ranges) and carries
-them, so
-running the plan computes each curve once. :func:`lidar_overlap.run` executes a plan;
-:func:`explain` prints one.
+that will compute G (ray tracing, radial / 2-D / field / aberrated Fourier optics, or their
+turbulent forms), the core's options for it, and the error the result will state. It may make cheap
+estimates (auto's diffraction bound; for aberrated receivers two coarse RT curves on at most 16
+ranges) and carries them, so running the plan computes each curve once. :func:`lidar_overlap.run`
+executes a plan; :func:`explain` prints one.
 """
 
 from __future__ import annotations
@@ -57,9 +54,8 @@ class Plan:
     rt_model_error : auto's estimate of RT's diffraction error (0 when not estimated, NaN where RT
         cannot
     model the beam); rt_quadrature_tolerance : the tolerance RT's quadrature runs at. turbulence :
-    the
-    :class:`Turbulent` request, or None; reasons : why, one line each; warnings : said when the plan
-    runs.
+    the :class:`Turbulent` request, or None; reasons : why, one line each; warnings : said when the
+    plan runs.
     """
 
     system: LidarSystem
@@ -80,8 +76,7 @@ class Plan:
 
     def subset(self, index) -> "Plan":
         """The same plan (same decisions, same estimates) on ``ranges[index]`` (a slice): to run a
-        long curve in
-        parts."""
+        long curve in parts."""
         return dataclasses.replace(self, ranges=self.ranges[index])
 
     def __str__(self) -> str:
@@ -96,10 +91,9 @@ class Plan:
 
 def plan(system: LidarSystem, ranges, method="rt", *, threads: int = 0, **shortcuts) -> Plan:
     """The :class:`Plan` of ``lo.overlap(system, ranges, method, threads=threads, **shortcuts)``:
-    every input
-    checked and every choice made, no overlap computed. ``method``: ``"rt"``, ``"fo"``, ``"auto"``
-    (with the
-    shortcut options of :func:`lidar_overlap.overlap`) or an RT, FO, Auto or Turbulent object."""
+    every input checked and every choice made, no overlap computed. ``method``: ``"rt"``, ``"fo"``,
+    ``"auto"`` (with the shortcut options of :func:`lidar_overlap.overlap`) or an RT, FO, Auto or
+    Turbulent object."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     request = from_shortcuts(method, **shortcuts)
@@ -113,9 +107,8 @@ def plan(system: LidarSystem, ranges, method="rt", *, threads: int = 0, **shortc
 
 def explain(system, ranges, method="auto", *, threads: int = 0, **shortcuts) -> Plan:
     """Print and return the :class:`Plan` ``lo.overlap(system, ranges, method, **shortcuts)``
-    follows, with the
-    estimates behind it (``lo.explain(system, ranges, tolerance=1e-3)``: what auto does at that
-    tolerance)."""
+    follows, with the estimates behind it (``lo.explain(system, ranges, tolerance=1e-3)``: what auto
+    does at that tolerance)."""
     p = plan(system, ranges, method, threads=threads, **shortcuts)
     print(p)
     return p
@@ -224,9 +217,8 @@ def _fo(base, system, model: FO, threads, field_beam) -> Plan:
 
 def _masked(base, system, z, model, threads) -> Plan:
     """An aperture mask (telecover): ray tracing with each scatterer's coupling restricted to the
-    mask, or Fourier
-    optics through the sampled pupil cut to it; auto chooses by RT's diffraction estimate, as
-    without a mask."""
+    mask, or Fourier optics through the sampled pupil cut to it; auto chooses by RT's diffraction
+    estimate, as without a mask."""
     if system.aberrated:
         raise ValueError(
             "telescope.mask with aberrations is not modelled: set telescope.aberrations or "
@@ -417,8 +409,7 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
 
 def _auto_rt(common: dict, backend: str, options, d) -> Plan:
     """Auto's choice of ray tracing: the quadrature gets what the model error leaves, whose
-    diffraction is
-    bounded (no warning about it)."""
+    diffraction is bounded (no warning about it)."""
     return Plan(
         **common,
         method="rt",

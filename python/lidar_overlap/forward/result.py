@@ -44,30 +44,23 @@ class OverlapResult:
     overlap : G at each range (dimensionless, 0..1).
     method : the model that computed it (``"rt"`` or ``"fo"``).
     error_estimate : estimated absolute error of each G value (NaN where the method gives none), of
-        the kind
-        ``error_kind`` says.
+        the kind ``error_kind`` says.
     system : the lidar it describes (``None`` for a result read from a file whose beam is not
         Gaussian).
     tolerance : the absolute tolerance that was asked for (NaN where none was).
     error_kind : ``"bound"`` (RT: the adaptive quadrature's error bound, plus the model error
-        ``method="auto"``
-        estimated for ray tracing), ``"nominal"`` (FO: the path's measured accuracy, the same at
-        every range) or
-        ``"standard_error"`` (turbulence: the standard error of the mean over the draws).
+        ``method="auto"`` estimated for ray tracing), ``"nominal"`` (FO: the path's measured
+        accuracy, the same at every range) or ``"standard_error"`` (turbulence: the standard error
+        of the mean over the draws).
 
     Two results are equal (``==``) when every field is: arrays element by element (NaN equal to
-    NaN), and the
-    systems. :meth:`allclose` compares the curves within a tolerance.
+    NaN), and the systems. :meth:`allclose` compares the curves within a tolerance.
 
     Checked on construction, so that no computation failure can pass as a result: ``ranges`` finite,
-    > 0 and
-    strictly increasing; ``overlap`` and ``error_estimate`` one value per range; ``error_estimate``
-    >= 0 or
-    NaN; every G finite and within [0, 1] up to its slack, max(error_estimate, tolerance, 1e-12)
-    (each
-    where finite). G outside that is a ValueError naming the range, the value and the method; G
-    within it
-    (round-off) is clipped into [0, 1].
+    > 0 and strictly increasing; ``overlap`` and ``error_estimate`` one value per range;
+    ``error_estimate`` >= 0 or NaN; every G finite and within [0, 1] up to its slack,
+    max(error_estimate, tolerance, 1e-12) (each where finite). G outside that is a ValueError naming
+    the range, the value and the method; G within it (round-off) is clipped into [0, 1].
     """
 
     ranges: np.ndarray
@@ -97,8 +90,7 @@ class OverlapResult:
 
     def allclose(self, other: "OverlapResult", atol: float = 1e-12) -> bool:
         """True when ``other`` has the same ranges and its G is within ``atol`` (absolute) of this
-        one's at every
-        range (methods, errors and systems may differ: this compares curves)."""
+        one's at every range (methods, errors and systems may differ: this compares curves)."""
         if not isinstance(other, OverlapResult):
             raise ValueError(
                 f"other = {_checks.shown(other)} is invalid: expected an OverlapResult"
@@ -115,23 +107,17 @@ class OverlapResult:
         """First range (m) of the grid where G >= threshold · max G; NaN if G is zero everywhere.
 
         Relative to the maximum, so an obstructed system (max G = 1 - (r_obs/R)²) has one too. That
-        is the
-        full-overlap range only when max G is the curve's far-range limit, which the grid must
-        reach.
+        is the full-overlap range only when max G is the curve's far-range limit, which the grid
+        must reach.
 
         Warns (RuntimeWarning), and :meth:`reaches_far_range` is False, when G still rises at the
-        end of the
-        ranges by more than 1 % of max G per decade (from z_last / 2, or the first range, to z_last,
-        less the
-        two values' error estimates), or for a single range: extend the ranges. Why: G nears its
-        limit as
-        gap(z) ~ z^-k, k >= 1 (offsets, tilts, image sizes scale as 1/z), so it rises by k ln(10)
-        gap >= 2.3
-        gap per decade, and a curve rising by less than 1 % per decade ends within 0.43 % of its
-        limit. A
-        curve that peaks and falls (defocus) does not warn; where the maximum sits is no test (a
-        converged,
-        rising curve has it at the last range too).
+        end of the ranges by more than 1 % of max G per decade (from z_last / 2, or the first range,
+        to z_last, less the two values' error estimates), or for a single range: extend the ranges.
+        Why: G nears its limit as gap(z) ~ z^-k, k >= 1 (offsets, tilts, image sizes scale as 1/z),
+        so it rises by k ln(10) gap >= 2.3 gap per decade, and a curve rising by less than 1 % per
+        decade ends within 0.43 % of its limit. A curve that peaks and falls (defocus) does not
+        warn; where the maximum sits is no test (a converged, rising curve has it at the last range
+        too).
         """
         threshold = _checks.unit_interval("threshold", threshold, include_one=True)
         peak = float(np.max(self.overlap))
@@ -144,9 +130,8 @@ class OverlapResult:
 
     def reaches_far_range(self) -> bool:
         """False when :meth:`full_overlap_range` would warn that G is still rising at the end of the
-        ranges
-        (or there is only one range), True otherwise: a caller can test it instead of catching the
-        warning."""
+        ranges (or there is only one range), True otherwise: a caller can test it instead of
+        catching the warning."""
         return (
             _still_rising(
                 self.ranges, self.overlap, self.error_estimate, float(np.max(self.overlap))
@@ -162,8 +147,7 @@ class OverlapResult:
 
     def plot(self, ax=None, **line_kwargs):
         """Plot G(z) on a logarithmic range axis, with the full-overlap and first-signal ranges
-        marked.
-        Returns the matplotlib Axes (needs ``pip install lidar-overlap[plot]``)."""
+        marked. Returns the matplotlib Axes (needs ``pip install lidar-overlap[plot]``)."""
         from ..views.plotting import plot_overlap
 
         return plot_overlap(self, ax=ax, **line_kwargs)
@@ -187,8 +171,8 @@ class OverlapResult:
     def to_csv(self, path, attrs: Optional[Dict[str, Any]] = None) -> None:
         """Write ``# key: value`` header lines (method, tolerance, system), then the columns
         ``range_m,overlap,error_estimate``. Numbers are written with ``repr``, so they read back
-        exactly.
-        The file appears under ``path`` only once complete (written beside it, then renamed)."""
+        exactly. The file appears under ``path`` only once complete (written beside it, then
+        renamed)."""
         header = {"format": "lidar-overlap result", **self.attributes(), **(attrs or {})}
         if self.system is not None:
             header["system"] = repr(self.system)
@@ -202,10 +186,8 @@ class OverlapResult:
     @classmethod
     def from_csv(cls, path) -> "OverlapResult":
         """Read a result written by :meth:`to_csv`. ``system`` is rebuilt from the header for a
-        Gaussian beam,
-        else ``None``. A file that is not such a result, or whose values break the class's checks (a
-        NaN or
-        out-of-range G), is a ValueError naming the file."""
+        Gaussian beam, else ``None``. A file that is not such a result, or whose values break the
+        class's checks (a NaN or out-of-range G), is a ValueError naming the file."""
         try:
             with open(path, encoding="utf-8") as f:
                 attrs, rows = _read_csv(path, f)
@@ -220,9 +202,8 @@ class OverlapResult:
 
     def to_xarray(self, attrs: Optional[Dict[str, Any]] = None):
         """An ``xarray.Dataset`` with coordinate ``range`` (m), variables ``overlap`` and
-        ``error_estimate``,
-        CF-1.10 global attributes and the system as flattened numeric attributes (needs
-        ``[io]``)."""
+        ``error_estimate``, CF-1.10 global attributes and the system as flattened numeric attributes
+        (needs ``[io]``)."""
         xr = _xarray()
         from .._core import __version__
 
@@ -271,10 +252,9 @@ class OverlapResult:
         self, path, attrs: Optional[Dict[str, Any]] = None, engine: Optional[str] = None
     ) -> None:
         """Write :meth:`to_xarray` to a NetCDF file. ``engine=None``: ``"h5netcdf"`` (NetCDF-4) when
-        h5netcdf
-        and its h5py backend are installed, else ``"scipy"`` (NetCDF-3, same variables and
-        attributes).
-        The file appears under ``path`` only once complete (written beside it, then renamed)."""
+        h5netcdf and its h5py backend are installed, else ``"scipy"`` (NetCDF-3, same variables and
+        attributes). The file appears under ``path`` only once complete (written beside it, then
+        renamed)."""
         ds = self.to_xarray(attrs)
         encoding = {name: {"_FillValue": None} for name in ("range", "overlap", "error_estimate")}
         engine = engine or _netcdf_engine()
@@ -284,9 +264,8 @@ class OverlapResult:
     @classmethod
     def from_netcdf(cls, path, engine: Optional[str] = None) -> "OverlapResult":
         """Read a result written by :meth:`to_netcdf`; ``system`` is rebuilt for a Gaussian beam,
-        else ``None``.
-        Values that break the class's checks (a NaN or out-of-range G) are a ValueError naming the
-        file."""
+        else ``None``. Values that break the class's checks (a NaN or out-of-range G) are a
+        ValueError naming the file."""
         xr = _xarray()
         with xr.open_dataset(path, engine=engine) as ds:
             ds = ds.load()
@@ -365,8 +344,7 @@ def _read(cls, path, attrs: Dict[str, Any], ranges, overlap, error_estimate):
 
 def _same(a: Any, b: Any) -> bool:
     """Equality of two field values: arrays element by element with NaN equal to NaN, floats with
-    NaN equal to
-    NaN, anything else by ==."""
+    NaN equal to NaN, anything else by ==."""
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
         try:
             return bool(np.array_equal(a, b, equal_nan=True))
@@ -379,8 +357,7 @@ def _same(a: Any, b: Any) -> bool:
 
 def _checked(ranges, overlap, method, error_estimate, tolerance):
     """The class's invariants (see :class:`OverlapResult`): the arrays as float arrays, G clipped
-    within its
-    slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
+    within its slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
     if not isinstance(method, str) or not method:
         raise ValueError(
             f"method = {method!r} is invalid: expected the name of the model, such as 'rt' or 'fo'"
@@ -460,8 +437,7 @@ def _short(value, limit: int = 80) -> str:
 
 def _still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) -> Optional[str]:
     """Why the curve has not shown its far-range limit, by the rule of
-    :meth:`OverlapResult.full_overlap_range`;
-    None when it has (or G is zero everywhere)."""
+    :meth:`OverlapResult.full_overlap_range`; None when it has (or G is zero everywhere)."""
     if peak <= 0.0:
         return None
     if z.size == 1:
@@ -526,9 +502,9 @@ def _parse_value(text: str) -> Any:
 @dataclass(frozen=True, eq=False)
 class TurbulentOverlapResult(OverlapResult):
     """An :class:`OverlapResult` whose ``overlap`` is the mean over ``realizations`` (K × N array,
-    one
-    row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``, ``high``;
-    ``error_estimate`` is the standard error of the mean (``error_kind`` ``"standard_error"``)."""
+    one row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``,
+    ``high``; ``error_estimate`` is the standard error of the mean (``error_kind``
+    ``"standard_error"``)."""
 
     realizations: Optional[np.ndarray] = None
     std: Optional[np.ndarray] = None

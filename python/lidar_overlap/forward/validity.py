@@ -3,9 +3,8 @@
 RT (paper Appendix B) is paraxial geometric optics. Two things break it:
 - diffraction at the receiver: a point scatterer images to an Airy pattern (in focus) or to a blur
   disc with Fresnel edges and a boundary wave focused on its centre (defocused), not to a uniform
-  disc.
-  For a centred in-focus image the lost fraction is 1 - EE(v) with v = π D r_d / (λ f); its large-v
-  asymptote 2/(π v) = 2 λ f / (π² D r_d) is the RT model error at full overlap.
+  disc. For a centred in-focus image the lost fraction is 1 - EE(v) with v = π D r_d / (λ f); its
+  large-v asymptote 2/(π v) = 2 λ f / (π² D r_d) is the RT model error at full overlap.
   :func:`rt_error_bound` estimates the error for any geometry (docs/auto_method.md derives it).
   Fourier optics (method "fo") includes it.
 - the paraxial approximation: ray slopes of about R / z must stay small; the error grows like
@@ -25,8 +24,8 @@ RT_MODEL_ERROR_LIMIT = 0.01
 
 
 def rt_diffraction_error(system) -> float:
-    """Fraction of a focused point image's power that diffraction moves beyond the detector edge,
-    2 λ f / (π² D r_d): the geometric-optics error of RT where the overlap is full."""
+    """Fraction of a focused point image's power that diffraction moves beyond the detector edge, 2
+    λ f / (π² D r_d): the geometric-optics error of RT where the overlap is full."""
     return 2.0 * system.diffraction_blur / (math.pi**2 * system.detector.radius)
 
 
@@ -48,19 +47,14 @@ def rt_error_bound(system, ranges: np.ndarray) -> np.ndarray:
     safety factor.
 
     In the detector plane a scatterer at range z images to a blur disc of radius c = R m (m = |1 +
-    d/z - d/f|,
-    d = f + defocus) with an obstruction shadow of radius c_i; the beam spreads these over its image
-    of 1/e²
-    radius w_i = w(z) d / z, centred p0 from the detector centre. Diffraction changes the coupling
-    by four
-    mechanisms, each a fraction of the lit coupling G_lit = π r_d² x peak image irradiance (all
-    lengths m):
-    the Airy tail of a compact image beyond the detector edge; the Fresnel edges of the blur disc
-    and of the
-    shadow, near or through the detector, over the edge width l = sqrt(w_i² + λ d m / 4 + (λ d /
-    D)²); and the
-    boundary waves the pupil edges focus on each image centre (the Poisson spot in a shadow).
-    docs/auto_method.md derives the terms and lists the scenes that calibrate them."""
+    d/z - d/f|, d = f + defocus) with an obstruction shadow of radius c_i; the beam spreads these
+    over its image of 1/e² radius w_i = w(z) d / z, centred p0 from the detector centre. Diffraction
+    changes the coupling by four mechanisms, each a fraction of the lit coupling G_lit = π r_d² x
+    peak image irradiance (all lengths m): the Airy tail of a compact image beyond the detector
+    edge; the Fresnel edges of the blur disc and of the shadow, near or through the detector, over
+    the edge width l = sqrt(w_i² + λ d m / 4 + (λ d / D)²); and the boundary waves the pupil edges
+    focus on each image centre (the Poisson spot in a shadow). docs/auto_method.md derives the terms
+    and lists the scenes that calibrate them."""
     beam, tel, det = system.beam, system.telescope, system.detector
     z = np.asarray(ranges, dtype=float)
     lam, f, rd = beam.wavelength, tel.focal_length, det.radius
@@ -167,8 +161,7 @@ def rt_paraxial_error(system, ranges: np.ndarray) -> float:
 
 def warn_if_rt_unconverged(raw, ranges: np.ndarray, tolerance: float, fix: str) -> None:
     """Warn when RT's adaptive quadrature (a core result with ``converged`` and ``error_estimate``)
-    stopped short
-    of ``tolerance`` at some ranges; ``fix`` says what to change."""
+    stopped short of ``tolerance`` at some ranges; ``fix`` says what to change."""
     converged = np.asarray(raw.converged, dtype=bool)
     if not converged.all():
         worst = float(np.max(np.asarray(raw.error_estimate)[~converged]))
@@ -181,8 +174,7 @@ def warn_if_rt_unconverged(raw, ranges: np.ndarray, tolerance: float, fix: str) 
 
 def warn_if_rt_invalid(system, ranges: np.ndarray, diffraction: bool = True) -> None:
     """Warn when RT is used where its model error exceeds RT_MODEL_ERROR_LIMIT (diffraction=False:
-    only the
-    paraxial check, for callers that have bounded the diffraction error themselves)."""
+    only the paraxial check, for callers that have bounded the diffraction error themselves)."""
     airy_tail = rt_diffraction_error(system)
     if diffraction and airy_tail > RT_MODEL_ERROR_LIMIT:
         warn(

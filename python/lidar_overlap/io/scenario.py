@@ -2,20 +2,16 @@
 units).
 
 A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``,
-``[telescope]``,
-``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
+``[telescope]``, ``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
 ``examples/scenarios/table1.toml``. Every error is a :class:`ScenarioError` (a ValueError) that
-names the
-file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
+names the file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
 :class:`lidar_overlap.Auto` at the ``[run]`` tolerance: the cheapest model whose error fits it
-(Fourier
-optics for a beam that is not Gaussian).
+(Fourier optics for a beam that is not Gaussian).
 
 A scenario is read as untrusted input: the file must be UTF-8 TOML of at most 10 MB, every number
-finite,
-every integer within the bounds of :data:`INTEGER_LIMITS` and at most :data:`MAX_RANGES` ranges, so
-that no
-file can ask for unbounded work or memory before the library's own checks of the physics.
+finite, every integer within the bounds of :data:`INTEGER_LIMITS` and at most :data:`MAX_RANGES`
+ranges, so that no file can ask for unbounded work or memory before the library's own checks of the
+physics.
 
 A scenario is planned once (:meth:`Scenario.plan`, :func:`lidar_overlap.plan`) and the plan run in
 chunks of
@@ -169,8 +165,7 @@ _REQUIRED = {
 
 class ScenarioError(ValueError):
     """A scenario that cannot be used (or whose computation the library refused); the message names
-    the file,
-    section and key."""
+    the file, section and key."""
 
 
 @dataclass(eq=False)
@@ -178,8 +173,8 @@ class Scenario:
     """One computation: ``lo.overlap(system, ranges, method, **options)`` and the files to write.
 
     ``method`` is ``"rt"``, ``"fo"`` or ``"auto"``; ``options`` the other ``[run]`` keys (keyword
-    arguments
-    of :func:`lidar_overlap.overlap`); ``outputs`` maps csv/netcdf/plot/scene to booleans."""
+    arguments of :func:`lidar_overlap.overlap`); ``outputs`` maps csv/netcdf/plot/scene to
+    booleans."""
 
     name: str
     description: str
@@ -196,8 +191,7 @@ class Scenario:
 
     def plan(self, method: Optional[str] = None) -> Plan:
         """The :class:`lidar_overlap.Plan` of this scenario with ``method`` (default: the
-        scenario's); library
-        errors become :class:`ScenarioError`."""
+        scenario's); library errors become :class:`ScenarioError`."""
         method = self.resolved_method(method)
         try:
             return plan(self.system, self.ranges, method, **self.options)
@@ -217,10 +211,9 @@ class Scenario:
         plan: Optional[Plan] = None,
     ) -> OverlapResult:
         """The scenario's curve: its ``plan`` (default: :meth:`plan` of ``method``) run over the
-        ranges in chunks
-        (ranges are independent and the plan's decisions hold for all: the same result as one call),
-        calling
-        ``callback(number_done)`` after each; library errors become :class:`ScenarioError`."""
+        ranges in chunks (ranges are independent and the plan's decisions hold for all: the same
+        result as one call), calling ``callback(number_done)`` after each; library errors become
+        :class:`ScenarioError`."""
         p = plan if plan is not None else self.plan(method)
         z = self.ranges
         if chunk is None:
@@ -247,8 +240,7 @@ class Scenario:
 
     def _library_error(self, exc: ValueError, start: int) -> ScenarioError:
         """The library's ValueError about ranges ``start``, ... as a ScenarioError naming the file,
-        its section
-        and the index in the whole grid."""
+        its section and the index in the whole grid."""
         message = re.sub(
             r"^(ranges|overlap|error_estimate)\[(\d+)\]",
             lambda m: f"{m.group(1)}[{int(m.group(2)) + start}]",
@@ -361,8 +353,7 @@ def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
 
 def _aberrations(source: str, table: Dict[str, Any]) -> Aberrations:
     """[telescope.aberrations]: Seidel coefficients (m), field_radius (rad) and a [..zernike] table
-    of
-    "Noll index" = m RMS."""
+    of "Noll index" = m RMS."""
     values = dict(_keys(source, "telescope.aberrations", table, _SCHEMA["telescope.aberrations"]))
     terms = {}
     for key, value in values.pop("zernike", {}).items():
@@ -564,8 +555,7 @@ TABLE1: Dict[str, Any] = {
 
 def table1_scenarios() -> list:
     """The paper's Table 1 scenario (as ``examples/scenarios/table1.toml``) and its variants with a
-    central
-    obstruction r_obs = 20 mm and a detector defocus of 5 mm."""
+    central obstruction r_obs = 20 mm and a detector defocus of 5 mm."""
     obstructed, defocused = copy.deepcopy(TABLE1), copy.deepcopy(TABLE1)
     obstructed.update(
         name="table1_obstruction_20mm",

@@ -2,27 +2,21 @@
 across the field.
 
 The wavefront W (m of optical path) is added to the pupil phase as exp(2πi W/λ), over the pupil
-coordinate
-normalised to the telescope radius D/2. A ray through pupil point a is displaced on the detector
-plane by
-d ∇_a W (d = f + defocus), which is how ray tracing sees it; Fourier optics puts W into the pupil
-function.
+coordinate normalised to the telescope radius D/2. A ray through pupil point a is displaced on the
+detector plane by d ∇_a W (d = f + defocus), which is how ray tracing sees it; Fourier optics puts W
+into the pupil function.
 
 - **Zernike** coefficients (Noll's index j ≥ 1, metres of RMS wavefront): the same for every
-  scatterer, as
-  for a misaligned or imperfect telescope. Both methods model them.
+  scatterer, as for a misaligned or imperfect telescope. Both methods model them.
 - **Seidel** coefficients W040, W131, W222, W220, W311 (metres, at the pupil edge and at the field
-  edge
-  H = 1, reached at the field angle ``field_radius``): they vary with each scatterer's field angle
-  P/z, so
-  only ray tracing models the field-dependent ones; W040 (spherical) is the same everywhere and both
-  do.
+  edge H = 1, reached at the field angle ``field_radius``): they vary with each scatterer's field
+  angle P/z, so only ray tracing models the field-dependent ones; W040 (spherical) is the same
+  everywhere and both do.
 
 :func:`seidel_to_zernike` gives the Zernike form of the Seidel terms at one field point (exact, for
 the terms
 they share: spherical, coma, astigmatism, field curvature, distortion, plus the defocus and tilt
-they imply),
-and :func:`zernike_to_seidel` the reverse for a wavefront at H = 1 along +x.
+they imply), and :func:`zernike_to_seidel` the reverse for a wavefront at H = 1 along +x.
 """
 
 from __future__ import annotations
@@ -50,11 +44,10 @@ class Aberrations(ByArguments):
     Parameters
     ----------
     zernike : {Noll index j: coefficient in m RMS}, j from 1 (piston) to 231 (radial order 20;
-        Fourier optics takes up to 153, radial order 16); e.g. ``{11: 50e-9}`` is
-        50 nm RMS of primary spherical aberration.
+        Fourier optics takes up to 153, radial order 16); e.g. ``{11: 50e-9}`` is 50 nm RMS of
+        primary spherical aberration.
     w040, w131, w222, w220, w311 : m, Seidel coefficients (spherical, coma, astigmatism, field
-        curvature,
-        distortion) at the pupil edge and at field height H = 1.
+        curvature, distortion) at the pupil edge and at field height H = 1.
     field_radius : rad, the field angle at H = 1; required (> 0) when a field-dependent term is set.
     """
 
@@ -112,8 +105,7 @@ class Aberrations(ByArguments):
 
     def wavefront(self, x, y, field_angle: Tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
         """W (m) at normalised pupil points (x, y) (arrays of one shape) for a scatterer at
-        ``field_angle``
-        (rad, x and y)."""
+        ``field_angle`` (rad, x and y)."""
         return self._native.wavefront(
             np.asarray(x, float), np.asarray(y, float), _checks.pair("field_angle", field_angle)
         )
@@ -141,8 +133,7 @@ def seidel_to_zernike(aberrations: Aberrations, field_angle: Tuple[float, float]
     """The Zernike form (terms 1-11) of ``aberrations``' Seidel terms at one field point (rad, x and
     y), added
     to its own Zernike terms: the pupil a scatterer at that field angle sees. Exact (the Seidel
-    polynomials
-    are sums of Zernike terms j <= 11), up to piston."""
+    polynomials are sums of Zernike terms j <= 11), up to piston."""
     if not isinstance(aberrations, Aberrations):
         raise ValueError(f"aberrations = {aberrations!r} is invalid: expected an Aberrations")
     fx, fy = _checks.pair("field_angle", field_angle)
@@ -174,10 +165,9 @@ def seidel_to_zernike(aberrations: Aberrations, field_angle: Tuple[float, float]
 
 def zernike_to_seidel(aberrations: Aberrations, field_radius: float) -> Aberrations:
     """The Seidel form of a Zernike wavefront seen at the field edge H = 1 along +x
-    (``field_radius`` rad):
-    W040 = 6√5 c11, W131 = 3√8 c8, W222 = 2√6 c6, W311 = 2 c2 - 2√8 c8, W220 = 2√3 c4 - W040 -
-    W222/2.
-    Raises ValueError for terms with no Seidel counterpart (y-oriented, trefoil, j > 11)."""
+    (``field_radius`` rad): W040 = 6√5 c11, W131 = 3√8 c8, W222 = 2√6 c6, W311 = 2 c2 - 2√8 c8, W220
+    = 2√3 c4 - W040 - W222/2. Raises ValueError for terms with no Seidel counterpart (y-oriented,
+    trefoil, j > 11)."""
     if not isinstance(aberrations, Aberrations):
         raise ValueError(f"aberrations = {aberrations!r} is invalid: expected an Aberrations")
     if aberrations.w040 or aberrations.field_dependent:

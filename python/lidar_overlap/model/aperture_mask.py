@@ -1,16 +1,11 @@
 """Aperture masks: the parts of the receiver's aperture stop that the telecover test leaves open.
 
 A :class:`Sector` is an annular sector of the aperture plane (angles from +x towards +y, radii about
-the
-aperture centre, the frame of the beam's ``offset`` and ``tilt``); an :class:`ApertureMask` is a
-union of
-disjoint sectors, attached to a receiver as ``Telescope(..., mask=mask)``. The overlap through a
-mask stays
-normalised to the full, unobstructed aperture, so the G's of the parts of a partition add up to the
-full G.
-Ray tracing computes it exactly per scatterer, Fourier optics through the sampled pupil cut to the
-mask
-(``docs/telecover.md``).
+the aperture centre, the frame of the beam's ``offset`` and ``tilt``); an :class:`ApertureMask` is a
+union of disjoint sectors, attached to a receiver as ``Telescope(..., mask=mask)``. The overlap
+through a mask stays normalised to the full, unobstructed aperture, so the G's of the parts of a
+partition add up to the full G. Ray tracing computes it exactly per scatterer, Fourier optics
+through the sampled pupil cut to the mask (``docs/telecover.md``).
 """
 
 from __future__ import annotations
@@ -36,10 +31,8 @@ def _finite(name: str, value) -> float:
 class Sector:
     """Aperture points at angle in [start_angle, stop_angle] (rad, from +x towards +y) and radius in
     [inner_radius, outer_radius] (m). ``outer_radius=None``: the aperture's edge. The radii are
-    checked against
-    the aperture (and the obstruction: a sector wholly inside it leaves nothing) when the mask joins
-    a
-    :class:`Telescope`."""
+    checked against the aperture (and the obstruction: a sector wholly inside it leaves nothing)
+    when the mask joins a :class:`Telescope`."""
 
     start_angle: float
     stop_angle: float
@@ -79,8 +72,7 @@ class Sector:
 @dataclass(frozen=True)
 class ApertureMask:
     """A union of disjoint :class:`Sector` s (touching is allowed). Empty masks and overlapping
-    sectors are
-    refused, naming the sectors. ``names`` labels the sectors (the helpers fill it)."""
+    sectors are refused, naming the sectors. ``names`` labels the sectors (the helpers fill it)."""
 
     sectors: Tuple[Sector, ...]
     names: Tuple[str, ...] = ()
@@ -124,8 +116,7 @@ class ApertureMask:
 
     def validate(self, diameter: float, obstruction_radius: float = 0.0) -> None:
         """Checks the radii against an aperture of ``diameter`` (m) and its obstruction (ValueError
-        naming
-        ``mask.sectors[i]``)."""
+        naming ``mask.sectors[i]``)."""
         self._native.validate(_core.Telescope(diameter, 1.0, obstruction_radius, 0.0))
 
     def split(self) -> Tuple["ApertureMask", ...]:
@@ -135,10 +126,8 @@ class ApertureMask:
     @classmethod
     def quadrants(cls, rotation: float = 0.0) -> "ApertureMask":
         """The telecover's quadrants north, east, south, west, with north = +y and east = +x of the
-        aperture
-        plane (as seen looking along the beam, towards the sky): north spans 45°-135° from +x, east
-        -45°-45°,
-        and so on; ``rotation`` (rad) turns all four from +x towards +y."""
+        aperture plane (as seen looking along the beam, towards the sky): north spans 45°-135° from
+        +x, east -45°-45°, and so on; ``rotation`` (rad) turns all four from +x towards +y."""
         rotation = _finite("rotation", rotation)
         centres = {"north": 0.5 * math.pi, "east": 0.0, "south": -0.5 * math.pi, "west": math.pi}
         return cls(
@@ -154,8 +143,7 @@ class ApertureMask:
     @classmethod
     def rings(cls, radii: Sequence[float]) -> "ApertureMask":
         """Full rings between increasing ``radii`` (m): rings([0, 0.04, 0.075]) is a disc and an
-        annulus.
-        The last radius may be None for the aperture's edge."""
+        annulus. The last radius may be None for the aperture's edge."""
         radii = list(radii)
         if len(radii) < 2:
             raise ValueError(
@@ -183,8 +171,8 @@ def _equal_sectors(n: int, rotation: float = 0.0) -> ApertureMask:
 
 class _SectorsAttribute:
     """``ApertureMask.sectors(n, rotation)`` on the class makes n equal sectors; ``mask.sectors`` on
-    a mask is
-    its tuple of sectors (the instance's own attribute wins over this non-data descriptor)."""
+    a mask is its tuple of sectors (the instance's own attribute wins over this non-data
+    descriptor)."""
 
     def __get__(self, obj, owner=None):
         return _equal_sectors

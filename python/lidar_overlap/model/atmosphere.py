@@ -1,28 +1,20 @@
 """Scattering atmosphere for the elastic lidar equation: molecules of the US Standard Atmosphere
-1976 plus
-optional aerosol (SI units: m, K, Pa, m⁻¹, m⁻¹ sr⁻¹).
+1976 plus optional aerosol (SI units: m, K, Pa, m⁻¹, m⁻¹ sr⁻¹).
 
 Molecules. Temperature and pressure of the US Standard Atmosphere 1976 (NOAA/NASA/USAF, 1976) from
--5 km to
-86 km geometric height (its seven layers of constant lapse rate in geopotential height), number
-density
-N = p/(k T) of an ideal gas. The Rayleigh cross section per molecule is computed from first
-principles as
-Bodhaine et al. (1999, J. Atmos. Oceanic Technol. 16, 1854) recommend:
+-5 km to 86 km geometric height (its seven layers of constant lapse rate in geopotential height),
+number density N = p/(k T) of an ideal gas. The Rayleigh cross section per molecule is computed from
+first principles as Bodhaine et al. (1999, J. Atmos. Oceanic Technol. 16, 1854) recommend:
 
     σ(λ) = 24 π³ (n_s² - 1)² / (λ⁴ N_s² (n_s² + 2)²) · F_K(λ)
 
 with the refractive index n_s of standard air (288.15 K, 101325 Pa, 360 ppm CO₂, their Eq. 4, after
-Peck and
-Reeves 1972), N_s = p/(k T) at those conditions, and the King factor F_K of air from Bates (1984)
-(Bodhaine's
-Eqs. 5-6). σ includes the rotational Raman lines (the whole Rayleigh line, as an elastic lidar with
-a filter of
-a few nm receives it). The backscatter uses the Rayleigh phase function with depolarisation
-(Chandrasekhar;
-Bucholtz 1995, Appl. Opt. 34, 2765): P(π) = 3 (1 + γ) / (2 (1 + 2γ)), γ = ρ/(2 - ρ), with the
-depolarisation
-ratio ρ = 6 (F_K - 1)/(3 + 7 F_K) that belongs to the same King factor, so
+Peck and Reeves 1972), N_s = p/(k T) at those conditions, and the King factor F_K of air from Bates
+(1984) (Bodhaine's Eqs. 5-6). σ includes the rotational Raman lines (the whole Rayleigh line, as an
+elastic lidar with a filter of a few nm receives it). The backscatter uses the Rayleigh phase
+function with depolarisation (Chandrasekhar; Bucholtz 1995, Appl. Opt. 34, 2765): P(π) = 3 (1 + γ) /
+(2 (1 + 2γ)), γ = ρ/(2 - ρ), with the depolarisation ratio ρ = 6 (F_K - 1)/(3 + 7 F_K) that belongs
+to the same King factor, so
 
     α_m = N σ,    β_m = α_m P(π) / (4π) = α_m / S_m,    S_m = (8π/3) (1 + 2γ)/(1 + γ)  (≈ 8.50 sr at
     532 nm).
@@ -30,14 +22,11 @@ ratio ρ = 6 (F_K - 1)/(3 + 7 F_K) that belongs to the same King factor, so
 Valid for 200 nm to 2 µm (the refractive-index formula), dry air.
 
 Aerosol. A Gaussian layer, β_a = peak · exp(-(h - centre)² / (2 width²)), and a boundary layer of
-constant
-backscatter from the lidar up to a depth above it, each with its own lidar ratio S_a (α_a = S_a
-β_a). Both are
-given at the lidar's wavelength (no Ångström scaling).
+constant backscatter from the lidar up to a depth above it, each with its own lidar ratio S_a (α_a =
+S_a β_a). Both are given at the lidar's wavelength (no Ångström scaling).
 
 Geometry. A flat Earth: height h = altitude + z sin(elevation) along the line of sight at range z
-(the
-curvature lowers a horizontal path by z²/(2 R_E), 18 m at 15 km, which is neglected).
+(the curvature lowers a horizontal path by z²/(2 R_E), 18 m at 15 km, which is neglected).
 """
 
 from __future__ import annotations
@@ -116,8 +105,7 @@ def _heights(value, name: str = "height") -> np.ndarray:
 
 def us76(height):
     """Temperature (K) and pressure (Pa) of the US Standard Atmosphere 1976 at geometric ``height``
-    (m, -5 km to
-    86 km, any shape)."""
+    (m, -5 km to 86 km, any shape)."""
     h = _heights(height)
     geopotential = EARTH_RADIUS * h / (EARTH_RADIUS + h)
     i = np.clip(
@@ -174,8 +162,7 @@ def rayleigh_cross_section(wavelength: float) -> float:
 
 def molecular_lidar_ratio(wavelength: float) -> float:
     """Extinction over backscatter of air molecules (sr), (8π/3)(1 + 2γ)/(1 + γ) with the
-    depolarisation of the
-    King factor."""
+    depolarisation of the King factor."""
     f = _king_factor(_wavelength(wavelength) * 1e6)
     rho = 6 * (f - 1) / (3 + 7 * f)
     gamma = rho / (2 - rho)
@@ -285,10 +272,9 @@ class Atmosphere:
 
     def optical_depth(self, wavelength: float, ranges):
         """One-way optical depth ∫₀^z α dz' (dimensionless) from the lidar to each range (m):
-        Gauss-Legendre
-        quadrature (8 nodes) on intervals of at most 100 m, split at the US76 layer bases, the
-        boundary-layer
-        top and the aerosol layer's centre ± k widths (k = 0..8), so each piece is smooth."""
+        Gauss-Legendre quadrature (8 nodes) on intervals of at most 100 m, split at the US76 layer
+        bases, the boundary-layer top and the aerosol layer's centre ± k widths (k = 0..8), so each
+        piece is smooth."""
         lam = _wavelength(wavelength)
         z = self._line_of_sight(ranges)
         edges = np.unique(
@@ -303,8 +289,7 @@ class Atmosphere:
 
     def transmission(self, wavelength: float, ranges):
         """One-way transmission exp(-optical depth) from the lidar to each range (m); the lidar
-        equation uses
-        its square."""
+        equation uses its square."""
         return np.exp(-self.optical_depth(wavelength, ranges))
 
     def _breakpoints(self, z_max: float) -> np.ndarray:

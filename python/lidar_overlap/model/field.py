@@ -2,8 +2,7 @@
 units).
 
 A :class:`Field` is an (n, n) complex array U on a grid centred so that index n//2 is x = 0; |U|² is
-the
-irradiance in W/m². It is immutable and checked on construction; :func:`lidar_overlap.propagate`
+the irradiance in W/m². It is immutable and checked on construction; :func:`lidar_overlap.propagate`
 moves it.
 """
 
@@ -31,10 +30,8 @@ class Field(ByArguments):
     Parameters
     ----------
     values : (n, n) array of numbers (complex, real or integer; not strings, objects or bools), n
-        even from 8
-        to 65536, finite; row index is y, column index is x; |values|² in W/m², their power Σ|U|²
-        spacing²
-        at most 1e30 W.
+        even from 8 to 65536, finite; row index is y, column index is x; |values|² in W/m², their
+        power Σ|U|² spacing² at most 1e30 W.
     spacing : m, grid spacing, 1e-10 to 1e10 m.
     wavelength : m, 1e-10 to 1e10 m.
     """

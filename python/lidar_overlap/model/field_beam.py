@@ -30,12 +30,9 @@ class FieldBeam(ByArguments):
     Parameters
     ----------
     field : :class:`Field` at the transmitting plane, centred on the beam axis (index n//2 is the
-        axis).
-        Its grid is also the grid it is propagated on: leave room for the beam to spread to the
-        angular
-        spectrum's critical distance n dx²/λ, beyond which Fresnel's growing output grid takes over.
-        Its power
-        must be at least 1e-100 W and spread over more than one sample.
+        axis). Its grid is also the grid it is propagated on: leave room for the beam to spread to
+        the angular spectrum's critical distance n dx²/λ, beyond which Fresnel's growing output grid
+        takes over. Its power must be at least 1e-100 W and spread over more than one sample.
     offset : (x, y) in m, beam axis at z = 0 relative to the telescope axis.
     tilt : (x, y) in rad, beam axis angle relative to the telescope axis.
 
@@ -91,8 +88,7 @@ class FieldBeam(ByArguments):
         self, offset: Optional[Pair] = None, tilt: Optional[Pair] = None
     ) -> "FieldBeam":
         """A copy of this beam (of its own type, a :class:`FlatTopBeam` too) with ``offset`` (m) and
-        ``tilt``
-        (rad) replaced where given, checked as in the constructor."""
+        ``tilt`` (rad) replaced where given, checked as in the constructor."""
         beam = copy.copy(self)
         FieldBeam.__init__(
             beam,

@@ -14,31 +14,27 @@ from .field_beam import MIN_BEAM_POWER, FieldBeam, Pair
 
 class FlatTopBeam(FieldBeam):
     """A Gaussian beam (waist ``waist_radius``) through a phase plate whose far-field irradiance is
-    a
-    uniform disc of full angular diameter ``angular_diameter``, designed with the Gerchberg–Saxton
+    a uniform disc of full angular diameter ``angular_diameter``, designed with the Gerchberg–Saxton
     (error-reduction) algorithm from the ray-optics plate that maps the Gaussian's enclosed power
-    onto a
-    disc's.
+    onto a disc's.
 
     A waist w0 can only be spread, and its far field cannot change faster than its own diffraction
-    angle
-    θd = λ/(π w0): the target disc has a soft (Fermi-Dirac) edge of 10–90 % width ``edge_width``
-    (default 1.5 θd). Sharper edges leave ripples on the plateau (``stop == "stagnated"``).
+    angle θd = λ/(π w0): the target disc has a soft (Fermi-Dirac) edge of 10–90 % width
+    ``edge_width`` (default 1.5 θd). Sharper edges leave ripples on the plateau (``stop ==
+    "stagnated"``).
 
     Parameters
     ----------
     wavelength : m.
     waist_radius : m, 1/e² radius of the laser at the plate (z = 0).
     angular_diameter : rad, full diameter of the far-field disc at half its plateau irradiance; more
-        than
-        the TEM00 full divergence 2θd.
+        than the TEM00 full divergence 2θd.
     grid : samples per side of the plate (even, >= 64); the far field is sampled every λ/(grid ·
         spacing).
     samples_per_waist : plate sampling, w0 / spacing.
     edge_width : rad, 10–90 % width of the target's edge; ``None`` for 1.5 θd.
     max_iterations, tolerance : the design stops when an iteration lowers the amplitude error by
-        less
-        than ``tolerance`` (relative), or after ``max_iterations``.
+        less than ``tolerance`` (relative), or after ``max_iterations``.
     max_error : an amplitude error still above it when the design stops improving is a stagnation.
     power : W.
     offset, tilt : beam pointing as in :class:`GaussianBeam`.

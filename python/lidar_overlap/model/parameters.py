@@ -2,21 +2,17 @@
 (SI units).
 
 A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"beam.divergence"``
-(rad, the
-1/e² half-angle; read as the actual divergence when the beam is diffraction-limited),
-``"beam.waist_radius"``,
-``"beam.wavelength"``, ``"telescope.diameter"``, ``"telescope.focal_length"``,
-``"telescope.obstruction_radius"``,
+(rad, the 1/e² half-angle; read as the actual divergence when the beam is diffraction-limited),
+``"beam.waist_radius"``, ``"beam.wavelength"``, ``"telescope.diameter"``,
+``"telescope.focal_length"``, ``"telescope.obstruction_radius"``,
 ``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``,
-``"detector.offset[0]"``,
-``"detector.numerical_aperture"``, ``"telescope.aberrations.zernike[11]"`` (m RMS, Noll index) and
-``"telescope.aberrations.w040"`` (and the other Seidel terms). A pair without an index
-(``"beam.tilt"``)
-stands for both of its scalars where a list of parameters is asked for (:func:`expand`).
+``"detector.offset[0]"``, ``"detector.numerical_aperture"``, ``"telescope.aberrations.zernike[11]"``
+(m RMS, Noll index) and ``"telescope.aberrations.w040"`` (and the other Seidel terms). A pair
+without an index (``"beam.tilt"``) stands for both of its scalars where a list of parameters is
+asked for (:func:`expand`).
 
 Systems are immutable: :func:`replace` builds a new one, validated like any other, so a value
-outside the
-model's range is refused naming the path.
+outside the model's range is refused naming the path.
 """
 
 from __future__ import annotations
@@ -74,8 +70,7 @@ def expand(paths: Iterable[str]) -> List[str]:
 
 def plain_paths(paths, name: str, why: str) -> List[str]:
     """:func:`expand` of ``paths`` (the argument ``name``), refused when empty or naming aberration
-    terms (``why``
-    says why the caller cannot vary them)."""
+    terms (``why`` says why the caller cannot vary them)."""
     out = expand(paths)
     if not out:
         raise ValueError(
@@ -110,8 +105,7 @@ def get(system: LidarSystem, path: str) -> float:
 
 def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
     """A new system with each path in ``values`` set to its value (SI units); refused naming the
-    path when a
-    value is not a real number or the system it makes is invalid."""
+    path when a value is not a real number or the system it makes is invalid."""
     changes: Dict[str, Dict[str, object]] = {"beam": {}, "telescope": {}, "detector": {}}
     aberrations: Dict[str, object] = {}
     for path, value in values.items():

@@ -39,8 +39,7 @@ class GaussianBeam(ByArguments):
     offset : (x, y) in m, beam centroid at z = 0 relative to the telescope axis (biaxial systems).
     tilt : (x, y) in rad, centroid angle relative to the telescope axis (misalignment, paper B3-B4).
     width_law : ``"gaussian"``: w(z)² = w0² + (θz)²; ``"linear"``: w(z) = w0 + θz, the paper's
-        marginal
-        ray of Appendix B, kept to reproduce its figures.
+        marginal ray of Appendix B, kept to reproduce its figures.
     """
 
     wavelength: float = 355e-9
@@ -99,9 +98,8 @@ class Telescope(ByArguments):
     aberrations : :class:`Aberrations` of the receiver (Zernike and Seidel terms), or ``None``
         (ideal lens).
     mask : :class:`ApertureMask`, the open part of the aperture stop (the telecover test), or
-        ``None`` (all of
-        it). G stays normalised to the full aperture; ray tracing, or Fourier optics through the
-        sampled pupil.
+        ``None`` (all of it). G stays normalised to the full aperture; ray tracing, or Fourier
+        optics through the sampled pupil.
     """
 
     diameter: float = 0.15
@@ -144,8 +142,8 @@ class Detector(ByArguments):
     radius : m, detector radius r_d.
     defocus : m, displacement of the detector plane behind the focal plane (negative: in front).
     offset : (x, y) in m, detector centre in its plane.
-    numerical_aperture : accepted sin(angle) of a fibre; rays steeper than it are rejected.
-        ``None`` accepts every ray.
+    numerical_aperture : accepted sin(angle) of a fibre; rays steeper than it are rejected. ``None``
+        accepts every ray.
     """
 
     radius: float = 0.45e-3
@@ -257,15 +255,13 @@ class LidarSystem(ByArguments):
 
     def confusion_radius(self, z):
         """R |1 + d/z − d/f| (m) at range(s) z (m): the circle of confusion on the detector plane,
-        the
-        geometric image of a point at range z through the whole aperture R = D/2 (no obstruction, no
-        NA)."""
+        the geometric image of a point at range z through the whole aperture R = D/2 (no
+        obstruction, no NA)."""
         return 0.5 * self.telescope.diameter * _defocus_factor(self, z)
 
     def shadow_radius(self, z):
         """|1 + d/z − d/f| r_obs z / (z − z_obs) (m) at range(s) z (m): the obstruction's shadow
-        inside the
-        circle of confusion of an on-axis point; 0 where z <= obstruction_distance."""
+        inside the circle of confusion of an on-axis point; 0 where z <= obstruction_distance."""
         t, z = self.telescope, np.asarray(z, dtype=float)
         behind = z > t.obstruction_distance
         r = np.where(

@@ -1,32 +1,23 @@
 """Atmospheric turbulence along the lidar's line of sight (paper Section 3, step 2; SI units).
 
 ``Turbulence`` describes Cn² along the path (a constant, the Hufnagel–Valley 5/7 model, or any
-function of
-height) and gives the weak-fluctuation quantities of a path: Fried parameter, Rytov variance,
-isoplanatic
-angle, and the beam wander and long-term spread of a collimated Gaussian beam (after Andrews &
-Phillips,
-"Laser Beam Propagation through Random Media", 2nd ed.; see
+function of height) and gives the weak-fluctuation quantities of a path: Fried parameter, Rytov
+variance, isoplanatic angle, and the beam wander and long-term spread of a collimated Gaussian beam
+(after Andrews & Phillips, "Laser Beam Propagation through Random Media", 2nd ed.; see
 ``cpp/include/lidar_overlap/turbulence.hpp``).
 
 ``lo.overlap(system, ranges, lo.Turbulent(turbulence, method, realizations=K, seed=...))`` (or the
-shortcut
-``lo.overlap(system, ranges, method, turbulence=..., realizations=K, seed=...)``) returns a
+shortcut ``lo.overlap(system, ranges, method, turbulence=..., realizations=K, seed=...)``) returns a
 :class:`TurbulentOverlapResult`: the mean overlap over K realisations of the atmosphere and its
-spread
-(computed in :mod:`lidar_overlap.forward.backends.turbulent`).
+spread (computed in :mod:`lidar_overlap.forward.backends.turbulent`).
 - FO: the beam is carried through phase screens (modified von Kármán, FFT with subharmonics) by
   split-step Fresnel propagation, one realisation per draw of the screens (C++, in parallel).
 - RT: each realisation is the short-term beam (radius W_ST) displaced by a random wander drawn from
-  a
-  Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it,
-  the
-  long-term beam W_LT; the mean overlap is then that of the long-term beam (G is linear in the
-  irradiance).
-  With Andrews & Phillips' W_ST² = W_LT² − <r_c²> that 2-D wander variance is <r_c²>/2, 2^(-1/3) =
-  0.79
-  times the centroid variance of the FO screens for a collimated beam: the RT band is a little
-  narrower.
+  a Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it,
+  the long-term beam W_LT; the mean overlap is then that of the long-term beam (G is linear in the
+  irradiance). With Andrews & Phillips' W_ST² = W_LT² − <r_c²> that 2-D wander variance is <r_c²>/2,
+  2^(-1/3) = 0.79 times the centroid variance of the FO screens for a collimated beam: the RT band
+  is a little narrower.
 """
 
 from __future__ import annotations
@@ -54,8 +45,7 @@ class Turbulence(ByArguments):
     Parameters
     ----------
     cn2 : m^-2/3: a constant, ``"hv57"`` (Hufnagel–Valley 5/7: r0 = 5 cm and θ0 = 7 µrad at 0.5 µm
-        from the
-        ground to space), or a function of the height above ground (m).
+        from the ground to space), or a function of the height above ground (m).
     elevation : rad, angle of the line of sight above the horizon, in (0, π/2]; range z is at height
         altitude + z sin(elevation).
     altitude : m, the lidar's height above ground.
@@ -147,12 +137,9 @@ class Turbulence(ByArguments):
         self, wavelength: float, waist_radius: float, path_length: float
     ) -> float:
         """Andrews & Phillips' beam-wander variance <r_c²> (m², 2-D) of a collimated Gaussian beam
-        at
-        path_length, 2.42 Cn² L³ W0^(-1/3) for a constant Cn². It is the large-scale part of their
-        W_LT²
-        (eddies filtered by exp(-κ² W0²)); the centroid of the irradiance-weighted tilt, which the
-        FO
-        screens reproduce, has 2^(-2/3) = 0.63 of it."""
+        at path_length, 2.42 Cn² L³ W0^(-1/3) for a constant Cn². It is the large-scale part of
+        their W_LT² (eddies filtered by exp(-κ² W0²)); the centroid of the irradiance-weighted tilt,
+        which the FO screens reproduce, has 2^(-2/3) = 0.63 of it."""
         lam, w0, length = _reals(
             wavelength=wavelength, waist_radius=waist_radius, path_length=path_length
         )
@@ -162,8 +149,8 @@ class Turbulence(ByArguments):
 
     def long_term_radius(self, wavelength: float, waist_radius: float, path_length: float) -> float:
         """W_LT (m): the 1/e² radius of the Gaussian core of the beam averaged over time (spread and
-        wander),
-        set by its mean irradiance on the axis. The second-moment radius of that mean irradiance is
+        wander), set by its mean irradiance on the axis. The second-moment radius of that mean
+        irradiance is
         larger: scattered light makes its wings, unbounded for a zero inner scale."""
         lam, w0, length = _reals(
             wavelength=wavelength, waist_radius=waist_radius, path_length=path_length
@@ -192,8 +179,7 @@ def _reals(**values) -> list:
 
 def _checked_profile(cn2: Callable[[float], float]) -> Callable[[float], float]:
     """The caller's Cn²(height) function, its answers checked and named ``cn2(<height> m)``: a real
-    number from
-    0 to MAX_CN2 m^-2/3."""
+    number from 0 to MAX_CN2 m^-2/3."""
 
     def at(height: float) -> float:
         name = f"cn2({height:.6g} m)"

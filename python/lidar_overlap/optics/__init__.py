@@ -1,3 +1,2 @@
 """Optics of sampled fields: free-space propagation, beam fields, phase screens, point and
-detector-plane
-images."""
+detector-plane images."""

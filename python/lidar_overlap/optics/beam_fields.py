@@ -1,10 +1,8 @@
 """Transmitted beam profiles beyond TEM00, as :class:`~lidar_overlap.Field` at z = 0 (SI units).
 
 Each function samples its profile on the centred (n, n) grid of :class:`Field` (index n//2 is x = 0)
-and
-scales it so that the sampled power Σ|U|² spacing² equals ``power`` (W) exactly, so a coarse grid
-changes
-the shape slightly but never the power.
+and scales it so that the sampled power Σ|U|² spacing² equals ``power`` (W) exactly, so a coarse
+grid changes the shape slightly but never the power.
 """
 
 from __future__ import annotations
@@ -73,8 +71,8 @@ def _check_window(second_moment_radius, n, spacing):
 
 def _normalised(values, spacing, wavelength, power):
     """``values`` scaled to sampled power ``power`` (W); refused, naming spacing, when the samples
-    miss the
-    profile (a grid far coarser than the beam samples no power, or all of it in one sample)."""
+    miss the profile (a grid far coarser than the beam samples no power, or all of it in one
+    sample)."""
     peak = float(np.max(np.abs(values)))
     if peak > 0.0:
         values = values / peak  # peak 1: the sum of squares cannot overflow
@@ -100,8 +98,7 @@ def annular_field(wavelength, outer_radius, inner_radius, n, spacing, power=1.0)
 
     U = U0 c, with c the fraction of each pixel (spacing²) inside the annulus, from EDGE_SUBSAMPLES²
     sub-samples in the pixels an edge crosses: the sampled aperture keeps the true area and low
-    spatial
-    frequencies, so its far field follows [2 J1(v)/v - ε² 2 J1(εv)/(εv)]², v = k a θ, ε =
+    spatial frequencies, so its far field follows [2 J1(v)/v - ε² 2 J1(εv)/(εv)]², v = k a θ, ε =
     inner/outer.
 
     Parameters
@@ -207,9 +204,8 @@ def super_gaussian_field(wavelength, radius, order, n, spacing, power=1.0):
     I(r) = I0 exp(-2 (r / radius)^(2 order)):
 
     I0 exp(-2) at r = radius for every order; order 1 is TEM00 with waist ``radius``, large orders
-    approach
-    a uniformly lit disc. Second-moment radius: radius √(2^(1-1/N) Γ(2/N) / Γ(1/N)), 0.89 to 1
-    radius.
+    approach a uniformly lit disc. Second-moment radius: radius √(2^(1-1/N) Γ(2/N) / Γ(1/N)), 0.89
+    to 1 radius.
 
     Parameters
     ----------

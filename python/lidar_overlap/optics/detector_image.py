@@ -1,10 +1,8 @@
 """The detector-plane image of the scattering volume at one range, by geometric optics (paper
-Section 4,
-the circles of confusion of Appendix B): the beam irradiance imaged by the lens (magnification −d/z)
-and spread over each scatterer's circle of confusion, a uniform disc of radius R|1 + d/z − d/f|
-(less the
-obstruction's shadow, taken for an on-axis scatterer). The detector disc collects ``fraction`` of
-it.
+Section 4, the circles of confusion of Appendix B): the beam irradiance imaged by the lens
+(magnification −d/z) and spread over each scatterer's circle of confusion, a uniform disc of radius
+R|1 + d/z − d/f| (less the obstruction's shadow, taken for an on-axis scatterer). The detector disc
+collects ``fraction`` of it.
 """
 
 from __future__ import annotations
@@ -36,10 +34,8 @@ BYTES_PER_WEIGHT = 32
 @dataclass(frozen=True)
 class DetectorImage:
     """``image`` (W/m² per W of backscatter entering the aperture) on the detector-plane grid ``u``
-    (columns)
-    by ``v`` (rows), m; the detector disc of ``detector_radius`` at ``detector_offset``;
-    ``fraction``: the
-    part of the image's power on the detector."""
+    (columns) by ``v`` (rows), m; the detector disc of ``detector_radius`` at ``detector_offset``;
+    ``fraction``: the part of the image's power on the detector."""
 
     u: np.ndarray
     v: np.ndarray
@@ -58,12 +54,9 @@ class DetectorImage:
 
 def detector_image(system, z: float, n: int = 192) -> DetectorImage:
     """Geometric detector-plane image at range ``z`` (m) on an n × n grid holding the beam image
-    (2.5 w)
-    spread by its circle of confusion and the detector disc. ``z`` is refused as the overlap refuses
-    a
-    range (outside 1e-10..1e10 m, or not beyond the obstruction), ``n`` (16 to 65536) when its
-    arrays,
-    ~192 n² bytes, exceed ``lo.max_memory()``."""
+    (2.5 w) spread by its circle of confusion and the detector disc. ``z`` is refused as the overlap
+    refuses a range (outside 1e-10..1e10 m, or not beyond the obstruction), ``n`` (16 to 65536) when
+    its arrays, ~192 n² bytes, exceed ``lo.max_memory()``."""
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     z = _checks.real("z", z)
@@ -104,9 +97,8 @@ def detector_image(system, z: float, n: int = 192) -> DetectorImage:
 
 def _bytes_needed(system, n: int) -> float:
     """Peak bytes of the arrays detector_image builds on an n x n image: the blur's sub-pixel kernel
-    and
-    FFTs (BYTES_PER_PIXEL, measured), and for a field beam its propagated field and interpolation
-    matrices."""
+    and FFTs (BYTES_PER_PIXEL, measured), and for a field beam its propagated field and
+    interpolation matrices."""
     needed = BYTES_PER_PIXEL * float(n) ** 2
     if isinstance(system.beam, FieldBeam):
         m = float(system.beam.field.n)
@@ -117,8 +109,7 @@ def _bytes_needed(system, n: int) -> float:
 def beam_image(system, z, x, y, field=None):
     """Beam irradiance (W/m², P = 1 W) at range z on the grid x (columns) by y (rows), m: a Gaussian
     averaged over each pixel (exact, with erf); a field beam's ``field`` (propagated to z)
-    interpolated
-    bilinearly."""
+    interpolated bilinearly."""
     c = system.beam.center(z)
     if not isinstance(system.beam, FieldBeam):
         w, h = float(system.beam.radius(np.array([z]))[0]), x[1] - x[0]
@@ -166,9 +157,9 @@ def blurred(image, h, outer, inner):
 
 def fov_cone(system, z):
     """Line of sight (nz, 2) and radius (m) of the receiver's full field of view at ranges z: the
-    scatterers
-    that send some light to the detector. A ray from P through aperture point A lands at A m − P d/z
-    (d = f + defocus, m = 1 + d/z − d/f), so P is seen when |P + o_d z/d| < (R|m| + r_d) z/d."""
+    scatterers that send some light to the detector. A ray from P through aperture point A lands at
+    A m − P d/z (d = f + defocus, m = 1 + d/z − d/f), so P is seen when |P + o_d z/d| < (R|m| + r_d)
+    z/d."""
     tel, det = system.telescope, system.detector
     d, f = system.image_distance, tel.focal_length
     center = -np.outer(z, det.offset) / d  # R|m| z/d written to stay finite at z = 0 (the aperture)

@@ -43,22 +43,17 @@ def propagate(
     method : ``"angular_spectrum"`` (A1: exact transfer function, band-limited; output on the input
         grid), ``"fresnel"`` (A5: single FFT with output spacing λz/(n dx), or a scaled chirp-z
         transform when ``output_spacing`` is given), ``"fraunhofer"`` (A7: far field, same grids),
-        or
-        ``"auto"``: angular spectrum up to the critical distance n dx²/λ, Fresnel beyond it (and
+        or ``"auto"``: angular spectrum up to the critical distance n dx²/λ, Fresnel beyond it (and
         whenever another ``output_spacing`` is asked for).
     output_spacing : m, the output grid spacing for Fresnel and Fraunhofer; ``None`` for the natural
         one.
     grid_size : ``None`` keeps the field's n; an even int >= n zero-pads to that size; ``"auto"``
-        zero-pads
-        to the smallest power of two for which the result neither wraps around nor is clipped (the
-        radius
-        holding all but 1e-7 of the power grows at most as r0 + |z| θ, θ from the field's spectrum),
-        the
-        angular spectrum's band limit keeps the power, and a Fresnel output samples the irradiance
-        at its
-        Nyquist rate (the window spans twice the field's diameter); with ``method="auto"`` the
-        method is
-        then chosen for the padded grid. Raises ValueError above 8192 samples per side.
+        zero-pads to the smallest power of two for which the result neither wraps around nor is
+        clipped (the radius holding all but 1e-7 of the power grows at most as r0 + |z| θ, θ from
+        the field's spectrum), the angular spectrum's band limit keeps the power, and a Fresnel
+        output samples the irradiance at its Nyquist rate (the window spans twice the field's
+        diameter); with ``method="auto"`` the method is then chosen for the padded grid. Raises
+        ValueError above 8192 samples per side.
 
     Warns :class:`SamplingWarning` with the reason and the fix when the field is clipped by or wraps
     around the window, the angular-spectrum band limit removes power, the Fresnel input chirp is

@@ -15,8 +15,8 @@ def _pyplot():
 
 def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
     """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G, only
-    where the
-    curve shows its far-range limit) and first-signal (G >= 1e-3) ranges. Returns the Axes."""
+    where the curve shows its far-range limit) and first-signal (G >= 1e-3) ranges. Returns the
+    Axes."""
     plt = _pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
@@ -38,8 +38,7 @@ def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
 
 def plot_detector_image(system, z, ax=None, n=192):
     """Draw the geometric detector-plane image at range ``z`` (m) (:func:`detector_image`) with the
-    detector
-    disc outlined and the fraction it collects in the title. Returns the Axes."""
+    detector disc outlined and the fraction it collects in the title. Returns the Axes."""
     from ..optics.detector_image import detector_image
 
     plt = _pyplot()
@@ -64,10 +63,8 @@ def plot_detector_image(system, z, ax=None, n=192):
 
 def plot_signal(sig, ax=None):
     """The dynamic-range view of a :class:`LidarSignal` on log axes: expected photons per bin and
-    shot with the
-    overlap and without it (G = 1), the background, the noise level (its standard deviation over the
-    shots) and,
-    where positive, the noisy realisation. Returns the Axes."""
+    shot with the overlap and without it (G = 1), the background, the noise level (its standard
+    deviation over the shots) and, where positive, the noisy realisation. Returns the Axes."""
     plt = _pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
@@ -105,12 +102,9 @@ def plot_signal(sig, ax=None):
 
 def plot_telecover(result, band=0.05, axes=None):
     """The conventional telecover figure of a :class:`TelecoverResult`: top, the range-corrected
-    signal of
-    each sector (∝ its G, the atmosphere being common) and the full aperture's over 4 (the mean of
-    four
-    quadrants); bottom, the normalised deviations G_i / mean G - 1 in % with the ±``band`` lines.
-    Returns the
-    two Axes."""
+    signal of each sector (∝ its G, the atmosphere being common) and the full aperture's over 4 (the
+    mean of four quadrants); bottom, the normalised deviations G_i / mean G - 1 in % with the
+    ±``band`` lines. Returns the two Axes."""
     plt = _pyplot()
     if axes is None:
         _, axes = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, constrained_layout=True)
@@ -148,12 +142,10 @@ _READABLE = {"rad": (1e3, "mrad"), "m": (1e3, "mm")}
 
 def plot_alignment_map(ds, range=None, ax=None, cmap="viridis"):
     """Draw an alignment map (:func:`lidar_overlap.alignment_map`) at each chosen range (m; the
-    nearest range of
-    the map, all of them when None): a heat map of G with a colorbar for two axes, G against the
-    axis for one.
-    Axes are labelled with their names and units (angles in mrad, lengths in mm). Returns the Axes,
-    or an array
-    of Axes (one per range) when several ranges are drawn."""
+    nearest range of the map, all of them when None): a heat map of G with a colorbar for two axes,
+    G against the axis for one. Axes are labelled with their names and units (angles in mrad,
+    lengths in mm). Returns the Axes, or an array of Axes (one per range) when several ranges are
+    drawn."""
     plt = _pyplot()
     names = [d for d in ds["overlap"].dims if d != "range"]
     chosen = ds["range"].values if range is None else np.atleast_1d(np.asarray(range, dtype=float))

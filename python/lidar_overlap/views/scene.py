@@ -2,11 +2,9 @@
 
 The range z runs along the telescope axis, to scale; the transverse axes x, y are multiplied by
 ``exaggeration`` (default 100), because a lidar is millimetres to decimetres wide and hundreds of
-metres
-long. Everything transverse is scaled alike: beam, field of view, aperture, obstruction, detector.
-The
-axes are labelled with true (unexaggerated) coordinates in m. PyVista is imported only inside the
-functions, so the rest of the package works without it.
+metres long. Everything transverse is scaled alike: beam, field of view, aperture, obstruction,
+detector. The axes are labelled with true (unexaggerated) coordinates in m. PyVista is imported only
+inside the functions, so the rest of the package works without it.
 """
 
 from __future__ import annotations
@@ -92,8 +90,7 @@ def _beam_profile(system, zmax):
     """w(z) (m, 1/e²) and on-axis peak irradiance (W/m² for P = 1 W) as functions of z.
 
     Gaussian beam: w(z) of the beam, peak 2/(π w²). Field beam: the second-moment radius and the
-    peak of
-    the propagated field at z = 0 and 11 ranges up to ``zmax`` (geometric), interpolated."""
+    peak of the propagated field at z = 0 and 11 ranges up to ``zmax`` (geometric), interpolated."""
     beam = system.beam
     if not isinstance(beam, FieldBeam):
         width = lambda z: np.asarray(beam.radius(np.asarray(z, dtype=float)))  # noqa: E731
@@ -107,8 +104,7 @@ def _beam_profile(system, zmax):
 
 def _planes(pv, plotter, meshes, system, planes, result, scale, width):
     """Scattering-plane irradiance and detector-plane image at each range in ``planes``, as two
-    panels
-    stacked above the FOV cone (+x) at that range."""
+    panels stacked above the FOV cone (+x) at that range."""
     det, d = system.detector, system.image_distance
     n = N_IMAGE
     grid = np.arange(n) - n / 2 + 0.5
@@ -193,49 +189,36 @@ def scene(
 
     - "beam": the transmitted beam's 1/e² envelope, a tube of radius w(z) about beam.center(z) =
       offset + tilt·z from z = 0 (a field beam: second-moment radius of the propagated field at 12
-      ranges,
-      interpolated). Coloured by the on-axis peak irradiance (W/m² for 1 W; 2/(π w²) for a Gaussian)
-      or by
-      G(z) (``color_by="overlap"``; grey outside the computed ranges).
+      ranges, interpolated). Coloured by the on-axis peak irradiance (W/m² for 1 W; 2/(π w²) for a
+      Gaussian) or by G(z) (``color_by="overlap"``; grey outside the computed ranges).
     - "fov": the receiver's full field of view, translucent: the paraxial envelope of the scatterers
-      that
-      send some light to the detector, radius R|1 + z(1/d − 1/f)| + r_d z/d about the line of sight
-      −o_d z/d
-      (d = f + defocus; in focus: R + z r_d/f, half-angle r_d/f).
+      that send some light to the detector, radius R|1 + z(1/d − 1/f)| + r_d z/d about the line of
+      sight −o_d z/d (d = f + defocus; in focus: R + z r_d/f, half-angle r_d/f).
     - "aperture" (disc of radius R = D/2 at z = 0, the thin lens), "obstruction" (disc of radius
-      r_obs at
-      z = +obstruction_distance, in front of the aperture, when r_obs > 0), "detector" (disc of
-      radius
-      r_d at detector.offset, at z = −(f + defocus), behind the lens), "axis" (the telescope axis).
+      r_obs at z = +obstruction_distance, in front of the aperture, when r_obs > 0), "detector"
+      (disc of radius r_d at detector.offset, at z = −(f + defocus), behind the lens), "axis" (the
+      telescope axis).
     - "full_overlap": a ring around the FOV at result.full_overlap_range(), labelled.
     - for each z in ``planes``, two panels stacked above the FOV cone (displaced along +x so the
-      beam tube
-      does not hide them; labelled with z and G(z)): "plane_<z>" (z formatted with ``:g``), the beam
-      irradiance in the scattering plane at the scene's scale (a Gaussian averaged exactly over each
-      pixel;
-      a field beam: ``propagate(field, z)``, interpolated), with "fov_outline_<z>", the FOV section;
-      above
-      it "detector_image_<z>", the geometric-optics image on the detector plane: the irradiance
-      scaled by
-      −d/z (flipped) and convolved (FFT) with the uniform circle of confusion of radius R|1 + d/z −
-      d/f|,
-      less the obstruction's shadow taken for an on-axis scatterer (exact on axis; the shadow's
-      shift with
-      the scatterer's position and any fibre NA are ignored), at its own scale (its width in mm is
-      labelled), with "detector_outline_<z>", the detector. Without obstruction or NA, the image's
-      power
-      inside the outline over its total is G(z). Panels are normalised to their peak.
+      beam tube does not hide them; labelled with z and G(z)): "plane_<z>" (z formatted with
+      ``:g``), the beam irradiance in the scattering plane at the scene's scale (a Gaussian averaged
+      exactly over each pixel; a field beam: ``propagate(field, z)``, interpolated), with
+      "fov_outline_<z>", the FOV section; above it "detector_image_<z>", the geometric-optics image
+      on the detector plane: the irradiance scaled by −d/z (flipped) and convolved (FFT) with the
+      uniform circle of confusion of radius R|1 + d/z − d/f|, less the obstruction's shadow taken
+      for an on-axis scatterer (exact on axis; the shadow's shift with the scatterer's position and
+      any fibre NA are ignored), at its own scale (its width in mm is labelled), with
+      "detector_outline_<z>", the detector. Without obstruction or NA, the image's power inside the
+      outline over its total is G(z). Panels are normalised to their peak.
 
     exaggeration : factor (> 0) on x and y; 1.0 is true scale.
     color_by : "irradiance" or "overlap", the beam's colours.
     planes : ranges (m) in (0, end of the scene] for the panels.
     ranges : m, increasing; default ``result.ranges``, else 200 ranges (40 for Fourier optics) from
-        1 m (1.5
-        z_obs if the obstruction is farther) to 1000 m, with the scene cut at twice the full-overlap
-        range.
-        The scene extends from the detector plane to the last range.
-    result : an OverlapResult for the colours and the full-overlap marker; default
-        ``overlap(system, ranges, method)``.
+        1 m (1.5 z_obs if the obstruction is farther) to 1000 m, with the scene cut at twice the
+        full-overlap range. The scene extends from the detector plane to the last range.
+    result : an OverlapResult for the colours and the full-overlap marker; default ``overlap(system,
+        ranges, method)``.
     method : "rt" or "fo"; default "rt" for a Gaussian beam, "fo" for a field beam.
     off_screen : default PyVista's setting, or off-screen when there is no display.
     Returns the ``pyvista.Plotter`` (not shown).

@@ -1,7 +1,6 @@
 """The code that computes a :class:`lidar_overlap.forward.planning.Plan`: one module per family of
-paths, each function
-taking a plan and returning an :class:`OverlapResult`. None calls a public entry point or plans
-anything."""
+paths, each function taking a plan and returning an :class:`OverlapResult`. None calls a public
+entry point or plans anything."""
 
 from __future__ import annotations
 
@@ -25,8 +24,7 @@ RUNNERS = {
 
 def run(plan) -> OverlapResult:
     """Compute ``plan``: its warnings, then its backend (a turbulent plan along a path without
-    turbulence runs
-    the plain backend and repeats its curve for every draw)."""
+    turbulence runs the plain backend and repeats its curve for every draw)."""
     if plan.backend not in RUNNERS:  # a Plan built by hand
         raise ValueError(
             f"plan.backend = {_checks.shown(plan.backend)} is invalid: expected one of "

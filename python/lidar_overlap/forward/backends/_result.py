@@ -9,8 +9,8 @@ from ..result import OverlapResult
 
 def result(plan, overlap, error_estimate, cls=OverlapResult, **extra) -> OverlapResult:
     """``cls`` for ``plan`` (its ranges, system, model, stated tolerance and error kind) with G =
-    ``overlap`` and
-    ``error_estimate`` (an array, or one value for every range); ``extra`` fields for subclasses."""
+    ``overlap`` and ``error_estimate`` (an array, or one value for every range); ``extra`` fields
+    for subclasses."""
     z = plan.ranges
     error = np.broadcast_to(np.asarray(error_estimate, dtype=float), z.shape).copy()
     return cls(

@@ -2,17 +2,13 @@
 docs/aberrations.md.
 
 - Ray tracing: rays through the pupil displaced by d ∇W on the detector plane. For Zernike terms and
-  W040 (the
-  same for every scatterer) with no NA cone and no obstruction in front of the aperture, G is one
-  smooth pupil
-  integral of the share of the Gaussian beam image each ray leaves on the detector; otherwise each
-  scatterer
-  sends a ray fan whose detector-edge crossings are interpolated.
+  W040 (the same for every scatterer) with no NA cone and no obstruction in front of the aperture, G
+  is one smooth pupil integral of the share of the Gaussian beam image each ray leaves on the
+  detector; otherwise each scatterer sends a ray fan whose detector-edge crossings are interpolated.
 - Fourier optics: the aberrated pupil sampled and its OTF computed by FFT at each range; G is the
   aberration-free radial result plus the Parseval sum of the OTF's change. Field-dependent Seidel
-  terms need
-  ray tracing; near ranges whose defocus blur needs a transform beyond ``max_spectrum_grid`` are
-  refused.
+  terms need ray tracing; near ranges whose defocus blur needs a transform beyond
+  ``max_spectrum_grid`` are refused.
 """
 
 from __future__ import annotations

@@ -1,6 +1,5 @@
 """Fourier optics (paper Appendix C) of a plan: the radial path, the 2-D path of a Gaussian beam,
-and the 2-D
-path of any transmitted field on its own grid."""
+and the 2-D path of any transmitted field on its own grid."""
 
 from __future__ import annotations
 
@@ -35,8 +34,7 @@ def run_field(plan):
 
 def _warn_if_clipped(plan, raw, fix: str) -> None:
     """SamplingWarning where the transmitted field loses more than EDGE_POWER_LIMIT of its power to
-    the window
-    edge or the band limit on its way to a range."""
+    the window edge or the band limit on its way to a range."""
     for z, report in zip(plan.ranges, raw.beam_reports):
         worst = max(report.output_edge_power, report.input_edge_power, report.band_limit_loss)
         if worst > EDGE_POWER_LIMIT:

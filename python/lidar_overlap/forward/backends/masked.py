@@ -1,7 +1,6 @@
 """Aperture masks (the telecover test): ray tracing or Fourier optics through the masked aperture,
-one core call
-for all ranges; the RT plans of one system through several masks (a telecover test's sectors) in one
-call."""
+one core call for all ranges; the RT plans of one system through several masks (a telecover test's
+sectors) in one call."""
 
 from __future__ import annotations
 
@@ -35,8 +34,7 @@ def run(plan):
 
 def run_fo(plan):
     """G by Fourier optics through the sampled pupil cut to the mask: G_0 (exact, full aperture)
-    plus the Parseval
-    sum of the OTF's change."""
+    plus the Parseval sum of the OTF's change."""
     mask = plan.system.telescope.mask
     raw = _core.overlap_fo_masked(plan.system._native, plan.ranges, mask._native, plan.options)
     return result(plan, raw.overlap, FO_MASKED_ACCURACY)
@@ -44,8 +42,7 @@ def run_fo(plan):
 
 def together(plans) -> bool:
     """Whether ``plans`` are ray tracing of one system, ranges and options through different masks:
-    what
-    :func:`run_together` takes."""
+    what :func:`run_together` takes."""
     first = plans[0]
     return all(
         p.backend == "rt_masked"
@@ -69,10 +66,8 @@ def _unmasked(system):
 
 def run_together(plans) -> list:
     """:func:`run` of each plan (see :func:`together`), in one core call: the masks share the beam
-    integral's
-    nodes (each G to the plans' tolerance, not bit for bit the one-mask call). The validity
-    warnings, the same
-    for every mask, are given once."""
+    integral's nodes (each G to the plans' tolerance, not bit for bit the one-mask call). The
+    validity warnings, the same for every mask, are given once."""
     first = plans[0]
     raws = _core.overlap_rt_masks(
         first.system._native,

@@ -9,10 +9,8 @@ from ._result import result
 
 def run(plan):
     """G by ray tracing; the error estimate is the quadrature's plus the model error auto estimated
-    (if any).
-    Warns where ray tracing is outside its validity (not about diffraction auto has bounded) or the
-    quadrature
-    stopped short of its tolerance."""
+    (if any). Warns where ray tracing is outside its validity (not about diffraction auto has
+    bounded) or the quadrature stopped short of its tolerance."""
     raw = _core.overlap_rt(plan.system._native, plan.ranges, plan.options)
     warn_if_rt_invalid(plan.system, plan.ranges, diffraction=plan.rt_diffraction_warning)
     warn_if_rt_unconverged(

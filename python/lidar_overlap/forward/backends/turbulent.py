@@ -3,17 +3,14 @@
 spread.
 
 - Fourier optics: the beam carried through phase screens by split-step Fresnel propagation, one draw
-  per
-  realisation of the screens (C++, in parallel).
+  per realisation of the screens (C++, in parallel).
 - Ray tracing: each draw is the short-term beam (radius W_ST) displaced by a random wander from a
-  Gaussian
-  whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it, the
-  long-term beam
-  W_LT. All K x N draws are traced in one core call (``overlap_rt_batch``).
+  Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it,
+  the long-term beam W_LT. All K x N draws are traced in one core call (``overlap_rt_batch``).
 
 Both compute any slice of realisations bit for bit as the whole run does (``fo_rows``, ``rt_rows``
-with a slice
-of ``wander``'s offsets): :mod:`lidar_overlap.analysis.turbulent_study` runs them as tasks.
+with a slice of ``wander``'s offsets): :mod:`lidar_overlap.analysis.turbulent_study` runs them as
+tasks.
 """
 
 from __future__ import annotations
@@ -46,8 +43,8 @@ def run_fo(plan) -> TurbulentOverlapResult:
 
 def fo_rows(plan, first: int, count: int) -> np.ndarray:
     """Realisations ``first .. first + count - 1`` of the FO run of ``plan`` (count x ranges): bit
-    for bit those rows
-    of the whole run (the core's ``first_realization``), on ``plan.options.threads`` threads."""
+    for bit those rows of the whole run (the core's ``first_realization``), on
+    ``plan.options.threads`` threads."""
     o = plan.options
     part = _core.TurbulenceOptions(
         realizations=count,
@@ -67,10 +64,8 @@ def fo_rows(plan, first: int, count: int) -> np.ndarray:
 
 def run_rt(plan) -> TurbulentOverlapResult:
     """The RT draws: one wandering beam per realisation and range, in one batched core call. A range
-    where the
-    turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or lengths) is
-    refused
-    naming ``ranges[i]`` and the turbulence."""
+    where the turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or
+    lengths) is refused naming ``ranges[i]`` and the turbulence."""
     check_work(plan.ranges, plan.turbulence.realizations)
     short_term, offsets = wander(plan)
     g, converged, error = rt_rows(plan, short_term, offsets)
@@ -80,12 +75,9 @@ def run_rt(plan) -> TurbulentOverlapResult:
 
 def wander(plan):
     """The short-term beam radius W_ST at each range (m) and the wander offsets of every draw (m,
-    realisations x
-    ranges x 2): drawn from ``numpy.random.default_rng(seed)``, range after range, all realisations
-    of a range
-    (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2. A range where the short-term beam
-    spreads beyond
-    the paraxial model is refused by name."""
+    realisations x ranges x 2): drawn from ``numpy.random.default_rng(seed)``, range after range,
+    all realisations of a range (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2. A range
+    where the short-term beam spreads beyond the paraxial model is refused by name."""
     system, z, request = plan.system, plan.ranges, plan.turbulence
     beam, lam, turbulence = system.beam, system.beam.wavelength, request.turbulence
     short_term, sigma = np.empty(z.size), np.empty(z.size)
@@ -116,13 +108,11 @@ def wander(plan):
 
 
 def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
-    """G of the RT draws whose wander offsets are ``offsets`` (realisations x ranges x 2, m; a slice
-    of
-    :func:`wander`'s), in one batched core call on ``plan.options.threads`` threads: G (realisations
-    x ranges) and
-    the core's convergence flags and error estimates (flat). Each draw's G depends on its offset
-    alone, so the rows
-    of a slice are those of the whole run, bit for bit."""
+    """G of the RT draws whose wander offsets are ``offsets`` (realisations x ranges x 2, m; a
+    slice of :func:`wander`'s), in one batched core call on ``plan.options.threads`` threads: G
+    (realisations x ranges) and the core's convergence flags and error estimates (flat). Each
+    draw's G depends on its offset alone, so the rows of a slice are those of the whole run, bit
+    for bit."""
     system, z = plan.system, plan.ranges
     beam, telescope, detector = system.beam, system.telescope._native, system.detector._native
     count = offsets.shape[0]
@@ -191,8 +181,7 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
 
 def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
     """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples``
-    (C-contiguous:
-    the reductions then sum in one order, whoever computed the rows)."""
+    (C-contiguous: the reductions then sum in one order, whoever computed the rows)."""
     samples = np.ascontiguousarray(samples)
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
@@ -211,8 +200,7 @@ def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
 
 def spread(beam, z: float, radius: float) -> float:
     """Far-field half-angle (rad) of a beam from ``beam``'s waist, on its width law, whose 1/e²
-    radius at range
-    z (m) is ``radius``."""
+    radius at range z (m) is ``radius``."""
     w0 = beam.waist_radius
     if beam.width_law == "linear":  # w = w0 + θz
         return max(radius - w0, 0.0) / z
@@ -221,8 +209,7 @@ def spread(beam, z: float, radius: float) -> float:
 
 def beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
     """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is
-    ``beam``'s axis moved
-    by ``center`` (m): the short-term beam of one draw."""
+    ``beam``'s axis moved by ``center`` (m): the short-term beam of one draw."""
     axis = beam.center(z)
     offset = (axis[0] + float(center[0]), axis[1] + float(center[1]))
     return dataclasses.replace(
@@ -235,8 +222,8 @@ def beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
 
 def check_work(z: np.ndarray, realizations: int) -> None:
     """Refuse, naming ``realizations``, more draws than the FO path allows or draws beyond the
-    memory budget (RT:
-    the drawn systems and their results; a study of either path: the rows it gathers)."""
+    memory budget (RT: the drawn systems and their results; a study of either path: the rows it
+    gathers)."""
     if realizations > MAX_REALIZATIONS:
         raise ValueError(
             f"realizations = {realizations} is invalid: expected a count from 1 to "
