@@ -1,5 +1,5 @@
 # make demo: set up everything, run the paper's examples, write their plots to out/.
-# make test: set up everything, run the whole suite (pytest, then the C++ tests through ctest).
+# make test: set up everything, run the whole suite (ruff and mypy, pytest, then the C++ tests through ctest).
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
@@ -8,7 +8,7 @@ OUT    := out
 JOBS   ?= 2
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
-.PHONY: demo test setup pytest ctest sanitize bench clean
+.PHONY: demo test setup lint pytest ctest sanitize bench clean
 
 setup: $(VENV)/.installed
 
@@ -44,7 +44,13 @@ demo: setup
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
-	$(MAKE) pytest ctest
+	$(MAKE) lint pytest ctest
+
+# ruff (format and lint, 100 columns, import order) and mypy on the package, as configured in pyproject.toml.
+lint:
+	$(BIN)/ruff format --check python tests benchmarks examples scripts
+	$(BIN)/ruff check python tests benchmarks examples scripts
+	$(PY) -m mypy
 
 pytest:
 	$(PY) -m pytest -q

@@ -178,8 +178,7 @@ def lightpipes_psf():
     import LightPipes as lp
 
     # LightPipes' Zernike multiplies by exp(-2 pi i A Z / lambda) with theta = atan2(y, x) + pi,
-    # which flips
-    # odd-m terms: A = -c for even m, +c for odd m gives lo's exp(+2 pi i W / lambda).
+    # which flips odd-m terms: A = -c for even m, +c for odd m gives lo's exp(+2 pi i W / lambda).
     def pupil(terms):
         f = lp.Begin(N * D / ACROSS, WAVELENGTH, N)
         for j, c in terms.items():
@@ -368,13 +367,11 @@ def main():
     psf = point_image_section()
     print(
         f"\n1. Point image {N}^2, Z6/Z8/Z11 = 0.05/0.03/0.05 um RMS: exact Strehl "
-        f"{psf['exact_strehl']:.6f} "
-        f"(Marechal {psf['marechal']:.4f})"
+        f"{psf['exact_strehl']:.6f} (Marechal {psf['marechal']:.4f})"
     )
     print(
         f"{'code':18s} {'ms':>7s} {'x lo':>6s} {'Strehl':>9s} {'- exact':>9s} {'PSF diff':>9s} "
-        f"{'ideal diff':>10s} "
-        f"{'W err (m)':>9s}"
+        f"{'ideal diff':>10s} {'W err (m)':>9s}"
     )
     for name, r in psf["codes"].items():
         if "ms" not in r:
@@ -382,10 +379,8 @@ def main():
             continue
         print(
             f"{name:18s} {r['ms']:7.1f} {r.get('x_lo_time', 1.0):6.2f} {r['strehl']:9.6f} "
-            f"{r['strehl_minus_exact']:9.1e} "
-            f"{r.get('psf_max_diff_vs_lo', 0.0):9.1e} "
-            f"{r.get('ideal_psf_max_diff_vs_lo', 0.0):10.1e} "
-            f"{r['wavefront_max_error_m']:9.1e}"
+            f"{r['strehl_minus_exact']:9.1e} {r.get('psf_max_diff_vs_lo', 0.0):9.1e} "
+            f"{r.get('ideal_psf_max_diff_vs_lo', 0.0):10.1e} {r['wavefront_max_error_m']:9.1e}"
         )
     curve = curve_section()
     s = curve["s"]
@@ -395,15 +390,12 @@ def main():
     )
     print(
         f"  rt (pupil form) {s['rt']:.3f} s | fo {s['fo']:.2f} s | fo tail 1e-5 "
-        f"{s['fo_tail_1e-5']:.2f} s | "
-        f"ray fan 48x128 {s['fan']:.2f} s | fan {REFINED_FAN[0]}x{REFINED_FAN[1]} at "
-        f"{len(REFINED)} ranges "
-        f"{s['refined_fan']:.2f} s"
+        f"{s['fo_tail_1e-5']:.2f} s | ray fan 48x128 {s['fan']:.2f} s | fan "
+        f"{REFINED_FAN[0]}x{REFINED_FAN[1]} at {len(REFINED)} ranges {s['refined_fan']:.2f} s"
     )
     print(
         f"  |rt - fan| max {curve['rt_minus_fan_max']:.1e}; rt - fan "
-        f"{REFINED_FAN[0]}x{REFINED_FAN[1]} at "
-        f"{np.round(curve['refined_ranges_m'])} m: "
+        f"{REFINED_FAN[0]}x{REFINED_FAN[1]} at {np.round(curve['refined_ranges_m'])} m: "
         f"{np.array2string(np.array(curve['rt_minus_refined_fan']), precision=1)}"
     )
     print(
@@ -413,9 +405,9 @@ def main():
     )
     g = curve["fo_worst_tail_1e-4_1e-5_1e-6"]
     print(
-        f"  fo at {curve['fo_worst_range_m']:.0f} m, tail_error 1e-4 / 1e-5 / 1e-6: "
-        f"{g[0]:.8f} / {g[1]:.8f} / {g[2]:.8f} "
-        f"(1e-6: {s['fo_tail_1e-6_one_range']:.1f} s, grid {curve['fo_worst_grid_tail_1e-6']})"
+        f"  fo at {curve['fo_worst_range_m']:.0f} m, tail_error 1e-4 / 1e-5 / 1e-6: {g[0]:.8f} / "
+        f"{g[1]:.8f} / {g[2]:.8f} (1e-6: {s['fo_tail_1e-6_one_range']:.1f} s, grid "
+        f"{curve['fo_worst_grid_tail_1e-6']})"
     )
     seidel = seidel_section()
     print("\n3. Seidel coma W131 = 0.2 um at 0.45 mrad (ray fan per scatterer)")

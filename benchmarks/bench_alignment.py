@@ -39,8 +39,7 @@ def main():
     if load > 0.5:
         print(
             f"warning: 1-min load average {load:.2f} before the run; other processes share the "
-            "cores and the "
-            "times below may be inflated"
+            "cores and the times below may be inflated"
         )
     maps = {}
     for tol in TOLERANCES:
@@ -85,8 +84,7 @@ def main():
     same = bool(np.array_equal(separate, ds["overlap"].values))
     print(
         f"1681 separate lo.overlap calls at tolerance 1e-4: {t_separate:.3f} s, the map "
-        f"{t_separate / t_map:.2f}x "
-        f"faster; same values bit for bit: {same}"
+        f"{t_separate / t_map:.2f}x faster; same values bit for bit: {same}"
     )
     print(f"target: map < {TARGET_S} s: {'met' if t_map < TARGET_S else 'NOT met'}")
 

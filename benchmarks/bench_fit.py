@@ -47,8 +47,7 @@ def main():
     if load > 0.5:
         print(
             f"warning: 1-min load average {load:.2f} before the run; other processes share the "
-            "cores and the "
-            "times below may be inflated"
+            "cores and the times below may be inflated"
         )
     table1 = lo.paper_table1()
     truth = parameters.replace(table1, TRUE)
@@ -78,8 +77,7 @@ def main():
         }
         print(
             f"threads={threads}: {t:.3f} s, {f.evaluations} model and {f.jacobian_evaluations} "
-            "Jacobian "
-            f"evaluations ({f.message})"
+            f"Jacobian evaluations ({f.message})"
         )
     print(f)
     pulls = {p: (f.parameters[p] - v) / f.uncertainties[p] for p, v in TRUE.items()}

@@ -109,19 +109,17 @@ def summary(d, t):
 def main():
     load_start = load_average()
     print(
-        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-        f"load average {load_start:.2f}"
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
+        f"average {load_start:.2f}"
     )
     print(
         f"FlatTopBeam({WAVELENGTH:g}, {WAIST:g}, {DIAMETER:g}): theta_d = {THETA_D * 1e3:.4f} "
-        "mrad, "
-        f"N = {GRID}, w0/dx = {SAMPLES_PER_WAIST:g}; repeats {REPEATS}"
+        f"mrad, N = {GRID}, w0/dx = {SAMPLES_PER_WAIST:g}; repeats {REPEATS}"
     )
     if load_start > 0.5:
         print(
             f"warning: 1-min load average {load_start:.2f} before the run; other processes share "
-            "the "
-            f"{os.cpu_count()} cores and the times below may be inflated"
+            f"the {os.cpu_count()} cores and the times below may be inflated"
         )
 
     first, d = timed_once(design)  # first call: FFTW plans the 512^2 transforms
@@ -178,15 +176,13 @@ def main():
     )
     print(
         f"  FFT pair {reference * 1e3:.2f} ms | per iteration / FFT pair "
-        f"{default['per_iteration_over_fft_pair']:.2f}x"
-        f" | fixed (1 iteration) {fixed * 1e3:.1f} ms | marginal "
-        f"{default['marginal_per_iteration_s'] * 1e3:.2f}"
-        f" ms/iteration ({default['marginal_over_fft_pair']:.2f}x FFT pair)"
+        f"{default['per_iteration_over_fft_pair']:.2f}x | fixed (1 iteration) {fixed * 1e3:.1f} ms "
+        f"| marginal {default['marginal_per_iteration_s'] * 1e3:.2f} ms/iteration "
+        f"({default['marginal_over_fft_pair']:.2f}x FFT pair)"
     )
     print(
         f"  error {d.history[-1]:.2e} | efficiency {d.efficiency:.3f} | rms {d.uniformity_rms:.3f} "
-        "| "
-        f"pv {d.uniformity_pv:.3f} | edge {d.edge_width * 1e3:.4f} mrad (target "
+        f"| pv {d.uniformity_pv:.3f} | edge {d.edge_width * 1e3:.4f} mrad (target "
         f"{d.edge_width_target * 1e3:.4f})"
     )
     header = (
@@ -197,9 +193,9 @@ def main():
     for e in edges:
         print(
             f"{e['edge_in_theta_d']:7.1f} {e['iterations']:5d} {e['stop']:>14} {ms(e['s'])} "
-            f"{e['final_error']:8.2e} "
-            f"{e['efficiency']:6.3f} {e['uniformity_rms']:6.3f} {e['uniformity_pv']:6.3f} "
-            f"{e['edge_width_rad'] * 1e3:9.4f} {e['edge_width_target_rad'] * 1e3:7.4f}"
+            f"{e['final_error']:8.2e} {e['efficiency']:6.3f} {e['uniformity_rms']:6.3f} "
+            f"{e['uniformity_pv']:6.3f} {e['edge_width_rad'] * 1e3:9.4f} "
+            f"{e['edge_width_target_rad'] * 1e3:7.4f}"
         )
     header = f"{'N':>5} {'first s':>8} {'warm ms':>8} {'iter':>5} {'ms/iter':>8} {'error':>8}"
     print("\ngrid sweep (edge 1.5 theta_d)\n" + header + "\n" + "-" * len(header))
@@ -212,8 +208,8 @@ def main():
         f"\nNumPy GS peer ({peer['iterations']} iterations, N = {GRID}): {t_np * 1e3:.1f} ms "
         f"({peer['per_iteration_s'] * 1e3:.2f} ms/iteration), error {peer['final_error']:.2e} | lo "
         f"{t_lo * 1e3:.1f} ms, error {default['final_error']:.2e} | numpy / lo "
-        f"{peer['ratio_numpy_to_lo']:.1f}x | "
-        f"max |history difference| {peer['max_abs_history_difference']:.1e}"
+        f"{peer['ratio_numpy_to_lo']:.1f}x | max |history difference| "
+        f"{peer['max_abs_history_difference']:.1e}"
     )
 
     out = Path(__file__).resolve().parent / "results" / "bench_flat_top.json"
@@ -245,13 +241,10 @@ def main():
         },
         "repeats": REPEATS,
         "timing": "best of the repeats after one untimed call; first_call_s is the first call of "
-        "the process "
-        "for that grid (FFTW planning included); the sweeps' default row (edge 1.5, N = 512) is "
-        "the "
-        "default design's measurement; numpy peer and lo timed in alternating rounds",
+        "the process for that grid (FFTW planning included); the sweeps' default row (edge 1.5, N "
+        "= 512) is the default design's measurement; numpy peer and lo timed in alternating rounds",
         "numpy_peer": "error-reduction GS with numpy.fft (single-threaded), same start, grid, "
-        "target and "
-        "iteration count as lo; time includes its set-up and final plate",
+        "target and iteration count as lo; time includes its set-up and final plate",
     }
     out.write_text(
         json.dumps(

@@ -102,8 +102,7 @@ def timed_once(fn):
 # ---------------------------------------------------------------------------------------------
 # Peers. Each factory returns (version, variants); a variant is (peer, routine, settings, prepare,
 # methods it is run for), and prepare(n, distance) -> (call, setup or None, intensity_and_grid),
-# where
-# intensity_and_grid(result) -> (irradiance, x of the columns, y of the rows).
+# where intensity_and_grid(result) -> (irradiance, x of the columns, y of the rows).
 # ---------------------------------------------------------------------------------------------
 def lightpipes_variants():
     import LightPipes as lp
@@ -342,13 +341,11 @@ def fmt_ms(t):
 def print_tables(rows):
     print(
         "\nlo against the FFT round trip (ms; x ref = lo / reference, target <= "
-        f"{TARGET_RATIO:g}x; "
-        f"D1 err = |1 - w_D1 / w|)"
+        f"{TARGET_RATIO:g}x; D1 err = |1 - w_D1 / w|)"
     )
     header = (
         f"{'N':>5} {'case':9} {'z (m)':>6} {'ref':>8} {'lo':>8} {'x ref':>6} {'native':>8} "
-        f"{'cold':>9} "
-        f"{'new z':>8} {'D1 err':>8}  target"
+        f"{'cold':>9} {'new z':>8} {'D1 err':>8}  target"
     )
     print(header)
     print("-" * len(header))
@@ -356,16 +353,13 @@ def print_tables(rows):
         for m, c in r["cases"].items():
             print(
                 f"{r['n']:5d} {m[:9]:9} {c['distance_m']:6g} {fmt_ms(r['reference_s'])} "
-                f"{fmt_ms(c['lo_s'])} "
-                f"{c['ratio_to_reference']:5.2f}x {fmt_ms(c['lo_native_s'])} "
-                f"{c['lo_cold_s'] * 1e3:9.1f} "
-                f"{fmt_ms(c['lo_new_distance_s'])} {c['lo_d1_rel_error']:8.1e}  "
-                f"{'met' if c['target_met'] else 'NOT met'}"
+                f"{fmt_ms(c['lo_s'])} {c['ratio_to_reference']:5.2f}x {fmt_ms(c['lo_native_s'])} "
+                f"{c['lo_cold_s'] * 1e3:9.1f} {fmt_ms(c['lo_new_distance_s'])} "
+                f"{c['lo_d1_rel_error']:8.1e}  {'met' if c['target_met'] else 'NOT met'}"
             )
     print(
         "\npeers (ms; x lo = peer time / lo warm time, x new z = peer time / lo new-z time; D1 err "
-        "of the "
-        "peer and of lo on the same case)"
+        "of the peer and of lo on the same case)"
     )
     header = (
         f"{'N':>5} {'case':9} {'peer':10} {'routine':34} {'time':>9} {'x lo':>7} {'x new z':>7} "
@@ -390,20 +384,18 @@ def print_tables(rows):
 def main():
     load_start = load_average()
     print(
-        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-        f"load average {load_start:.2f}"
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
+        f"average {load_start:.2f}"
     )
     print(
         f"TEM00 w0 = {WAIST * 1e3:g} mm, {WAVELENGTH * 1e9:g} nm, window +-{HALF_WINDOW:g} w0; "
         f"angular spectrum over {CASES['angular_spectrum']:g} m, Fresnel over {CASES['fresnel']:g} "
-        "m; "
-        f"best of {REPEATS_LO} (lo, reference) / {REPEATS_PEER} (peers) warm calls"
+        f"m; best of {REPEATS_LO} (lo, reference) / {REPEATS_PEER} (peers) warm calls"
     )
     if load_start > 0.5:
         print(
             f"warning: 1-min load average {load_start:.2f} before the run; other processes share "
-            "the "
-            f"{os.cpu_count()} cores and the times below may be inflated"
+            f"the {os.cpu_count()} cores and the times below may be inflated"
         )
     peer_status, peer_variants = load_peers()
     for name, s in peer_status.items():
@@ -451,8 +443,7 @@ def main():
             "new_distances": NEW_DISTANCES,
         },
         "timing": "best of the repeats after one untimed call; lo, its native call and the "
-        "reference in "
-        "interleaved rounds",
+        "reference in interleaved rounds",
         "accuracy": "|1 - w_D1 / w|, w = second-moment radius of the returned irradiance on its "
         "own grid",
         "peers": peer_status,

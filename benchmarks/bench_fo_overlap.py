@@ -93,8 +93,8 @@ def direct_overlap(system, z):
 def main():
     system = lo.paper_table1()
     print(
-        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-        f"load {load_average():.2f} | commit {source_commit()}"
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
+        f"{load_average():.2f} | commit {source_commit()}"
     )
     rows = {}
     for name, z in CURVES.items():
@@ -122,8 +122,7 @@ def main():
             }
             print(
                 f"lo FO curve {name}, {path}: {t_all:.4f} s (threads=0), {t_one:.4f} s "
-                "(threads=1), "
-                f"first call {cold:.3f} s, max |G - reference| {error:.1e}"
+                f"(threads=1), first call {cold:.3f} s, max |G - reference| {error:.1e}"
             )
         two_d, radial = rows[f"{name} 2d"], rows[f"{name} radial"]
         print(
@@ -150,9 +149,8 @@ def main():
         row["speedup"] = row["direct_extrapolated_s"] / row["threads0_s"]
         print(
             f"{name}: direct, extrapolated from {len(direct)} ranges: "
-            f"{row['direct_extrapolated_s']:.0f} s; "
-            f"lo is {row['speedup']:.0f}x faster (target: lo <= 1 s for 200 ranges; "
-            f"{'met' if row['threads0_s'] <= 1.0 else 'NOT met'})"
+            f"{row['direct_extrapolated_s']:.0f} s; lo is {row['speedup']:.0f}x faster (target: lo "
+            f"<= 1 s for 200 ranges; {'met' if row['threads0_s'] <= 1.0 else 'NOT met'})"
         )
 
     out = Path(__file__).resolve().parent / "results" / "bench_fo_overlap.json"

@@ -65,8 +65,7 @@ def main():
         }
         print(
             f"{name:28s} {t:6.3f} s  {res.evaluations:4d} evaluations in {res.core_calls:3d} core "
-            "calls  "
-            f"objective {res.objective:.6g} {res.unit}  {res.values}"
+            f"calls  objective {res.objective:.6g} {res.unit}  {res.values}"
         )
     design = lo.optimize(*PROBLEMS["smallest_fov_radius_defocus"]).system
     misaligned = lo.parameters.replace(design, MISALIGNMENT)
@@ -94,9 +93,9 @@ def main():
             ),
         }
         print(
-            f"align {search:8s}: shots to within 1 % of the best G, seeds 0-4: {reached}; "
-            f"total {[r['shots_total'] for r in runs]}; "
-            f"{np.mean([r['seconds'] for r in runs]):.2f} s each"
+            f"align {search:8s}: shots to within 1 % of the best G, seeds 0-4: {reached}; total "
+            f"{[r['shots_total'] for r in runs]}; {np.mean([r['seconds'] for r in runs]):.2f} s "
+            "each"
         )
 
     out = Path(__file__).resolve().parent / "results" / "bench_optimize.json"

@@ -62,8 +62,7 @@ def main():
         )
         print(
             f"{N}^2 screen with subharmonics: lo {1e3 * t_lo:.1f} ms, aotools {1e3 * t_peer:.1f} "
-            "ms: lo "
-            f"{t_peer / t_lo:.1f}x faster (target >= 5x)"
+            f"ms: lo {t_peer / t_lo:.1f}x faster (target >= 5x)"
         )
     except ImportError:
         print(f"{N}^2 screen with subharmonics: lo {1e3 * t_lo:.1f} ms (aotools not installed)")

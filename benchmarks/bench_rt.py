@@ -63,8 +63,8 @@ TARGETS = {
 
 
 # ---------------------------------------------------------------------------------------------
-# Baseline: Appendix B as a reader of the paper would write it (NumPy, loop over ranges,
-# vectorised over the emitters of one range).
+# Baseline: Appendix B as a reader of the paper would write it (NumPy, loop over ranges, vectorised
+# over the emitters of one range).
 # ---------------------------------------------------------------------------------------------
 def m_free_space(z):
     """Free-space propagation over z, Eq. (B6)."""
@@ -109,14 +109,13 @@ def baseline_overlap(system, ranges, n=N_EMITTERS, half_width=GRID_HALF_WIDTH):
     d = f + det.defocus  # lens-to-detector distance (f in B16, plus the defocus)
     offset, tilt = np.asarray(beam.offset), np.asarray(beam.tilt)
     # B7-B8 index the grid as (i - n/2) d/n and subtract the centroid; here the index is (i -
-    # (n-1)/2)
-    # so the grid is symmetric about the centroid, and the centroid is added (the grid follows the
-    # beam).
+    # (n-1)/2) so the grid is symmetric about the centroid, and the centroid is added (the grid
+    # follows the beam).
     k = np.arange(n) - 0.5 * (n - 1)
     out = np.empty(len(ranges))
     for iz, z in enumerate(ranges):
-        # B1-B6: centroid ray gives the beam centre. Its radius follows the library's default
-        # width law w^2 = w0^2 + (theta z)^2 (D1 far-field form), so both codes model the same beam.
+        # B1-B6: centroid ray gives the beam centre. Its radius follows the library's default width
+        # law w^2 = w0^2 + (theta z)^2 (D1 far-field form), so both codes model the same beam.
         w = np.hypot(w0, theta * z) if beam.width_law == "gaussian" else w0 + theta * z
         centre = offset + tilt * z
         step = 2.0 * half_width * w / (n - 1)
@@ -128,8 +127,8 @@ def baseline_overlap(system, ranges, n=N_EMITTERS, half_width=GRID_HALF_WIDTH):
         # B13-B16: scattering plane -> aperture stop -> ideal lens -> detector plane.
         m = m_free_space(d) @ m_ideal_lens(f) @ m_free_space(z)
 
-        # B9-B10: the two rays of an emitter aim at opposite edges of the aperture, here (+R, 0)
-        # and (-R, 0); x and y propagate independently (paraxial).
+        # B9-B10: the two rays of an emitter aim at opposite edges of the aperture, here (+R, 0) and
+        # (-R, 0); x and y propagate independently (paraxial).
         def detector_height(h, a):
             return m[0, 0] * h + m[0, 1] * (a - h) / z
 
@@ -217,14 +216,14 @@ def run_case(name, offset, tilt, detector_offset, obstruction):
 def main():
     load = load_average()
     print(
-        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-        f"load average {load:.2f}"
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
+        f"average {load:.2f}"
     )
     print(
         f"{RANGES.size} ranges {RANGES[0]:g}-{RANGES[-1]:g} m; baseline grid "
-        f"{N_EMITTERS}x{N_EMITTERS} "
-        f"over +-{GRID_HALF_WIDTH:g} w(z); reference: lo tolerance {REFERENCE_TOLERANCE:g}; "
-        f"best of {REPEATS_BASELINE} (baseline) / {REPEATS_LO} (lo) warm runs\n"
+        f"{N_EMITTERS}x{N_EMITTERS} over +-{GRID_HALF_WIDTH:g} w(z); reference: lo tolerance "
+        f"{REFERENCE_TOLERANCE:g}; best of {REPEATS_BASELINE} (baseline) / {REPEATS_LO} (lo) warm "
+        "runs\n"
     )
     if load > 0.5:
         print(
@@ -243,9 +242,8 @@ def main():
         print(
             f"{r['case']:8} {r['baseline_s'] * 1e3:7.1f}ms {r['baseline_max_abs_error']:9.1e} "
             f"{r['lo_tolerance']:7.0e} {r['lo_threads0_s'] * 1e3:7.2f}ms "
-            f"{r['lo_threads1_s'] * 1e3:7.2f}ms "
-            f"{r['speedup_threads0']:7.1f}x {r['speedup_threads1']:7.1f}x "
-            f"{r['lo_max_abs_error']:9.1e} "
+            f"{r['lo_threads1_s'] * 1e3:7.2f}ms {r['speedup_threads0']:7.1f}x "
+            f"{r['speedup_threads1']:7.1f}x {r['lo_max_abs_error']:9.1e} "
             f"{'>=' + format(r['target_speedup'], 'g') + 'x':>5} "
             f"{'met' if r['target_met'] else 'NOT met'}"
         )

@@ -54,8 +54,8 @@ def main():
 
     load = load_average()
     print(
-        f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | load {load:.2f} | "
-        f"commit {source_commit()}"
+        f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | load {load:.2f} | commit "
+        f"{source_commit()}"
     )
     t0 = time.perf_counter()
     with (
@@ -80,12 +80,11 @@ def main():
     for name, (t, r) in rows.items():
         print(
             f"{name:8s} {t:6.2f} s  {MEMBERS / t:6.0f} members/s  {r.attrs['members_per_task']:4d} "
-            "members per task "
-            f"({r.attrs['engine']})"
+            f"members per task ({r.attrs['engine']})"
         )
     print(
-        f"cluster start {t_start:.1f} s (not timed above); cluster / local = {ratio:.2f} "
-        f"(target <= {TARGET_RATIO}); results equal bit for bit: {same}"
+        f"cluster start {t_start:.1f} s (not timed above); cluster / local = {ratio:.2f} (target "
+        f"<= {TARGET_RATIO}); results equal bit for bit: {same}"
     )
     out = Path(__file__).resolve().parent / "results" / "bench_studies.json"
     out.write_text(

@@ -95,17 +95,14 @@ def main():
     }
     print(
         f"public API: full curve {t_full * 1e3:.1f} ms, four quadrants one call each "
-        f"{t_quad * 1e3:.1f} ms "
-        f"({t_quad / t_full:.1f}x), telecover() {t_tele * 1e3:.1f} ms ({t_tele / t_full:.1f}x, "
-        "quadrants together "
-        f"plus the full curve)"
+        f"{t_quad * 1e3:.1f} ms ({t_quad / t_full:.1f}x), telecover() {t_tele * 1e3:.1f} ms "
+        f"({t_tele / t_full:.1f}x, quadrants together plus the full curve)"
     )
     print(
         f"core, one thread: full {t_core_full * 1e3:.2f} ms, four quadrants together "
-        f"{t_core_quad * 1e3:.2f} ms "
-        f"({t_core_quad / t_core_full:.1f}x, target {TARGET:g}x); nodes per range "
-        f"{core_full.evaluations / len(RANGES):.0f} "
-        f"and {core_quad[0].evaluations / len(RANGES):.0f}"
+        f"{t_core_quad * 1e3:.2f} ms ({t_core_quad / t_core_full:.1f}x, target {TARGET:g}x); nodes "
+        f"per range {core_full.evaluations / len(RANGES):.0f} and "
+        f"{core_quad[0].evaluations / len(RANGES):.0f}"
     )
     print(f"quadrant sum error {sum_error:.1e}; together vs one at a time {separate_error:.1e}")
     path = Path(__file__).resolve().parent / "results" / "bench_telecover.json"

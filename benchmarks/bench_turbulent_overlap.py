@@ -55,12 +55,11 @@ def main():
     print(
         f"{REALIZATIONS} realisations x {RANGES.size} ranges, {BEAM_GRID}^2 grid: {t_full:.2f} s "
         f"({t_full / REALIZATIONS:.3f} s per realisation; one more realisation "
-        f"{per_realization:.3f} s, "
-        f"fixed cost {t_one - per_realization:.2f} s)"
+        f"{per_realization:.3f} s, fixed cost {t_one - per_realization:.2f} s)"
     )
     print(
-        f"mean G at {RANGES[-1]:g} m: {res.overlap[-1]:.4f} +- {res.error_estimate[-1]:.4f} "
-        f"(5-95 %: {res.low[-1]:.4f}-{res.high[-1]:.4f})"
+        f"mean G at {RANGES[-1]:g} m: {res.overlap[-1]:.4f} +- {res.error_estimate[-1]:.4f} (5-95 "
+        f"%: {res.low[-1]:.4f}-{res.high[-1]:.4f})"
     )
     out = Path(__file__).resolve().parent / "results" / "bench_turbulent_overlap.json"
     out.write_text(

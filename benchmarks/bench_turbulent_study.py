@@ -96,8 +96,7 @@ def main():
         print(f"{name:15s} {t:6.2f} s  {REALIZATIONS / t:5.1f} realisations/s  {how}")
     print(
         f"cluster start {t_start:.1f} s (not timed above); cluster / overlap = {ratio:.2f} (target "
-        "<= "
-        f"{TARGET_RATIO}); results equal bit for bit: {same}"
+        f"<= {TARGET_RATIO}); results equal bit for bit: {same}"
     )
     out = Path(__file__).resolve().parent / "results" / "bench_turbulent_study.json"
     out.write_text(

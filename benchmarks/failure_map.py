@@ -270,8 +270,8 @@ def plot_failure_map(fm, path):
         rt["ranges_m"],
         rt["detector_airy_radii"],
         rt["error"],
-        f"RT against FO radial; red: |error| = {FAILURE_TOLERANCE:g}\n"
-        f"dashed: Table 1 detector ({table1:.0f} Airy radii); x, o: tested points",
+        f"RT against FO radial; red: |error| = {FAILURE_TOLERANCE:g}\ndashed: Table 1 detector "
+        f"({table1:.0f} Airy radii); x, o: tested points",
         airy_label,
         table1,
     )

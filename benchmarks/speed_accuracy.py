@@ -133,8 +133,8 @@ COLOURS = {
 }
 
 
-# ---------------------------------------------------------------------------------------------
-# 1. Speed against accuracy
+# --------------------------------------------------------------------------------------------- 1.
+# Speed against accuracy
 # ---------------------------------------------------------------------------------------------
 def reference(system, z):
     g = radial(system, z, REFERENCE_RADIAL_PERIODS)
@@ -274,8 +274,7 @@ def run_scene(name, spec, with_direct):
                 "max_error": error,
                 "public_setting": False,
                 "note": f"timed at {DIRECT_RANGES} m and extrapolated to {z.size} ranges (far "
-                "ranges are "
-                "the cheapest: a lower bound); error over those ranges only",
+                "ranges are the cheapest: a lower bound); error over those ranges only",
             }
         )
     auto = []
@@ -305,9 +304,8 @@ def run_scene(name, spec, with_direct):
         fastest = min(ok, key=lambda p: p["time_s"]) if ok else None
         fastest_public = min(ok_public, key=lambda p: p["time_s"]) if ok_public else None
         # Calls timed minutes apart see different loads on a shared machine (a thread that is not
-        # scheduled
-        # holds up a parallel loop for milliseconds): auto and the fastest method are timed again in
-        # alternation, and sub-second ones also on one thread.
+        # scheduled holds up a parallel loop for milliseconds): auto and the fastest method are
+        # timed again in alternation, and sub-second ones also on one thread.
         auto_s, fastest_s, ratio, ratio_one = a["time_s"], float("nan"), float("nan"), float("nan")
         if fastest:
             short = min(a["time_s"], fastest["time_s"]) < SINGLE_THREAD_CHECK_BELOW
@@ -488,8 +486,8 @@ def main():
     start = time.perf_counter()
     load_start = load_average()
     print(
-        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | "
-        f"load average {load_start:.2f} | commit {source_commit()}"
+        f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
+        f"average {load_start:.2f} | commit {source_commit()}"
     )
     if load_start > 0.5:
         print(
@@ -529,24 +527,21 @@ def main():
     rows = [row for s in scenes.values() for row in s["auto_vs_fastest"]]
     print(
         "\nauto against the fastest single method meeting the tolerance (requirement: <= "
-        f"{AUTO_MAX_RATIO:g}x); "
-        f"'1 thread': the same ratio with threads=1 (sub-{SINGLE_THREAD_CHECK_BELOW:g} s rows); 'x "
-        "public': against "
-        f"the fastest setting lo.overlap exposes (FO radial only at {RADIAL_DEFAULT:g} periods per "
-        "panel)"
+        f"{AUTO_MAX_RATIO:g}x); '1 thread': the same ratio with threads=1 "
+        f"(sub-{SINGLE_THREAD_CHECK_BELOW:g} s rows); 'x public': against the fastest setting "
+        f"lo.overlap exposes (FO radial only at {RADIAL_DEFAULT:g} periods per panel)"
     )
     header = (
         f"{'scene':21} {'tol':>6} {'auto ->':16} {'auto':>9} {'auto err':>8} "
-        f"{'fastest meeting tol':24} "
-        f"{'time':>9} {'ratio':>7} {'met':>4} {'1 thread':>8} {'x public':>8}"
+        f"{'fastest meeting tol':24} {'time':>9} {'ratio':>7} {'met':>4} {'1 thread':>8} "
+        f"{'x public':>8}"
     )
     print(header)
     print("-" * len(header))
     for r in rows:
         print(
             f"{r['scene']:21} {r['tolerance']:6.0e} {r['auto_chosen']:16} "
-            f"{r['auto_s'] * 1e3:7.2f}ms "
-            f"{r['auto_max_error']:8.1e} {str(r['fastest']):24} "
+            f"{r['auto_s'] * 1e3:7.2f}ms {r['auto_max_error']:8.1e} {str(r['fastest']):24} "
             f"{(r['fastest_s'] or float('nan')) * 1e3:7.2f}ms {r['ratio']:6.1f}x "
             f"{'yes' if r['requirement_met'] else 'NO':>4} {r['ratio_threads1']:7.1f}x "
             f"{r['ratio_to_fastest_public']:7.1f}x"
@@ -558,9 +553,8 @@ def main():
     plot_failure_map(fm, RESULTS / "failure_map.png")
     print(
         f"\nfailure map ({sections['failure_map_s']:.0f} s): RT error > {FAILURE_TOLERANCE:g} at "
-        f"{CUT_RANGE:g} m for "
-        f"detector radii {fm['rt_cut']['failing_airy_radii']} Airy radii (Table 1 detector: "
-        f"{fm['table1_detector_in_airy_radii']:.0f})"
+        f"{CUT_RANGE:g} m for detector radii {fm['rt_cut']['failing_airy_radii']} Airy radii "
+        f"(Table 1 detector: {fm['table1_detector_in_airy_radii']:.0f})"
     )
     for z in ("5", "29", "100", "300", "1000", "3000"):
         key = min(
@@ -622,12 +616,11 @@ def main():
         "load_average_1min": load_start,
         "load_average_1min_end": load_end,
         "timing": f"best of {REPEATS} calls after one untimed call (_common.best_time); threads = "
-        f"{THREADS} "
-        f"(all cores) unless stated; auto_vs_fastest: the two in alternating rounds (best of "
-        f"{PAIRED_ROUNDS[0]} below {SINGLE_THREAD_CHECK_BELOW:g} s, else {PAIRED_ROUNDS[1]})",
+        f"{THREADS} (all cores) unless stated; auto_vs_fastest: the two in alternating rounds "
+        f"(best of {PAIRED_ROUNDS[0]} below {SINGLE_THREAD_CHECK_BELOW:g} s, else "
+        f"{PAIRED_ROUNDS[1]})",
         "accuracy": "max over the ranges of |G - G_ref|; reference: FO radial at 1 period per "
-        "panel "
-        "(checked against FO 2-D at beam_grid 1024 over 12 w0 where not axisymmetric)",
+        "panel (checked against FO 2-D at beam_grid 1024 over 12 w0 where not axisymmetric)",
         "run_time_s": total,
         "section_times_s": sections,
     }
@@ -650,9 +643,9 @@ def main():
     )
     print(
         f"\nwrote {out} and "
-        f"{', '.join(p + '.png' for p in ('speed_accuracy', 'failure_map', 'scaling'))} "
-        f"in {RESULTS} ({total:.0f} s; load average {load_start:.2f} at the start, {load_end:.2f} "
-        "at the end)"
+        f"{', '.join(p + '.png' for p in ('speed_accuracy', 'failure_map', 'scaling'))} in "
+        f"{RESULTS} ({total:.0f} s; load average {load_start:.2f} at the start, {load_end:.2f} at "
+        "the end)"
     )
 
 

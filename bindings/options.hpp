@@ -19,7 +19,7 @@ OptionField<T, M> option(const char* name, M T::*member, const char* doc) {
   return {name, member, doc};
 }
 
-// class Name(*, field=default, ...) with read-write fields and a repr that lists them.
+// class Name(*, field=default, ...) with read-write fields, copy.copy and a repr that lists them.
 template <class T, class... M>
 pybind11::class_<T> bind_options(pybind11::module_& m, const char* name, const char* doc,
                                  OptionField<T, M>... fields) {
@@ -33,6 +33,8 @@ pybind11::class_<T> bind_options(pybind11::module_& m, const char* name, const c
           }),
           py::kw_only(), (py::arg(fields.name) = defaults.*(fields.member))...);
   (cls.def_readwrite(fields.name, fields.member, fields.doc), ...);
+  // A copy to change one field of (a plan's options for a part of its work), never the shared original.
+  cls.def("__copy__", [](const T& t) { return t; });
   cls.def("__repr__", [type = std::string(name), fields...](const T& t) {
     std::string s = type + "(", separator;
     ((s += separator + fields.name + "=" + py::repr(py::cast(t.*(fields.member))).template cast<std::string>(),

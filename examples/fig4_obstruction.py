@@ -107,8 +107,7 @@ def main():
 
     print(
         f"{'r_obs':>6} {'first signal':>13} {'full overlap':>13} {'max G':>8} "
-        f"{'1-(r_obs/R)^2':>14} "
-        f"{'thin-beam onset':>16}"
+        f"{'1-(r_obs/R)^2':>14} {'thin-beam onset':>16}"
     )
     for r_obs, style in zip(OBSTRUCTION_RADII, STYLES):
         system = lo.paper_table1(
@@ -119,8 +118,7 @@ def main():
         alpha = system.detector.radius / system.telescope.focal_length  # half FOV (rad)
         far_limit = 1.0 - (r_obs / radius) ** 2
         # A scatterer on the axis at range z sends rays through |A| <= alpha z to the detector
-        # (image
-        # radius R|1 + d/z - d/f| with d = f, Eq. B19 geometry) while the obstruction shadows
+        # (image radius R|1 + d/z - d/f| with d = f, Eq. B19 geometry) while the obstruction shadows
         # |A| < r_obs z / (z - z_obs); light first passes when alpha (z - z_obs) > r_obs.
         onset = r_obs / alpha + OBSTRUCTION_DISTANCE if r_obs > 0 else float("nan")
         first, full, peak = (
@@ -161,8 +159,8 @@ def main():
     ax_b.set_xlabel("range z (m)")
     ax_b.set_ylabel("overlap G(z)")
     ax_b.set_title(
-        f"(b) central obstruction at $z_{{obs}}$ = {OBSTRUCTION_DISTANCE} m "
-        "(Table 1, 355 nm, $w_0$ = 1 mm)",
+        f"(b) central obstruction at $z_{{obs}}$ = {OBSTRUCTION_DISTANCE} m (Table 1, 355 nm, "
+        "$w_0$ = 1 mm)",
         fontsize=10,
     )
     ax_b.grid(True, which="both", alpha=0.3)

@@ -40,16 +40,12 @@ HELIX_FIRST_FOCUS = 18.5e3  # m, the layer the telescope is first focused on
 # enters through a diffraction-limited divergence, which is shown for comparison.
 HELIX_WAVELENGTH = 1083e-9  # m
 # Assumed divergence. A diffraction-limited 7.2 mm waist at 1083 nm spreads with lambda/(pi w0) = 48
-# urad
-# (1/e^2 half-angle), wider than the 30.5 urad half FOV, so the far-range overlap could never exceed
-# 1 - exp(-2 (30.5/48)^2) = 0.56: the transmitted beam must be expanded. We take a common design
-# choice
-# of a beam half as wide as the field of view (full 1/e^2 beam angle = FFOV/2, theta = 15.25 urad);
-# a
-# beam this narrow needs a waist >= lambda/(pi theta) = 23 mm, i.e. the 7.2 mm beam expanded about
-# 3x.
-# w0 itself hardly matters here: theta z exceeds it beyond 0.5 km. Beyond a few km G depends on
-# theta only.
+# urad (1/e^2 half-angle), wider than the 30.5 urad half FOV, so the far-range overlap could never
+# exceed 1 - exp(-2 (30.5/48)^2) = 0.56: the transmitted beam must be expanded. We take a common
+# design choice of a beam half as wide as the field of view (full 1/e^2 beam angle = FFOV/2, theta =
+# 15.25 urad); a beam this narrow needs a waist >= lambda/(pi theta) = 23 mm, i.e. the 7.2 mm beam
+# expanded about 3x. w0 itself hardly matters here: theta z exceeds it beyond 0.5 km. Beyond a few
+# km G depends on theta only.
 HELIX_DIVERGENCE = HELIX_FOV / 4.0  # rad, 1/e^2 half-angle
 
 
@@ -86,8 +82,7 @@ def panel_table1(ax):
 
 def helix_system(defocus, divergence):
     # The expanded beam: a Gaussian beam cannot spread less than lambda / (pi w0) (M^2 >= 1), so a
-    # divergence
-    # below that of the 7.2 mm waist takes the smallest waist that allows it.
+    # divergence below that of the 7.2 mm waist takes the smallest waist that allows it.
     waist = (
         HELIX_WAIST
         if divergence is None
@@ -111,47 +106,40 @@ def panel_helix(ax):
     print(f"    assumed wavelength {HELIX_WAVELENGTH * 1e9:.0f} nm (metastable helium line)")
     print(
         f"    diffraction-limited divergence of w0 = 7.2 mm: {theta_dl * 1e6:.1f} urad half-angle "
-        "> half FOV "
-        f"{half_fov * 1e6:.2f} urad -> far-range G <= 1 - exp(-2 (half FOV/theta)^2) = "
+        f"> half FOV {half_fov * 1e6:.2f} urad -> far-range G <= 1 - exp(-2 (half FOV/theta)^2) = "
         f"{1 - np.exp(-2 * (half_fov / theta_dl) ** 2):.3f}"
     )
     print(
         f"    assumed divergence: full beam angle = FFOV/2, theta = {HELIX_DIVERGENCE * 1e6:.2f} "
-        "urad half-angle "
-        f"(needs a waist >= {HELIX_WAVELENGTH / (np.pi * HELIX_DIVERGENCE) * 1e3:.1f} mm: the beam "
-        "is expanded)"
+        "urad half-angle (needs a waist >= "
+        f"{HELIX_WAVELENGTH / (np.pi * HELIX_DIVERGENCE) * 1e3:.1f} mm: the beam is expanded)"
     )
     # Eq. (5) puts the focus of delta_f = 0.22 mm at 16.0 km, not at the 18.5 km layer the paper
-    # names
-    # for the first focusing step; 18.5 km needs 0.190 mm. Either 0.22 mm is the fibre position
-    # after the
-    # paper's second step (a fixed offset from that focus) or the two numbers are rounded; we plot
-    # 0.22 mm.
+    # names for the first focusing step; 18.5 km needs 0.190 mm. Either 0.22 mm is the fibre
+    # position after the paper's second step (a fixed offset from that focus) or the two numbers are
+    # rounded; we plot 0.22 mm.
     z_opt = lo.optimal_focus_range(f, HELIX_DEFOCI[0])
     defocus_first = f * f / (HELIX_FIRST_FOCUS - f)  # Eq. (5) solved for delta_f
     print(
         f"    Eq. (5): delta_f = {HELIX_DEFOCI[0] * 1e3:.2f} mm focuses at z_opt = "
-        f"{z_opt / 1e3:.2f} km; "
-        f"focus at {HELIX_FIRST_FOCUS / 1e3:.1f} km needs delta_f = {defocus_first * 1e3:.3f} mm"
+        f"{z_opt / 1e3:.2f} km; focus at {HELIX_FIRST_FOCUS / 1e3:.1f} km needs delta_f = "
+        f"{defocus_first * 1e3:.3f} mm"
     )
     # Far away (z >> z_opt) the defocused detector sees every point as a disc of radius R delta_f /
-    # f
-    # (B18 with d/z -> 0); only scatterers within (r_d - R delta_f / f) / d of the axis couple
-    # fully, and
-    # a Gaussian beam keeps 99 % of its power inside that cone if theta <= cone / sqrt(ln(100) / 2).
+    # f (B18 with d/z -> 0); only scatterers within (r_d - R delta_f / f) / d of the axis couple
+    # fully, and a Gaussian beam keeps 99 % of its power inside that cone if theta <= cone /
+    # sqrt(ln(100) / 2).
     blur = 0.5 * HELIX_DIAMETER * HELIX_DEFOCI[0] / f
     cone = (half_fov * f - blur) / (f + HELIX_DEFOCI[0])
     print(
         f"    at z -> inf, delta_f = 0.22 mm blurs a point to a {blur * 1e6:.1f} um radius disc on "
-        "the "
-        f"{half_fov * f * 1e6:.1f} um detector: full coupling only within {cone * 1e6:.2f} urad of "
-        "the axis, "
-        f"so G >= 0.99 there needs theta <= {cone / np.sqrt(np.log(100) / 2) * 1e6:.1f} urad"
+        f"the {half_fov * f * 1e6:.1f} um detector: full coupling only within {cone * 1e6:.2f} "
+        "urad of the axis, so G >= 0.99 there needs theta <= "
+        f"{cone / np.sqrt(np.log(100) / 2) * 1e6:.1f} urad"
     )
     print(
         f"{'defocus':>9} {'theta':>9} {'full overlap':>13} {'max G':>8} {'G(300 km)':>10} "
-        f"{'G(500 km)':>10} "
-        f"{'G(800 km)':>10} {'far limit':>10}"
+        f"{'G(500 km)':>10} {'G(800 km)':>10} {'far limit':>10}"
     )
     curves = [(d, HELIX_DIVERGENCE, style, None) for d, style in zip(HELIX_DEFOCI, STYLES)]
     curves.append((0.0, None, "-", "0.55"))  # diffraction-limited beam, for comparison
@@ -164,8 +152,8 @@ def panel_helix(ax):
         far = f"{1 - np.exp(-2 * (half_fov / theta) ** 2):10.4f}" if defocus == 0 else f"{'-':>10}"
         print(
             f"{defocus * 1e3:7.2f}mm {theta * 1e6:5.2f}urad "
-            f"{res.full_overlap_range(0.99) / 1e3:10.1f} km "
-            f"{res.overlap.max():8.4f} {g[0]:10.4f} {g[1]:10.4f} {g[2]:10.4f} {far}"
+            f"{res.full_overlap_range(0.99) / 1e3:10.1f} km {res.overlap.max():8.4f} {g[0]:10.4f} "
+            f"{g[1]:10.4f} {g[2]:10.4f} {far}"
         )
         label = rf"$\delta_f$ = {defocus * 1e3:.2f} mm, $\theta$ = {theta * 1e6:.4g} µrad"
         if color is not None:

@@ -125,11 +125,9 @@ def main():
     ax.text(
         0.02,
         0.97,
-        f"efficiency (power in $\\Psi$) {beam.efficiency:.3f}\n"
-        f"plateau uniformity: rms {100 * beam.uniformity_rms:.1f} %, P-V "
-        f"{100 * beam.uniformity_pv:.1f} %\n"
-        f"edge 10-90 %: {beam.edge_width * 1e3:.3f} mrad (target "
-        f"{beam.edge_width_target * 1e3:.3f})",
+        f"efficiency (power in $\\Psi$) {beam.efficiency:.3f}\nplateau uniformity: rms "
+        f"{100 * beam.uniformity_rms:.1f} %, P-V {100 * beam.uniformity_pv:.1f} %\nedge 10-90 %: "
+        f"{beam.edge_width * 1e3:.3f} mrad (target {beam.edge_width_target * 1e3:.3f})",
         transform=ax.transAxes,
         va="top",
         fontsize=8,
@@ -146,7 +144,7 @@ def main():
     ax.grid(True, alpha=0.3)
     fig.suptitle(
         f"Flat-top beam: TEM00 w0 = {WAIST * 1e3:g} mm at {WAVELENGTH * 1e9:g} nm through a "
-        f"Gerchberg-Saxton plate (power 1 W)"
+        "Gerchberg-Saxton plate (power 1 W)"
     )
     fig.savefig("fig6_flat_top.png", dpi=130)
 
@@ -157,9 +155,9 @@ def main():
         f"final amplitude error {beam.history[-1]:.4f}"
     )
     print(
-        f"efficiency {beam.efficiency:.3f}, plateau rms {100 * beam.uniformity_rms:.2f} %, "
-        f"P-V {100 * beam.uniformity_pv:.2f} %, edge {beam.edge_width * 1e3:.3f} mrad "
-        f"(target {beam.edge_width_target * 1e3:.3f} mrad, diffraction angle "
+        f"efficiency {beam.efficiency:.3f}, plateau rms {100 * beam.uniformity_rms:.2f} %, P-V "
+        f"{100 * beam.uniformity_pv:.2f} %, edge {beam.edge_width * 1e3:.3f} mrad (target "
+        f"{beam.edge_width_target * 1e3:.3f} mrad, diffraction angle "
         f"{WAVELENGTH / (np.pi * WAIST) * 1e3:.3f} mrad)"
     )
     for z, f in zip(RANGES, fields):

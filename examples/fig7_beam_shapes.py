@@ -92,8 +92,7 @@ def main():
         full = res.full_overlap_range()
         print(
             f"{label:<26} {full:10.0f} m {res.first_signal_range():10.0f} m "
-            f"{res.overlap[-1]:10.5f} "
-            f"{elapsed:7.2f} s"
+            f"{res.overlap[-1]:10.5f} {elapsed:7.2f} s"
         )
         a1.plot(RANGES, res.overlap, label=label, **style)
         a1.plot(full, np.interp(full, RANGES, res.overlap), "|", color=style["color"], ms=14, mew=2)

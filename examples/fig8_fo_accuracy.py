@@ -90,8 +90,8 @@ def run(wavelength):
         expected = "angular_spectrum" if z <= critical else "fresnel"
         if used[-1] != expected:
             raise RuntimeError(
-                f"auto used {used[-1]} at z = {z:g} m, expected {expected} "
-                f"(critical distance {critical:g} m)"
+                f"auto used {used[-1]} at z = {z:g} m, expected {expected} (critical distance "
+                f"{critical:g} m)"
             )
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", lo.SamplingWarning)
@@ -115,16 +115,16 @@ def report(r):
     eps_auto = eps_percent(r["w_auto"], r["w_d1"])
     eps_fra = eps_percent(r["w_fra"], r["w_d1"])
     print(
-        f"{lam_nm:.0f} nm: critical distance n dx^2/lambda = {r['critical']:.2f} m, "
-        f"Rayleigh range = {np.pi * WAIST**2 / r['wavelength']:.1f} m"
+        f"{lam_nm:.0f} nm: critical distance n dx^2/lambda = {r['critical']:.2f} m, Rayleigh range "
+        f"= {np.pi * WAIST**2 / r['wavelength']:.1f} m"
     )
     for method in ("angular_spectrum", "fresnel"):
         sel = r["used"] == method
         k = np.argmax(np.where(sel, eps_auto, -1.0))
         print(
             f"  auto, {method:16} {sel.sum():3d} ranges "
-            f"{RANGES[sel][0]:9.3g}-{RANGES[sel][-1]:9.3g} m: "
-            f"worst eps_w = {eps_auto[k]:.2e} % at z = {RANGES[k]:.3g} m"
+            f"{RANGES[sel][0]:9.3g}-{RANGES[sel][-1]:9.3g} m: worst eps_w = {eps_auto[k]:.2e} % at "
+            f"z = {RANGES[k]:.3g} m"
         )
     lidar = RANGES >= LIDAR_START
     print(
@@ -142,8 +142,7 @@ def report(r):
     if warned.any():
         print(
             f"    worst eps_w where it warns: {eps_fra[warned].max():.2e} %, at the last warned "
-            "range: "
-            f"{eps_fra[warned][-1]:.2e} %"
+            f"range: {eps_fra[warned][-1]:.2e} %"
         )
     if (~warned).any():
         print(f"    worst eps_w where it does not warn: {eps_fra[~warned].max():.2e} %")
@@ -201,8 +200,7 @@ def plot(results):
         )
 
         # Bottom: eps_w of auto (markers by method) and of Fraunhofer; a bar (top of the panel) and
-        # a
-        # vertical line mark the ranges where Fraunhofer warns.
+        # a vertical line mark the ranges where Fraunhofer warns.
         if warned.any():
             last = RANGES[warned][-1]
             ax_e.axvspan(

@@ -49,10 +49,8 @@ for name, free, bounds in (
     values = ", ".join(f"{p} = {v * 1e3:.4f} mm" for p, v in res.values.items())
     print(
         f"smallest FOV, {name:16s}: {values}; FOV {res.system.fov * 1e3:.3f} mrad; constraint "
-        "margins "
-        f"{', '.join(f'{k} {v:+.2e}' for k, v in res.constraints.items())}; {res.evaluations} "
-        "evaluations in "
-        f"{res.core_calls} core calls, {seconds:.2f} s"
+        f"margins {', '.join(f'{k} {v:+.2e}' for k, v in res.constraints.items())}; "
+        f"{res.evaluations} evaluations in {res.core_calls} core calls, {seconds:.2f} s"
     )
 
 design = designs["radius + defocus"].system

@@ -48,8 +48,8 @@ def main():
             system, filename, ranges=shown, result=result, planes=planes, color_by="overlap"
         )
         print(
-            f"{filename}: G({planes[0]:g} m) = {g[0]:.3f}, G({planes[1]:g} m) = {g[1]:.3f}, "
-            f"full overlap at {result.full_overlap_range():.1f} m"
+            f"{filename}: G({planes[0]:g} m) = {g[0]:.3f}, G({planes[1]:g} m) = {g[1]:.3f}, full "
+            f"overlap at {result.full_overlap_range():.1f} m"
         )
         print(f"wrote {path}")
 

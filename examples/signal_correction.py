@@ -46,31 +46,27 @@ corrected = lo.correct(z, sig.noisy * z**2, res, min_overlap=MIN_OVERLAP, signal
 
 full = sig.range_corrected_full_overlap / z**2
 print(
-    f"overlap by {res.method} ({res.error_kind} error {np.nanmax(res.error_estimate):.1g}); "
-    f"G >= {MIN_OVERLAP} from {z[~corrected.mask][0]:.1f} m, full overlap "
+    f"overlap by {res.method} ({res.error_kind} error {np.nanmax(res.error_estimate):.1g}); G >= "
+    f"{MIN_OVERLAP} from {z[~corrected.mask][0]:.1f} m, full overlap "
     f"{res.full_overlap_range():.0f} m"
 )
 print(
     f"dynamic range over {z[0]:g}-{z[-1]:g} m: with overlap "
-    f"{sig.photons.max() / sig.photons.min():.3g} "
-    f"(peak {sig.photons.max():.3g} photons/bin/shot at {z[np.argmax(sig.photons)]:.0f} m), "
-    f"without {full.max() / full.min():.3g}; at {z[-1]:g} m {sig.photons[-1]:.3g} "
-    "photons/bin/shot, "
-    f"noise {sig.std[-1]:.3g}"
+    f"{sig.photons.max() / sig.photons.min():.3g} (peak {sig.photons.max():.3g} photons/bin/shot "
+    f"at {z[np.argmax(sig.photons)]:.0f} m), without {full.max() / full.min():.3g}; at {z[-1]:g} m "
+    f"{sig.photons[-1]:.3g} photons/bin/shot, noise {sig.std[-1]:.3g}"
 )
 for r in (200.0, 2000.0, 10000.0):
     i = int(np.argmin(abs(z - r)))
     print(
         f"corrected at {z[i]:.1f} m: relative uncertainty "
-        f"{corrected.std[i] / corrected.values[i]:.2%}, "
-        "error against the truth "
+        f"{corrected.std[i] / corrected.values[i]:.2%}, error against the truth "
         f"{corrected.values[i] / sig.range_corrected_full_overlap[i] - 1:+.2%}"
     )
 pull = ((corrected.values - sig.range_corrected_full_overlap) / corrected.std)[~corrected.mask]
 print(
     f"corrected minus truth over the {pull.size} corrected bins: {np.std(pull):.3f} standard "
-    "deviations rms "
-    f"(1 for a consistent uncertainty), {np.mean(abs(pull) < 2):.1%} within 2σ"
+    f"deviations rms (1 for a consistent uncertainty), {np.mean(abs(pull) < 2):.1%} within 2σ"
 )
 
 fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6), constrained_layout=True)

@@ -46,8 +46,7 @@ def main():
         seconds = time.perf_counter() - t0
     print(
         f"{MEMBERS} members x {RANGES.size} ranges on 2 workers: {seconds:.1f} s "
-        f"({MEMBERS / seconds:.0f} "
-        f"members/s, {study.attrs['members_per_task']} members per task)"
+        f"({MEMBERS / seconds:.0f} members/s, {study.attrs['members_per_task']} members per task)"
     )
 
     nominal = lo.overlap(system, RANGES, METHOD).overlap
@@ -55,8 +54,8 @@ def main():
     widest = int(np.argmax(high - low))
     print(
         f"widest 5-95 % band at {RANGES[widest]:.0f} m: G from {low[widest]:.3f} to "
-        f"{high[widest]:.3f} "
-        f"(nominal {nominal[widest]:.3f}); at {RANGES[-1]:.0f} m: {low[-1]:.4f} to {high[-1]:.4f}"
+        f"{high[widest]:.3f} (nominal {nominal[widest]:.3f}); at {RANGES[-1]:.0f} m: {low[-1]:.4f} "
+        f"to {high[-1]:.4f}"
     )
 
     fig, ax = plt.subplots(figsize=(7.5, 4.6), constrained_layout=True)

@@ -53,9 +53,8 @@ for ax, (title, (system, z)) in zip(axes, systems.items()):
         w = np.sqrt(t.beam_wander_variance(system.beam.wavelength, system.beam.waist_radius, z[-1]))
         print(
             f"{title}, {name}: full overlap {res.full_overlap_range():.0f} m (calm "
-            f"{calm.full_overlap_range():.0f} m), "
-            f"rms wander at {z[-1]:g} m {w * 1e3:.1f} mm, widest band "
-            f"{np.max(res.high - res.low):.3f}, RT {dt:.1f} s"
+            f"{calm.full_overlap_range():.0f} m), rms wander at {z[-1]:g} m {w * 1e3:.1f} mm, "
+            f"widest band {np.max(res.high - res.low):.3f}, RT {dt:.1f} s"
         )
     if system is systems["Table 1 lidar (355 nm, FFOV 0.9 mrad)"][0]:
         zf = np.geomspace(50, 2000, 12)
@@ -79,8 +78,8 @@ for ax, (title, (system, z)) in zip(axes, systems.items()):
         )
         print(
             f"{title}, moderate, FO through phase screens: {time.perf_counter() - t0:.1f} s; mean "
-            f"G at {zf[-1]:g} m {fo.overlap[-1]:.4f} ± {fo.error_estimate[-1]:.4f} "
-            f"(RT {rt.overlap[-1]:.4f})"
+            f"G at {zf[-1]:g} m {fo.overlap[-1]:.4f} ± {fo.error_estimate[-1]:.4f} (RT "
+            f"{rt.overlap[-1]:.4f})"
         )
         ax.errorbar(
             zf,

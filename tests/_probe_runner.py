@@ -353,7 +353,7 @@ class Campaign:
         )
         if self.not_run:
             head += (
-                f" ({self.not_run} more not run after {self.max_hangs} hangs "
-                f"or {self.max_crashes} crashes)"
+                f" ({self.not_run} more not run after {self.max_hangs} hangs or {self.max_crashes} "
+                "crashes)"
             )
         return f"{head}:\n{self.tally.table()}\n\n{self.tally.report()}"

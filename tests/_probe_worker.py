@@ -44,8 +44,7 @@ CLEAN_TYPES = (ValueError, TypeError)
 #: parameter.
 SIGNATURE_DUMP = "incompatible function arguments"
 #: Path quantities whose exact value is +inf where a path holds no turbulence (Cn² = 0 or zero
-#: length):
-#: the Fried parameter and the isoplanatic angle.
+#: length): the Fried parameter and the isoplanatic angle.
 UNBOUNDED_WITHOUT_TURBULENCE = ("fried_parameter", "isoplanatic_angle")
 
 

@@ -45,8 +45,7 @@ def test_grid_points_equal_overlap_of_the_misaligned_system_bit_for_bit():
 
 def test_fourier_optics_maps_are_lo_overlap_per_grid_point_and_agree_with_rt():
     # RT's diffraction error here is bounded by 3.5e-3 (validity.rt_error_bound; the two differ by
-    # 2.4e-3):
-    # 1e-2 leaves room for the tilts.
+    # 2.4e-3): 1e-2 leaves room for the tilts.
     z, tilt = np.array([150.0, 1000.0]), np.array([-3e-4, 0.0, 2e-4])
     fo = lo.alignment_map(BIAXIAL, z, tilt_x=tilt, method="fo")
     assert (
@@ -81,10 +80,9 @@ def test_axisymmetric_map_is_mirror_and_swap_symmetric():
 
 def test_a_tilt_equals_the_offset_that_puts_the_beam_centre_at_the_same_place():
     # Ray tracing weighs each scatterer at range z by the beam irradiance there, which depends on
-    # the centre
-    # offset + tilt z and the radius only: at z0 the two beams light the same scatterers, so G
-    # agrees to the
-    # two quadrature errors (PAIR_TOL). Away from z0 the centres differ and so does G.
+    # the centre offset + tilt z and the radius only: at z0 the two beams light the same scatterers,
+    # so G agrees to the two quadrature errors (PAIR_TOL). Away from z0 the centres differ and so
+    # does G.
     z0, z = 800.0, np.array([100.0, 800.0])
     t = np.array([1e-4, 2e-4, 3e-4])
     by_tilt = lo.alignment_map(lo.paper_table1(), z, tilt_x=t, tolerance=TOL)["overlap"].values

@@ -83,9 +83,8 @@ def test_decisions_follow_the_physics():
     linear = lo.paper_table1(width_law="linear")  # the marginal-ray law exists only in RT
     assert lo.explain(linear, Z, tolerance=1e-4).method == "rt"
     # A detector of 1.7 Airy radii overfilled by the beam image: diffraction moves light across its
-    # edge both
-    # ways, so RT errs by 3.4e-5 (0.9 % of G <= 3.7e-3), not by the 10 % of G a focused point would
-    # lose.
+    # edge both ways, so RT errs by 3.4e-5 (0.9 % of G <= 3.7e-3), not by the 10 % of G a focused
+    # point would lose.
     fibre = lo.explain(SCENES["diffraction-limited fibre"], Z, tolerance=1e-3)
     assert fibre.method == "rt" and fibre.rt_model_error < 1e-3 / 3
     assert lo.explain(SCENES["overfilled fibre"], Z, tolerance=1e-4).method == "rt"

@@ -29,42 +29,35 @@ from lidar_overlap.optics.beam_fields import (
 # 2.6e5 terms.
 POWER_RTOL = 1e-12
 # Same formula as Field.gaussian; its analytic amplitude differs from the sampled-power scaling by
-# the tail
-# beyond the window (exp(-2 * 16^2) for LG, exp(-2 * 6.4^2) for the super-Gaussian) and the Poisson
-# error of
-# the Riemann sum (exp(-pi^2 (w/dx)^2 / 2) < 1e-100): rounding only.
+# the tail beyond the window (exp(-2 * 16^2) for LG, exp(-2 * 6.4^2) for the super-Gaussian) and the
+# Poisson error of the Riemann sum (exp(-pi^2 (w/dx)^2 / 2) < 1e-100): rounding only.
 TEM00_RTOL = 1e-12
 # The sampled loop is closed, so the unwrapped phase returns to its start plus 2 pi times an
-# integer, up to the
-# rounding of 512 differences (~1e-13); a wrong charge is off by at least 1.
+# integer, up to the rounding of 512 differences (~1e-13); a wrong charge is off by at least 1.
 WINDING_ATOL = 1e-9
 # Far-field on-axis irradiance / peak: an exact zero of the field and, by the grid's 4-fold
-# symmetry, of the
-# DFT sum (l = 1, 2, 3 mod 4); FFT rounding leaves an amplitude ~eps log2(n^2) ~ 4e-15 of the peak,
-# i.e.
-# ~1e-29 in irradiance (measured <= 2e-34). Allowed: 1e-24.
+# symmetry, of the DFT sum (l = 1, 2, 3 mod 4); FFT rounding leaves an amplitude ~eps log2(n^2) ~
+# 4e-15 of the peak, i.e. ~1e-29 in irradiance (measured <= 2e-34). Allowed: 1e-24.
 FAR_NULL_RTOL = 1e-24
 # Second moments of LG modes with 8 samples per w0 in a +-16 w0 window: Poisson and truncation
-# errors are
-# below 1e-100, so rounding (measured ~1e-14); the same target as the TEM00 radius in test_field.
+# errors are below 1e-100, so rounding (measured ~1e-14); the same target as the TEM00 radius in
+# test_field.
 RADIUS_RTOL = 1e-9
 # Annulus far field relative to I(0), for |v| <= 4 pi (past the third dark ring for eps = 0, 0.3 and
-# 0.5):
-# area-weighted edge pixels perturb the core by ~(dx/a)^2 / 3 (measured 1.5e-5 to 3.1e-5 at a/dx =
-# 100);
-# allowed twice that. A binary (not anti-aliased) mask errs by 1.7e-4 to 3.7e-4 and fails.
+# 0.5): area-weighted edge pixels perturb the core by ~(dx/a)^2 / 3 (measured 1.5e-5 to 3.1e-5 at
+# a/dx = 100); allowed twice that. A binary (not anti-aliased) mask errs by 1.7e-4 to 3.7e-4 and
+# fails.
 ANNULUS_PROFILE_ATOL = 6e-5
 ANNULUS_V_MAX = 4 * math.pi
 # Sampled annulus area sum(U)/U0 dx^2 vs pi (a^2 - b^2): ~1e3 edge pixels whose 8x8 coverage errs by
-# up to
-# 1/128 of a pixel, mostly cancelling: ~1e-5 of the area (a/dx = 100). A binary mask errs by ~1e-3.
+# up to 1/128 of a pixel, mostly cancelling: ~1e-5 of the area (a/dx = 100). A binary mask errs by
+# ~1e-3.
 ANNULUS_AREA_RTOL = 1e-4
 # Single-FFT Fraunhofer is unitary (Parseval); rounding of FFTs over 2.6e5 points, as in
 # test_propagate.
 FAR_POWER_RTOL = 1e-10
 # Order-10 top-hat inside r < R/2: the closed form droops by 1 - exp(-2 (1/2)^20) = 1.9e-6 at R/2
-# itself
-# (1e-6 holds only inside 0.484 R); allowed 2e-6.
+# itself (1e-6 holds only inside 0.484 R); allowed 2e-6.
 FLAT_TOP_RTOL = 2e-6
 
 LAM = 1064e-9

@@ -70,8 +70,9 @@ def test_bundled_file_is_the_built_in_scenario():
     from_file, built_in = load_scenario(TABLE1), table1_scenarios()[0]
     assert from_file.system == built_in.system == lo.paper_table1()
     assert np.array_equal(from_file.ranges, built_in.ranges)
-    for key in ("name", "description", "method", "options", "outputs"):
+    for key in ("name", "description", "method", "outputs"):
         assert getattr(from_file, key) == getattr(built_in, key), key
+    assert from_file.method_object() == built_in.method_object() == lo.RT()  # Table 1 defined once
 
 
 def test_aberrated_scenario_loads_and_refuses_bad_terms(tmp_path):
@@ -386,8 +387,7 @@ def test_a_nan_curve_is_a_failure_not_a_file(tmp_path, capsys, monkeypatch):
 
 def test_the_summary_prints_no_range_that_does_not_exist(tmp_path, capsys):
     # G = 0 everywhere: the obstruction (20 mm) hides the receiver's central rays, the only ones
-    # that reach
-    # the detector from these short ranges, from the whole Table 1 beam up to 20 m
+    # that reach the detector from these short ranges, from the whole Table 1 beam up to 20 m
     text = TABLE1.read_text().replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
     text = text.replace("count = 200", "count = 20").replace("start = 5.0", "start = 1.0")
     (tmp_path / "s.toml").write_text(_csv_only(text.replace("stop = 1000.0", "stop = 20.0")))

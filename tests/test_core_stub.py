@@ -23,8 +23,7 @@ def test_stub_ships_next_to_the_module():
 
 def test_stub_matches_the_module(tmp_path):
     # Stub and module from the same tree, seen alone: from an installed package's site-packages mypy
-    # would also
-    # see every other module there (and refuse those that shadow its own library).
+    # would also see every other module there (and refuse those that shadow its own library).
     (tmp_path / "lidar_overlap").symlink_to(PACKAGE, target_is_directory=True)
     root = str(tmp_path)
     env = {

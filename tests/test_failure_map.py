@@ -33,8 +33,7 @@ BASE = lo.paper_table1()
 AIRY = 1.22 * BASE.beam.wavelength * BASE.telescope.focal_length / BASE.telescope.diameter
 
 # RT error at 1000 m, measured: 4.2e-3 at 50 Airy radii, 4.2e-4 at 400, 6.8e-5 at 12. The assertions
-# keep a
-# factor >= 2 from the measured values.
+# keep a factor >= 2 from the measured values.
 RT_INSIDE_AIRY = 50.0  # inside the failure region: error > 2 x TOLERANCE
 RT_OUTSIDE_LARGE_AIRY = 400.0  # above it: error < TOLERANCE / 2, and equal to the Airy tail
 RT_OUTSIDE_SMALL_AIRY = 12.0  # below it: error < TOLERANCE / 10
@@ -89,10 +88,9 @@ def test_rt_passes_below_the_band_for_an_overfilled_small_detector():
 def test_fo_2d_grid_size_is_not_the_limit():
     assert fo_2d_error(FAR, 64, 10.0) < FO_CONVERGED_ATOL
     # Far away the propagated samples are lambda z / (window w0) = (pi / 10) w(z) apart whatever the
-    # grid
-    # size; N sets only the output window, N pi / 10 beam radii wide. At N = 16 it still reaches
-    # +-2.5 w(z),
-    # beyond which the Gaussian holds ~4e-6 of its power. The library flags the small window anyway.
+    # grid size; N sets only the output window, N pi / 10 beam radii wide. At N = 16 it still
+    # reaches +-2.5 w(z), beyond which the Gaussian holds ~4e-6 of its power. The library flags the
+    # small window anyway.
     with pytest.warns(lo.SamplingWarning):
         assert fo_2d_error(FAR, 16, 10.0) < FO_CONVERGED_ATOL
 

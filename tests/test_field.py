@@ -23,27 +23,22 @@ import lidar_overlap as lo
 
 EPS = np.finfo(float).eps
 # Coordinates are integers times the spacing: exact, or off by a few ulps of the half-window if the
-# library
-# forms them as j*spacing - (n/2)*spacing.
+# library forms them as j*spacing - (n/2)*spacing.
 COORD_ATOL_ULPS = 4 * EPS
 # Sums of n^2 <= 65536 products, rounded in any order: well below 1e-13 relative.
 ROUNDING_RTOL = 1e-13
-# Riemann sum of a sampled Gaussian with w0/spacing >= 8: by Poisson summation its error is
-# ~2 exp(-pi^2 (w0/spacing)^2 / 2) < 1e-100; the window (>= +-4 w0) cuts off erfc(4 sqrt 2) ~ 1e-15
-# of the
-# power; what is left is the rounding of ~6e4 terms.
+# Riemann sum of a sampled Gaussian with w0/spacing >= 8: by Poisson summation its error is ~2
+# exp(-pi^2 (w0/spacing)^2 / 2) < 1e-100; the window (>= +-4 w0) cuts off erfc(4 sqrt 2) ~ 1e-15 of
+# the power; what is left is the rounding of ~6e4 terms.
 GAUSS_POWER_RTOL = 1e-12
 # Pointwise TEM00 profile (analytic amplitude sqrt(2P / (pi w0^2))): rounding of exp and sqrt only,
-# or at most
-# the ~1e-15 truncated power if the library normalises the sampled sum instead.
+# or at most the ~1e-15 truncated power if the library normalises the sampled sum instead.
 GAUSS_PROFILE_RTOL = 1e-12
 # Second moments: same Poisson and truncation arguments (the tail beyond 4 w0 carries ~1e-13 of the
-# second
-# moment); the brief's target for a grid spanning +-4 w0 with >= 8 samples per w0.
+# second moment); the brief's target for a grid spanning +-4 w0 with >= 8 samples per w0.
 RADIUS_RTOL = 1e-9
 # First moments of coordinates up to 8 w0 summed over 65536 samples: the rounding bound n^2 eps * 8
-# w0 is
-# ~1e-10 w0 (pairwise summation does far better); the sampling error is again ~exp(-100).
+# w0 is ~1e-10 w0 (pairwise summation does far better); the sampling error is again ~exp(-100).
 CENTROID_ATOL_W0 = 1e-10
 
 NOT_POSITIVE = [0.0, -1e-3, math.nan, math.inf, -math.inf]
@@ -153,9 +148,8 @@ def test_offset_gaussian_centroid_and_radius(center_w0):
 
 def test_elliptical_beam_radius_is_second_moment():
     # |U|^2 = exp(-2x^2/wx^2 - 2y^2/wy^2): sigma_x^2 = wx^2/4, so sqrt(2 (sigma_x^2 + sigma_y^2)) =
-    # sqrt((wx^2 + wy^2) / 2). A radius taken from one axis or from the peak would fail.
-    # 12 samples per wx, half-window 3.2 mm = 4.6 wy: sampling and truncation errors as for the
-    # TEM00 grids.
+    # sqrt((wx^2 + wy^2) / 2). A radius taken from one axis or from the peak would fail. 12 samples
+    # per wx, half-window 3.2 mm = 4.6 wy: sampling and truncation errors as for the TEM00 grids.
     n, dx, wx, wy = 256, 2.5e-5, 0.3e-3, 0.7e-3
     x = (np.arange(n) - n // 2) * dx
     values = np.exp(-(x[None, :] ** 2) / wx**2 - x[:, None] ** 2 / wy**2)

@@ -23,8 +23,7 @@ import lidar_overlap as lo
 LAM, W0 = 355e-9, 1e-3
 THETA_D = LAM / (np.pi * W0)
 # Direct sum against the Parseval sum: the coupling is interpolated (cubic, 24 radii) over a beam
-# whose
-# irradiance is resolved by ~200 samples; measured 1.7e-6 for the flat-top at 60 m.
+# whose irradiance is resolved by ~200 samples; measured 1.7e-6 for the flat-top at 60 m.
 DIRECT_ATOL = 1e-5
 # Same TEM00 on two grids (256 over +-5 w0, 320 over +-8 w0): each within the FO table and alias
 # error (~4e-7, docs/fo_overlap.md) of the truth.
@@ -34,8 +33,7 @@ REGRID_ATOL = 1e-6
 EPS_G_MAX = 0.5e-2
 RT_FO_MIN_G = 0.05
 # M^2 = 1 + 1e-6 through the Schell-model route against the propagated TEM00: the same Gaussian
-# irradiance
-# sampled on two grids, plus the 1e-6 change of width.
+# irradiance sampled on two grids, plus the 1e-6 change of width.
 GSM_LIMIT_ATOL = 1e-6
 
 

@@ -14,8 +14,7 @@ from lidar_overlap import parameters
 pytest.importorskip("scipy")
 
 #: Model tolerance well below the noise (0.1 sigma and less); one thread: the curves are short, and
-#: OpenMP
-#: over a dozen ranges costs more than it gains on a shared machine.
+#: OpenMP over a dozen ranges costs more than it gains on a shared machine.
 TOL, FAST = 1e-5, dict(method="rt", tolerance=1e-5, threads=1)
 SIGMA = 0.01
 #: The truth is computed 100x tighter than the fits' model.
@@ -136,8 +135,7 @@ def test_jacobian_covariance_against_a_bootstrap_of_the_residuals():
 
 
 #: A beam tilted towards the field's edge, 5 cm off axis: at long range the offset only adds offset
-#: / z to
-#: the tilt, so the two are degenerate there; near ranges tell them apart.
+#: / z to the tilt, so the two are degenerate there; near ranges tell them apart.
 EDGE = {"beam.tilt[0]": 3.5e-4, "beam.offset[0]": 0.05}
 
 

@@ -13,16 +13,14 @@ W0, WAVELENGTH = 0.2e-3, 1064e-9
 Z_R = np.pi * W0**2 / WAVELENGTH
 N, SPACING = 128, 4 * W0 / 64  # a window of 8 w0: tight, so that the beam soon outgrows it
 # Angular spectrum on the padded grid: the band limit and the window cut ~1e-7 of the power (the
-# sizing
-# fraction); the second-moment radius moves by ~1e-6.
+# sizing fraction); the second-moment radius moves by ~1e-6.
 AS_D1_RTOL = 1e-5
 # Fresnel of a Gaussian is exact; padding only adds rounding.
 FRESNEL_D1_RTOL = 1e-11
 # Padding by hand and by the core feed the same numbers to the same plans.
 PAD_ATOL = 1e-12
 # The Fresnel output spacing must sample the irradiance at Nyquist: window >= twice the input's
-# diameter,
-# where the diameter holds all but 1e-7 of the power (2 * 2.84 w0 for TEM00).
+# diameter, where the diameter holds all but 1e-7 of the power (2 * 2.84 w0 for TEM00).
 TEM00_RADIUS_1E7 = np.sqrt(np.log(1e7) / 2) * W0
 
 

@@ -20,14 +20,12 @@ import pytest
 import lidar_overlap as lo
 
 # Ctrl-C: the core asks Python for signals every 0.1 s between ranges and transforms; one second
-# covers
-# that, the longest single step of the computation below (a few ms) and the interpreter's start of
-# unwinding.
+# covers that, the longest single step of the computation below (a few ms) and the interpreter's
+# start of unwinding.
 INTERRUPT_LATENCY = 1.0
 # Kolmogorov screens: mean structure function over 64 screens of 128^2 against 6.88 (r/r0)^(5/3).
-# The core
-# is within 2 % of it (tests/cpp/test_phase_screen.cpp, 2000 screens); 64 screens add ~3 % sampling
-# scatter.
+# The core is within 2 % of it (tests/cpp/test_phase_screen.cpp, 2000 screens); 64 screens add ~3 %
+# sampling scatter.
 STRUCTURE_RTOL = 0.08
 
 
@@ -115,12 +113,10 @@ def _interrupted_run(code: str) -> tuple[float, str]:
     "call",
     [
         "lo.overlap(lo.LidarSystem(beam=lo.GaussianBeam(tilt=(1e-4, 0.0))), np.geomspace(5, 3000, "
-        "300000), 'rt', "
-        "tolerance=1e-8)",
+        "300000), 'rt', tolerance=1e-8)",
         "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 400), 'fo', fo_path='2d')",
         "lo.overlap(lo.paper_table1(), np.geomspace(100, 2000, 20), 'fo', "
-        "turbulence=lo.Turbulence(1e-14), "
-        "realizations=2000)",
+        "turbulence=lo.Turbulence(1e-14), realizations=2000)",
     ],
 )
 def test_ctrl_c_stops_a_long_computation_within_a_second(call):
@@ -142,9 +138,8 @@ def test_fo_2d_is_bit_reproducible_across_threads_and_processes():
     assert one.tobytes() == every.tobytes()
     code = (
         "import numpy as np, lidar_overlap as lo; s = "
-        "lo.LidarSystem(beam=lo.GaussianBeam(offset=(0.1, 0.0), "
-        "tilt=(-0.3e-3, 0.0))); print(lo.overlap(s, np.geomspace(50.0, 2000.0, 6), 'fo', "
-        "fo_path='2d', "
+        "lo.LidarSystem(beam=lo.GaussianBeam(offset=(0.1, 0.0), tilt=(-0.3e-3, 0.0))); "
+        "print(lo.overlap(s, np.geomspace(50.0, 2000.0, 6), 'fo', fo_path='2d', "
         "threads=3).overlap.tobytes().hex())"
     )
     other = subprocess.run(

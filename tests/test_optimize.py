@@ -2,6 +2,8 @@
 recovered within the flatness of G at its maximum, the generic objective agrees, unreachable targets
 and bad input are refused."""
 
+import sys
+
 import numpy as np
 import pytest
 
@@ -34,8 +36,8 @@ def test_smallest_fov_meets_the_constraint_and_is_tight():
     )
     radius, g_limit = res.objective, 1.0  # unobstructed: G_limit = 1 - (r_obs / R)² = 1
     # Feasible for the exact G: the search's constraints use G - error bound, so the check's G
-    # (itself within
-    # CHECK_TOL) must reach 0.99 G_limit less CHECK_TOL at every range the objective checks.
+    # (itself within CHECK_TOL) must reach 0.99 G_limit less CHECK_TOL at every range the objective
+    # checks.
     assert np.all(_g(res.system, objective.ranges) >= 0.99 * g_limit - CHECK_TOL)
     # Tight: 1 % smaller misses the target by far more than both tolerances.
     smaller = parameters.replace(TABLE1, {"detector.radius": 0.99 * radius})
@@ -201,3 +203,16 @@ def test_align_refuses_bad_input(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         lo.align(NARROW, 1000.0, **args)
+
+
+def test_optimize_needs_scipy_but_not_xarray(monkeypatch):
+    """A tilt grid goes through the core's alignment grid directly, not through lo.alignment_map's
+    xarray Dataset: optimize needs only its documented extra."""
+    monkeypatch.setitem(sys.modules, "xarray", None)
+    best = lo.optimize(
+        lo.paper_table1(), lo.MaximumOverlapAt(range=300.0), ["beam.tilt[0]"], [(-3e-4, 3e-4)]
+    )
+    assert best.values["beam.tilt[0]"] == pytest.approx(0.0, abs=2e-5)
+    assert best.objective == pytest.approx(
+        lo.overlap(lo.paper_table1(), [300.0]).overlap[0], abs=1e-6
+    )

@@ -30,46 +30,36 @@ from scipy.special import j0, j1
 import lidar_overlap as lo
 
 # In-focus Airy checks (z = 1e9 m): the residual defocus phase pi R^2/(lambda z) ~ 5e-5 rad changes
-# the
-# encircled energy at second order (< 3e-9); the library integrates the OTF to 1e-10.
+# the encircled energy at second order (< 3e-9); the library integrates the OTF to 1e-10.
 AIRY_ATOL = 1e-8
 # Annular pupil: as above, plus the quad error of Mahajan's cross term (~1e-14) and a shadow
-# magnified by
-# z/(z - z_obs) = 1 + 1e-10.
+# magnified by z/(z - z_obs) = 1 + 1e-10.
 ANNULAR_ATOL = 1e-7
 # Tolerance passed to the RT engine: far below every assertion tolerance.
 RT_TOL = 1e-8
 # The project's RT-vs-FO target (Eq. 6, in %) where G_RT > RT_FO_MIN_G (a relative error of a
-# smaller G
-# says little: diffraction adds a fixed absolute amount there).
+# smaller G says little: diffraction adds a fixed absolute amount there).
 EPS_G_MAX = 0.5
 RT_FO_MIN_G = 0.05
 # Far-range FO loss vs the Airy tail of an in-focus point at the detector centre, J0^2(v) + J1^2(v)
 # (~2/(pi v) = 1.07e-3 at v = 597). Not exact: the beam image is not a point (1/e^2 radius w d/z =
 # 0.06-0.11 mm against r_d = 0.45 mm) and a point at finite range is defocused (blur R d/z =
-# 0.075-0.14 mm);
-# both bring light nearer the edge and raise the loss, by up to ~15 % here.
+# 0.075-0.14 mm); both bring light nearer the edge and raise the loss, by up to ~15 % here.
 AIRY_TAIL_RTOL = 0.25
 # Geometrically (RT) the whole beam lands on the detector beyond 500 m: Gaussian tail ~exp(-20).
 RT_FAR_ATOL = 1e-6
 # Parseval sum vs the radial quadrature of single-scatterer couplings: the quadrature (6
-# Gauss-Legendre
-# nodes per panel) is converged to <= 5e-6 (checked against an adaptive quad), the library's OTF
-# table
-# interpolation to ~5e-6; 5e-5 leaves a margin.
+# Gauss-Legendre nodes per panel) is converged to <= 5e-6 (checked against an adaptive quad), the
+# library's OTF table interpolation to ~5e-6; 5e-5 leaves a margin.
 PARSEVAL_ATOL = 5e-5
 # Direct propagation with the shadow held centred vs emitter_coupling: the same physics; what is
-# left
-# is the sampled pupil edge (n = 512, 32 x 32 sub-pixel coverage) and detector disc (r_d/128
-# spacing),
-# measured <= 1e-6 and converging to 0 as both are refined.
+# left is the sampled pupil edge (n = 512, 32 x 32 sub-pixel coverage) and detector disc (r_d/128
+# spacing), measured <= 1e-6 and converging to 0 as both are refined.
 DIRECT_ATOL = 5e-6
 # With the obstruction's true shadow, which moves by |image offset| z_obs/d <= 11 um (4 % of its
-# radius)
-# for the scatterers tested: the library's shift invariance neglects that move. With the detector
-# defocused the point's field is complex, so the move changes C at first order (measured <= 1e-3 of
-# C).
-# Acceptable if well below the project's 0.5 % target: half of it, relative.
+# radius) for the scatterers tested: the library's shift invariance neglects that move. With the
+# detector defocused the point's field is complex, so the move changes C at first order (measured <=
+# 1e-3 of C). Acceptable if well below the project's 0.5 % target: half of it, relative.
 SHADOW_SHIFT_RTOL = 2.5e-3
 # G from 6 x 6 Gauss-Hermite nodes of direct couplings (shadow held centred) vs lo.overlap: the
 # quadrature (<= 5e-6 against a converged one), the Parseval table (~5e-6), pixelation (~1e-6).
@@ -175,8 +165,8 @@ def test_parseval_sum_vs_pointwise_quadrature(z):
     assert abs(got - g) < PARSEVAL_ATOL
 
 
-# Small diffraction-limited receiver for direct per-emitter propagation: the Airy radius
-# 1.22 lambda f/D = 122 um is larger than the detector.
+# Small diffraction-limited receiver for direct per-emitter propagation: the Airy radius 1.22 lambda
+# f/D = 122 um is larger than the detector.
 S_LAM, S_D, S_F, S_RD, S_ROBS, S_ZOBS, S_DEFOCUS, S_W0 = (
     1e-6,
     2e-3,
@@ -270,9 +260,8 @@ def test_direct_per_emitter_propagation(z):
     assert abs(c_across - lo.emitter_coupling(shifted, z, across, method="fo")) < DIRECT_ATOL
 
     # G: 6 x 6 Gauss-Hermite over the beam irradiance at z, (2/(pi w^2)) exp(-2|P|^2/w^2). The
-    # system is
-    # axisymmetric (the moving shadow too), so each node's coupling is that at its radius. The outer
-    # nodes move the shadow by up to 38 um, but carry 1 % of the weight.
+    # system is axisymmetric (the moving shadow too), so each node's coupling is that at its radius.
+    # The outer nodes move the shadow by up to 38 um, but carry 1 % of the weight.
     u, wu = np.polynomial.hermite.hermgauss(6)
     w = beam_radius(z, S_LAM, S_W0)
     cache = {}

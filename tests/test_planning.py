@@ -254,3 +254,79 @@ def test_run_refuses_what_is_not_a_plan():
         ValueError, match=r"^ranges\[0\] = -1 is invalid"
     ):  # the core checks what it is given
         lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), ranges=np.array([-1.0, 2.0])))
+
+
+QUADRANT = lo.ApertureMask.quadrants().split()[0]
+MASKED = dataclasses.replace(TABLE1, telescope=dataclasses.replace(TABLE1.telescope, mask=QUADRANT))
+Z8 = np.geomspace(150.0, 3000.0, 8)
+
+
+def test_no_plan_computes_a_curve_whatever_the_system(calls):
+    """Plain, masked, aberrated (auto defers its two-curve estimate to the run) and turbulent."""
+    turbulence = lo.Turbulence(1e-14)
+    for system in (TABLE1, MASKED, ABERRATED):
+        for method in ("rt", "fo", "auto", lo.Auto(1e-2)):
+            lo.plan(system, Z8, method)
+    for model in (lo.RT(), lo.FO(), lo.Auto(1e-2)):
+        lo.plan(TABLE1, Z8, lo.Turbulent(turbulence, model, realizations=4))
+    deferred = lo.plan(ABERRATED, Z8, "auto", tolerance=1e-2)
+    assert deferred.method == "auto" and "when the plan runs" in str(deferred)
+    assert not calls
+    assert lo.run(deferred).method == "rt"
+    assert calls["overlap_rt_aberrated"]
+
+
+def test_a_retargeted_plan_runs_the_new_system():
+    """with_system keeps the decisions for a system of the same kind (a misaligned one)."""
+    p = lo.plan(TABLE1, Z8, "rt", tolerance=1e-6)
+    tilted = lo.parameters.replace(TABLE1, {"beam.tilt[0]": 2e-4})
+    assert lo.run(p.with_system(tilted)) == lo.run(lo.plan(tilted, Z8, "rt", tolerance=1e-6))
+
+
+@pytest.mark.parametrize(
+    "system, message",
+    [
+        (MASKED, "telescope.mask"),
+        (ABERRATED, "aberrations"),
+        (
+            dataclasses.replace(TABLE1, beam=lo.FlatTopBeam(355e-9, 1e-3, 1e-3, grid=64)),
+            "FlatTopBeam",
+        ),
+        (lo.paper_table1(width_law="linear"), "width_law"),
+    ],
+)
+def test_a_plan_refuses_a_system_of_another_kind_by_name(system, message):
+    """The reproducers of a plan edited by hand: a quadrant mask (G 0.25, not 1.0), aberrations
+    (0.826, not 1.0) and a flat-top beam are other computations, refused naming what changed."""
+    for method in ("rt", "fo"):
+        p = lo.plan(TABLE1, Z8, method)
+        with pytest.raises(ValueError, match=message):
+            p.with_system(system)
+
+
+def test_the_refused_reproducers_give_the_right_curves_planned_afresh():
+    g_quadrant = lo.overlap(MASKED, Z8, "rt").overlap[-1]
+    g_aberrated = lo.overlap(
+        lo.with_aberrations(TABLE1, lo.Aberrations(zernike={11: 2e-6})), Z8, "rt"
+    ).overlap[-1]
+    assert g_quadrant == pytest.approx(0.25, abs=1e-3)
+    assert g_aberrated == pytest.approx(0.826, abs=2e-3)
+
+
+def test_a_plan_at_other_ranges_keeps_its_decisions():
+    p = lo.plan(TABLE1, Z8, lo.Auto(1e-2))
+    near = np.geomspace(20.0, 100.0, 5)
+    q = p.at(near)
+    assert q.backend == p.backend and q.options is p.options and np.array_equal(q.ranges, near)
+    assert lo.run(q).overlap == pytest.approx(
+        lo.overlap(TABLE1, near, "rt", tolerance=p.rt_quadrature_tolerance).overlap, abs=0
+    )
+    with pytest.raises(ValueError, match="ranges"):
+        p.at([100.0, 50.0])
+
+
+def test_a_plan_holds_each_decision_once():
+    p = lo.plan(TABLE1, Z8, "fo")
+    fields = {f.name for f in dataclasses.fields(p)}
+    assert not fields & {"method", "fo_path", "error_kind", "turbulence", "rt_quadrature_tolerance"}
+    assert (p.method, p.fo_path, p.error_kind) == ("fo", "radial", "nominal")

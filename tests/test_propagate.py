@@ -27,42 +27,33 @@ D1_RTOL = 1e-4  # project target for the beam radius, 0.01 % (the paper's Fig. 8
 # w/z overshoots lambda/(pi w0) by (zR/z)^2 / 2 = 5e-7 at z = 1000 zR; sampling adds ~1e-12.
 DIVERGENCE_RTOL = 1e-6
 # AS and single-FFT Fresnel are unitary (Parseval) when band limit and window cut nothing (Gaussian
-# tails
-# ~exp(-50)); the scaled transform is a Riemann sum of a Gaussian with 8 samples per radius (Poisson
-# error
-# ~exp(-300)). Left: rounding of FFT sums over 2.6e5 points.
+# tails ~exp(-50)); the scaled transform is a Riemann sum of a Gaussian with 8 samples per radius
+# (Poisson error ~exp(-300)). Left: rounding of FFT sums over 2.6e5 points.
 POWER_RTOL = 1e-10
 # Chained AS (max |difference| / max |U|): transfer functions multiply exactly inside the band, and
-# with
-# k z <= 4.2e3 the phases are rounded to ~1e-12 rad.
+# with k z <= 4.2e3 the phases are rounded to ~1e-12 rad.
 CHAIN_TOL = 1e-10
 # Complex TEM00 field (max |U - U_closed| / max |U|): AS is exact, the closed form paraxial; a plane
-# wave at
-# angle t*theta (theta = 3.4e-4) is off by k z (t theta)^4 / 8 = 3.6e-9 t^4 at z = 0.37 m, ~1e-8
-# over the
-# spectrum. Fresnel and A7 of a Gaussian are exact. Phases k z (up to 5e9 rad) are rounded by a few
-# eps k z.
+# wave at angle t*theta (theta = 3.4e-4) is off by k z (t theta)^4 / 8 = 3.6e-9 t^4 at z = 0.37 m,
+# ~1e-8 over the spectrum. Fresnel and A7 of a Gaussian are exact. Phases k z (up to 5e9 rad) are
+# rounded by a few eps k z.
 FIELD_TOL = 3e-8
 PHASE_ROUNDING = 16 * EPS
 # A1 quadrature (quad to ~1e-13; the spectrum beyond 1/lambda and the band limit carries exp(-39) of
-# the
-# amplitude), relative to the waist amplitude.
+# the amplitude), relative to the waist amplitude.
 AS_EXACT_TOL = 1e-9
 # On-axis aperture irradiance: the anti-aliased disc is a coverage-weighted Riemann sum whose edge
-# error is
-# second order, 8 pi^2 kappa (1 - cos(pi N)) (N dx/a)^2 with kappa ~ 0.045 for pixel coverage of a
-# circle
-# (the phase pi r^2/(lambda z) changes by 2 pi N dx/a across an edge pixel). Allowed: twice the
-# worst case
-# (odd N), 14 (N dx/a)^2: 0.034 of the peak value 4 at N = 5 with a/dx = 102, 1.3e-3 at N = 1.
+# error is second order, 8 pi^2 kappa (1 - cos(pi N)) (N dx/a)^2 with kappa ~ 0.045 for pixel
+# coverage of a circle (the phase pi r^2/(lambda z) changes by 2 pi N dx/a across an edge pixel).
+# Allowed: twice the worst case (odd N), 14 (N dx/a)^2: 0.034 of the peak value 4 at N = 5 with a/dx
+# = 102, 1.3e-3 at N = 1.
 ON_AXIS_EDGE_COEFF = 14.0
 # Airy profile relative to I0: the disc edge (a/dx = 190) perturbs the core by ~(dx/a)^2 ~ 3e-5 of
 # I0.
 AIRY_PROFILE_ATOL = 3e-5
 # Encircled energy at the dark rings (I and dI/dr vanish on the circle, so fractional-coverage
-# weights on a
-# grid of pi/16 in v err only at second order) and at v = 20: ~3e-5 from the disc edge; allowed
-# 1e-4.
+# weights on a grid of pi/16 in v err only at second order) and at v = 20: ~3e-5 from the disc edge;
+# allowed 1e-4.
 AIRY_EE_ATOL = 1e-4
 
 W0 = 5e-3  # paper Appendix D waist
@@ -272,8 +263,8 @@ def test_complex_field(method, where, zoom):
 
 def test_angular_spectrum_is_not_paraxial():
     # w0 = 2 lambda (divergence 0.16 rad): the exact transfer function and its paraxial form differ
-    # by ~5e-3 of
-    # the amplitude at z_c, so a Fresnel kernel fails here. 8 samples per w0, window +-8 w0.
+    # by ~5e-3 of the amplitude at z_c, so a Fresnel kernel fails here. 8 samples per w0, window +-8
+    # w0.
     lam, w0, n, dx = 1e-6, 2e-6, 128, 0.25e-6
     f = lo.Field.gaussian(lam, w0, n, dx)
     z = 0.999 * critical(f)
@@ -310,8 +301,8 @@ def test_power_conserved(method, factor, scaled):
 
 def test_angular_spectrum_chaining():
     # Offset, tilted TEM00 beam (w0 = 25 um, 10 samples per w0, zR = 1.85 mm): asymmetric, so a
-    # flipped or
-    # shifted spectrum would not chain; it moves and spreads noticeably within z_c = 0.75 mm.
+    # flipped or shifted spectrum would not chain; it moves and spreads noticeably within z_c = 0.75
+    # mm.
     n, dx, lam, w0 = 128, 2.5e-6, 1064e-9, 25e-6
     f0 = lo.Field.gaussian(lam, w0, n, dx, center=(20e-6, -12e-6))
     f = lo.Field(
@@ -388,10 +379,9 @@ def test_airy_focal_plane(lens_aperture):
 
 def test_hard_edge_single_fft_reports_its_aliased_spectrum(aperture):
     # A hard edge has power up to the input's Nyquist frequency, and the single-FFT output window
-    # lambda z/dx
-    # is exactly that band: its outer part is aliased. The closed form is still met to the
-    # pixel-edge
-    # tolerance (above), but the warning must say why the outer region cannot be trusted.
+    # lambda z/dx is exactly that band: its outer part is aliased. The closed form is still met to
+    # the pixel-edge tolerance (above), but the warning must say why the outer region cannot be
+    # trusted.
     with warnings.catch_warnings(record=True):
         with pytest.warns(lo.SamplingWarning, match=r"Nyquist.*aliased"):
             lo.propagate(aperture, AP_A**2 / AP_LAM, method="fresnel")  # Fresnel number 1
@@ -399,8 +389,7 @@ def test_hard_edge_single_fft_reports_its_aliased_spectrum(aperture):
 
 def test_zoomed_focus_is_inside_validity(lens_aperture):
     # A chirp-z output window is the caller's choice: Airy rings outside it are not computed,
-    # nothing wraps
-    # around, so no warning (A3 holds, the input chirp is sampled).
+    # nothing wraps around, so no warning (A3 holds, the input chirp is sampled).
     quiet(lens_aperture, AIRY_F, method="fresnel", output_spacing=AIRY_DXO)
 
 

@@ -27,28 +27,23 @@ import lidar_overlap as lo
 # Tolerance passed to lo.overlap in the closed-form checks: far below the assertion tolerances.
 ENGINE_TOL = 1e-8
 # Point-aperture limit: D = 1e-7 m shifts the accepted scatterer disc by |A| <= 5e-8 m against a
-# beam
-# radius >= 1e-3 m; the first-order effect averages out over the aperture, the rest is ~(5e-5)^2.
-# What remains is the engine tolerance (1e-8) plus rounding: 1e-6 leaves a wide margin.
+# beam radius >= 1e-3 m; the first-order effect averages out over the aperture, the rest is
+# ~(5e-5)^2. What remains is the engine tolerance (1e-8) plus rounding: 1e-6 leaves a wide margin.
 POINT_APERTURE_ATOL = 1e-6
 # Thin beam (w0 = 1e-9 m, 1e-12 rad): the point image is smeared by <= ~1e-9 m against a detector
-# radius of
-# 4.5e-4 m; where the circle of confusion and the detector have equal radii the coupling changes at
-# first
-# order, by ~2 * 1e-9 / (pi * 4.5e-4) ~ 1.4e-6. 1e-5 covers that and the engine tolerance.
+# radius of 4.5e-4 m; where the circle of confusion and the detector have equal radii the coupling
+# changes at first order, by ~2 * 1e-9 / (pi * 4.5e-4) ~ 1.4e-6. 1e-5 covers that and the engine
+# tolerance.
 THIN_BEAM_ATOL = 1e-5
 # Far-range obstruction: with the paper beam the whole beam images well inside the detector at z >=
-# 1e4 m
-# (Gaussian tail beyond 4 m at w = 1.1 m is ~exp(-30)), so the only terms are the exact shadow size
-# and
-# the engine tolerance.
+# 1e4 m (Gaussian tail beyond 4 m at w = 1.1 m is ~exp(-30)), so the only terms are the exact shadow
+# size and the engine tolerance.
 FAR_OBSTRUCTION_ATOL = 1e-7
 # The plateau value 1 - (r_obs/R)^2 ignores the shadow magnification z/(z - z_obs): at z = 1e4 m the
 # difference is (r_obs/R)^2 * 2 * 0.7/1e4 <= 4e-5 for r_obs = 40 mm.
 FAR_PLATEAU_ATOL = 5e-5
 # "Zero" signal: below the thin-beam onset the accepted and blocked regions are separated by >= 2e-5
-# m,
-# i.e. 2e4 residual beam radii: the engine must return 0 up to rounding.
+# m, i.e. 2e4 residual beam radii: the engine must return 0 up to rounding.
 ZERO_SIGNAL = 1e-12
 # Exactly focused thin beam: every ray reaches the image point, G = 1 up to rounding and tolerance.
 FOCUS_ATOL = 1e-9
@@ -191,8 +186,7 @@ def test_far_range_obstruction_plateau(r_obs):
 @pytest.mark.parametrize("r_obs, onset_cm", [(0.02, 4514), (0.04, 8959)])
 def test_signal_onset_thin_beam(r_obs, onset_cm):
     # on axis the accepted aperture points are |A| <= r_d z / f, the blocked ones |A| < r_obs z / (z
-    # - z_obs):
-    # signal starts where they meet, z = r_obs f / r_d + z_obs
+    # - z_obs): signal starts where they meet, z = r_obs f / r_d + z_obs
     onset = r_obs * F / R_D + Z_OBS
     assert round(onset, 2) == pytest.approx(onset_cm / 100.0, abs=1e-9)
     system = lo.paper_table1(obstruction_radius=r_obs, **THIN)
@@ -211,10 +205,9 @@ def test_signal_onset_thin_beam(r_obs, onset_cm):
 @pytest.mark.parametrize("r_obs", [0.02, 0.04])
 def test_wide_beam_signal_starts_before_thin_beam_onset(r_obs):
     # A scatterer at transverse P accepts aperture points in a disc centred on P (radius r_d z / f),
-    # while the
-    # shadow is centred on -P z_obs / (z - z_obs): off-axis scatterers of a real beam move the two
-    # apart, so
-    # light passes beside the obstruction before the on-axis onset r_obs f / r_d + z_obs.
+    # while the shadow is centred on -P z_obs / (z - z_obs): off-axis scatterers of a real beam move
+    # the two apart, so light passes beside the obstruction before the on-axis onset r_obs f / r_d +
+    # z_obs.
     onset = r_obs * F / R_D + Z_OBS
     z = np.linspace(5.0, 1.2 * onset, 1200)
     res = lo.overlap(lo.paper_table1(obstruction_radius=r_obs), z, tolerance=1e-6)
@@ -267,8 +260,8 @@ def test_defocused_paper_beam_peaks_at_z_opt(defocus):
     z_opt = lo.optimal_focus_range(F, defocus)
     system = lo.paper_table1(defocus=defocus)
     # At z_opt every ray of a scatterer reaches -P d/z = -P defocus/f: accepted iff |P| <= r_d f /
-    # defocus,
-    # so G(z_opt) = 1 - exp(-2 (r_d f / (defocus w))^2), which is 1 to ~1e-13 for the paper beam.
+    # defocus, so G(z_opt) = 1 - exp(-2 (r_d f / (defocus w))^2), which is 1 to ~1e-13 for the paper
+    # beam.
     w = beam_radius(z_opt, 1e-3, 355e-9 / (np.pi * 1e-3), "gaussian")
     expected = 1.0 - np.exp(-2.0 * (R_D * F / (defocus * w)) ** 2)
     z = np.sort(np.append(np.geomspace(1.0, 1e5, 400), z_opt))
@@ -276,8 +269,7 @@ def test_defocused_paper_beam_peaks_at_z_opt(defocus):
     g_opt = res.overlap[np.searchsorted(z, z_opt)]
     assert g_opt == pytest.approx(expected, abs=FOCUS_ATOL)
     # z_opt is where G is largest, so it lies on the 0.99 plateau. (How far before z_opt the plateau
-    # starts
-    # depends on the defocus: ~z_opt/3.4 for 2 mm, ~z_opt/1.6 for 8 mm, so no fixed factor is
+    # starts depends on the defocus: ~z_opt/3.4 for 2 mm, ~z_opt/1.6 for 8 mm, so no fixed factor is
     # asserted.)
     assert g_opt >= res.overlap.max() - FOCUS_ATOL
     assert res.full_overlap_range(0.99) < z_opt
@@ -289,9 +281,8 @@ def test_defocused_paper_beam_peaks_at_z_opt(defocus):
 
 def test_strongly_defocused_far_range_limit():
     # Far away c -> -defocus/f: a thin beam sees a circle of confusion R defocus/f = 0.6 mm > r_d
-    # for 8 mm,
-    # so G -> (r_d f / (R defocus))^2 = 0.5625 (the paper beam's larger image would lower it
-    # further).
+    # for 8 mm, so G -> (r_d f / (R defocus))^2 = 0.5625 (the paper beam's larger image would lower
+    # it further).
     defocus = 8e-3
     g = lo.overlap(lo.paper_table1(defocus=defocus, **THIN), [1e7], tolerance=ENGINE_TOL).overlap[0]
     d = F + defocus

@@ -65,8 +65,7 @@ def test_the_step_follows_the_tolerance_and_the_parameter_scale():
 
 def test_detector_radius_against_the_point_aperture_closed_form():
     # A point aperture sees the detector as a cone of half-angle r_d/f: G = 1 - exp(-u), u = 2 (r_d
-    # z / f)² / w²,
-    # so dG/dr_d = exp(-u) 4 r_d z² / (f² w²).
+    # z / f)² / w², so dG/dr_d = exp(-u) 4 r_d z² / (f² w²).
     system = parameters.replace(lo.paper_table1(), {"telescope.diameter": 1e-7})
     z = np.array([0.8, 1.5, 3.0])  # where u ~ 1: the beam still near its 1 mm waist
     with warnings.catch_warnings():
@@ -84,11 +83,9 @@ def test_detector_radius_against_the_point_aperture_closed_form():
 
 def test_tilt_is_range_times_offset_and_vanishes_at_the_crossing():
     # RT's G depends on the beam through its centre offset + tilt z (and its radius): dG/dtilt = z
-    # dG/doffset.
-    # At 500 m the beam is centred on the axisymmetric receiver, where G is even in the centre: both
-    # vanish;
-    # before, the centre is at positive x, so tilting towards +x takes it farther off the axis and
-    # lowers G.
+    # dG/doffset. At 500 m the beam is centred on the axisymmetric receiver, where G is even in the
+    # centre: both vanish; before, the centre is at positive x, so tilting towards +x takes it
+    # farther off the axis and lowers G.
     z = np.array([100.0, 150.0, 500.0])
     ds = lo.sensitivity(CROSSING, z, ["beam.tilt[0]", "beam.offset[0]"], tolerance=TOL)
     d, e = ds["derivative"].values, ds["error_estimate"].values

@@ -22,16 +22,13 @@ SYSTEM = lo.paper_table1(wavelength=532e-9)
 Z = np.geomspace(10.0, 15e3, 60)
 INSTRUMENT = dict(pulse_energy=0.05, receiver_efficiency=0.1, range_resolution=7.5)
 #: Shettle's fit (200-2000 nm) to the cross sections of Bodhaine et al. (1999, JAOT 16, 1854), as
-#: coded in
-#: GATS' molec_scatter2.pro: σ = a λ⁻⁴ / (1 + b λ⁻² + c λ⁻⁴), λ in nm, σ in cm². Stated to fit
-#: within 0.1 %.
+#: coded in GATS' molec_scatter2.pro: σ = a λ⁻⁴ / (1 + b λ⁻² + c λ⁻⁴), λ in nm, σ in cm². Stated to
+#: fit within 0.1 %.
 SHETTLE = (3.96815e-16, -1.15682e4, -3.68073e7)
 SHETTLE_TOL = 1e-3
 #: Nicolet (1984, Planet. Space Sci. 32, 1467), from Bates' cross sections: σ = 4.02e-28 / λ^(4 + x)
-#: cm², λ in
-#: µm, x = 0.389 λ + 0.09426/λ - 0.3228 below 0.55 µm, else 0.04. Stated ±0.5 % against Bates;
-#: Bates' refractive
-#: index (Edlén) and CO₂ differ from Bodhaine's by as much again.
+#: cm², λ in µm, x = 0.389 λ + 0.09426/λ - 0.3228 below 0.55 µm, else 0.04. Stated ±0.5 % against
+#: Bates; Bates' refractive index (Edlén) and CO₂ differ from Bodhaine's by as much again.
 NICOLET_TOL = 1.2e-2
 
 
@@ -78,9 +75,8 @@ def test_sea_level_backscatter_and_wavelength_scaling():
     assert atm.number_density(0.0) == pytest.approx(n0, rel=1e-12)
     beta = atm.molecular_backscatter(532e-9, 0.0)
     # The value commonly quoted for 532 nm at sea level, ≈ 1.5e-6 m⁻¹ sr⁻¹ (α_m ≈ 1.3e-5 m⁻¹ over
-    # S_m ≈ 8.5 sr);
-    # the precise check is the next line, Bodhaine et al. (1999) through Shettle's fit of their
-    # cross sections.
+    # S_m ≈ 8.5 sr); the precise check is the next line, Bodhaine et al. (1999) through Shettle's
+    # fit of their cross sections.
     assert beta == pytest.approx(1.5e-6, rel=0.05)
     assert beta == pytest.approx(
         shettle_cross_section(532e-9) * n0 / molecular_lidar_ratio(532e-9), rel=SHETTLE_TOL
@@ -88,8 +84,8 @@ def test_sea_level_backscatter_and_wavelength_scaling():
     # The depolarisation (ρ ≈ 0.028) raises the lidar ratio 1-2 % above 8π/3.
     assert 1.005 < molecular_lidar_ratio(532e-9) / (8 * math.pi / 3) < 1.02
     # λ⁻⁴ with the dispersion of air: the local exponent of ≈ 4.08 commonly quoted for the visible
-    # (it is 4.088
-    # at 532 nm in Bodhaine's cross sections), and 4.0-4.2 on average from 355 to 1064 nm.
+    # (it is 4.088 at 532 nm in Bodhaine's cross sections), and 4.0-4.2 on average from 355 to 1064
+    # nm.
     slope = -math.log(
         atm.molecular_backscatter(533e-9, 0.0) / atm.molecular_backscatter(531e-9, 0.0)
     ) / math.log(533 / 531)

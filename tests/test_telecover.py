@@ -148,9 +148,8 @@ def test_tilt_north_south_asymmetry_sign_and_size():
 @pytest.mark.parametrize("z", [15.0, 150.0, 1500.0])
 def test_tilted_quadrant_g_against_a_monte_carlo_of_rays(z):
     # The 1-D path (one moving disc: Table 1, no NA, no obstruction) end to end: scatterers drawn
-    # from the
-    # Gaussian beam (sigma = w/2 per axis), aperture points uniform over the north quadrant, each
-    # ray counted.
+    # from the Gaussian beam (sigma = w/2 per axis), aperture points uniform over the north
+    # quadrant, each ray counted.
     s = tilted_table1(80e-6)
     north = lo.ApertureMask.quadrants().split()[0]
     g = lo.overlap(
@@ -172,12 +171,9 @@ def test_tilted_quadrant_g_against_a_monte_carlo_of_rays(z):
 
 def test_stated_errors_bound_the_actual_ones_through_masks():
     # The 1-D path's error estimate (Gauss-Kronrod past the kinks it knows, tails bounded) against
-    # the same
-    # path at 1e-10: random tilts, offsets, defocus, detector offsets and NAs (none, wide: left out,
-    # narrow: the
-    # scatterer-plane path); rotated quadrants, six sectors and an annular sector; tolerances 1e-3
-    # and 1e-4.
-    # (Leaving the corners out of the breakpoints failed this.)
+    # the same path at 1e-10: random tilts, offsets, defocus, detector offsets and NAs (none, wide:
+    # left out, narrow: the scatterer-plane path); rotated quadrants, six sectors and an annular
+    # sector; tolerances 1e-3 and 1e-4. (Leaving the corners out of the breakpoints failed this.)
     rng = np.random.default_rng(5)
     z = np.geomspace(5.0, 5000.0, 40)
     for i in range(12):
@@ -214,8 +210,8 @@ def test_stated_errors_bound_the_actual_ones_through_masks():
 )
 def test_extreme_beams_through_the_sectors_give_finite_g_in_0_1(tilt, offset, waist):
     # Beams far off the aperture, tilted out of the field of view, point-like or wide, from 0.5 m to
-    # 1000 km:
-    # the 1-D path and the sectors-together call stay finite and within [0, 1] (or refuse by name).
+    # 1000 km: the 1-D path and the sectors-together call stay finite and within [0, 1] (or refuse
+    # by name).
     s = lo.paper_table1()
     s = dataclasses.replace(
         s,
@@ -348,8 +344,7 @@ def test_fourier_optics_quadrants_against_the_full_curve_and_rt():
     ).rt_model_error  # RT's estimated diffraction error
     assert 5e-4 < diffraction < 5e-3
     # the sectors' edges diffract light off the detector: the quadrants fall short of the full FO
-    # curve by about
-    # RT's diffraction error, never by more
+    # curve by about RT's diffraction error, never by more
     shortfall = fo.full.overlap - fo.overlap.sum(axis=0)
     assert np.all(shortfall > 0) and np.all(shortfall <= diffraction)
     np.testing.assert_allclose(fo.overlap, rt.overlap, atol=diffraction / 2)

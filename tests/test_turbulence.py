@@ -32,13 +32,10 @@ MEAN_SIGMAS = 4.0
 # (overlap_turbulent.cpp).
 SPLIT_STEP_ATOL = 1e-4
 # FO statistics over K realisations on 128^2 grids (w0 = 5 cm, L = 1 km, sigma_R^2 = 0.3). |r_c|^2
-# of a
-# 2-D Gaussian wander is exponential: relative standard error 1 / sqrt(K). The second moment of one
-# realisation varies more (random focusing by eddies of the beam's size moves W_ST^2 by up to 30 %):
-# relative
-# standard deviation 1.7, measured. 4 standard errors, plus 2 % for the beam's growth along the
-# path,
-# which the closed forms leave out.
+# of a 2-D Gaussian wander is exponential: relative standard error 1 / sqrt(K). The second moment of
+# one realisation varies more (random focusing by eddies of the beam's size moves W_ST^2 by up to 30
+# %): relative standard deviation 1.7, measured. 4 standard errors, plus 2 % for the beam's growth
+# along the path, which the closed forms leave out.
 STATS_REALIZATIONS = 1000
 WANDER_RTOL = 4.0 / math.sqrt(STATS_REALIZATIONS) + 0.02
 SPREAD_RTOL = 4.0 * 1.7 / math.sqrt(STATS_REALIZATIONS) + 0.02

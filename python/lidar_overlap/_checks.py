@@ -11,7 +11,8 @@ import math
 import os
 import sys
 import warnings
-from typing import Any
+from types import FrameType
+from typing import Any, Optional
 
 import numpy as np
 
@@ -39,8 +40,8 @@ def real(name: str, value: Any) -> float:
         return float(value)
     except OverflowError:
         raise ValueError(
-            f"{name} = {shown(value)} is invalid: expected a real number within double range "
-            "(|x| < 1.8e308)"
+            f"{name} = {shown(value)} is invalid: expected a real number within double range (|x| "
+            "< 1.8e308)"
         ) from None
 
 
@@ -167,8 +168,8 @@ def check_memory(name: str, value, needed: float, fix: str) -> None:
     budget = _core.max_memory()
     if not needed <= budget:
         raise ValueError(
-            f"{name} = {shown(value)} needs {_bytes_shown(needed)} of memory, more than the "
-            f"budget of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
+            f"{name} = {shown(value)} needs {_bytes_shown(needed)} of memory, more than the budget "
+            f"of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
             "set_max_memory"
         )
 
@@ -196,7 +197,8 @@ def warn(message: str, category: type = RuntimeWarning) -> None:
     that warns (so the warning points at the user's line, and filters on the package's modules see
     only misplaced ones)."""
     package = os.path.dirname(os.path.abspath(__file__)) + os.sep
-    frame, level = sys._getframe(1), 2
+    frame: Optional[FrameType] = sys._getframe(1)
+    level = 2
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):
         frame, level = frame.f_back, level + 1
     warnings.warn(message, category, stacklevel=level)

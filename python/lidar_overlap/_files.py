@@ -22,8 +22,7 @@ from pathlib import Path
 from typing import IO, Iterator
 
 #: Characters of the target's name kept in the temporary name (which adds about 25), so that a
-#: target whose
-#: name fits the file system's 255-byte limit has a temporary name that fits too.
+#: target whose name fits the file system's 255-byte limit has a temporary name that fits too.
 _NAME_KEPT = 200
 
 

@@ -9,15 +9,19 @@ gives (with ``method="fo"``, one Fourier-optics computation per grid point inste
 
 from __future__ import annotations
 
+from typing import Optional
+
 import numpy as np
 
 from .. import _checks, _core
+from ..forward.backends import many
 from ..forward.compute import run
 from ..forward.methods import FO, RT, from_shortcuts
 from ..forward.planning import plan
-from ..forward.validity import warn_if_rt_invalid, warn_if_rt_unconverged
 from ..model import parameters
+from ..model.system import LidarSystem
 from .datasets import range_coordinate, xarray
+from .engines import engine, run_tasks, workers
 
 #: Each axis keyword: the parameter path it adds to (:mod:`lidar_overlap.model.parameters`) and its
 #: unit.
@@ -49,7 +53,7 @@ def alignment_map(
     detector_offset_y=None,
     defocus=None,
     method="rt",
-    tolerance: float = 1e-4,
+    tolerance: Optional[float] = None,
     threads: int = 0,
 ):
     """G of ``system`` over a grid of one or two misalignment axes, at each range.
@@ -60,16 +64,14 @@ def alignment_map(
     ranges : m, strictly increasing, each > 0 and beyond the obstruction.
     tilt_x, tilt_y : rad, added to ``beam.tilt``; beam_offset_x, beam_offset_y : m, added to
         ``beam.offset``; detector_offset_x, detector_offset_y : m, added to ``detector.offset``;
-        defocus : m, added
-            to
-        ``detector.defocus``. Give one or two, each a non-empty, strictly increasing 1-D array of
-        finite values; at most :data:`MAX_POINTS` grid points.
+        defocus : m, added to ``detector.defocus``. Give one or two, each a non-empty, strictly
+        increasing 1-D array of finite values; at most :data:`MAX_POINTS` grid points.
     method : ``"rt"`` or an :class:`lidar_overlap.RT`: the whole grid in one parallel core call.
         ``"fo"`` or an :class:`lidar_overlap.FO`: one Fourier-optics computation per grid point
         (each ``lo.overlap``, run from Python: at most :data:`MAX_FO_POINTS` points). Auto is
         refused: it could pick another model at each grid point.
     tolerance : absolute error allowed on G at each grid point and range (RT's quadrature), used
-        with ``"rt"``.
+        with ``"rt"``; None: :class:`lidar_overlap.RT`'s default.
     threads : OpenMP threads over all grid points and ranges; 0 uses all cores.
 
     Returns an ``xarray.Dataset`` (needs ``pip install 'lidar-overlap[io]'``) with dims (the axes in
@@ -109,9 +111,8 @@ def alignment_map(
             ranges,
             ray_tracing(
                 model,
-                "for alignment maps: use 'rt' (one parallel core call) or 'fo' "
-                "(one computation per grid point); auto could choose another "
-                "model at each grid point",
+                "for alignment maps: use 'rt' (one parallel core call) or 'fo' (one computation "
+                "per grid point); auto could choose another model at each grid point",
             ),
             threads=threads,
         )
@@ -126,10 +127,8 @@ def alignment_map(
             32.0 * points * p.ranges.size,
             "use fewer grid points or ranges",
         )
-        raw = _core.alignment_map(system._native, axes, p.ranges, p.options)
-        warn_if_rt_invalid(system, p.ranges)
-        warn_if_rt_unconverged(raw, p.ranges, p.tolerance, "raise max_segments or loosen tolerance")
-        g, error = raw.overlap, raw.error_estimate
+        curves = many.grid(p, axes)
+        g, error = curves.overlap, curves.error_estimate
 
     dims = tuple(n for n, _ in axes) + ("range",)
     coords = {
@@ -236,8 +235,8 @@ def _axis(name: str, values) -> np.ndarray:
         ) from None
     if raw.dtype.kind not in "iuf":
         raise ValueError(
-            f"{name} = {_checks.shown(values)} is invalid: expected a 1-D array of real numbers "
-            f"in {AXES[name][1]}"
+            f"{name} = {_checks.shown(values)} is invalid: expected a 1-D array of real numbers in "
+            f"{AXES[name][1]}"
         )
     arr = raw.astype(float)
     if arr.ndim != 1 or arr.size == 0:
@@ -272,9 +271,6 @@ def alignment_maps(systems, ranges, *, client=None, threads: int = 0, **axes_and
     each system's own value of the axis; the axis coordinates are offsets from it), and the
     attributes of the maps plus ``engine``.
     """
-    from ..model.system import LidarSystem
-    from .engines import engine, run_tasks, workers
-
     try:
         systems = [] if isinstance(systems, (LidarSystem, str)) else list(systems)
     except TypeError:

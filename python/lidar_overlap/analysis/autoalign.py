@@ -20,7 +20,7 @@ how far a search got) from :func:`lidar_overlap.analysis.optimize` with :class:`
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
+from typing import Mapping, Optional
 
 import numpy as np
 
@@ -62,11 +62,11 @@ def align(
     search: str = "raster",
     box: float = 1e-3,
     shots_per_step: int = 100,
-    signal: Mapping = None,
+    signal: Optional[Mapping] = None,
     resolution: float = 5e-6,
     step: float = 1e-4,
     max_steps: int = 2000,
-    tolerance: float = 1e-4,
+    tolerance: Optional[float] = None,
     seed: int = 0,
 ) -> AlignResult:
     """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m), within ``box``
@@ -89,8 +89,7 @@ def align(
     if not isinstance(signal, Mapping):
         raise ValueError(
             f"signal = {_checks.shown(signal)} is invalid: expected a mapping of lo.signal "
-            "keywords "
-            "(pulse_energy, receiver_efficiency, range_resolution, ...)"
+            "keywords (pulse_energy, receiver_efficiency, range_resolution, ...)"
         )
     start = np.array(system.beam.tilt, dtype=float)
     lower, upper = start - box, start + box
@@ -98,20 +97,19 @@ def align(
         system, MaximumOverlapAt(range), TILT, np.column_stack([lower, upper]), tolerance=tolerance
     )
     problem = Problem(
-        system, MaximumOverlapAt(range), TILT, lower, upper, RT(tolerance=tolerance), [range]
+        system, MaximumOverlapAt(range), TILT, lower, upper, requested_rt(tolerance), [range]
     )
     counter = iter(np.arange(seed, seed + 10**7))
 
     def measure(tilts: np.ndarray) -> np.ndarray:
         """Noisy photons per bin and shot at each tilt (rows), the G's in one core call."""
-        return np.array(
-            [
-                _signal(
-                    r, **signal, shots=shots_per_step, noise=True, seed=int(next(counter))
-                ).noisy[0]
-                for r in problem.results(np.clip(tilts, lower, upper))
-            ]
-        )
+        counts = []
+        for r in problem.results(np.clip(tilts, lower, upper)):
+            seed_k = int(next(counter))
+            noisy = _signal(r, **signal, shots=shots_per_step, noise=True, seed=seed_k).noisy
+            assert noisy is not None  # asked for with noise=True
+            counts.append(noisy[0])
+        return np.array(counts)
 
     run = _raster if search == "raster" else _gradient
     tilts, measurements = run(measure, start, box, resolution, step, max_steps)
@@ -171,3 +169,8 @@ def _gradient(measure, start, box, resolution, step, max_steps):
         counts.append(taken)
         x = np.clip(x + step * direction, start - box, start + box)
     return tilts, counts
+
+
+def requested_rt(tolerance: Optional[float]) -> RT:
+    """Ray tracing at ``tolerance`` (None: RT's default)."""
+    return RT() if tolerance is None else RT(tolerance=tolerance)

@@ -32,8 +32,8 @@ def normalized(system: LidarSystem, distributions: Any) -> List[Tuple[str, float
     if not isinstance(distributions, Mapping) or not distributions:
         raise ValueError(
             f"distributions = {_checks.shown(distributions)} is invalid: expected a non-empty "
-            "mapping "
-            "of parameter paths to distributions, e.g. {'detector.defocus': ('normal', 0.0, 2e-4)}"
+            "mapping of parameter paths to distributions, e.g. "
+            "{'detector.defocus': ('normal', 0.0, 2e-4)}"
         )
     out, seen = [], set()
     for path, spec in distributions.items():
@@ -78,8 +78,7 @@ def draw(specs: List[Tuple[str, float, Any]], n: int, rng: np.random.Generator) 
             i = int(np.argmax(bad))
             raise ValueError(
                 f"member {i}: {path} = {values[i, j]} drawn from distributions[{path!r}] is "
-                "invalid: "
-                "expected a finite value"
+                "invalid: expected a finite value"
             )
     return values
 

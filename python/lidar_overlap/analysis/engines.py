@@ -14,8 +14,7 @@ from typing import Callable, Sequence
 from .. import _checks
 
 #: Each task runs about this long at least (s) when its size is left to the caller: scheduling a
-#: task costs ~1 ms
-#: on a local cluster, so this keeps the overhead near 1 %.
+#: task costs ~1 ms on a local cluster, so this keeps the overhead near 1 %.
 TASK_SECONDS = 0.1
 
 

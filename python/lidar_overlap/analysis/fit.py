@@ -29,7 +29,6 @@ other (positive) scalar from a tenth to ten times its start.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
@@ -38,8 +37,8 @@ import numpy as np
 
 from .. import _checks
 from ..forward.compute import run
-from ..forward.methods import Turbulent
-from ..forward.planning import plan
+from ..forward.methods import RT, Turbulent
+from ..forward.planning import plan, resolve
 from ..model import parameters as _parameters
 from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
 from .sensitivity import jacobian, step_scale
@@ -60,7 +59,7 @@ def fit(
     free=("beam.tilt", "detector.defocus"),
     bounds=None,
     method="auto",
-    tolerance: float = 1e-4,
+    tolerance: Optional[float] = None,
     loss: str = "linear",
     max_evaluations: int = 200,
     *,
@@ -71,19 +70,16 @@ def fit(
     ``ranges``.
 
     ranges : m, strictly increasing. measured : G at each range. sigma : 1-sigma error of each point
-        (a scalar
-    or one per range, > 0); None: unit weights, covariance scaled by the reduced chi-square. free :
-    parameter
-    paths (``"beam.tilt"`` stands for both components). bounds : {path: (low, high)} in SI units,
-    replacing :func:`default_bounds` for those paths; the start must lie within. method : ``"rt"``,
-    ``"fo"``, ``"auto"`` or a method object, planned once on the start (module docstring). tolerance
-    : the model's absolute tolerance on G (RT and auto); keep it below 0.1 x the median sigma
-    (warned otherwise).
-    loss : as
-    in least_squares (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"`` resist outliers; the
-    residual
-    scale is 1 sigma). max_evaluations : most model evaluations. allow_unconverged : return a result
-    with ``converged=False`` instead of raising RuntimeError when the optimiser stops short.
+    (a scalar or one per range, > 0); None: unit weights, covariance scaled by the reduced
+    chi-square. free : parameter paths (``"beam.tilt"`` stands for both components). bounds :
+    {path: (low, high)} in SI units, replacing :func:`default_bounds` for those paths; the start
+    must lie within. method : ``"rt"``, ``"fo"``, ``"auto"`` or a method object, planned once on the
+    start (module docstring). tolerance : the model's absolute tolerance on G (RT and auto; None:
+    RT's default); keep it below 0.1 x the median sigma (warned otherwise). loss : as in
+    least_squares (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"`` resist outliers; the
+    residual scale is 1 sigma). max_evaluations : most model evaluations. allow_unconverged : return
+    a result with ``converged=False`` instead of raising RuntimeError when the optimiser stops
+    short.
 
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
     pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
@@ -91,10 +87,10 @@ def fit(
     paths = free_paths(free)
     p = fit_plan(system, ranges, method, tolerance, threads)
     y = _measured(measured, p.ranges)
-    h_tolerance = step_tolerance(p, tolerance)
+    h_tolerance = step_tolerance(p, model_tolerance(tolerance))
 
     def result(trial):
-        curve = run(dataclasses.replace(p, system=trial))
+        curve = run(p.with_system(trial))
         return curve, curve.overlap
 
     model = Model(
@@ -209,8 +205,7 @@ def solve(
     sd = np.sqrt(np.diag(cov))
     with np.errstate(invalid="ignore", divide="ignore"):
         # Singular J (infinite covariance): -cos of the angle between two columns is their
-        # correlation when
-        # only they are free, and +-1 names the pair that cannot be told apart.
+        # correlation when only they are free, and +-1 names the pair that cannot be told apart.
         corr = cov / np.outer(sd, sd) if np.all(np.isfinite(sd)) else -_cosines(j)
     pairs = tuple(
         (paths[a], paths[b], float(corr[a, b]))
@@ -228,20 +223,16 @@ def solve(
     if not np.all(np.isfinite(sd)):
         _checks.warn(
             "fit: the Jacobian is singular at the solution, so the data do not constrain every "
-            "free "
-            "parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or a "
-            "beam tilt "
-            "and a detector offset along one axis, which move the field of view alike); "
-            "uncertainties "
-            "are infinite",
+            "free parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or "
+            "a beam tilt and a detector offset along one axis, which move the field of view "
+            "alike); uncertainties are infinite",
             DegeneracyWarning,
         )
     noise = math.sqrt(chi_square / dof) if dof > 0 else float("nan")
     if not sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * noise:
         _checks.warn(
             f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the "
-            "scatter of "
-            f"the residuals ({noise:.3g}): its error adds to the noise; lower tolerance"
+            f"scatter of the residuals ({noise:.3g}): its error adds to the noise; lower tolerance"
         )
     return FitResult(
         parameters={path: float(v) for path, v in zip(paths, solution.x * scale)},
@@ -304,8 +295,8 @@ def free_paths(free):
         return _parameters.plain_paths(
             free,
             "free",
-            "the fit is planned on the start, whose model may not include "
-            "aberrations; fit the alignment scalars",
+            "the fit is planned on the start, whose model may not include aberrations; fit the "
+            "alignment scalars",
         )
     except ValueError as exc:
         if str(exc).startswith("parameter"):
@@ -314,15 +305,21 @@ def free_paths(free):
 
 
 def fit_plan(system, ranges, method, tolerance, threads):
-    """The plan every evaluation of a fit runs (made once, on the start; no turbulence)."""
+    """The plan every evaluation of a fit runs: made once, on the start, with every decision taken
+    (auto's choice kept for the whole fit; no turbulence)."""
     if isinstance(method, Turbulent):
         raise ValueError(
             "method = Turbulent(...) is invalid for a fit: its curves are random draws; fit with "
             "'rt', 'fo' or 'auto'"
         )
-    tolerance = _checks.positive("tolerance", tolerance)
-    shortcuts = {"tolerance": tolerance} if isinstance(method, str) else {}
-    return plan(system, ranges, method, threads=threads, **shortcuts)
+    shortcuts = {"tolerance": model_tolerance(tolerance)} if isinstance(method, str) else {}
+    return resolve(plan(system, ranges, method, threads=threads, **shortcuts))
+
+
+def model_tolerance(tolerance) -> float:
+    """The fit's ``tolerance`` (absolute, on G), checked; None: :class:`lidar_overlap.RT`'s
+    default."""
+    return RT().tolerance if tolerance is None else _checks.positive("tolerance", tolerance)
 
 
 def _measured(measured, z):
@@ -338,8 +335,8 @@ def _measured(measured, z):
     if bad.any():
         i = int(np.argmax(bad))
         raise ValueError(
-            f"measured[{i}] = {y[i]} is invalid: expected finite values; drop that range "
-            "(and its measured value) instead"
+            f"measured[{i}] = {y[i]} is invalid: expected finite values; drop that range (and its "
+            "measured value) instead"
         )
     return y
 
@@ -391,8 +388,7 @@ def _bounds(system, paths, start, bounds):
         if not lo <= x0 <= hi:
             raise ValueError(
                 f"bounds[{path!r}] = ({lo:g}, {hi:g}) excludes the start {x0:g}: widen the bounds "
-                "or "
-                "start the system within them"
+                "or start the system within them"
             )
         low[i], high[i] = lo, hi
     return low, high

@@ -5,14 +5,12 @@ the Jacobian)."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from .. import _checks
 from ..forward.compute import run
 from ..forward.result import OverlapResult
 from .sensitivity import jacobian, unit
@@ -77,7 +75,7 @@ class FitResult:
     chi_square: float
     reduced_chi_square: float
     degrees_of_freedom: int
-    result: OverlapResult
+    result: Union[OverlapResult, TelecoverResult]
     measured: np.ndarray
     sigma: Optional[np.ndarray]
     covariance_scaled: bool
@@ -105,9 +103,8 @@ class FitResult:
         dG/dp there: e.g. the near range of a curve measured only from 150 m. The fit's plan (model
         and options) is kept; the band covers the parameters' uncertainty, not the model's own error
         (``result.error_estimate``)."""
-        z = _checks.ranges("ranges", ranges)
-        self.system._native.validate_ranges(z)
-        p = dataclasses.replace(self.plan, system=self.system, ranges=z)
+        p = self.plan.with_system(self.system).at(ranges)
+        z = p.ranges
         g = run(p).overlap
         j = jacobian(p, self.system, list(self.parameters), self.step_tolerance)
         with np.errstate(invalid="ignore"):
@@ -118,13 +115,13 @@ class FitResult:
         """The parameters with uncertainties, chi-square and degeneracies, one line each."""
         lines = [
             f"fit ({self.result.method}, loss {self.loss}): "
-            f"{'converged' if self.converged else 'NOT converged'}"
-            f" after {self.evaluations} model and {self.jacobian_evaluations} Jacobian evaluations"
+            f"{'converged' if self.converged else 'NOT converged'} after {self.evaluations} model "
+            f"and {self.jacobian_evaluations} Jacobian evaluations"
         ]
         for path, value in self.parameters.items():
             lines.append(
-                f"  {path:<22} {value:+.6g} ± {self.uncertainties[path]:.3g} {unit(path)}"
-                f"  (start {self.start[path]:+.6g})"
+                f"  {path:<22} {value:+.6g} ± {self.uncertainties[path]:.3g} {unit(path)}  (start "
+                f"{self.start[path]:+.6g})"
             )
         scaled = " (unit weights: covariance scaled by it)" if self.covariance_scaled else ""
         lines.append(
@@ -202,6 +199,7 @@ def _plot_telecover_fit(fit: FitResult, fig):
     """Measured deviations (with error bars) and the fitted ones per sector in %, residuals
     below."""
     t = fit.result
+    assert isinstance(t, TelecoverResult)
     z, shape = t.ranges, (len(t.names), t.ranges.size)
     measured, residuals = fit.measured.reshape(shape), fit.residuals.reshape(shape)
     err = (

@@ -16,16 +16,16 @@ from signals, the projection of independent noise otherwise), and the degrees of
 
 from __future__ import annotations
 
-import dataclasses
+from typing import Optional
 
 import numpy as np
 
 from .. import _checks
 from ..forward.compute import run
-from .fit import Model, fit_plan, free_paths, solve
+from .fit import Model, fit_plan, free_paths, model_tolerance, solve
 from .fit_result import FitResult, step_tolerance
 from .sensitivity import central_differences
-from .telecover import TelecoverResult, deviations, sector_mask, with_mask
+from .telecover import TelecoverResult, deviations, sector_curves, sector_mask, with_mask
 
 
 def fit_telecover(
@@ -36,10 +36,11 @@ def fit_telecover(
     free=("beam.tilt",),
     sectors="quadrants",
     bounds=None,
-    tolerance: float = 1e-4,
+    tolerance: Optional[float] = None,
     loss: str = "linear",
     max_evaluations: int = 200,
     *,
+    method="rt",
     allow_unconverged: bool = False,
     threads: int = 0,
 ) -> FitResult:
@@ -49,20 +50,18 @@ def fit_telecover(
     The deviations are ratios of the sectors' G: they constrain what breaks the symmetry between the
     sectors (beam tilt, beam and detector offsets: north = +y, east = +x, so a beam tilted north
     fits as tilt[1] > 0), not the absolute level of G (an overall scale, a symmetric defocus or
-    field of view are weakly or not at
-    all constrained: expect degeneracy warnings). Unlike G, the deviations are odd in a tilt, so a
-    start at tilt 0 is fine.
+    field of view are weakly or not at all constrained: expect degeneracy warnings). Unlike G, the
+    deviations are odd in a tilt, so a start at tilt 0 is fine.
 
-    ranges : m, strictly increasing. measured_deviation : array (sector x range) in the order of the
-        sectors'
-    names, or a :class:`TelecoverResult` (its deviations, at the same sectors and ranges). sigma :
-    1-sigma error
-    of each deviation: a number, one per range or one per (sector, range), > 0; None: unit weights
-    and the
-    covariance scaled by the reduced chi-square. sectors : ``"quadrants"`` or an
-    :class:`ApertureMask` (as in :func:`.telecover`). tolerance : RT's absolute tolerance on each
-    sector's G. Other arguments as in :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is
-    the fitted :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are
+    ranges : m, strictly increasing. measured_deviation : array (sector x range) in the order of
+    the sectors' names, or a :class:`TelecoverResult` (its deviations, at the same sectors and
+    ranges). sigma : 1-sigma error of each deviation: a number, one per range or one per (sector,
+    range), > 0; None: unit weights and the covariance scaled by the reduced chi-square. sectors :
+    ``"quadrants"`` or an :class:`ApertureMask` (as in :func:`.telecover`). method : each sector's
+    model, ``"rt"`` (its sectors in one core call), ``"fo"``, ``"auto"`` or a method object, planned
+    once on the start. tolerance : RT's absolute tolerance on each sector's G (None: RT's default).
+    Other arguments as in :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is the fitted
+    :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are
     sector-major (sector x range, flattened); ``predict`` gives the full aperture's G. Needs scipy.
     """
     paths = free_paths(free)
@@ -72,25 +71,21 @@ def fit_telecover(
             f"sectors has {len(mask.names)} sector: expected at least two (a deviation compares "
             "sectors)"
         )
-    full = fit_plan(system, ranges, "rt", tolerance, threads)
+    full = fit_plan(system, ranges, method, tolerance, threads)
     z = full.ranges
     parts = mask.split()
-    plans = [fit_plan(with_mask(system, part), z, "rt", tolerance, threads) for part in parts]
+    plans = [fit_plan(with_mask(system, part), z, method, tolerance, threads) for part in parts]
     y = _measured(measured_deviation, mask.names, z)
     w = _sigma(sigma, y.shape, mask.names)
-    h = step_tolerance(plans[0], tolerance)
+    h = step_tolerance(plans[0], model_tolerance(tolerance))
 
     def sector_g(trial):
-        return [
-            run(dataclasses.replace(p, system=with_mask(trial, part)))
-            for p, part in zip(plans, parts)
-        ]
+        return sector_curves(
+            [p.with_system(with_mask(trial, part)) for p, part in zip(plans, parts)]
+        )
 
     def result(trial):
-        curves = sector_g(trial)
-        t = TelecoverResult(
-            z, mask.names, tuple(curves), run(dataclasses.replace(full, system=trial))
-        )
+        t = TelecoverResult(z, mask.names, sector_g(trial), run(full.with_system(trial)))
         return t, t.deviation.ravel()
 
     def jacobian(trial):
@@ -111,8 +106,7 @@ def fit_telecover(
         i = int(np.argmax(dark))
         raise ValueError(
             f"ranges[{i}] = {z[i]:g} m is invalid for a telecover fit: no sector receives light "
-            "there "
-            "(G = 0), so the deviations are undefined; start the ranges farther out"
+            "there (G = 0), so the deviations are undefined; start the ranges farther out"
         )
     # the model's error on a deviation: G's tolerance relative to a sector's typical (median) mean G
     model = Model(
@@ -121,7 +115,7 @@ def fit_telecover(
         result,
         full,
         h,
-        tolerance / float(np.median(start_g.mean(axis=0))),
+        model_tolerance(tolerance) / float(np.median(start_g.mean(axis=0))),
     )
     y = y - y.mean(axis=0)
     return solve(
@@ -184,8 +178,7 @@ def _sigma(sigma, shape, names) -> np.ndarray:
     except (TypeError, ValueError):
         raise ValueError(
             f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number, one value per "
-            "range "
-            f"or one per sector and range (shape {shape})"
+            f"range or one per sector and range (shape {shape})"
         ) from None
     _first_bad(
         "sigma",

@@ -75,6 +75,7 @@ class SmallestFieldOfView:
         return np.geomspace(self.full_overlap_range, self.far_range, FULL_OVERLAP_POINTS)
 
     def score(self, result: OverlapResult) -> float:
+        assert result.system is not None  # a candidate's result carries its system
         return float(result.system.detector.radius)
 
     value = score
@@ -138,8 +139,7 @@ class Objective:
         ):
             raise ValueError(
                 f"constraints = {_checks.shown(self.constraints)} is invalid: expected a mapping "
-                "of "
-                "names to callables of an OverlapResult (satisfied when >= 0)"
+                "of names to callables of an OverlapResult (satisfied when >= 0)"
             )
         object.__setattr__(self, "constraints", dict(self.constraints))
 

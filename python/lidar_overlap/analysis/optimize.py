@@ -2,14 +2,13 @@
 (:mod:`lidar_overlap.analysis.objectives`).
 
 Search. Every candidate is ray traced at the objective's ranges; many candidates at once go through
-one parallel core call (``lo.alignment_map`` for one or two tilts, offsets or defocus, else
+one parallel core call (an alignment grid for one or two tilts, offsets or defocus, else
 ``overlap_rt_batch``). A grid over the bounds comes first (G need not be unimodal: a biaxial lidar,
-a plateau), then a local refine
-from its best point: ``scipy.optimize.minimize_scalar(method="bounded")`` for one parameter,
-Nelder-Mead with bounds for several, COBYLA when a generic objective has constraints.
-:class:`SmallestFieldOfView` minimises the detector radius by bisection, valid because G grows with
-the radius at every range (the objective's docstring), for each grid point of the other free
-parameters at once, then refines those others.
+a plateau), then a local refine from its best point:
+``scipy.optimize.minimize_scalar(method="bounded")`` for one parameter, Nelder-Mead with bounds for
+several, COBYLA when a generic objective has constraints. :class:`SmallestFieldOfView` minimises the
+detector radius by bisection, valid because G grows with the radius at every range (the objective's
+docstring), for each grid point of the other free parameters at once, then refines those others.
 
 A target no candidate within the bounds meets is a ValueError that says so, with the best value
 found; a search that stops on its evaluation budget returns ``converged=False`` with scipy's
@@ -20,19 +19,19 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from typing import Dict, List, Mapping, Sequence
+from typing import Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-from .. import _checks, _core
-from ..forward.backends._result import result as _result
+from .. import _checks
+from ..forward.backends import many
 from ..forward.compute import run
 from ..forward.planning import plan
 from ..forward.result import OverlapResult
-from ..forward.validity import warn_if_rt_invalid, warn_if_rt_unconverged
+from ..forward.validity import warn_if_rt_invalid
 from ..model import parameters as _parameters
 from ..model.system import LidarSystem
-from .alignment import AXES, alignment_map, ray_tracing, requested
+from .alignment import AXES, ray_tracing, requested
 from .objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .search import axis_points, grid_points, refine, refine_tolerance
 from .smallest_fov import search as smallest_fov_search
@@ -78,7 +77,7 @@ class Problem:
         if self.plan.backend != "rt":
             raise ValueError(
                 f"optimize ray traces the plain receiver; this system needs {self.plan.backend!r} "
-                "(receiver aberrations), which has no batch call yet"
+                "(receiver aberrations or a mask), which has no batched core call yet"
             )
         self.constrained = isinstance(objective, Objective) and bool(objective.constraints)
         self.evaluations = self.core_calls = 0
@@ -89,47 +88,46 @@ class Problem:
         systems = [
             _parameters.replace(self.system, dict(zip(self.paths, map(float, row)))) for row in x
         ]
-        z, p = self.plan.ranges, self.plan
+        p = self.plan
         axes = [_PATH_OF_AXIS.get(path) for path in self.paths]
         if None not in axes and len(axes) <= 2 and len(x) > 1 and _is_grid(x):
-            g, e = self._alignment_map(x, axes)
+            base = [_parameters.get(self.system, path) for path in self.paths]
+            grid = [(a, np.unique(x[:, i]) - base[i]) for i, a in enumerate(axes)]
+            mapped = many.grid(p, grid)
+            shape = (len(x), p.ranges.size)
+            curves = many.Curves(
+                mapped.overlap.reshape(shape),
+                mapped.error_estimate.reshape(shape),
+                mapped.converged.reshape(shape),
+            )
         else:
-            raw = _core.overlap_rt_batch(
-                [s._native for s in systems for _ in z], np.tile(z, len(x)), p.options
-            )
-            warn_if_rt_unconverged(
-                raw, np.tile(z, len(x)), p.tolerance, "raise max_segments or loosen tolerance"
-            )
-            g, e = raw.overlap.reshape(len(x), z.size), raw.error_estimate.reshape(len(x), z.size)
+            curves = many.systems(p, systems)
         self.evaluations += len(x)
         self.core_calls += 1
-        return [
-            _result(dataclasses.replace(p, system=s), gi, ei) for s, gi, ei in zip(systems, g, e)
-        ]
-
-    def _alignment_map(self, x, axes):
-        """G of a full grid of one or two alignment axes by lo.alignment_map (offsets from the
-        system's values)."""
-        base = [_parameters.get(self.system, path) for path in self.paths]
-        grid = {a: np.unique(x[:, i]) - base[i] for i, a in enumerate(axes)}
-        ds = alignment_map(self.system, self.plan.ranges, method=self.plan.request, **grid)
-        shape = (len(x), self.plan.ranges.size)
-        return ds["overlap"].values.reshape(shape), ds["error_estimate"].values.reshape(shape)
+        return many.results(p, systems, curves)
 
     def feasible(self, r: OverlapResult) -> bool:
         return all(v >= 0 for v in self.objective.constraint_values(r).values())
 
 
 def optimize(
-    system, objective, free, bounds, *, method="rt", tolerance: float = 1e-4, ranges=None, x0=None
+    system,
+    objective,
+    free,
+    bounds,
+    *,
+    method="rt",
+    tolerance: Optional[float] = None,
+    ranges=None,
+    x0=None,
 ) -> OptimizeResult:
     """The values of the ``free`` parameter paths (:mod:`lidar_overlap.model.parameters`;
     ``"beam.tilt"`` stands for both components) within ``bounds`` that answer ``objective``
     (:class:`SmallestFieldOfView`, :class:`MaximumOverlapAt` or :class:`Objective`).
 
     bounds : one (low, high) per free path in order, or a mapping path -> (low, high) (SI units).
-    method : ``"rt"`` or an :class:`lidar_overlap.RT`; tolerance : RT's absolute tolerance on each
-        G.
+    method : ``"rt"`` or an :class:`lidar_overlap.RT`; tolerance : RT's absolute tolerance on each G
+        (None: RT's default).
     ranges : m, where the returned ``result`` is computed (default: the objective's ranges); for an
     :class:`Objective` without ranges of its own, also where each candidate is evaluated.
     x0 : the start (mapping or sequence; default the system's values), which must lie within the
@@ -154,7 +152,8 @@ def optimize(
         )
     lower, upper = _bounds(paths, bounds)
     start = _start(system, paths, x0, lower, upper)
-    _checks.positive("tolerance", tolerance)
+    if tolerance is not None:
+        _checks.positive("tolerance", tolerance)
     model = ray_tracing(
         requested(method, tolerance),
         "for optimize: its candidates are ray traced in parallel batches; use method='rt'",
@@ -176,6 +175,7 @@ def optimize(
             f"{_rounded(objective.constraint_values(best_result))} (each must be >= 0)"
         )
     optimised = best_result.system
+    assert optimised is not None  # a candidate's result carries its system
     if (
         ranges is None
     ):  # candidates at the bounds may leave RT's validity; only the answer's is said

@@ -19,14 +19,13 @@ over 2h. All 4 perturbed systems of every parameter go through one ``overlap_rt_
 
 from __future__ import annotations
 
-import dataclasses
+from typing import Optional
 
 import numpy as np
 
-from .. import _checks, _core
-from ..forward.compute import run
+from .. import _checks
+from ..forward.backends import many
 from ..forward.planning import plan
-from ..forward.validity import warn_if_rt_invalid, warn_if_rt_unconverged
 from ..model import parameters as _parameters
 from .alignment import ray_tracing, requested
 from .datasets import range_coordinate, xarray
@@ -61,17 +60,22 @@ def unit(path: str) -> str:
 
 
 def sensitivity(
-    system, ranges, parameters, method="rt", tolerance: float = 1e-4, *, threads: int = 0
+    system,
+    ranges,
+    parameters,
+    method="rt",
+    tolerance: Optional[float] = None,
+    *,
+    threads: int = 0,
 ):
     """dG/dp at each range for each parameter path (:mod:`lidar_overlap.model.parameters`; a bare
     pair such as ``"beam.tilt"`` stands for both components), by central differences of ray-traced
     G.
 
     ranges : m, strictly increasing. method : ``"rt"`` or an :class:`lidar_overlap.RT` (Fourier
-        optics is
-    refused: its curves state no error to set the step and the derivative's error from). tolerance :
-    RT's absolute tolerance on each G; the steps follow from it (module docstring). threads : OpenMP
-    threads; 0 uses all cores.
+    optics is refused: its curves state no error to set the step and the derivative's error from).
+    tolerance : RT's absolute tolerance on each G (None: RT's default); the steps follow from it
+    (module docstring). threads : OpenMP threads; 0 uses all cores.
 
     Returns an ``xarray.Dataset`` (``pip install 'lidar-overlap[io]'``) with dims (``parameter``,
     ``range``): ``derivative`` (dG/dp, in 1/unit of the parameter), ``error_estimate`` (its
@@ -81,20 +85,20 @@ def sensitivity(
     paths = _parameters.plain_paths(
         parameters,
         "parameters",
-        "sensitivities ray trace the plain receiver in one "
-        "batch call, and the aberrated paths have none yet",
+        "sensitivities ray trace the plain receiver in one batch call, and the aberrated paths "
+        "have none yet",
     )
     xr = xarray("sensitivity")
     model = ray_tracing(
         requested(method, tolerance),
-        "for sensitivities: their steps and errors come from ray "
-        "tracing's error estimates (Fourier optics states none); use method='rt'",
+        "for sensitivities: their steps and errors come from ray tracing's error estimates "
+        "(Fourier optics states none); use method='rt'",
     )
     p = plan(system, ranges, model, threads=threads)
     if p.backend != "rt":
         raise ValueError(
-            f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} "
-            "(receiver aberrations), which has no batch call yet"
+            f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} (receiver "
+            "aberrations), which has no batch call yet"
         )
     values = np.array([_parameters.get(system, path) for path in paths])
     steps, g, e = central_differences(p, system, paths, (1, -1, 2, -2), p.rt_quadrature_tolerance)
@@ -149,9 +153,9 @@ def central_differences(p, system, paths, multiples, tolerance: float):
     plan ``p`` (its backend, options and ranges): (steps h, G and its error estimate, each (path, k,
     range)).
 
-    h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). On the
-    ray-tracing backend all shifted systems go through one ``overlap_rt_batch`` call; on any other,
-    each is a run of ``p`` with the shifted system (the plan's decisions kept)."""
+    h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). The
+    shifted systems run through :func:`lidar_overlap.forward.backends.many.systems` (one core call
+    on ray tracing; on another backend a run of ``p`` re-targeted at each)."""
     factor = (3.0 * tolerance) ** (1.0 / 3.0)
     steps = np.array([step_scale(system, path) * factor for path in paths])
     values = [_parameters.get(system, path) for path in paths]
@@ -162,24 +166,11 @@ def central_differences(p, system, paths, multiples, tolerance: float):
     ]
     z = p.ranges
     shape = (len(paths), len(multiples), z.size)
-    if p.backend != "rt":
-        results = [run(dataclasses.replace(p, system=s)) for s in shifted]
-        return (
-            steps,
-            np.array([r.overlap for r in results]).reshape(shape),
-            np.array([r.error_estimate for r in results]).reshape(shape),
-        )
     _checks.check_memory(
         "parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges"
     )
-    raw = _core.overlap_rt_batch(
-        [s._native for s in shifted for _ in z], np.tile(z, len(shifted)), p.options
-    )
-    warn_if_rt_invalid(system, z)
-    warn_if_rt_unconverged(
-        raw, np.tile(z, len(shifted)), p.tolerance, "raise max_segments or loosen tolerance"
-    )
-    return steps, raw.overlap.reshape(shape), raw.error_estimate.reshape(shape)
+    curves = many.systems(p.with_system(system), shifted)
+    return steps, curves.overlap.reshape(shape), curves.error_estimate.reshape(shape)
 
 
 def jacobian(p, system, paths, tolerance: float) -> np.ndarray:

@@ -29,13 +29,11 @@ from ..model.atmosphere import Atmosphere
 #: Planck constant (J s) and speed of light (m/s), exact in SI.
 PLANCK, LIGHT_SPEED = 6.62607015e-34, 299792458.0
 #: Largest pulse energy (J), range resolution (m), background (photons per bin and shot) and number
-#: of shots
-#: accepted: beyond any lidar, and far from overflowing the counts.
+#: of shots accepted: beyond any lidar, and far from overflowing the counts.
 MAX_PULSE_ENERGY, MAX_RANGE_RESOLUTION, MAX_BACKGROUND, MAX_SHOTS = 1e3, 1e4, 1e15, 10**12
 #: Expected counts above which a noisy realisation is drawn from the normal distribution of the same
-#: mean and
-#: variance instead of the Poisson one (whose relative skewness, 1/sqrt(counts), is then below
-#: 1e-6).
+#: mean and variance instead of the Poisson one (whose relative skewness, 1/sqrt(counts), is then
+#: below 1e-6).
 POISSON_LIMIT = 1e12
 
 

@@ -92,8 +92,8 @@ def tolerance_study(
     nominal_plan = plan(system, ranges, method, threads=1)  # checks ranges and method once, by name
     if isinstance(nominal_plan.request, Turbulent):
         raise ValueError(
-            "method = Turbulent(...) is invalid in a tolerance study: expected RT, FO or Auto "
-            "(a turbulent mean per member is a study of its own)"
+            "method = Turbulent(...) is invalid in a tolerance study: expected RT, FO or Auto (a "
+            "turbulent mean per member is a study of its own)"
         )
     z, request = nominal_plan.ranges, nominal_plan.request
     # G three times at the peak (the chunks, their concatenation, numpy.percentile's sorted copy),
@@ -168,8 +168,8 @@ def _percentiles(value) -> np.ndarray:
         q = np.asarray([_checks.real("percentiles", v) for v in value], dtype=float)
     except TypeError:
         raise ValueError(
-            f"percentiles = {_checks.shown(value)} is invalid: expected a sequence of numbers "
-            "in [0, 100]"
+            f"percentiles = {_checks.shown(value)} is invalid: expected a sequence of numbers in "
+            "[0, 100]"
         ) from None
     if q.size == 0 or not np.all((q >= 0) & (q <= 100)):
         raise ValueError(

@@ -34,20 +34,21 @@ from __future__ import annotations
 
 import math
 import time
+from typing import cast
 
 import numpy as np
 
 from .. import _checks
-from ..forward.backends import turbulent
+from ..forward.backends import BACKENDS, many
 from ..forward.compute import run
 from ..forward.methods import Turbulent
-from ..forward.planning import BACKENDS, plan
+from ..forward.planning import plan
+from ..forward.result import BAND, MAX_REALIZATIONS, TurbulentOverlapResult
 from ..model.system import LidarSystem
 from . import engines
 from .datasets import range_coordinate, xarray
 
 #: Most realisations a study may have: the core's bound on one turbulent run.
-MAX_REALIZATIONS = turbulent.MAX_REALIZATIONS
 
 
 def turbulent_realizations(
@@ -96,25 +97,14 @@ def turbulent_realizations(
     )  # checks ranges, the turbulence and the model by name
     k, z = method.realizations, p.ranges
 
-    if p.backend not in (
-        "rt_turbulent",
-        "fo_turbulent",
-    ):  # no turbulence on the path: the plain curve
-        res, kind, chunk = run(p), "loop", k
+    if not many.turbulent(p):  # no turbulence on the path: the plain curve
+        res, kind, chunk = cast(TurbulentOverlapResult, run(p)), "loop", k
     else:
-        turbulent.check_work(
-            z, k
-        )  # as lo.overlap's RT path: the count, and the memory of the draws and rows
+        drawn = many.turbulent_draws(p)  # checks the count and the memory, as lo.overlap does
         for message in p.warnings:
             _checks.warn(message)
-        wander = turbulent.wander(p) if p.backend == "rt_turbulent" else None
-        rows, chunk = _rows(kind, client, system, p, wander, chunk, threads)
-        g = np.concatenate([r[0] for r in rows])
-        if wander is not None:
-            turbulent.warn_rt(
-                p, np.concatenate([r[1] for r in rows]), np.concatenate([r[2] for r in rows])
-            )
-        res = turbulent.statistics(p, g)
+        parts, chunk = _rows(kind, client, system, p, drawn, chunk, threads)
+        res = many.turbulent_result(p, parts)
 
     unit = {"units": "1"}
     return xr.Dataset(
@@ -147,7 +137,7 @@ def turbulent_realizations(
                 res.low,
                 {
                     **unit,
-                    "percentile": turbulent.BAND[0],
+                    "percentile": BAND[0],
                     "long_name": "percentile of the overlap over the realisations",
                 },
             ),
@@ -156,7 +146,7 @@ def turbulent_realizations(
                 res.high,
                 {
                     **unit,
-                    "percentile": turbulent.BAND[1],
+                    "percentile": BAND[1],
                     "long_name": "percentile of the overlap over the realisations",
                 },
             ),
@@ -169,7 +159,7 @@ def turbulent_realizations(
             "screens": method.screens,
             "method": repr(method),
             "model": p.method,
-            "computed_by": BACKENDS[p.backend],
+            "computed_by": BACKENDS[p.backend].description,
             "turbulence": repr(method.turbulence),
             "error_kind": p.error_kind,
             "engine": kind,
@@ -178,16 +168,16 @@ def turbulent_realizations(
     )
 
 
-def _rows(kind, client, system, p, wander, chunk, threads):
+def _rows(kind, client, system, p, drawn, chunk, threads):
     """The rows of every realisation, as (G, RT convergence flags, RT error estimates) per part in
     order, and the realisations per task."""
     k, request, z = p.turbulence.realizations, p.request, p.ranges
     if kind == "loop" and chunk is None:  # one call: the core's threads over the realisations
-        return [_part(system, z, request, threads, 0, k, _slice(wander, 0, k))], k
+        return [_part(system, z, request, threads, 0, k, drawn)], k
     head, done = [], 0
     if chunk is None:  # time the first realisation, here (its set-up on this process's threads)
         start = time.perf_counter()
-        head, done = [_part(system, z, request, threads, 0, 1, _slice(wander, 0, 1))], 1
+        head, done = [_part(system, z, request, threads, 0, 1, drawn)], 1
         seconds, parallel = time.perf_counter() - start, engines.workers(client, threads)
         chunk = max(
             1,
@@ -201,22 +191,13 @@ def _rows(kind, client, system, p, wander, chunk, threads):
         client,
         _part,
         system,
-        [(z, request, one, s, e - s, _slice(wander, s, e - s)) for s, e in bounds],
+        [(z, request, one, s, e - s, drawn) for s, e in bounds],
         engines.workers(client, threads),
     )
     return head + parts, chunk
 
 
-def _slice(wander, first: int, count: int):
-    """The RT wander of realisations first .. first + count - 1 (W_ST per range, their offsets), or
-    None (FO)."""
-    return None if wander is None else (wander[0], wander[1][first : first + count])
-
-
-def _part(system, z, request, threads: int, first: int, count: int, wander):
-    """Rows first .. first + count - 1 of the run (the task): planned here as the caller planned it;
-    (G, and for RT the core's convergence flags and error estimates, else None)."""
-    p = plan(system, z, request, threads=threads)
-    if wander is None:
-        return turbulent.fo_rows(p, first, count), None, None
-    return turbulent.rt_rows(p, *wander)
+def _part(system, z, request, threads: int, first: int, count: int, drawn):
+    """Rows first .. first + count - 1 of the run (the task), planned here as the caller planned
+    it: (G, and for RT the core's convergence flags and error estimates, else None)."""
+    return many.turbulent_rows(plan(system, z, request, threads=threads), first, count, drawn)

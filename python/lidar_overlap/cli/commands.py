@@ -72,8 +72,8 @@ def _parser() -> argparse.ArgumentParser:
         "fit",
         help="fit system parameters of a scenario to a measured overlap (CSV)",
         description="Fit the --free parameters of the scenario's system (the start) to the "
-        "measured G in a CSV with the header range_m,overlap[,sigma]; write "
-        "<name>_fit.csv and <name>_fit.png and print the summary.",
+        "measured G in a CSV with the header range_m,overlap[,sigma]; write <name>_fit.csv and "
+        "<name>_fit.png and print the summary.",
     )
     fit.add_argument(
         "scenario", help="scenario file (TOML): the starting system and the [run] model"
@@ -92,8 +92,8 @@ def _parser() -> argparse.ArgumentParser:
         "telecover",
         help="the telecover test of a scenario, or a fit to measured deviations",
         description="Compute the telecover test of the scenario's system at its ranges and write "
-        "<name>_telecover.csv and .png; with --measurements (CSV: range_m, one deviation "
-        "column per sector, optional sigma), fit the --free parameters to it and write "
+        "<name>_telecover.csv and .png; with --measurements (CSV: range_m, one deviation column "
+        "per sector, optional sigma), fit the --free parameters to it and write "
         "<name>_telecover_fit.csv and .png.",
     )
     tc.add_argument("scenario", help="scenario file (TOML): the system, ranges and [run] model")

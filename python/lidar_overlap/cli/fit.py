@@ -17,7 +17,6 @@ import numpy as np
 
 from .. import _files
 from ..analysis.fit import fit
-from ..forward.methods import from_shortcuts
 from ..io.scenario import Scenario
 
 COLUMNS = ("range_m", "overlap", "sigma")
@@ -58,8 +57,8 @@ def read_table(
             header = tuple(cells)
             if header not in (tuple(columns), (*columns, "sigma")):
                 raise ValueError(
-                    f"{name}: line {number}: header {text!r} is invalid: expected "
-                    f"'{header_text}' or '{header_text},sigma'"
+                    f"{name}: line {number}: header {text!r} is invalid: expected '{header_text}' "
+                    f"or '{header_text},sigma'"
                 )
             continue
         if len(cells) != len(header):
@@ -101,9 +100,7 @@ def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: P
     """Fit, then write ``<name>_fit.csv`` and ``<name>_fit.png`` into ``out``; returns (result,
     files, note)."""
     z, g, sigma = read_measurements(measurements)
-    options = dict(scenario.options)
-    threads = options.pop("threads", 0)
-    model = from_shortcuts(scenario.resolved_method(method), **options)
+    model, threads = scenario.method_object(method), scenario.threads
     result = fit(scenario.system, z, g, sigma, free=free, method=model, threads=threads)
     header = [f"# scenario: {scenario.name}", f"# measurements: {measurements}"]
     files, note = write_fit(

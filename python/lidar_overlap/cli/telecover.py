@@ -10,8 +10,8 @@ With measurements: a UTF-8 CSV with the header ``range_m,<sector>,...`` (one dev
 sector, in
 the order of the sectors: ``north,east,south,west`` for quadrants, ``sector_0,...`` for N sectors)
 and an optional last column ``sigma`` (the 1-sigma error of each deviation); :func:`.fit_telecover`
-fits the free parameters (ray tracing at the ``[run]`` tolerance) and ``<name>_telecover_fit.csv``
-and ``.png`` are written.
+fits the free parameters (with the ``[run]`` model, or ``--method``) and
+``<name>_telecover_fit.csv`` and ``.png`` are written.
 """
 
 from __future__ import annotations
@@ -25,10 +25,9 @@ import numpy as np
 from .. import _files
 from ..analysis.fit_telecover import fit_telecover
 from ..analysis.telecover import sector_mask, telecover
-from ..forward.methods import from_shortcuts
 from ..forward.result import csv_value
 from ..io.scenario import Scenario
-from ..model.aperture_mask import ApertureMask
+from ..model.aperture_mask import ApertureMask, equal_sectors
 from .fit import read_table, write_fit
 
 
@@ -44,7 +43,7 @@ def sectors_argument(text: str) -> ApertureMask:
         raise ValueError(
             f"invalid value {text!r}: expected 'quadrants' or a number of sectors, 2 to 64"
         )
-    return ApertureMask.sectors(n)
+    return equal_sectors(n)
 
 
 def column(name: str) -> str:
@@ -54,9 +53,7 @@ def column(name: str) -> str:
 
 def compute(scenario: Scenario, mask: ApertureMask, out: Path, method: Optional[str] = None):
     """The telecover of the scenario, written; returns (result, files, notes)."""
-    options = dict(scenario.options)
-    threads = options.pop("threads", 0)
-    model = from_shortcuts(scenario.resolved_method(method), **options)
+    model, threads = scenario.method_object(method), scenario.threads
     result = telecover(scenario.system, scenario.ranges, mask, model, threads=threads)
     out.mkdir(parents=True, exist_ok=True)
     stem = out / f"{scenario.name}_telecover"
@@ -120,11 +117,18 @@ def summary(name: str, result) -> List[str]:
     return lines
 
 
-def fit(scenario: Scenario, mask: ApertureMask, measurements: Path, free: List[str], out: Path):
-    """Fit the deviations of ``measurements``, written; returns (FitResult, files, notes)."""
+def fit(
+    scenario: Scenario,
+    mask: ApertureMask,
+    measurements: Path,
+    free: List[str],
+    out: Path,
+    method: Optional[str] = None,
+):
+    """Fit the deviations of ``measurements`` with the scenario's ``[run]`` model (``method``
+    instead, if given), written; returns (FitResult, files, notes)."""
     names = [column(n) for n in sector_mask(scenario.system, mask).names]
     data, sigma = read_table(measurements, ["range_m"] + names, signed=names)
-    options = scenario.options
     result = fit_telecover(
         scenario.system,
         data[:, 0],
@@ -132,8 +136,8 @@ def fit(scenario: Scenario, mask: ApertureMask, measurements: Path, free: List[s
         None if sigma is None else sigma[None, :],
         free=free,
         sectors=mask,
-        tolerance=options.get("tolerance", 1e-4),
-        threads=options.get("threads", 0),
+        method=scenario.method_object(method),
+        threads=scenario.threads,
     )
     header = [
         f"# scenario: {scenario.name}",

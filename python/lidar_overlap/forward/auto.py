@@ -21,13 +21,14 @@ tail e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves
 r_d(1 ± 1e-2) on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist
 only in ray tracing.
 
-:func:`decide` only chooses: it computes no overlap curve, and the plan it feeds carries its
-numbers, so nothing is estimated twice (:mod:`lidar_overlap.forward.planning`).
+:func:`decide` only chooses, from the geometry: it computes no overlap curve, and the plan it feeds
+carries its numbers, so nothing is estimated twice (:mod:`lidar_overlap.forward.planning`). The
+aberrated estimate needs two coarse RT curves, so :func:`decide_aberrated` runs when the plan runs
+(:func:`lidar_overlap.forward.planning.resolve`), never when it is made.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 from dataclasses import dataclass, field
 from typing import List
@@ -36,31 +37,23 @@ import numpy as np
 
 from .. import _core
 from ..model.field_beam import FieldBeam
+from .backends.aberrated import detector_edge_curves
+from .backends.fo import FO_2D_ACCURACY, FO_RADIAL_ACCURACY
 from .validity import rt_diffraction_error, rt_error_bound
 
 #: Safety factor on the estimate: the measured error reached 1.14 times the unscaled estimate.
 RT_ESTIMATE_SAFETY = 1.5
 #: Least share of the tolerance left to RT's quadrature.
 QUADRATURE_SHARE = 0.01
-#: Nominal accuracy of the Fourier-optics paths, stated as their error estimate: the radial path
-#: agrees to
-#: 2e-10 with 8x its nodes and to 4e-9 with a direct quadrature (docs/auto_method.md); the 2-D path
-#: to 5.5e-7.
-FO_RADIAL_ACCURACY = 1e-8
-FO_2D_ACCURACY = 1e-6
-#: Accuracy of the aberrated FO path at its default tail_error, measured against finer sampling
-#: (docs/aberrations.md).
-FO_ABERRATED_ACCURACY = 5e-6
 #: Factor on the first-order estimate of aberrated RT's diffraction error (largest measured
 #: actual/estimate).
 ABERRATED_ESTIMATE_SAFETY = 1.25
 #: Ranges on which the aberrated edge term is sampled (it varies smoothly along the curve).
 EDGE_SAMPLES = 16
 #: Segments per direction of the two edge curves' beam integrals. They share one adaptive layout, so
-#: their
-#: difference settles long before either curve: 8 segments give it within 0.2 % of 4000 segments at
-#: a fifth of
-#: the time (a field-dependent scene at 20 km where each curve stops ~2e-4 short of convergence).
+#: their difference settles long before either curve: 8 segments give it within 0.2 % of 4000
+#: segments at a fifth of the time (a field-dependent scene at 20 km where each curve stops ~2e-4
+#: short of convergence).
 EDGE_MAX_SEGMENTS = 8
 
 
@@ -99,10 +92,10 @@ def radial_fo_applies(system) -> bool:
     return not isinstance(system.beam, FieldBeam) and system.beam.width_law == "gaussian"
 
 
-def decide(system, ranges: np.ndarray, tolerance: float, rt_options=None) -> Decision:
-    """The model ``method="auto"`` takes for ``system`` at ``ranges`` (m, validated by the caller)
-    within ``tolerance``. ``rt_options`` (a :class:`lidar_overlap.RT`) sets the ray fan of the
-    aberrated estimate."""
+def decide(system, ranges: np.ndarray, tolerance: float) -> Decision:
+    """The model ``method="auto"`` takes for ``system`` (no receiver aberrations: see
+    :func:`decide_aberrated`) at ``ranges`` (m, validated by the caller) within ``tolerance``, from
+    the geometry alone."""
     system._native.validate_ranges(ranges)
     radial_ok = radial_fo_applies(system)
     fo_path = "radial" if radial_ok else "2d"
@@ -120,12 +113,15 @@ def decide(system, ranges: np.ndarray, tolerance: float, rt_options=None) -> Dec
             ],
         )
     if system.aberrated:
-        return _decide_aberrated(system, ranges, tolerance, rt_options)
+        raise ValueError(
+            "auto.decide takes systems without receiver aberrations: their estimate needs two RT "
+            "curves and is made when the plan runs (auto.decide_aberrated)"
+        )
     error = rt_model_error(system, ranges)
     reasons = [
         f"diffraction at the receiver: RT misses up to {error:.2g} of G here (Airy tail, Fresnel "
-        "edges "
-        f"and boundary waves of the blur disc, estimated from the geometry, x {RT_ESTIMATE_SAFETY})"
+        "edges and boundary waves of the blur disc, estimated from the geometry, x "
+        f"{RT_ESTIMATE_SAFETY})"
     ]
     quadrature = tolerance - error
     if quadrature >= QUADRATURE_SHARE * tolerance:
@@ -137,8 +133,7 @@ def decide(system, ranges: np.ndarray, tolerance: float, rt_options=None) -> Dec
     if not radial_ok:  # a Gaussian beam on the linear width law: Fourier optics cannot model it
         reasons.append(
             f"{error:.2g} > tolerance {tolerance:g}, but width_law 'linear' (the paper's marginal "
-            "ray) "
-            "exists only in ray tracing: RT, whose model error may exceed the tolerance"
+            "ray) exists only in ray tracing: RT, whose model error may exceed the tolerance"
         )
         return Decision("rt", "", error, QUADRATURE_SHARE * tolerance, reasons)
     reasons.append(
@@ -154,17 +149,18 @@ def decide(system, ranges: np.ndarray, tolerance: float, rt_options=None) -> Dec
     return Decision("fo", fo_path, error, 0.0, reasons)
 
 
-def _decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options) -> Decision:
+def decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options=None) -> Decision:
+    """The model ``method="auto"`` takes for a receiver with aberrations, from two coarse RT
+    curves (:func:`aberrated_rt_error`): computed when the plan runs. ``rt_options`` (a
+    :class:`lidar_overlap.RT`) sets the ray fan of the estimate."""
     # Field-dependent Seidel terms take RT whatever its model error: a quadrature far below the
-    # tolerance
-    # would only make the ray fan (the slow RT form) slower.
+    # tolerance would only make the ray fan (the slow RT form) slower.
     field_dependent = system.telescope.aberrations.field_dependent
     quadrature = (0.1 if field_dependent else 0.01) * tolerance
     error = aberrated_rt_error(system, z, tolerance, rt_options)
     reasons = [
         "receiver aberrations: ray tracing displaces each ray by d grad W; its diffraction error "
-        "here is up "
-        f"to {error:.2g} (Airy tail plus edge blur from two coarse aberrated RT curves, "
+        f"here is up to {error:.2g} (Airy tail plus edge blur from two coarse aberrated RT curves, "
         f"x {ABERRATED_ESTIMATE_SAFETY})"
     ]
     if error + quadrature <= tolerance:
@@ -176,8 +172,7 @@ def _decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options) -> De
     if field_dependent:
         reasons.append(
             "field-dependent Seidel terms exist only in ray tracing: RT, whose model error may "
-            "exceed the "
-            "tolerance"
+            "exceed the tolerance"
         )
         return Decision(
             "rt",
@@ -186,8 +181,7 @@ def _decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options) -> De
             quadrature,
             reasons,
             warning="field-dependent Seidel terms need ray tracing, whose diffraction error here "
-            "may "
-            f"reach {error:.2g} > tolerance {tolerance:g}",
+            f"may reach {error:.2g} > tolerance {tolerance:g}",
         )
     reasons.append(
         f"{error:.2g} > tolerance {tolerance:g}: Fourier optics with the sampled aberrated pupil"
@@ -206,25 +200,12 @@ def aberrated_rt_error(system, z: np.ndarray, tolerance: float = 1e-3, rt_option
     r_d then errs by far less than the tolerance, and a loose tolerance does not pay for a tight
     derivative."""
     zs = z if z.size <= EDGE_SAMPLES else np.geomspace(z[0], z[-1], EDGE_SAMPLES)
-    r_d, h = system.detector.radius, 1e-2 * system.detector.radius
+    h = 1e-2 * system.detector.radius
     options = _core.RtAberratedOptions()
     if rt_options is not None:
         options.rings, options.ring_rays = rt_options.rings, rt_options.ring_rays
     options.tolerance, options.max_segments = max(1e-6, 1e-3 * tolerance), EDGE_MAX_SEGMENTS
-    ab = system.telescope.aberrations._native
-    up, down = (
-        np.asarray(
-            _core.overlap_rt_aberrated(
-                dataclasses.replace(
-                    system, detector=dataclasses.replace(system.detector, radius=r_d + s)
-                )._native,
-                ab,
-                zs,
-                options,
-            ).overlap
-        )
-        for s in (h, -h)
-    )
+    up, down = detector_edge_curves(system, zs, options, h)
     blur = system.diffraction_blur
     log_z, log_zs = np.log(z), np.log(zs)
     edge = np.interp(log_z, log_zs, blur * np.abs(up - down) / (2.0 * h))

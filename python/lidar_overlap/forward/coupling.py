@@ -29,8 +29,7 @@ def emitter_coupling(
         if method != "rt" or system.aberrated:
             raise ValueError(
                 "emitter_coupling with telescope.mask is modelled by ray tracing without "
-                "aberrations "
-                "only: use method='rt' and telescope.aberrations=None"
+                "aberrations only: use method='rt' and telescope.aberrations=None"
             )
         return _core.emitter_coupling_rt_masked(system._native, z, position, mask._native)
     if system.aberrated:
@@ -39,9 +38,9 @@ def emitter_coupling(
                 "emitter_coupling(method='fo') with aberrations is not modelled: use method='rt' "
                 "(rays displaced by the wavefront slope) or lo.point_image for the image itself"
             )
-        return _core.emitter_coupling_rt_aberrated(
-            system._native, system.telescope.aberrations._native, z, position
-        )
+        aberrations = system.telescope.aberrations
+        assert aberrations is not None  # system.aberrated
+        return _core.emitter_coupling_rt_aberrated(system._native, aberrations._native, z, position)
     couple = _core.emitter_coupling_fo if method == "fo" else _core.emitter_coupling_rt
     return couple(system._native, z, position)
 

@@ -19,9 +19,10 @@ naming the option.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional, Union
+from typing import Any, Dict, Optional, Union
 
 from .. import _checks, _core
+from ..model.turbulence import Turbulence
 
 _RT, _FAN, _FO = _core.RtOptions(), _core.RtAberratedOptions(), _core.FoOptions()
 _TURBULENCE = _core.TurbulenceOptions()
@@ -122,15 +123,13 @@ class Turbulent:
     through ``screens`` phase screens; ray tracing displaces the short-term beam by the random
     wander (all draws in one core call)."""
 
-    turbulence: object
+    turbulence: Turbulence
     method: Model = Auto()
     realizations: int = _TURBULENCE.realizations
     seed: int = _TURBULENCE.seed
     screens: int = _TURBULENCE.screens
 
     def __post_init__(self) -> None:
-        from ..model.turbulence import Turbulence
-
         if not isinstance(self.turbulence, Turbulence):
             raise ValueError(
                 f"turbulence = {_checks.shown(self.turbulence)} is invalid: expected a "
@@ -199,8 +198,7 @@ def from_shortcuts(
         if given:
             raise ValueError(
                 f"{', '.join(given)} given beside method = {_checks.shown(method)}: set them on "
-                "the "
-                "method object (lidar_overlap.RT, FO, Auto, Turbulent)"
+                "the method object (lidar_overlap.RT, FO, Auto, Turbulent)"
             )
         return method if isinstance(method, Turbulent) else model(method)
     _checks.choice("method", method, SHORTCUTS)
@@ -216,7 +214,12 @@ def from_shortcuts(
             max_spectrum_grid="max_spectrum_grid",
         )
     )
-    chosen = {"rt": rt, "fo": fo, "auto": Auto(tolerance=rt.tolerance, rt=rt, fo=fo)}[method]
+    models: Dict[str, Model] = {
+        "rt": rt,
+        "fo": fo,
+        "auto": Auto(tolerance=rt.tolerance, rt=rt, fo=fo),
+    }
+    chosen = models[method]
     if turbulence is None:
         return chosen
     return Turbulent(
@@ -226,7 +229,7 @@ def from_shortcuts(
     )
 
 
-def _only(given: dict, **names: str) -> dict:
+def _only(given: Dict[str, Any], **names: str) -> Dict[str, Any]:
     """The options in ``given`` under their method-object names (``names``: object name -> shortcut
     name)."""
     return {field: given[shortcut] for field, shortcut in names.items() if shortcut in given}

@@ -1,40 +1,31 @@
 """Plan, then run: what one overlap computation will do, decided before anything is computed.
 
 :func:`plan` turns (system, ranges, method) into a :class:`Plan`: the checked inputs, the backend
-that will compute G (ray tracing, radial / 2-D / field / aberrated Fourier optics, or their
-turbulent forms), the core's options for it, and the error the result will state. It may make cheap
-estimates (auto's diffraction bound; for aberrated receivers two coarse RT curves on at most 16
-ranges) and carries them, so running the plan computes each curve once. :func:`lidar_overlap.run`
-executes a plan; :func:`explain` prints one.
+that will compute G (ray tracing, radial / 2-D / field / aberrated Fourier optics, their masked and
+turbulent forms), the core's options for it, and the error the result will state. It computes no
+overlap: auto's estimate for a plain receiver comes from the geometry (~50 µs); for a receiver with
+aberrations it needs two coarse RT curves, so that plan says it decides when it runs
+(:func:`resolve`, called by :func:`lidar_overlap.run`). :func:`explain` prints a plan.
+
+A plan is re-targeted with :meth:`Plan.with_system` (its decisions kept, for a system of the same
+kind) and :meth:`Plan.at` (other ranges): what fits, sensitivities and studies run many times.
 """
 
 from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Any, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
 from .. import _checks, _core
 from ..model.field_beam import FieldBeam
-from ..model.system import LidarSystem
+from ..model.system import GaussianBeam, LidarSystem
 from . import auto
+from .backends import BACKENDS, backend
 from .methods import FO, RT, Auto, Method, Turbulent, from_shortcuts
 
-#: What each backend computes, for the plan's description.
-BACKENDS = {
-    "rt": "ray tracing",
-    "rt_aberrated": "ray tracing through the aberrated pupil",
-    "rt_masked": "ray tracing through the aperture mask",
-    "fo_masked": "Fourier optics through the aperture mask (sampled pupil)",
-    "fo_radial": "Fourier optics (radial path)",
-    "fo_2d": "Fourier optics (2d path)",
-    "fo_field": "Fourier optics (2d path, the field's own grid)",
-    "fo_aberrated": "Fourier optics (aberrated path)",
-    "rt_turbulent": "ray tracing of the wandering short-term beam (all draws in one core call)",
-    "fo_turbulent": "Fourier optics through phase screens",
-}
 #: The 2-D path of the turbulent FO overlap needs this many samples per side at least.
 MIN_TURBULENT_GRID = 32
 
@@ -43,49 +34,101 @@ MIN_TURBULENT_GRID = 32
 class Plan:
     """One overlap computation, decided.
 
-    method : the model that computes G, ``"rt"`` or ``"fo"``; fo_path : ``"radial"``, ``"2d"``,
-    ``"aberrated"``, ``"masked"`` or ``""`` (RT). backend : the key of the code that runs
-    (:data:`BACKENDS`);
-    options : the core's options for it (``_core.RtOptions`` and its kin). tolerance : what the
-        result states (NaN for
-    plain FO). error_kind : ``"bound"`` (RT: quadrature bound, plus the model error auto estimated),
-    ``"nominal"`` (FO: the path's measured accuracy) or ``"standard_error"`` (turbulence: of the
-    mean).
-    rt_model_error : auto's estimate of RT's diffraction error (0 when not estimated, NaN where RT
-        cannot
-    model the beam); rt_quadrature_tolerance : the tolerance RT's quadrature runs at. turbulence :
-    the :class:`Turbulent` request, or None; reasons : why, one line each; warnings : said when the
-    plan runs.
+    system, ranges : what it computes (ranges in m, checked). request : the method asked for (an
+        RT, FO, Auto or Turbulent object). backend : the code that runs, a key of
+        :data:`~lidar_overlap.forward.backends.BACKENDS`; ``method``, ``fo_path`` and
+        ``error_kind`` follow from it. options : the core's options for it (``_core.RtOptions`` and
+        its kin). tolerance : what the result states (NaN for plain FO). rt_model_error : auto's
+        estimate of RT's diffraction error, added to RT's stated error (0 when not estimated, NaN
+        where RT cannot model the beam). rt_diffraction_warning : whether ray tracing warns about
+        diffraction (not where auto bounded it). reasons : why, one line each. warnings : said when
+        the plan runs.
     """
 
     system: LidarSystem
     ranges: np.ndarray
     request: Method
-    method: str
-    fo_path: str
     backend: str
     options: Any
     tolerance: float
-    error_kind: str
     rt_model_error: float = 0.0
-    rt_quadrature_tolerance: float = 0.0
     rt_diffraction_warning: bool = True
-    turbulence: Optional[Turbulent] = None
     reasons: Tuple[str, ...] = ()
     warnings: Tuple[str, ...] = ()
+
+    @property
+    def method(self) -> str:
+        """The model that computes G: ``"rt"``, ``"fo"``, or ``"auto"`` while auto has not decided
+        (a receiver with aberrations, decided when the plan runs)."""
+        return backend(self.backend).model
+
+    @property
+    def fo_path(self) -> str:
+        """``"radial"``, ``"2d"``, ``"aberrated"``, ``"masked"``, or ``""`` for ray tracing."""
+        return backend(self.backend).fo_path
+
+    @property
+    def error_kind(self) -> str:
+        """What the result's error estimate is: ``"bound"`` (RT's quadrature bound plus auto's
+        model error), ``"nominal"`` (FO: the path's measured accuracy) or ``"standard_error"``
+        (turbulence: of the mean over the draws)."""
+        return backend(self.backend).error_kind
+
+    @property
+    def turbulence(self) -> Optional[Turbulent]:
+        """The :class:`Turbulent` request, or None."""
+        return self.request if isinstance(self.request, Turbulent) else None
+
+    @property
+    def rt_quadrature_tolerance(self) -> float:
+        """The tolerance ray tracing's quadrature runs at (0 for Fourier optics)."""
+        if isinstance(self.options, (_core.RtOptions, _core.RtAberratedOptions)):
+            return float(self.options.tolerance)
+        return 0.0
+
+    @property
+    def deferred(self) -> bool:
+        """True when the model is chosen when the plan runs (:func:`resolve`)."""
+        return backend(self.backend).run is None
 
     def subset(self, index) -> "Plan":
         """The same plan (same decisions, same estimates) on ``ranges[index]`` (a slice): to run a
         long curve in parts."""
         return dataclasses.replace(self, ranges=self.ranges[index])
 
+    def at(self, ranges) -> "Plan":
+        """The same decisions at other ``ranges`` (m, checked as :func:`plan` checks them). Where
+        auto chose ray tracing, its model error is estimated again for the new ranges (geometry
+        only) and the quadrature keeps its tolerance."""
+        z = _checks.ranges("ranges", ranges)
+        self.system._native.validate_ranges(z)
+        error = self.rt_model_error
+        if error > 0.0 and self.backend in ("rt", "rt_masked"):
+            error = auto.rt_model_error(self.system, z)
+        return dataclasses.replace(self, ranges=z, rt_model_error=error)
+
+    def with_system(self, system) -> "Plan":
+        """The same decisions for another ``system`` of the same kind (the same beam type and width
+        law, aperture mask, and presence of receiver aberrations and of field-dependent ones): a
+        shifted, misaligned or fitted variant. A system of another kind is refused, naming what
+        changed: its plan needs other decisions (``lo.plan`` makes them)."""
+        if not isinstance(system, LidarSystem):
+            raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
+        change = _kind_change(self.system, system)
+        if change:
+            raise ValueError(
+                f"Plan.with_system: {change}, so this plan ({BACKENDS[self.backend].description}) "
+                "does not describe it; make its own plan with lidar_overlap.plan(system, ranges, "
+                "method)"
+            )
+        system._native.validate_ranges(self.ranges)
+        return dataclasses.replace(self, system=system)
+
     def __str__(self) -> str:
-        head = (
-            "auto: "
-            if isinstance(self.request, Auto)
-            or isinstance(getattr(self.request, "method", None), Auto)
-            else "plan: "
-        ) + BACKENDS[self.backend]
+        model = self.request.method if isinstance(self.request, Turbulent) else self.request
+        head = ("auto: " if isinstance(model, Auto) else "plan: ") + BACKENDS[
+            self.backend
+        ].description
         return "\n".join([head] + [f"  - {r}" for r in self.reasons])
 
 
@@ -114,37 +157,60 @@ def explain(system, ranges, method="auto", *, threads: int = 0, **shortcuts) -> 
     return p
 
 
+def resolve(p: Plan) -> Plan:
+    """``p`` with every decision made: a plan that decides when it runs (auto with receiver
+    aberrations) gets auto's choice, from two coarse RT curves (:func:`auto.decide_aberrated`);
+    any other plan is returned as it is."""
+    if not p.deferred:
+        return p
+    model = p.request
+    assert isinstance(
+        model, Auto
+    )  # the only deferred plans (turbulence with aberrations is refused)
+    d = auto.decide_aberrated(p.system, p.ranges, model.tolerance, model.rt)
+    common: Dict[str, Any] = dict(
+        tolerance=model.tolerance,
+        rt_model_error=d.rt_model_error,
+        reasons=tuple(d.reasons),
+        warnings=(f"overlap(auto): {d.warning}",) if d.warning else (),
+    )
+    if d.method == "rt":
+        options = _fan_options(model.rt, d.rt_quadrature_tolerance, p.options.threads)
+        return dataclasses.replace(
+            p, backend="rt_aberrated", options=options, rt_diffraction_warning=False, **common
+        )
+    fo = _aberrated(_base(p.system, p.ranges, p.request), p.system, model.fo, p.options.threads)
+    return dataclasses.replace(fo, **common)
+
+
+def _base(system, z, request) -> dict:
+    return dict(system=system, ranges=z, request=request)
+
+
 def _plain(system, z, model, request, threads) -> Plan:
     """The plan of ``model`` (RT, FO or Auto) without turbulence; ``request`` is what the caller
     asked for."""
-    base = dict(system=system, ranges=z, request=request)
+    base = _base(system, z, request)
     if system.telescope.mask is not None:
         return _masked(base, system, z, model, threads)
     if system.aberrated:
         if isinstance(system.beam, FieldBeam):
             raise ValueError(
                 "aberrations with a FieldBeam are not modelled: expected a GaussianBeam (the "
-                "aberrated "
-                "paths weight the point image by the Gaussian beam image)"
+                "aberrated paths weight the point image by the Gaussian beam image)"
             )
-        return _aberrated(base, system, z, model, threads)
+        return _aberrated(base, system, model, threads)
     field_beam = isinstance(system.beam, FieldBeam)
     if isinstance(model, Auto):
         d = auto.decide(system, z, model.tolerance)
-        common = dict(
-            base,
-            tolerance=model.tolerance,
-            rt_model_error=d.rt_model_error,
-            reasons=tuple(d.reasons),
+        common: Dict[str, Any] = dict(
+            base, tolerance=model.tolerance, rt_model_error=d.rt_model_error
         )
         if d.method == "rt":
-            return _auto_rt(
-                common, "rt", _rt_options(model.rt, d.rt_quadrature_tolerance, threads), d
-            )
-        return dataclasses.replace(
-            _fo(base, system, _auto_fo(model.fo, d.fo_path, field_beam), threads, field_beam),
-            **common,
-        )
+            options = _rt_options(model.rt, d.rt_quadrature_tolerance, threads)
+            return _auto_rt(common, "rt", options, d)
+        fo = _fo(base, system, _auto_fo(model.fo, d.fo_path, field_beam), threads, field_beam)
+        return dataclasses.replace(fo, reasons=tuple(d.reasons), **common)
     if isinstance(model, RT):
         if field_beam:
             raise ValueError(
@@ -153,32 +219,26 @@ def _plain(system, z, model, request, threads) -> Plan:
             )
         return Plan(
             **base,
-            method="rt",
-            fo_path="",
             backend="rt",
-            error_kind="bound",
             tolerance=model.tolerance,
             options=_rt_options(model, model.tolerance, threads),
-            rt_quadrature_tolerance=model.tolerance,
             reasons=(f"ray tracing asked for, to {model.tolerance:g} on G",),
         )
     return _fo(base, system, model, threads, field_beam)
 
 
 def _fo(base, system, model: FO, threads, field_beam) -> Plan:
-    common = dict(base, method="fo", error_kind="nominal", tolerance=float("nan"))
+    common: Dict[str, Any] = dict(base, tolerance=float("nan"))
     if field_beam:
         if model.beam_grid is not None or model.beam_window is not None:
             raise ValueError(
                 "beam_grid and beam_window apply to Gaussian beams only: a FieldBeam is propagated "
-                "on "
-                "its own grid"
+                "on its own grid"
             )
         options = _core.FoOptions()
         options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
         return Plan(
             **common,
-            fo_path="2d",
             backend="fo_field",
             options=options,
             reasons=(f"Fourier optics on the {type(system.beam).__name__}'s own grid",),
@@ -188,13 +248,12 @@ def _fo(base, system, model: FO, threads, field_beam) -> Plan:
             raise ValueError(
                 "beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'"
             )
-        options = _core.RadialFoOptions()
-        options.threads = threads
+        radial = _core.RadialFoOptions()
+        radial.threads = threads
         return Plan(
             **common,
-            fo_path="radial",
             backend="fo_radial",
-            options=options,
+            options=radial,
             reasons=("Gaussian beam: Fourier optics on the radial path (one integral per range)",),
         )
     options = _core.FoOptions()
@@ -205,7 +264,6 @@ def _fo(base, system, model: FO, threads, field_beam) -> Plan:
     options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
     return Plan(
         **common,
-        fo_path="2d",
         backend="fo_2d",
         options=options,
         reasons=(
@@ -232,47 +290,35 @@ def _masked(base, system, z, model, threads) -> Plan:
     names = ", ".join(system.telescope.mask.names)
     if isinstance(model, Auto):
         d = auto.decide(system, z, model.tolerance)
-        common = dict(
-            base,
-            tolerance=model.tolerance,
-            rt_model_error=d.rt_model_error,
-            reasons=tuple(d.reasons),
+        common: Dict[str, Any] = dict(
+            base, tolerance=model.tolerance, rt_model_error=d.rt_model_error
         )
         if d.method == "rt":
-            return _auto_rt(
-                common, "rt_masked", _rt_options(model.rt, d.rt_quadrature_tolerance, threads), d
-            )
-        return dataclasses.replace(_masked(base, system, z, model.fo, threads), **common)
+            options = _rt_options(model.rt, d.rt_quadrature_tolerance, threads)
+            return _auto_rt(common, "rt_masked", options, d)
+        fo = _masked(base, system, z, model.fo, threads)
+        return dataclasses.replace(fo, reasons=tuple(d.reasons), **common)
     if isinstance(model, RT):
         return Plan(
             **base,
-            method="rt",
-            fo_path="",
             backend="rt_masked",
-            error_kind="bound",
             tolerance=model.tolerance,
             options=_rt_options(model, model.tolerance, threads),
-            rt_quadrature_tolerance=model.tolerance,
             reasons=(
                 f"ray tracing through the aperture mask ({names}), to {model.tolerance:g} on G; G "
-                "is "
-                "normalised to the full aperture",
+                "is normalised to the full aperture",
             ),
         )
     if model.path != "auto" or model.beam_grid is not None or model.beam_window is not None:
         raise ValueError(
             "fo_path, beam_grid and beam_window do not apply with telescope.mask: the masked "
-            "Fourier-"
-            "optics path samples the pupil cut to the mask (leave them at their defaults)"
+            "Fourier-optics path samples the pupil cut to the mask (leave them at their defaults)"
         )
     options = _core.FoAberratedOptions()
     options.max_grid, options.threads = model.max_spectrum_grid, threads
     return Plan(
         **base,
-        method="fo",
-        fo_path="masked",
         backend="fo_masked",
-        error_kind="nominal",
         tolerance=float("nan"),
         options=options,
         reasons=(
@@ -282,38 +328,28 @@ def _masked(base, system, z, model, threads) -> Plan:
     )
 
 
-def _aberrated(base, system, z, model, threads) -> Plan:
-    ab = system.telescope.aberrations
+def _aberrated(base, system, model, threads) -> Plan:
     if isinstance(model, Auto):
-        d = auto.decide(system, z, model.tolerance, model.rt)
-        common = dict(
-            base,
-            tolerance=model.tolerance,
-            rt_model_error=d.rt_model_error,
-            reasons=tuple(d.reasons),
-            warnings=(f"overlap(auto): {d.warning}",) if d.warning else (),
-        )
-        if d.method == "rt":
-            return _auto_rt(
-                common,
-                "rt_aberrated",
-                _fan_options(model.rt, d.rt_quadrature_tolerance, threads),
-                d,
-            )
-        return dataclasses.replace(_aberrated(base, system, z, model.fo, threads), **common)
-    if isinstance(model, RT):
-        form = (
-            "a ray fan per scatterer" if ab.field_dependent else "the pupil form where it applies"
-        )
+        # the estimate needs two coarse RT curves: made when the plan runs (resolve)
         return Plan(
             **base,
-            method="rt",
-            fo_path="",
+            backend="auto_aberrated",
+            tolerance=model.tolerance,
+            options=_fan_options(model.rt, model.tolerance, threads),
+            reasons=(
+                "receiver aberrations: auto's estimate of ray tracing's diffraction error needs "
+                "two coarse aberrated RT curves, so ray tracing or Fourier optics is chosen when "
+                "the plan runs",
+            ),
+        )
+    if isinstance(model, RT):
+        field_dependent = system.telescope.aberrations.field_dependent
+        form = "a ray fan per scatterer" if field_dependent else "the pupil form where it applies"
+        return Plan(
+            **base,
             backend="rt_aberrated",
-            error_kind="bound",
             tolerance=model.tolerance,
             options=_fan_options(model, model.tolerance, threads),
-            rt_quadrature_tolerance=model.tolerance,
             reasons=(
                 f"ray tracing through the aberrated pupil ({form}), to {model.tolerance:g} on G",
             ),
@@ -322,10 +358,7 @@ def _aberrated(base, system, z, model, threads) -> Plan:
     options.max_grid, options.threads = model.max_spectrum_grid, threads
     return Plan(
         **base,
-        method="fo",
-        fo_path="aberrated",
         backend="fo_aberrated",
-        error_kind="nominal",
         tolerance=float("nan"),
         options=options,
         reasons=("Fourier optics: the aberrated pupil sampled and its OTF computed at each range",),
@@ -354,49 +387,37 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
             if d.method == "rt"
             else model.fo
         )
-    if (
-        request.turbulence.rytov_variance(system.beam.wavelength, float(z[-1])) == 0.0
-    ):  # no turbulence at all
+    wavelength = system.beam.wavelength
+    if request.turbulence.rytov_variance(wavelength, float(z[-1])) == 0.0:  # no turbulence at all
         p = _plain(system, z, model, request, threads)
         return dataclasses.replace(
             p,
-            turbulence=request,
             tolerance=tolerance if p.method == "rt" else p.tolerance,
             reasons=p.reasons
             + ("the turbulence is zero along the path: every draw is the turbulence-free curve",),
         )
-    common = dict(
-        system=system, ranges=z, request=request, turbulence=request, error_kind="standard_error"
-    )
+    base = _base(system, z, request)
     if isinstance(model, RT):
         return Plan(
-            **common,
-            method="rt",
-            fo_path="",
+            **base,
             backend="rt_turbulent",
             tolerance=model.tolerance,
             options=_rt_options(model, model.tolerance, threads),
-            rt_quadrature_tolerance=model.tolerance,
             reasons=(
                 f"{request.realizations} draws of the beam wander, ray traced to "
                 f"{model.tolerance:g}",
             ),
         )
     options = _core.TurbulenceOptions()
-    options.realizations, options.screens, options.seed = (
-        request.realizations,
-        request.screens,
-        request.seed,
-    )
+    options.realizations, options.screens = request.realizations, request.screens
+    options.seed = request.seed
     if model.beam_grid is not None:
         options.beam_grid = _checks.count("beam_grid", model.beam_grid, MIN_TURBULENT_GRID)
     if model.beam_window is not None:
         options.beam_window = model.beam_window
     options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
     return Plan(
-        **common,
-        method="fo",
-        fo_path="2d",
+        **base,
         backend="fo_turbulent",
         tolerance=float("nan"),
         options=options,
@@ -407,18 +428,15 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
     )
 
 
-def _auto_rt(common: dict, backend: str, options, d) -> Plan:
+def _auto_rt(common: dict, key: str, options, d) -> Plan:
     """Auto's choice of ray tracing: the quadrature gets what the model error leaves, whose
     diffraction is bounded (no warning about it)."""
     return Plan(
         **common,
-        method="rt",
-        fo_path="",
-        backend=backend,
-        error_kind="bound",
+        backend=key,
         options=options,
-        rt_quadrature_tolerance=d.rt_quadrature_tolerance,
         rt_diffraction_warning=False,
+        reasons=tuple(d.reasons),
     )
 
 
@@ -434,11 +452,8 @@ def _auto_fo(fo: FO, path: str, field_beam: bool) -> FO:
 
 def _rt_options(model: RT, tolerance: float, threads: int):
     options = _core.RtOptions()
-    options.tolerance, options.threads, options.max_segments = (
-        tolerance,
-        threads,
-        model.max_segments,
-    )
+    options.tolerance, options.threads = tolerance, threads
+    options.max_segments = model.max_segments
     return options
 
 
@@ -447,3 +462,22 @@ def _fan_options(model: RT, tolerance: float, threads: int):
     options.rings, options.ring_rays, options.tolerance = model.rings, model.ring_rays, tolerance
     options.threads, options.max_segments = threads, model.max_segments
     return options
+
+
+def _kind_change(old: LidarSystem, new: LidarSystem) -> str:
+    """What makes ``new`` a system of another kind than ``old`` for a plan, or '' if nothing."""
+    if type(new.beam) is not type(old.beam):
+        return f"the beam is a {type(new.beam).__name__}, the plan's a {type(old.beam).__name__}"
+    if isinstance(old.beam, GaussianBeam) and isinstance(new.beam, GaussianBeam):
+        if new.beam.width_law != old.beam.width_law:
+            return f"beam.width_law is {new.beam.width_law!r}, the plan's {old.beam.width_law!r}"
+    if new.telescope.mask != old.telescope.mask:
+        return "telescope.mask differs from the plan's system's"
+    if new.aberrated != old.aberrated:
+        has = "has" if new.aberrated else "has no"
+        return f"the receiver {has} aberrations, unlike the plan's system"
+    new_ab, old_ab = new.telescope.aberrations, old.telescope.aberrations
+    if new.aberrated and new_ab is not None and old_ab is not None:
+        if new_ab.field_dependent != old_ab.field_dependent:
+            return "telescope.aberrations differ in field-dependent Seidel terms from the plan's"
+    return ""

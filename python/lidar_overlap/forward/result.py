@@ -12,25 +12,23 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from .. import _checks, _files
+from .._core import __version__
 from ..model.system import LidarSystem
 from ..model.system_attributes import system_attributes, system_from_attributes
 
 CSV_COLUMNS = ("range_m", "overlap", "error_estimate")
 #: Smallest allowance for G outside [0, 1] (the round-off of a sum of order-one terms), used where
-#: the
-#: result states neither an error estimate nor a tolerance.
+#: the result states neither an error estimate nor a tolerance.
 ROUND_OFF = 1e-12
 #: full_overlap_range warns when G still rises at the end of the ranges by more than this fraction
-#: of its
-#: maximum per decade of range.
+#: of its maximum per decade of range.
 FAR_SLOPE = 0.01
 #: What ``error_estimate`` means: a bound from the quadrature (RT, plus auto's model error), the
-#: measured
-#: accuracy of a path (FO), or the standard error of a mean over random draws (turbulence).
+#: measured accuracy of a path (FO), or the standard error of a mean over random draws (turbulence).
 ERROR_KINDS = ("bound", "nominal", "standard_error")
 _IO_HINT = (
-    "reading and writing NetCDF needs xarray and h5netcdf (with h5py): "
-    "pip install 'lidar-overlap[io]'"
+    "reading and writing NetCDF needs xarray and h5netcdf (with h5py): pip install "
+    "'lidar-overlap[io]'"
 )
 
 
@@ -156,8 +154,6 @@ class OverlapResult:
     def attributes(self) -> Dict[str, Any]:
         """Metadata written to files: method, tolerance and the system, flattened (SI units in the
         names)."""
-        from .._core import __version__
-
         attrs: Dict[str, Any] = {
             "method": self.method,
             "tolerance": float(self.tolerance),
@@ -194,8 +190,7 @@ class OverlapResult:
         except UnicodeDecodeError as exc:
             raise ValueError(
                 f"{path}: not a file written by OverlapResult.to_csv: byte {exc.start} is not "
-                "UTF-8 "
-                "text"
+                "UTF-8 text"
             ) from None
         data = np.array(rows, dtype=float).reshape(-1, len(CSV_COLUMNS))
         return _read(cls, path, attrs, data[:, 0].copy(), data[:, 1].copy(), data[:, 2].copy())
@@ -205,8 +200,6 @@ class OverlapResult:
         ``error_estimate``, CF-1.10 global attributes and the system as flattened numeric attributes
         (needs ``[io]``)."""
         xr = _xarray()
-        from .._core import __version__
-
         now = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
         tolerance = "" if math.isnan(self.tolerance) else f", tolerance={self.tolerance!r}"
         glob = {
@@ -275,8 +268,7 @@ class OverlapResult:
         ):
             raise ValueError(
                 f"{path}: not a file written by OverlapResult.to_netcdf (no 'method' attribute, or "
-                "no "
-                "'range', 'overlap' or 'error_estimate')"
+                "no 'range', 'overlap' or 'error_estimate')"
             )
         return _read(
             cls, path, attrs, ds["range"].values, ds["overlap"].values, ds["error_estimate"].values
@@ -299,8 +291,8 @@ def _read_csv(path, lines):
         elif not columns:
             if "method" not in attrs or line.replace(" ", "") != ",".join(CSV_COLUMNS):
                 raise ValueError(
-                    f"{path}: not a file written by OverlapResult.to_csv: expected '# method:' "
-                    f"and the other header lines, then the columns {','.join(CSV_COLUMNS)}"
+                    f"{path}: not a file written by OverlapResult.to_csv: expected '# method:' and "
+                    f"the other header lines, then the columns {','.join(CSV_COLUMNS)}"
                 )
             columns = True
         else:
@@ -401,10 +393,8 @@ def _checked(ranges, overlap, method, error_estimate, tolerance):
         i = int(np.argmax(outside))
         raise ValueError(
             f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is "
-            "invalid: "
-            "G must be "
-            f"finite and within [0, 1] up to its error estimate or tolerance ({slack[i]:.3g}); "
-            "the computation failed at this range"
+            "invalid: G must be finite and within [0, 1] up to its error estimate or tolerance "
+            f"({slack[i]:.3g}); the computation failed at this range"
         )
     if g.min() < 0.0 or g.max() > 1.0:
         g = np.clip(g, 0.0, 1.0)
@@ -443,8 +433,7 @@ def _still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) 
     if z.size == 1:
         return (
             f"one range ({z[0]:.4g} m) cannot show whether G has reached its far-range limit; "
-            "compute more "
-            "ranges, out to where G stops rising"
+            "compute more ranges, out to where G stops rising"
         )
     start = max(z[-1] / 2.0, float(z[0]))
     log_z = np.log(z)
@@ -457,10 +446,9 @@ def _still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) 
         return None
     return (
         f"G is still rising at the end of the ranges: it gains {rise / peak:.2g} of its maximum "
-        f"{peak:.4g} from "
-        f"{start:.4g} m to {z[-1]:.4g} m, more than {FAR_SLOPE:.0%} per decade of range, so max G "
-        "may be short of "
-        "its far-range limit and the range found too early; extend the ranges farther"
+        f"{peak:.4g} from {start:.4g} m to {z[-1]:.4g} m, more than {FAR_SLOPE:.0%} per decade of "
+        "range, so max G may be short of its far-range limit and the range found too early; "
+        "extend the ranges farther"
     )
 
 
@@ -497,6 +485,12 @@ def _parse_value(text: str) -> Any:
         except ValueError:
             pass
     return text
+
+
+#: Percentiles of the spread band a turbulent result reports per range.
+BAND = (5.0, 95.0)
+#: Realisations one turbulent overlap may draw (the core's bound on the FO path).
+MAX_REALIZATIONS = 1_000_000
 
 
 @dataclass(frozen=True, eq=False)

@@ -167,8 +167,7 @@ def warn_if_rt_unconverged(raw, ranges: np.ndarray, tolerance: float, fix: str) 
         worst = float(np.max(np.asarray(raw.error_estimate)[~converged]))
         warn(
             f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of "
-            f"{ranges.size} "
-            f"ranges (largest error estimate {worst:.3g}); {fix}"
+            f"{ranges.size} ranges (largest error estimate {worst:.3g}); {fix}"
         )
 
 
@@ -179,15 +178,14 @@ def warn_if_rt_invalid(system, ranges: np.ndarray, diffraction: bool = True) -> 
     if diffraction and airy_tail > RT_MODEL_ERROR_LIMIT:
         warn(
             "ray tracing outside its validity: the detector radius is "
-            f"{system.detector.radius / system.airy_radius:.3g} "
-            f"Airy radii, and diffraction moves about {airy_tail:.2%} of the image power across "
-            "its edge; "
-            "geometric optics ignores this. Use Fourier optics (method='fo') for this receiver."
+            f"{system.detector.radius / system.airy_radius:.3g} Airy radii, and diffraction moves "
+            f"about {airy_tail:.2%} of the image power across its edge; geometric optics ignores "
+            "this. Use Fourier optics (method='fo') for this receiver."
         )
     paraxial = rt_paraxial_error(system, ranges)
     if paraxial > RT_MODEL_ERROR_LIMIT:
         warn(
             f"ray tracing outside its validity: at {float(np.min(ranges)):.3g} m the aperture is "
-            "seen under slopes "
-            f"whose paraxial error is about {paraxial:.2%}; start the ranges farther away."
+            f"seen under slopes whose paraxial error is about {paraxial:.2%}; start the ranges "
+            "farther away."
         )

@@ -20,7 +20,6 @@ ranges for the progress bar: auto decides for the whole curve, and nothing is co
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import math
 import os
@@ -33,11 +32,13 @@ from typing import Any, Callable, Dict, Optional
 import numpy as np
 
 from ..forward.compute import run
+from ..forward.methods import Method, from_shortcuts
 from ..forward.planning import Plan, plan
 from ..forward.result import OverlapResult
 from ..model.aberrations import Aberrations
 from ..model.field_beam import FieldBeam
 from ..model.flat_top import FlatTopBeam
+from ..model.presets import paper_table1
 from ..model.system import Detector, GaussianBeam, LidarSystem, Telescope
 
 if sys.version_info >= (3, 11):
@@ -189,12 +190,27 @@ class Scenario:
         """``method`` (default: the scenario's) for ``lo.overlap``, checked."""
         return _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
 
+    @property
+    def threads(self) -> int:
+        """The ``[run]`` threads (0: all cores)."""
+        return int(self.options.get("threads", 0))
+
+    def method_object(self, method: Optional[str] = None) -> Method:
+        """The method object of ``[run]`` (its method, or ``method`` given instead, with the
+        options that apply to it: tolerance, beam_grid, ...): the one place a scenario's ``[run]``
+        table becomes a method; library errors become :class:`ScenarioError`."""
+        options = {k: v for k, v in self.options.items() if k != "threads"}
+        try:
+            return from_shortcuts(self.resolved_method(method), **options)
+        except ValueError as exc:
+            raise self._library_error(exc, 0) from None
+
     def plan(self, method: Optional[str] = None) -> Plan:
         """The :class:`lidar_overlap.Plan` of this scenario with ``method`` (default: the
         scenario's); library errors become :class:`ScenarioError`."""
-        method = self.resolved_method(method)
+        model = self.method_object(method)
         try:
-            return plan(self.system, self.ranges, method, **self.options)
+            return plan(self.system, self.ranges, model, threads=self.threads)
         except ValueError as exc:
             raise self._library_error(exc, 0) from None
 
@@ -322,8 +338,8 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
     )
     if isinstance(system.beam, FieldBeam) and method == "rt":
         raise ScenarioError(
-            f"{source}: [run] method = 'rt' is invalid for a {data['beam'].get('type')} beam: "
-            "ray tracing models Gaussian beams only; expected 'fo' or 'auto'"
+            f"{source}: [run] method = 'rt' is invalid for a {data['beam'].get('type')} beam: ray "
+            "tracing models Gaussian beams only; expected 'fo' or 'auto'"
         )
     return scenario
 
@@ -372,8 +388,8 @@ def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detec
     if ("fov" in values) == ("radius" in values):
         which = "both" if "fov" in values else "neither"
         raise ScenarioError(
-            f"{source}: [detector] fov and radius: {which} given: expected exactly one "
-            "(fov: full field of view in rad, radius: detector radius in m)"
+            f"{source}: [detector] fov and radius: {which} given: expected exactly one (fov: full "
+            "field of view in rad, radius: detector radius in m)"
         )
     if "offset" in values:
         values["offset"] = tuple(values["offset"])
@@ -402,8 +418,7 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
             raise ScenarioError(
                 f"{where} values = {_short(t['values'])} ({z.size} values) is invalid: expected a "
                 f"strictly increasing list of 1 to {MAX_RANGES:,} ranges > 0 (m), and no start, "
-                "stop, "
-                "count"
+                "stop, count"
             )
         return z
     _require(where, t, ("start", "stop", "count"), " (or values = [...])")
@@ -528,46 +543,33 @@ def _build(source: str, section: Optional[str], factory, *args, **kwargs):
 
 
 # -------------------------------------------------------------------------------------------------
-# built-in
-TABLE1: Dict[str, Any] = {
-    "name": "table1",
-    "description": "Mono-axial lidar of the paper's Table 1: f = 1 m, D = 150 mm, FFOV 0.9 mrad, "
-    "w0 = 1 mm, 355 nm",
-    "beam": {
-        "type": "gaussian",
-        "wavelength": 355e-9,
-        "waist_radius": 1e-3,
-        "offset": [0.0, 0.0],
-        "tilt": [0.0, 0.0],
-    },
-    "telescope": {
-        "diameter": 0.15,
-        "focal_length": 1.0,
-        "obstruction_radius": 0.0,
-        "obstruction_distance": 0.7,
-    },
-    "detector": {"fov": 0.9e-3, "defocus": 0.0, "offset": [0.0, 0.0]},
-    "ranges": {"start": 5.0, "stop": 1000.0, "count": 200, "spacing": "log"},
-    "run": {"method": "rt", "tolerance": 1e-4},
-    "output": {"csv": True, "netcdf": True, "plot": True, "scene": True},
-}
+# built-in: the paper's Table 1 (lidar_overlap.paper_table1, its one definition) and two variants
+TABLE1_RANGES = np.geomspace(5.0, 1000.0, 200)
 
 
 def table1_scenarios() -> list:
-    """The paper's Table 1 scenario (as ``examples/scenarios/table1.toml``) and its variants with a
-    central obstruction r_obs = 20 mm and a detector defocus of 5 mm."""
-    obstructed, defocused = copy.deepcopy(TABLE1), copy.deepcopy(TABLE1)
-    obstructed.update(
-        name="table1_obstruction_20mm",
-        description="Table 1 with a central obstruction r_obs = 20 mm, 0.7 m before the aperture",
+    """The paper's Table 1 scenario (as ``examples/scenarios/table1.toml``: 200 ranges from 5 to
+    1000 m, ray tracing) and its variants with a central obstruction r_obs = 20 mm and a detector
+    defocus of 5 mm."""
+    variants = (
+        (
+            "table1",
+            "Mono-axial lidar of the paper's Table 1: f = 1 m, D = 150 mm, FFOV 0.9 mrad, w0 = 1 "
+            "mm, 355 nm",
+            paper_table1(),
+        ),
+        (
+            "table1_obstruction_20mm",
+            "Table 1 with a central obstruction r_obs = 20 mm, 0.7 m before the aperture",
+            paper_table1(obstruction_radius=0.02),
+        ),
+        (
+            "table1_defocus_5mm",
+            "Table 1 with the detector 5 mm behind the focal plane",
+            paper_table1(defocus=5e-3),
+        ),
     )
-    obstructed["telescope"]["obstruction_radius"] = 0.02
-    defocused.update(
-        name="table1_defocus_5mm",
-        description="Table 1 with the detector 5 mm behind the focal plane",
-    )
-    defocused["detector"]["defocus"] = 5e-3
     return [
-        scenario_from_dict(copy.deepcopy(d), f"<built-in {d['name']}>")
-        for d in (TABLE1, obstructed, defocused)
+        Scenario(name, description, system, TABLE1_RANGES.copy(), "rt", source=f"<built-in {name}>")
+        for name, description, system in variants
     ]

@@ -58,7 +58,7 @@ class Aberrations(ByArguments):
     w220: float = 0.0
     w311: float = 0.0
     field_radius: float = 0.0
-    _native: object = field(init=False, repr=False, compare=False)
+    _native: _core.Aberrations = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.zernike, Mapping):
@@ -75,8 +75,7 @@ class Aberrations(ByArguments):
             ):
                 raise ValueError(
                     f"aberrations.zernike index {_checks.shown(j)} is invalid: expected a Noll "
-                    "index in "
-                    f"[1, {MAX_NOLL_INDEX}] (radial order 20)"
+                    f"index in [1, {MAX_NOLL_INDEX}] (radial order 20)"
                 )
             terms[int(j)] = _checks.real(f"aberrations.zernike[{j}]", c)
         object.__setattr__(self, "zernike", dict(sorted(terms.items())))
@@ -176,8 +175,8 @@ def zernike_to_seidel(aberrations: Aberrations, field_radius: float) -> Aberrati
     foreign = sorted(j for j, v in c.items() if v != 0.0 and j not in (1, 2, 4, 6, 8, 11))
     if foreign:
         raise ValueError(
-            f"aberrations.zernike terms {foreign} have no Seidel counterpart along +x: "
-            "expected only Noll 1, 2, 4, 6, 8 and 11"
+            f"aberrations.zernike terms {foreign} have no Seidel counterpart along +x: expected "
+            "only Noll 1, 2, 4, 6, 8 and 11"
         )
     g = lambda j: c.get(j, 0.0)  # noqa: E731
     w040, w131, w222 = 6 * math.sqrt(5) * g(11), 3 * math.sqrt(8) * g(8), 2 * math.sqrt(6) * g(6)

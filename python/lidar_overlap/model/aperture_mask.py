@@ -76,7 +76,7 @@ class ApertureMask:
 
     sectors: Tuple[Sector, ...]
     names: Tuple[str, ...] = ()
-    _native: object = field(init=False, repr=False, compare=False)
+    _native: _core.ApertureMask = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sectors = self.sectors
@@ -158,7 +158,7 @@ class ApertureMask:
         )
 
 
-def _equal_sectors(n: int, rotation: float = 0.0) -> ApertureMask:
+def equal_sectors(n: int, rotation: float = 0.0) -> ApertureMask:
     """``n`` equal sectors, the first from ``rotation`` (rad from +x towards +y) onwards."""
     n = _checks.count("n", n, 1, 64)  # the core takes at most 64 sectors per mask
     rotation = _finite("rotation", rotation)
@@ -175,8 +175,8 @@ class _SectorsAttribute:
     descriptor)."""
 
     def __get__(self, obj, owner=None):
-        return _equal_sectors
+        return equal_sectors
 
 
-# type: ignore[assignment]  # set after the dataclass is made
-ApertureMask.sectors = _SectorsAttribute()
+# set after the dataclass is made, so that the instances keep their own tuple of sectors
+ApertureMask.sectors = _SectorsAttribute()  # type: ignore[assignment]

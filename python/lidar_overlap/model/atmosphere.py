@@ -41,12 +41,10 @@ from .. import _checks
 #: Boltzmann constant (J/K, exact in SI since 2019).
 BOLTZMANN = 1.380649e-23
 #: US76 constants: sea-level gravity (m/s²), gas constant (J/(mol K)), molar mass of air (kg/mol),
-#: the Earth
-#: radius of its geopotential height (m).
+#: the Earth radius of its geopotential height (m).
 G0, R_GAS, MOLAR_MASS, EARTH_RADIUS = 9.80665, 8.31432, 28.9644e-3, 6356766.0
 #: US76 layers: base geopotential height (m) and lapse rate (K/m); base temperature and pressure
-#: follow from
-#: sea level (288.15 K, 101325 Pa) by the hydrostatic equation, layer by layer.
+#: follow from sea level (288.15 K, 101325 Pa) by the hydrostatic equation, layer by layer.
 _LAYER_BASES = np.array([0.0, 11e3, 20e3, 32e3, 47e3, 51e3, 71e3])
 _LAPSE = np.array([-6.5e-3, 0.0, 1.0e-3, 2.8e-3, 0.0, -2.8e-3, -2.0e-3])
 #: Geometric heights (m) where the model holds: US76's table from -5 km to 86 km.
@@ -56,14 +54,12 @@ MIN_WAVELENGTH, MAX_WAVELENGTH = 200e-9, 2e-6
 #: Standard air of the refractive index: temperature (K), pressure (Pa), CO₂ (percent by volume).
 T_STANDARD, P_STANDARD, CO2_PERCENT = 288.15, 101325.0, 0.036
 #: Largest aerosol backscatter (m⁻¹ sr⁻¹) and lidar ratio (sr) accepted: beyond any atmosphere, and
-#: far from
-#: overflowing the optical depth.
+#: far from overflowing the optical depth.
 MAX_BACKSCATTER, MAX_LIDAR_RATIO = 1.0, 1e3
 #: Longest line of sight (m) integrated: the flat-Earth geometry means nothing beyond.
 MAX_RANGE = 1e6
 #: Optical depth quadrature: Gauss-Legendre nodes per interval, longest interval (m), and the
-#: layer's
-#: breakpoints (in widths from its centre) that resolve a thin layer.
+#: layer's breakpoints (in widths from its centre) that resolve a thin layer.
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(8)
 _MAX_STEP = 100.0
 _LAYER_SIGMAS = np.arange(-8.0, 9.0)
@@ -97,8 +93,7 @@ def _heights(value, name: str = "height") -> np.ndarray:
     if bad.any():
         raise ValueError(
             f"{name} = {float(h[bad].flat[0])!r} is invalid: expected a height from {MIN_HEIGHT:g} "
-            "m to "
-            f"{MAX_HEIGHT:g} m (the US Standard Atmosphere 1976 model)"
+            f"m to {MAX_HEIGHT:g} m (the US Standard Atmosphere 1976 model)"
         )
     return h
 
@@ -129,8 +124,7 @@ def _wavelength(wavelength) -> float:
     if not MIN_WAVELENGTH <= lam <= MAX_WAVELENGTH:
         raise ValueError(
             f"wavelength = {lam!r} is invalid: expected {MIN_WAVELENGTH:g} m to {MAX_WAVELENGTH:g} "
-            "m "
-            "(where the refractive index of air is modelled)"
+            "m (where the refractive index of air is modelled)"
         )
     return lam
 
@@ -263,10 +257,9 @@ class Atmosphere:
         if top > MAX_HEIGHT:
             raise ValueError(
                 f"ranges[{len(z) - 1}] = {float(z[-1])!r} m reaches {top:.6g} m above sea level: "
-                "expected "
-                f"ranges up to {(MAX_HEIGHT - self.altitude) / math.sin(self.elevation):.6g} m, "
-                "where "
-                f"the line of sight leaves the model's atmosphere ({MAX_HEIGHT:g} m)"
+                "expected ranges up to "
+                f"{(MAX_HEIGHT - self.altitude) / math.sin(self.elevation):.6g} m, where the line "
+                f"of sight leaves the model's atmosphere ({MAX_HEIGHT:g} m)"
             )
         return z
 

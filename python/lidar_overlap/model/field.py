@@ -17,8 +17,7 @@ from .. import _checks, _core
 from .._pickling import ByArguments
 
 #: Largest power (W) of a field, the core's bound for ``Field.gaussian``: irradiances stay far
-#: inside
-#: double precision.
+#: inside double precision.
 MAX_POWER = 1e30
 
 

@@ -15,10 +15,8 @@ from .field import Field
 Pair = Tuple[float, float]
 
 #: Least power (W) of a transmitted field: much weaker fields make the FO path's products of
-#: irradiances
-#: underflow (a 1e-165 W Gaussian of 1 mm gave G = 0 at 1 km); 1e-100 W keeps 1e-150 W/m² on any
-#: grid
-#: the length limits allow.
+#: irradiances underflow (a 1e-165 W Gaussian of 1 mm gave G = 0 at 1 km); 1e-100 W keeps 1e-150
+#: W/m² on any grid the length limits allow.
 MIN_BEAM_POWER = 1e-100
 
 
@@ -42,7 +40,7 @@ class FieldBeam(ByArguments):
     field: Field
     offset: Pair = (0.0, 0.0)
     tilt: Pair = (0.0, 0.0)
-    _native: object = dataclass_field(init=False, repr=False, compare=False)
+    _native: _core.GaussianBeam = dataclass_field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         field = self.field
@@ -54,15 +52,13 @@ class FieldBeam(ByArguments):
         if not MIN_BEAM_POWER <= power < math.inf:
             raise ValueError(
                 f"field = {field!r} is invalid: its power is {power:.4g} W; expected a finite "
-                "transmitted "
-                f"power of at least {MIN_BEAM_POWER:g} W"
+                f"transmitted power of at least {MIN_BEAM_POWER:g} W"
             )
         if not radius >= _core.MIN_LENGTH:
             raise ValueError(
                 f"field = {field!r} is invalid: its second-moment radius is {radius:.4g} m (the "
-                "power sits "
-                f"in one sample); expected a beam of at least {_core.MIN_LENGTH:g} m sampled over "
-                "several points"
+                f"power sits in one sample); expected a beam of at least {_core.MIN_LENGTH:g} m "
+                "sampled over several points"
             )
         set_ = object.__setattr__
         set_(self, "offset", _checks.pair("beam.offset", self.offset))

@@ -105,8 +105,8 @@ class FlatTopBeam(FieldBeam):
     def __setattr__(self, name: str, value) -> None:
         if self.__dict__.get("_sealed"):
             raise FrozenInstanceError(
-                f"cannot assign to field {name!r}: a FlatTopBeam is immutable; "
-                "with_pointing() gives a re-pointed copy, a new design needs a new FlatTopBeam"
+                f"cannot assign to field {name!r}: a FlatTopBeam is immutable; with_pointing() "
+                "gives a re-pointed copy, a new design needs a new FlatTopBeam"
             )
         super().__setattr__(name, value)
 
@@ -132,10 +132,9 @@ class FlatTopBeam(FieldBeam):
     def __repr__(self) -> str:
         return (
             f"FlatTopBeam(wavelength={self.wavelength:.4g} m, waist_radius={self.waist_radius:.4g} "
-            "m, "
-            f"angular_diameter={self.angular_diameter:.4g} rad: {self.stop} after "
-            f"{self.iterations} iterations, "
-            f"efficiency {self.efficiency:.3f}, plateau rms {self.uniformity_rms:.3g})"
+            f"m, angular_diameter={self.angular_diameter:.4g} rad: {self.stop} after "
+            f"{self.iterations} iterations, efficiency {self.efficiency:.3f}, plateau rms "
+            f"{self.uniformity_rms:.3g})"
         )
 
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from typing import Dict, Iterable, List, Mapping, Tuple
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple
 
 from .. import _checks
 from .aberrations import SEIDEL_TERMS, Aberrations
@@ -87,7 +87,7 @@ def get(system: LidarSystem, path: str) -> float:
     kind, part, name, index = _parse(path)
     if kind == "zernike":
         ab = system.telescope.aberrations
-        return float(ab.zernike.get(index, 0.0)) if ab is not None else 0.0
+        return float(ab.zernike.get(index or 0, 0.0)) if ab is not None else 0.0
     if kind == "seidel":
         ab = system.telescope.aberrations
         return float(getattr(ab, name)) if ab is not None else 0.0
@@ -106,8 +106,8 @@ def get(system: LidarSystem, path: str) -> float:
 def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
     """A new system with each path in ``values`` set to its value (SI units); refused naming the
     path when a value is not a real number or the system it makes is invalid."""
-    changes: Dict[str, Dict[str, object]] = {"beam": {}, "telescope": {}, "detector": {}}
-    aberrations: Dict[str, object] = {}
+    changes: Dict[str, Dict[str, Any]] = {"beam": {}, "telescope": {}, "detector": {}}
+    aberrations: Dict[str, Any] = {}
     for path, value in values.items():
         kind, part, name, index = _parse(path)
         value = _checks.real(path, value)
@@ -136,7 +136,7 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
         ) from None
 
 
-def _parse(path) -> Tuple[str, str, str, object]:
+def _parse(path) -> Tuple[str, str, str, Optional[int]]:
     """(kind, part, name, index) of a path: kind ``"plain"``, ``"zernike"`` or ``"seidel"``."""
     if isinstance(path, str):
         m = _ABERRATION.match(path)
@@ -172,7 +172,7 @@ def _aberrations(system) -> Aberrations:
     )
 
 
-def _replaced(owner, part: str, changes: Dict[str, object]):
+def _replaced(owner, part: str, changes: Dict[str, Any]):
     if not changes:
         return owner
     if isinstance(owner, FieldBeam):

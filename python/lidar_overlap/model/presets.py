@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .system import Detector, GaussianBeam, LidarSystem, Telescope
+from .system import Detector, GaussianBeam, LidarSystem, Telescope, WidthLaw
 
 
 def paper_table1(
@@ -12,7 +12,7 @@ def paper_table1(
     obstruction_radius: float = 0.0,
     obstruction_distance: float = 0.7,
     defocus: float = 0.0,
-    width_law: str = "gaussian",
+    width_law: WidthLaw = "gaussian",
 ) -> LidarSystem:
     """The mono-axial lidar of the paper's Table 1: f = 1 m, D = 150 mm, FFOV 0.9 mrad, w0 = 1 mm.
     Section 4A places the obstruction 0.7 m in front of the aperture stop. SI units."""

@@ -25,6 +25,8 @@ from .aperture_mask import ApertureMask
 from .field_beam import FieldBeam
 
 Pair = Tuple[float, float]
+#: The width laws of a Gaussian beam (:class:`GaussianBeam`).
+WidthLaw = Literal["gaussian", "linear"]
 
 
 @dataclass(frozen=True)
@@ -47,8 +49,8 @@ class GaussianBeam(ByArguments):
     divergence: Optional[float] = None
     offset: Pair = (0.0, 0.0)
     tilt: Pair = (0.0, 0.0)
-    width_law: Literal["gaussian", "linear"] = "gaussian"
-    _native: object = field(init=False, repr=False, compare=False)
+    width_law: WidthLaw = "gaussian"
+    _native: _core.GaussianBeam = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -108,7 +110,7 @@ class Telescope(ByArguments):
     obstruction_distance: float = 0.0
     aberrations: Optional[Aberrations] = None
     mask: Optional[ApertureMask] = None
-    _native: object = field(init=False, repr=False, compare=False)
+    _native: _core.Telescope = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.mask is not None and not isinstance(self.mask, ApertureMask):
@@ -150,7 +152,7 @@ class Detector(ByArguments):
     defocus: float = 0.0
     offset: Pair = (0.0, 0.0)
     numerical_aperture: Optional[float] = None
-    _native: object = field(init=False, repr=False, compare=False)
+    _native: _core.Detector = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -203,7 +205,7 @@ class LidarSystem(ByArguments):
     beam: GaussianBeam | FieldBeam = field(default_factory=GaussianBeam)
     telescope: Telescope = field(default_factory=Telescope)
     detector: Detector = field(default_factory=Detector)
-    _native: object = field(init=False, repr=False, compare=False)
+    _native: _core.LidarSystem = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name, kinds in (

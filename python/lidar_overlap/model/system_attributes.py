@@ -3,13 +3,15 @@ files carry."""
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, cast
 
 import numpy as np
 
 from .aberrations import SEIDEL_TERMS, Aberrations
 from .aperture_mask import ApertureMask, Sector
-from .system import Detector, GaussianBeam, LidarSystem, Telescope
+from .field_beam import FieldBeam
+from .flat_top import FlatTopBeam
+from .system import Detector, GaussianBeam, LidarSystem, Telescope, WidthLaw
 
 
 def _pair_attributes(prefix: str, pair, unit: str) -> Dict[str, float]:
@@ -18,9 +20,6 @@ def _pair_attributes(prefix: str, pair, unit: str) -> Dict[str, float]:
 
 def system_attributes(system: LidarSystem) -> Dict[str, Any]:
     """The system as a flat dict of numbers (and a few type names); keys end in their unit."""
-    from .field_beam import FieldBeam
-    from .flat_top import FlatTopBeam
-
     beam, tel, det = system.beam, system.telescope, system.detector
     a: Dict[str, Any] = {}
     if isinstance(beam, GaussianBeam):
@@ -138,7 +137,7 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
             divergence=attrs.get("beam_divergence_rad"),
             offset=pair("beam_offset", "m"),
             tilt=pair("beam_tilt", "rad"),
-            width_law=str(attrs.get("beam_width_law", "gaussian")),
+            width_law=cast(WidthLaw, str(attrs.get("beam_width_law", "gaussian"))),
         )
         telescope = Telescope(
             diameter=attrs["telescope_diameter_m"],

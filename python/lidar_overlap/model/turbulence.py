@@ -32,8 +32,7 @@ from .._checks import choice
 from .._pickling import ByArguments
 
 #: Cn² (m^-2/3) a profile may reach: the core's bound, a thousand times the strongest turbulence
-#: measured
-#: near the ground.
+#: measured near the ground.
 MAX_CN2 = 1e-9
 
 
@@ -61,7 +60,7 @@ class Turbulence(ByArguments):
     inner_scale: float
     hv_ground: float
     hv_wind: float
-    _native: object = dataclasses.field(init=False, repr=False, compare=False)
+    _native: _core.Cn2Profile = dataclasses.field(init=False, repr=False, compare=False)
 
     def __init__(
         self,

@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.special import eval_genlaguerre
 
 from .. import _checks, _core
 from .._checks import check_memory, length
@@ -27,8 +26,7 @@ EDGE_SUBSAMPLES = 8
 #: included).
 BYTES_PER_SAMPLE = 160
 #: Largest |l| and p of a Laguerre-Gauss mode: its rings then span sqrt(2p + |l| + 1) <= 17 waists
-#: and its
-#: polynomial stays far inside double range.
+#: and its polynomial stays far inside double range.
 MAX_MODE_INDEX = 100
 #: Natural logarithm of the smallest positive double (subnormal): below it a sample is exactly 0.
 LOG_SMALLEST = math.log(5e-324)
@@ -64,8 +62,7 @@ def _check_window(second_moment_radius, n, spacing):
         raise ValueError(
             f"n * spacing = {n * spacing:.4g} m is invalid: expected a window of at least "
             f"{2 * WINDOW_RADII * second_moment_radius:.4g} m ({2 * WINDOW_RADII:g} x the beam's "
-            "second-moment "
-            f"radius {second_moment_radius:.4g} m); increase n or spacing"
+            f"second-moment radius {second_moment_radius:.4g} m); increase n or spacing"
         )
 
 
@@ -86,8 +83,7 @@ def _normalised(values, spacing, wavelength, power):
     if not field.beam_radius > 0.0:
         raise ValueError(
             f"spacing = {spacing!r} is invalid: the beam's power falls in a single sample; "
-            "expected a "
-            "spacing well below the beam's size"
+            "expected a spacing well below the beam's size"
         )
     return field
 
@@ -124,8 +120,7 @@ def annular_field(wavelength, outer_radius, inner_radius, n, spacing, power=1.0)
     if outer > ANNULUS_WINDOW_FRACTION * n * spacing:
         raise ValueError(
             f"outer_radius = {outer!r} is invalid: expected at most {ANNULUS_WINDOW_FRACTION} n "
-            "spacing = "
-            f"{ANNULUS_WINDOW_FRACTION * n * spacing:.4g} m; increase n or spacing"
+            f"spacing = {ANNULUS_WINDOW_FRACTION * n * spacing:.4g} m; increase n or spacing"
         )
     power = _power(power)
 
@@ -184,8 +179,7 @@ def laguerre_gauss_field(wavelength, waist_radius, l, p=0, *, n, spacing, power=
     m = abs(l)
     rho2 = 2.0 * (x**2 + y**2) / w0**2  # (√2 r / w0)²
     # (√2 r / w0)^|l| exp(-r² / w0²) through its logarithm: the power alone overflows for large |l|
-    # far out.
-    # It is exactly 0 on the axis for l != 0, and samples where it underflows stay 0.
+    # far out. It is exactly 0 on the axis for l != 0, and samples where it underflows stay 0.
     with np.errstate(divide="ignore"):
         log_envelope = -0.5 * rho2 if m == 0 else 0.5 * m * np.log(rho2) - 0.5 * rho2
     lit = log_envelope > LOG_SMALLEST
@@ -194,7 +188,7 @@ def laguerre_gauss_field(wavelength, waist_radius, l, p=0, *, n, spacing, power=
     # exp(i l φ) as ((x ± i y) / r)^|l|: no angle, which is undefined at r = 0 (never lit for l !=
     # 0).
     vortex = ((xs + 1j * np.sign(l) * ys) / np.hypot(xs, ys)) ** m if m else 1.0
-    values[lit] = vortex * eval_genlaguerre(p, m, q) * np.exp(log_envelope[lit])
+    values[lit] = vortex * _laguerre()(p, m, q) * np.exp(log_envelope[lit])
     return _normalised(values, spacing, wavelength, power)
 
 
@@ -231,3 +225,15 @@ def super_gaussian_field(wavelength, radius, order, n, spacing, power=1.0):
     with np.errstate(over="ignore"):  # (r/radius)^(2N) -> inf far out gives exactly 0
         values = np.exp(-((np.hypot(x, y) / radius) ** (2 * order)))
     return _normalised(values.astype(complex), spacing, wavelength, power)
+
+
+def _laguerre():
+    """scipy's generalised Laguerre polynomials (the ``[fit]`` extra), imported when a mode needs
+    them."""
+    try:
+        from scipy.special import eval_genlaguerre
+    except ImportError:
+        raise ImportError(
+            "laguerre_gauss_field needs scipy: pip install 'lidar-overlap[fit]'"
+        ) from None
+    return eval_genlaguerre

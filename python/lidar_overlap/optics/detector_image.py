@@ -25,8 +25,7 @@ _erf = np.vectorize(math.erf, otypes=[float])
 #: FFTs).
 BYTES_PER_PIXEL = 192
 #: A field beam's propagated field (complex, its irradiance, normalised) per sample, and the
-#: interpolation
-#: matrices and product per (image side x field side).
+#: interpolation matrices and product per (image side x field side).
 BYTES_PER_FIELD_SAMPLE = 48
 BYTES_PER_WEIGHT = 32
 
@@ -73,7 +72,7 @@ def detector_image(system, z: float, n: int = 192) -> DetectorImage:
     w = (
         float(field.beam_radius)
         if field is not None
-        else float(system.beam.radius(np.array([z]))[0])
+        else float(np.asarray(system.beam.radius(np.array([z])))[0])  # type: ignore[union-attr]
     )
     o_back, r_back = -np.asarray(det.offset) * z / d, det.radius * z / d
     mid, half = window_about([(c, 2.5 * w + blur), (o_back, r_back)])

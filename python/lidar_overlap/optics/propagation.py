@@ -101,31 +101,23 @@ def _warn_outside_validity(r: _core.PropagationReport, distance: float) -> None:
     if r.input_edge_power > EDGE_POWER_LIMIT:
         problems.append(
             f"the input field reaches the window edge ({r.input_edge_power:.2g} of its power in "
-            "the "
-            "outer n/16): enlarge the grid (n) so that the field is not clipped"
+            "the outer n/16): enlarge the grid (n) so that the field is not clipped"
         )
     # A scaled (chirp-z) output is a window chosen by the caller: what lies outside it is not
-    # computed,
-    # nothing wraps around, so it is not a sampling problem.
+    # computed, nothing wraps around, so it is not a sampling problem.
     if r.output_edge_power > EDGE_POWER_LIMIT and not r.scaled_output:
         if used == "angular_spectrum":
             problems.append(
                 f"the propagated field reaches the window edge ({r.output_edge_power:.2g} of its "
-                "power "
-                "in the outer n/16) and wraps around: enlarge the grid (grid_size='auto' picks "
-                "it), or use "
-                "method='fresnel', "
-                "whose output grid grows with distance"
+                "power in the outer n/16) and wraps around: enlarge the grid (grid_size='auto' "
+                "picks it), or use method='fresnel', whose output grid grows with distance"
             )
         else:
             problems.append(
                 f"{r.output_edge_power:.2g} of the power lands in the outer n/16 of the output "
-                "window "
-                "λz/dx, which holds the input's spatial frequencies up to its Nyquist limit: the "
-                "input "
-                "is undersampled there and that power is aliased (hard edges do this); sample the "
-                "input "
-                "more finely, soften its edges, or choose output_spacing"
+                "window λz/dx, which holds the input's spatial frequencies up to its Nyquist "
+                "limit: the input is undersampled there and that power is aliased (hard edges do "
+                "this); sample the input more finely, soften its edges, or choose output_spacing"
             )
     if used == "angular_spectrum" and r.band_limit_loss > BAND_LIMIT_LOSS_LIMIT:
         problems.append(
@@ -136,19 +128,17 @@ def _warn_outside_validity(r: _core.PropagationReport, distance: float) -> None:
     if used == "fresnel" and r.chirp_phase_step > np.pi:
         problems.append(
             f"the Fresnel input chirp is undersampled (phase step {r.chirp_phase_step:.3g} rad > π "
-            "at "
-            "the field's edge): the distance is too short for this grid; use "
+            "at the field's edge): the distance is too short for this grid; use "
             "method='angular_spectrum'"
         )
     if used == "fresnel" and r.fresnel_phase_error > APPROXIMATION_PHASE_LIMIT:
         problems.append(
             f"the Fresnel approximation (A3) neglects up to {r.fresnel_phase_error:.3g} rad of "
-            "phase "
-            "at this distance: use method='angular_spectrum'"
+            "phase at this distance: use method='angular_spectrum'"
         )
     if used == "fraunhofer" and r.fraunhofer_phase > APPROXIMATION_PHASE_LIMIT:
         problems.append(
-            f"Fraunhofer in the near field: the neglected input phase π a²/(λz) is "
+            "Fraunhofer in the near field: the neglected input phase π a²/(λz) is "
             f"{r.fraunhofer_phase:.3g} rad (A6); use method='fresnel'"
         )
     for p in problems:

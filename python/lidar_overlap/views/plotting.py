@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..optics.detector_image import detector_image
+
 
 def _pyplot():
     try:
@@ -39,8 +41,6 @@ def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
 def plot_detector_image(system, z, ax=None, n=192):
     """Draw the geometric detector-plane image at range ``z`` (m) (:func:`detector_image`) with the
     detector disc outlined and the fraction it collects in the title. Returns the Axes."""
-    from ..optics.detector_image import detector_image
-
     plt = _pyplot()
     img = detector_image(system, z, n)
     if ax is None:

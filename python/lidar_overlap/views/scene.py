@@ -39,8 +39,8 @@ BAR = dict(
     n_labels=5,
 )
 _MISSING = (
-    "the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' "
-    "(or pip install pyvista)"
+    "the 3-D scene (lo.scene, lo.save_scene) needs PyVista: pip install 'lidar-overlap[viz]' (or "
+    "pip install pyvista)"
 )
 
 
@@ -323,7 +323,7 @@ def scene(
     plotter.add_mesh(meshes["detector"], name="detector", color="orange")
     plotter.add_mesh(meshes["axis"], name="axis", color="grey", line_width=1)
     if extra:
-        i = np.searchsorted(zt, z_full)
+        i = int(np.searchsorted(zt, z_full))
         ring_r = scale * fov_r[i] * 1.05
         meshes["full_overlap"] = _ring(
             pv, (scale * fov_c[i, 0], scale * fov_c[i, 1], z_full), ring_r
@@ -351,14 +351,13 @@ def scene(
         font_size=10,
     )
     note = (
-        f"transverse x, y exaggerated x{scale:g} (range z to scale); beam: 1/e^2 envelope; "
-        "blue: receiver field of view"
+        f"transverse x, y exaggerated x{scale:g} (range z to scale); beam: 1/e^2 envelope; blue: "
+        "receiver field of view"
     )
     if planes:
         note += (
             "\npanels above the cone at each range: beam irradiance in the scattering plane (cyan: "
-            "FOV), "
-            "above it its image on the detector plane (cyan: detector)"
+            "FOV), above it its image on the detector plane (cyan: detector)"
         )
     plotter.add_text(note, position="upper_left", font_size=9)
     plotter.view_vector(VIEW, viewup=(1.0, 0.0, 0.0))  # z across, x up, from the near side

@@ -13,10 +13,17 @@ docs/aberrations.md.
 
 from __future__ import annotations
 
+import dataclasses
+
+import numpy as np
+
 from ... import _core
-from ..auto import FO_ABERRATED_ACCURACY
 from ..validity import warn_if_rt_invalid, warn_if_rt_unconverged
 from ._result import result
+
+#: Accuracy of the aberrated FO path at its default tail_error, measured against finer sampling
+#: (docs/aberrations.md).
+FO_ABERRATED_ACCURACY = 5e-6
 
 
 def run_rt(plan):
@@ -37,3 +44,18 @@ def run_fo(plan):
         system._native, system.telescope.aberrations._native, plan.ranges, plan.options
     )
     return result(plan, raw.overlap, FO_ABERRATED_ACCURACY)
+
+
+def detector_edge_curves(system, ranges, options, step: float):
+    """Aberrated RT G of ``system`` with the detector radius r_d + step and r_d - step (m) at
+    ``ranges`` (m), on ``options`` (``_core.RtAberratedOptions``): the two curves whose difference
+    auto's aberrated estimate takes (:func:`lidar_overlap.forward.auto.aberrated_rt_error`)."""
+    ab = system.telescope.aberrations._native
+    curves = []
+    for s in (step, -step):
+        detector = dataclasses.replace(system.detector, radius=system.detector.radius + s)
+        shifted = dataclasses.replace(system, detector=detector)
+        curves.append(
+            np.asarray(_core.overlap_rt_aberrated(shifted._native, ab, ranges, options).overlap)
+        )
+    return curves[0], curves[1]

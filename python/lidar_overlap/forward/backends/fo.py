@@ -5,8 +5,13 @@ from __future__ import annotations
 
 from ... import _checks, _core
 from ...optics.propagation import EDGE_POWER_LIMIT, SamplingWarning
-from ..auto import FO_2D_ACCURACY, FO_RADIAL_ACCURACY
 from ._result import result
+
+#: Nominal accuracy of the radial path, stated as its error estimate: it agrees to 2e-10 with 8x its
+#: nodes and to 4e-9 with a direct quadrature of single scatterers (docs/auto_method.md).
+FO_RADIAL_ACCURACY = 1e-8
+#: Nominal accuracy of the 2-D path (measured: 5.5e-7 against finer grids).
+FO_2D_ACCURACY = 1e-6
 
 
 def run_radial(plan):
@@ -40,7 +45,6 @@ def _warn_if_clipped(plan, raw, fix: str) -> None:
         if worst > EDGE_POWER_LIMIT:
             _checks.warn(
                 f"overlap(fo): the transmitted field at {z:.4g} m loses {worst:.2g} of its power "
-                "to the "
-                f"window edge or the band limit; {fix}",
+                f"to the window edge or the band limit; {fix}",
                 SamplingWarning,
             )

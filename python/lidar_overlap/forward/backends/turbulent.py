@@ -15,24 +15,20 @@ tasks.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
-from types import SimpleNamespace
+from typing import Any, List, cast
 
 import numpy as np
 
 from ... import _checks, _core
-from ..result import TurbulentOverlapResult
-from ..validity import warn_if_rt_invalid, warn_if_rt_unconverged
+from ..result import BAND, MAX_REALIZATIONS, TurbulentOverlapResult
 from ._result import result
+from .batch import pairs, warn_rt
 
-#: Percentiles of the spread band reported per range.
-BAND = (5.0, 95.0)
-#: Realisations one turbulent overlap may draw (the core's bound on the FO path).
-MAX_REALIZATIONS = 1_000_000
 #: Bytes per draw (realisation x range) of the RT path: the drawn system, its result, and the copies
-#: the
-#: statistics make.
+#: the statistics make.
 BYTES_PER_DRAW = 512
 
 
@@ -45,17 +41,8 @@ def fo_rows(plan, first: int, count: int) -> np.ndarray:
     """Realisations ``first .. first + count - 1`` of the FO run of ``plan`` (count x ranges): bit
     for bit those rows of the whole run (the core's ``first_realization``), on
     ``plan.options.threads`` threads."""
-    o = plan.options
-    part = _core.TurbulenceOptions(
-        realizations=count,
-        first_realization=first,
-        screens=o.screens,
-        seed=o.seed,
-        beam_grid=o.beam_grid,
-        beam_window=o.beam_window,
-        max_spectrum_grid=o.max_spectrum_grid,
-        threads=o.threads,
-    )
+    part = copy.copy(plan.options)  # the plan's own options stay as they are
+    part.realizations, part.first_realization = count, first
     raw = _core.overlap_fo_turbulent(
         plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
     )
@@ -69,7 +56,7 @@ def run_rt(plan) -> TurbulentOverlapResult:
     check_work(plan.ranges, plan.turbulence.realizations)
     short_term, offsets = wander(plan)
     g, converged, error = rt_rows(plan, short_term, offsets)
-    warn_rt(plan, converged, error)
+    warn_rt(plan, converged, error, np.tile(plan.ranges, plan.turbulence.realizations))
     return statistics(plan, g)
 
 
@@ -92,8 +79,7 @@ def wander(plan):
             raise ValueError(
                 f"{_where(plan, i)} is invalid: the short-term beam there ({st:.4g} m) spreads at "
                 f"{spread(beam, zi, st):.4g} rad, beyond the paraxial model's {_core.MAX_ANGLE:g} "
-                "rad; "
-                "expected weaker turbulence (cn2) or shorter ranges"
+                "rad; expected weaker turbulence (cn2) or shorter ranges"
             )
         short_term[i] = st
         sigma[i] = 0.5 * math.sqrt(
@@ -116,7 +102,9 @@ def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
     system, z = plan.system, plan.ranges
     beam, telescope, detector = system.beam, system.telescope._native, system.detector._native
     count = offsets.shape[0]
-    draws = [None] * (count * z.size)  # realisation-major, so that G reshapes to (count, ranges)
+    draws: List[Any] = [None] * (
+        count * z.size
+    )  # realisation-major, so that G reshapes to (count, ranges)
     for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
         for r in range(count):
             try:
@@ -128,34 +116,12 @@ def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
             ) as exc:  # the drawn beam's offset or divergence beyond the core's scales
                 raise ValueError(
                     f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering beam "
-                    "there "
-                    f"({exc}); its axis (offset + tilt x range) and wander must stay within the "
-                    "model's "
-                    "lengths and angles: expected shorter ranges, a smaller tilt or weaker "
-                    "turbulence "
-                    "(cn2)"
+                    f"there ({exc}); its axis (offset + tilt x range) and wander must stay within "
+                    "the model's lengths and angles: expected shorter ranges, a smaller tilt or "
+                    "weaker turbulence (cn2)"
                 ) from None
-    raw = _core.overlap_rt_batch(draws, np.tile(z, count), plan.options)
-    return (
-        np.asarray(raw.overlap).reshape(count, z.size),
-        np.asarray(raw.converged, dtype=bool),
-        np.asarray(raw.error_estimate),
-    )
-
-
-def warn_rt(plan, converged: np.ndarray, error: np.ndarray) -> None:
-    """RT's validity warnings for the system, and its convergence warning over all draws
-    (``rt_rows``' flags)."""
-    warn_if_rt_invalid(plan.system, plan.ranges)
-    draws = np.tile(
-        plan.ranges, converged.size // plan.ranges.size
-    )  # each draw's range, as rt_rows orders them
-    warn_if_rt_unconverged(
-        SimpleNamespace(converged=converged, error_estimate=error),
-        draws,
-        plan.rt_quadrature_tolerance,
-        "loosen the tolerance",
-    )
+    rows = pairs(plan, draws, np.tile(z, count), warn=False)
+    return rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate
 
 
 def _where(plan, i: int) -> str:
@@ -167,7 +133,7 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
     """A path without turbulence: every draw is the plain curve, the spread zero."""
     zero = np.zeros(plan.ranges.size)
     samples = np.tile(plain.overlap, (plan.turbulence.realizations, 1))
-    return result(
+    out = result(
         plan,
         plain.overlap,
         zero,
@@ -177,6 +143,7 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
         low=plain.overlap.copy(),
         high=plain.overlap.copy(),
     )
+    return cast(TurbulentOverlapResult, out)
 
 
 def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
@@ -186,7 +153,7 @@ def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
     std = samples.std(axis=0, ddof=1) if k > 1 else np.zeros(plan.ranges.size)
-    return result(
+    out = result(
         plan,
         samples.mean(axis=0),
         std / math.sqrt(k),
@@ -196,6 +163,7 @@ def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
         low=low,
         high=high,
     )
+    return cast(TurbulentOverlapResult, out)
 
 
 def spread(beam, z: float, radius: float) -> float:

@@ -1,0 +1,109 @@
+"""One plan over many variants (the runner the analyses use): the systems of a sensitivity, a fit's
+Jacobian, an optimisation's candidates or a study's draws, each G bit for bit what a single run of
+the plan re-targeted at that system gives (:meth:`lidar_overlap.Plan.with_system`).
+
+Ray tracing runs every variant in one parallel core call (:mod:`.batch`); other backends run the
+re-targeted plan for each variant in turn.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+from ...model.system import LidarSystem
+from . import BACKENDS
+from . import run as run_plan
+from . import turbulent as turbulent_backend
+from ._result import result
+from .batch import Curves, grid, one_call, pairs, through_masks, warn_rt
+
+__all__ = [
+    "Curves",
+    "grid",
+    "one_call",
+    "pairs",
+    "results",
+    "systems",
+    "through_masks",
+    "turbulent",
+    "turbulent_draws",
+    "turbulent_result",
+    "turbulent_rows",
+]
+
+#: Backends whose variants go through one batched core call.
+BATCHED = ("rt",)
+
+
+def systems(plan, variants: Sequence[LidarSystem]) -> Curves:
+    """G of each system in ``variants`` (systems of the kind ``plan.system`` is: shifted,
+    misaligned, drawn) at ``plan.ranges``: shape (len(variants), ranges)."""
+    z = plan.ranges
+    if plan.backend not in BATCHED:
+        runs = [run_plan(plan.with_system(s)) for s in variants]
+        shape = (len(runs), z.size)
+        return Curves(
+            np.array([r.overlap for r in runs]).reshape(shape),
+            np.array([r.error_estimate for r in runs]).reshape(shape),
+            np.ones(shape, dtype=bool),
+        )
+    for s in variants:
+        plan.with_system(s)  # the same kind of system, or refused naming what changed
+    natives = [s._native for s in variants for _ in z]
+    flat = pairs(plan, natives, np.tile(z, len(variants)), warn=False)
+    shape = (len(variants), z.size)
+    warn_rt(plan, flat.converged, flat.error_estimate, np.tile(z, len(variants)))
+    return Curves(
+        flat.overlap.reshape(shape),
+        flat.error_estimate.reshape(shape),
+        flat.converged.reshape(shape),
+    )
+
+
+def turbulent(plan) -> bool:
+    """Whether ``plan`` draws realisations of a turbulent atmosphere (False for a turbulent request
+    along a path without turbulence: every draw is the plain curve)."""
+    return BACKENDS[plan.backend].turbulent
+
+
+def turbulent_draws(plan):
+    """What the realisations of a turbulent ``plan`` share, drawn up front so that any slice of them
+    is computed bit for bit as the whole run computes it: for ray tracing the short-term beam radius
+    per range (m) and every draw's wander offsets (m, realisations x ranges x 2); None for Fourier
+    optics (its realisation k takes the screens (seed, k)). The work is checked first (the count,
+    and the memory of the draws)."""
+    turbulent_backend.check_work(plan.ranges, plan.turbulence.realizations)
+    return turbulent_backend.wander(plan) if plan.backend == "rt_turbulent" else None
+
+
+def turbulent_rows(plan, first: int, count: int, drawn) -> tuple:
+    """Realisations ``first .. first + count - 1`` of a turbulent ``plan``: (G, realisations x
+    ranges; the RT convergence flags and error estimates, flat, or None for FO). ``drawn``: what
+    :func:`turbulent_draws` gave."""
+    if drawn is None:
+        return turbulent_backend.fo_rows(plan, first, count), None, None
+    short_term, offsets = drawn
+    return turbulent_backend.rt_rows(plan, short_term, offsets[first : first + count])
+
+
+def turbulent_result(plan, parts):
+    """The :class:`TurbulentOverlapResult` of all the realisations' rows, ``parts`` in order (from
+    :func:`turbulent_rows`): RT's convergence warning once over all draws, then the statistics
+    made over all rows at once, as ``lo.overlap`` makes them."""
+    g = np.concatenate([part[0] for part in parts])
+    if parts[0][1] is not None:
+        converged = np.concatenate([part[1] for part in parts])
+        error = np.concatenate([part[2] for part in parts])
+        warn_rt(plan, converged, error, np.tile(plan.ranges, g.shape[0]))
+    return turbulent_backend.statistics(plan, g)
+
+
+def results(plan, variants: Sequence[LidarSystem], curves: Curves) -> list:
+    """One :class:`OverlapResult` per variant from rows of ``curves`` (as :func:`systems` gives
+    them), each stating what a run of ``plan`` re-targeted at that variant states."""
+    return [
+        result(plan.with_system(s), g, e)
+        for s, g, e in zip(variants, curves.overlap, curves.error_estimate)
+    ]
