@@ -11,10 +11,10 @@
 #include "bind_field.hpp"
 #include "interruptible.hpp"
 #include "options.hpp"
-#include "lidar_overlap/aberrations/aberrations.hpp"
-#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
-#include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
-#include "lidar_overlap/aberrations/zernike.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
+#include "lidar_overlap/pupil/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_rt_aberrated.hpp"
+#include "lidar_overlap/pupil/zernike.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

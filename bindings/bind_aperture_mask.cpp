@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "interruptible.hpp"
-#include "lidar_overlap/geometry/aperture_mask.hpp"
+#include "lidar_overlap/pupil/aperture_mask.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;

@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "check.hpp"
-#include "lidar_overlap/aberrations/aberrations.hpp"
-#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
-#include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
-#include "lidar_overlap/aberrations/zernike.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
+#include "lidar_overlap/pupil/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_rt_aberrated.hpp"
+#include "lidar_overlap/pupil/zernike.hpp"
 #include "lidar_overlap/fourier/overlap_fo_radial.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 #include "core/constants.hpp"

@@ -9,7 +9,7 @@
 #include "geometry/disc_sector_areas.hpp"
 #include "geometry/moving_disc_integral.hpp"
 #include "geometry/sector_area.hpp"
-#include "lidar_overlap/geometry/aperture_mask.hpp"
+#include "lidar_overlap/pupil/aperture_mask.hpp"
 
 using namespace lidar_overlap;
 

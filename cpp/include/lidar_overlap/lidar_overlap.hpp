@@ -2,8 +2,9 @@
 //
 // Folders follow the architecture: core/ (the system, limits, cancellation), geometry/ (ray tracing),
 // fourier/ (fields, propagation, Fourier-optics overlap), beams/ (flat-top design), atmosphere/
-// (turbulence), aberrations/ (receiver wavefront errors). Internals (checks, quadrature, FFT plans, OTF,
-// circle geometry, loops) live in cpp/src and are not installed.
+// (turbulence), pupil/ (the receiver pupil: aperture masks, wavefront aberrations, Zernike terms, and the
+// overlap through an aberrated pupil). Internals (checks, quadrature, FFT plans, OTF, circle geometry, loops)
+// live in cpp/src and are not installed.
 //
 // Entry points: overlap_rt (ray tracing; alignment_map over misalignment grids), overlap_fo (Fourier
 // optics; Gaussian or any transmitted Field), overlap_fo_radial, overlap_fo_turbulent, overlap_rt_aberrated /
@@ -24,7 +25,6 @@
 #include "lidar_overlap/core/system.hpp"
 #include "lidar_overlap/core/vec2.hpp"
 
-#include "lidar_overlap/geometry/aperture_mask.hpp"
 #include "lidar_overlap/geometry/alignment_map.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 #include "lidar_overlap/geometry/receiver.hpp"
@@ -42,7 +42,8 @@
 #include "lidar_overlap/atmosphere/phase_screen.hpp"
 #include "lidar_overlap/atmosphere/turbulence.hpp"
 
-#include "lidar_overlap/aberrations/aberrations.hpp"
-#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
-#include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
-#include "lidar_overlap/aberrations/zernike.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
+#include "lidar_overlap/pupil/aperture_mask.hpp"
+#include "lidar_overlap/pupil/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_rt_aberrated.hpp"
+#include "lidar_overlap/pupil/zernike.hpp"

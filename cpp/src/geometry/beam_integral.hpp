@@ -1,6 +1,6 @@
 // The beam integral of the RT engine: a coupling term weighted by the Gaussian beam irradiance at one
 // range, by adaptive quadrature with breakpoints where the term has a kink (docs/rt_method.md). Shared by
-// the full-aperture overlap (overlap_rt.cpp) and the masked one (aperture_mask.cpp): a term is anything
+// the full-aperture overlap (overlap_rt.cpp) and the masked one (pupil/aperture_mask.cpp): a term is anything
 // callable on a scatterer position whose kinks lie on known circles in the scatterer plane.
 // Internal header, not installed.
 #pragma once
@@ -18,7 +18,7 @@
 namespace lidar_overlap::beam_integral {
 
 // Room for a term's kink circles: 4 moving discs give 12 tangency circles; a masked term adds its discs'
-// tangencies with the sectors' arcs and passages through their corners (aperture_mask.cpp).
+// tangencies with the sectors' arcs and passages through their corners (pupil/aperture_mask.cpp).
 inline constexpr std::size_t kMaxKinks = 40;
 
 struct RangeResult {

@@ -1,5 +1,5 @@
 // Exact area of an intersection of discs restricted to an annular sector of the aperture plane (the
-// aperture masks of lidar_overlap/geometry/aperture_mask.hpp). Internal header, not installed.
+// aperture masks of lidar_overlap/pupil/aperture_mask.hpp). Internal header, not installed.
 #pragma once
 
 #include <cstddef>

@@ -82,8 +82,14 @@
 #if __has_include(<lidar_overlap/fourier/gaussian_image_overlap.hpp>)
 #error "installed but not part of the public API: <lidar_overlap/fourier/gaussian_image_overlap.hpp>"
 #endif
-#if __has_include(<lidar_overlap/aberrations/aberrated_pupil_integral.hpp>)
-#error "installed but not part of the public API: <lidar_overlap/aberrations/aberrated_pupil_integral.hpp>"
+#if __has_include(<lidar_overlap/pupil/aberrated_pupil_integral.hpp>)
+#error "installed but not part of the public API: <lidar_overlap/pupil/aberrated_pupil_integral.hpp>"
+#endif
+#if __has_include(<lidar_overlap/pupil/sampled_pupil_overlap.hpp>)
+#error "installed but not part of the public API: <lidar_overlap/pupil/sampled_pupil_overlap.hpp>"
+#endif
+#if __has_include(<lidar_overlap/pupil/seidel_gradient.hpp>)
+#error "installed but not part of the public API: <lidar_overlap/pupil/seidel_gradient.hpp>"
 #endif
 #if __has_include(<core/checks.hpp>)
 #error "installed but not part of the public API: <core/checks.hpp>"
@@ -91,7 +97,8 @@
 #if __has_include(<fourier/fft.hpp>)
 #error "installed but not part of the public API: <fourier/fft.hpp>"
 #endif
-#if !__has_include(<lidar_overlap/core/system.hpp>) || !__has_include(<lidar_overlap/version.hpp>)
+#if !__has_include(<lidar_overlap/core/system.hpp>) || !__has_include(<lidar_overlap/version.hpp>) || \
+    !__has_include(<lidar_overlap/pupil/aperture_mask.hpp>)
 #error "the public API is not installed where expected"
 #endif
 

@@ -1,4 +1,4 @@
-#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_fo_aberrated.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@
 #include "fourier/gaussian_image_overlap.hpp"
 #include "fourier/otf.hpp"
 #include "fourier/overlap_fo_detail.hpp"
-#include "aberrations/sampled_pupil_overlap.hpp"
+#include "pupil/sampled_pupil_overlap.hpp"
 
 namespace lidar_overlap {
 

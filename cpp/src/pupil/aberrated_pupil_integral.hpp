@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
 #include "lidar_overlap/core/system.hpp"
 
 namespace lidar_overlap::detail {

@@ -11,13 +11,13 @@
 // When the rays' displacements are the same for every scatterer (Zernike terms and W040 only, no NA cone,
 // obstruction absent or in the aperture plane), G is instead one smooth integral over the pupil of the share of
 // the Gaussian beam image that each ray's displacement leaves on the detector: no ray fan, no beam integral
-// (src/aberrations/aberrated_pupil_integral.hpp).
+// (src/pupil/aberrated_pupil_integral.hpp).
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
-#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
 #include "lidar_overlap/core/system.hpp"
 
 namespace lidar_overlap {

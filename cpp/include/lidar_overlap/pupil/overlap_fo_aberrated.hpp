@@ -16,7 +16,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
 #include "lidar_overlap/core/system.hpp"
 #include "lidar_overlap/fourier/field.hpp"
 

@@ -1,4 +1,4 @@
-#include "lidar_overlap/geometry/aperture_mask.hpp"
+#include "lidar_overlap/pupil/aperture_mask.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "core/constants.hpp"
 #include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
-#include "aberrations/sampled_pupil_overlap.hpp"
+#include "pupil/sampled_pupil_overlap.hpp"
 #include "geometry/beam_integral.hpp"
 #include "geometry/moving_disc_integral.hpp"
 #include "geometry/receiver_coupling.hpp"

@@ -2,7 +2,7 @@
 // (overlap_rt_aberrated.cpp), which adds it per ray. Internal header, not installed.
 #pragma once
 
-#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
 #include "lidar_overlap/core/vec2.hpp"
 
 namespace lidar_overlap::detail {

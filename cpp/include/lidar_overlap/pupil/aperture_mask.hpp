@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_fo_aberrated.hpp"
 #include "lidar_overlap/core/system.hpp"
 #include "lidar_overlap/geometry/overlap_rt.hpp"
 

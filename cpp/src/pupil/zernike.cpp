@@ -1,4 +1,4 @@
-#include "lidar_overlap/aberrations/zernike.hpp"
+#include "lidar_overlap/pupil/zernike.hpp"
 
 #include <cmath>
 #include <cstdlib>

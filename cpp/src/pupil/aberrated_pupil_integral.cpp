@@ -1,4 +1,4 @@
-#include "aberrations/aberrated_pupil_integral.hpp"
+#include "pupil/aberrated_pupil_integral.hpp"
 
 #include <algorithm>
 #include <cmath>

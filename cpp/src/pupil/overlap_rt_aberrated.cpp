@@ -1,4 +1,4 @@
-#include "lidar_overlap/aberrations/overlap_rt_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_rt_aberrated.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <tuple>
 #include <utility>
 
-#include "lidar_overlap/aberrations/zernike.hpp"
-#include "aberrations/aberrated_pupil_integral.hpp"
-#include "aberrations/seidel_gradient.hpp"
+#include "lidar_overlap/pupil/zernike.hpp"
+#include "pupil/aberrated_pupil_integral.hpp"
+#include "pupil/seidel_gradient.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/entry_checks.hpp"

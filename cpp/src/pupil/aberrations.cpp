@@ -1,11 +1,11 @@
-#include "lidar_overlap/aberrations/aberrations.hpp"
+#include "lidar_overlap/pupil/aberrations.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "lidar_overlap/aberrations/zernike.hpp"
-#include "aberrations/seidel_gradient.hpp"
+#include "lidar_overlap/pupil/zernike.hpp"
+#include "pupil/seidel_gradient.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 

@@ -1,12 +1,12 @@
 // The Fourier-optics overlap through a sampled pupil (overlap_fo_aberrated.cpp): G = G_0 + the Parseval sum of
 // the change of the sampled OTF. Shared by the aberrated receiver and the masked one (aperture masks cut the
-// sampled pupil to their sectors; geometry/aperture_mask.cpp). Internal header, not installed.
+// sampled pupil to their sectors; aperture_mask.cpp). Internal header, not installed.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "lidar_overlap/aberrations/overlap_fo_aberrated.hpp"
+#include "lidar_overlap/pupil/overlap_fo_aberrated.hpp"
 #include "geometry/sector_area.hpp"
 
 namespace lidar_overlap::detail {
