@@ -8,12 +8,14 @@ results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, s
 files), ``cli`` and ``views`` (plots, 3-D scenes). This namespace re-exports what users call.
 """
 
-from ._core import __version__, max_memory, max_threads, set_max_memory
+from ._checks import set_max_memory
+from ._core import __version__, max_memory, max_threads
 from .analysis.alignment import alignment_map, alignment_maps
 from .analysis.autoalign import AlignResult, align
 from .analysis.fit import fit
 from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fit_telecover import fit_telecover
+from .analysis.fit_verdict import FitQualityWarning
 from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.optimize import OptimizeResult, optimize
 from .analysis.sensitivity import sensitivity
@@ -68,6 +70,7 @@ __all__ = [
     "fit",
     "fit_telecover",
     "DegeneracyWarning",
+    "FitQualityWarning",
     "FitResult",
     "Prediction",
     "AlignResult",
