@@ -240,7 +240,7 @@ def _recheck(result: "OverlapResult") -> None:
         result.ranges, result.overlap, result.method, result.error_estimate, result.tolerance
     )
     if not all(
-        np.array_equal(a, b)
+        np.array_equal(a, b, equal_nan=True)
         for a, b in zip(checked[:3], (result.ranges, result.overlap, result.error_estimate))
     ):
         raise ValueError("the result's arrays were changed after construction: not written")
