@@ -142,3 +142,12 @@ def test_the_runs_test_tells_noise_from_structure():
     assert abs(fit_verdict.runs_z(rng.normal(size=400))) < fit_verdict.RUNS_Z
     assert fit_verdict.runs_z(np.sin(np.linspace(0, 4 * np.pi, 400))) < -fit_verdict.RUNS_Z
     assert fit_verdict.runs_z(np.ones(5)) is None
+
+
+def test_a_zero_residual_fit_of_a_degenerate_parameter_is_warned_not_nan():
+    # G is even in the tilt of a coaxial lidar: at tilt 0 the Jacobian is singular
+    y = lo.overlap(TABLE1, Z, **FAST).overlap
+    with pytest.warns((lo.FitQualityWarning, lo.DegeneracyWarning)):
+        f = lo.fit(TABLE1, Z, y, free=["detector.defocus", "beam.tilt[0]"], **FAST)
+    assert not any(math.isnan(v) for v in f.uncertainties.values())
+    assert not np.isnan(f.covariance).any() and not np.isnan(f.correlation).any()

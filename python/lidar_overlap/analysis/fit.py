@@ -226,7 +226,9 @@ def solve(
     with np.errstate(over="ignore", invalid="ignore"):
         chi_square, dof = float(r @ r), n - k
         unscaled = covariance(j, 1.0)
-        cov = unscaled * (chi_square / dof) if not sigma_given else unscaled
+        # inf (singular J) stays inf when scaled by a zero chi-square (inf x 0 would be NaN)
+        scale_by = chi_square / dof if not sigma_given else 1.0
+        cov = np.where(np.isinf(unscaled), unscaled, unscaled * scale_by)
     fit_verdict.check_usable("fit", chi_square, cov)
     sd = np.sqrt(np.diag(cov))
     unit_sd = np.sqrt(np.diag(unscaled))
@@ -237,6 +239,7 @@ def solve(
         corr = (
             unscaled / np.outer(unit_sd, unit_sd) if np.all(np.isfinite(unit_sd)) else -_cosines(j)
         )
+        np.fill_diagonal(corr, 1.0)  # -cos gives -1 there
     pairs = tuple(
         (paths[a], paths[b], float(corr[a, b]))
         for a in range(k)
@@ -304,8 +307,12 @@ def solve(
 
 
 def _cosines(j: np.ndarray) -> np.ndarray:
+    """Cosines of the angles between J's columns; 0 with a column of zeros (a parameter G does
+    not depend on has no angle: 0/0 would be NaN)."""
     norms = np.linalg.norm(j, axis=0)
-    return np.clip(j.T @ j / np.outer(norms, norms), -1.0, 1.0)
+    outer = np.outer(norms, norms)
+    cos = np.where(outer > 0, j.T @ j / np.where(outer > 0, outer, 1.0), 0.0)
+    return np.clip(cos, -1.0, 1.0)
 
 
 def default_bounds(system, path: str, start: float):
