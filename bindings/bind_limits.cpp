@@ -6,6 +6,7 @@
 
 #include "lidar_overlap/core/cancel.hpp"
 #include "lidar_overlap/core/limits.hpp"
+#include "interruptible.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;
@@ -14,6 +15,9 @@ void bind_limits(py::module_& m) {
   m.def("max_memory", &max_memory, "Bytes one call may allocate for its grids and tables.");
   m.def("set_max_memory", &set_max_memory, py::arg("bytes"), "Set that budget in bytes (0 restores the default, a quarter of the physical memory).");
   m.def("max_threads", &max_threads, "The largest `threads` option accepted.");
+  m.def(
+      "_set_interrupt_requested", [](bool on) { interrupt_requested().store(on); }, py::arg("on"),
+      "Ask every running core call, in any thread, to stop (the package's SIGINT handler).");
   m.attr("MIN_LENGTH") = kMinLength;
   m.attr("MAX_LENGTH") = kMaxLength;
   m.attr("MAX_ANGLE") = kMaxAngle;

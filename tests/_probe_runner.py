@@ -37,6 +37,11 @@ from _probe_worker import (
 HERE = Path(__file__).resolve().parent
 #: Seconds a probe may take before it counts as a hang.
 DEFAULT_TIME_LIMIT = float(os.environ.get("LIDAR_OVERLAP_PROBE_TIME_LIMIT", "20"))
+#: A probe that waits this many times its limit in wall-clock time without using its CPU time is
+#: blocked (a FIFO, a lock): generous, since on a loaded machine a probe gets a fraction of a core.
+WALL_FACTOR = 10.0
+#: How often the parent looks at the worker's CPU time while it waits.
+POLL_SECONDS = 0.5
 #: Seconds the worker may take to start and import the library.
 START_LIMIT = 60.0
 #: Table columns, in order.
@@ -77,13 +82,21 @@ class _Worker:
             self.ready = True
 
     def read_reply(self, limit: float):
-        """The reply's payload; None on a timeout; raises EOFError if the worker died."""
+        """The reply's payload; None when the worker has spent ``limit`` seconds of CPU time on it
+        (a busy machine slows a probe, not its CPU time) or waited WALL_FACTOR x ``limit`` seconds
+        without using it (blocked); raises EOFError if the worker died."""
         out = self.proc.stdout.fileno()
-        deadline = time.monotonic() + limit
+        start_cpu, start = _cpu_seconds(self.proc.pid), time.monotonic()
         header = b""
         while len(header) < 4:
-            if not select.select([out], [], [], max(0.0, deadline - time.monotonic()))[0]:
-                return None
+            if not select.select([out], [], [], POLL_SECONDS)[0]:
+                cpu = _cpu_seconds(self.proc.pid)
+                if cpu is None or start_cpu is None:  # no CPU clock: the wall clock, generously
+                    if time.monotonic() - start > WALL_FACTOR * limit:
+                        return None
+                elif cpu - start_cpu > limit or time.monotonic() - start > WALL_FACTOR * limit:
+                    return None
+                continue
             chunk = os.read(out, 4 - len(header))
             if not chunk:
                 raise EOFError
@@ -190,12 +203,23 @@ class ProbeRunner:
             return self._retire(
                 {
                     "verdict": HANG,
-                    "why": f"no answer within {limit:g} s",
+                    "why": f"no answer within {limit:g} s of CPU time (or blocked)",
                     "seconds": limit,
                     "stderr": stderr,
                 }
             )
         return pickle.loads(data)
+
+
+def _cpu_seconds(pid: int):
+    """CPU seconds (user + system, all threads) process ``pid`` has used; None where /proc cannot
+    say (not Linux)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as f:
+            fields = f.read().rsplit(b")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, IndexError, ValueError):
+        return None
 
 
 def _describe_exit(code: int) -> str:

@@ -101,7 +101,7 @@ R = [100.0, 200.0, 300.0]
             lambda: lo.fit_telecover(S, R, [[0, 0, 0]] * 3 + [[0, -2, 0]]),
             r"measured_deviation\[3, 1\] = -2.0",
         ),
-        (lambda: lo.fit_telecover(S, R, "zeros"), r"measured_deviation is invalid"),
+        (lambda: lo.fit_telecover(S, R, "zeros"), r"measured_deviation = 'zeros' is invalid"),
         (lambda: lo.fit_telecover(S, R, D, sigma=0), r"sigma\[0, 0\] = 0.0 \(north\) is invalid"),
         (lambda: lo.fit_telecover(S, R, D, sigma=[1, 1, -1]), r"sigma\[0, 2\] = -1.0"),
         (lambda: lo.fit_telecover(S, R, D, sigma=[1, 1]), r"sigma = \[1, 1\] is invalid"),

@@ -7,12 +7,14 @@ results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, s
 call.
 """
 
-from ._core import __version__, max_memory, max_threads, set_max_memory
+from ._checks import set_max_memory
+from ._core import __version__, max_memory, max_threads
 from .analysis.alignment import alignment_map, alignment_maps
 from .analysis.autoalign import AlignResult, align
 from .analysis.fit import fit
 from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fit_telecover import fit_telecover
+from .analysis.fit_verdict import FitQualityWarning
 from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.optimize import OptimizeResult, optimize
 from .analysis.sensitivity import sensitivity
@@ -67,6 +69,7 @@ __all__ = [
     "fit",
     "fit_telecover",
     "DegeneracyWarning",
+    "FitQualityWarning",
     "FitResult",
     "Prediction",
     "AlignResult",

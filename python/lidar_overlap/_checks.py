@@ -202,3 +202,37 @@ def warn(message: str, category: type = RuntimeWarning) -> None:
     while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):
         frame, level = frame.f_back, level + 1
     warnings.warn(message, category, stacklevel=level)
+
+
+def real_array(name: str, value: Any, ndim: int | None = None) -> np.ndarray:
+    """A float array of real numbers (ints and floats): complex values (never cut to their real
+    part), bools, strings and objects are refused naming ``name``; ``ndim`` when given is the
+    required number of dimensions."""
+    if isinstance(value, (str, bytes)):
+        raw = None
+    else:
+        try:
+            raw = np.asarray(value)
+        except (TypeError, ValueError, OverflowError):
+            raw = None
+    if raw is None or raw.dtype.kind not in "iuf":
+        kind = "complex numbers" if raw is not None and raw.dtype.kind == "c" else "not numbers"
+        raise ValueError(
+            f"{name} = {shown(value)} is invalid: expected an array of real numbers ({kind})"
+        )
+    try:
+        values = raw.astype(float)
+    except OverflowError:
+        raise ValueError(f"{name} is invalid: expected real numbers within double range") from None
+    if ndim is not None and values.ndim != ndim:
+        raise ValueError(
+            f"{name} has shape {values.shape}: expected a {ndim}-D array of real numbers"
+        )
+    return values
+
+
+def set_max_memory(bytes: int) -> None:
+    """Set the memory budget of one call, in bytes (0 restores the default, a quarter of the
+    physical memory); ValueError naming ``bytes`` for anything but an integer from 0 to
+    2**63 - 1."""
+    _core.set_max_memory(count("bytes", bytes, 0, 2**63 - 1))

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "lidar_overlap/core/limits.hpp"
+#include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
@@ -103,19 +104,27 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
   // Fermi-Dirac edge: 10-90 % over 2 ln 9 s.
   const double s = edge / (2.0 * std::log(9.0));
   double target_sum = 0.0, field_sum = 0.0;
-  for (std::size_t iy = 0; iy < n; ++iy)
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();  // once per row: a 4096² grid takes seconds on a busy core
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double theta = far_angle[iy * n + ix] =
           std::hypot(angle_of(ix, n, dx, wavelength), angle_of(iy, n, dx, wavelength));
       target[iy * n + ix] = 1.0 / (1.0 + std::exp((theta - half) / s));
       target_sum += target[iy * n + ix];
     }
-  for (double a : amplitude) field_sum += a * a;
+  }
+  for (std::size_t i = 0; i < n * n; ++i) {
+    detail::cancellation_point_every(i);
+    field_sum += amplitude[i] * amplitude[i];
+  }
   // Same power in both planes (the unnormalised FFT multiplies sum |u|^2 by n^2): B = sqrt(T) scaled.
   std::vector<double> b(n * n);
   const double scale = std::sqrt(field_sum * n * n / target_sum);
   double b_norm = 0.0;
-  for (std::size_t i = 0; i < n * n; ++i) b_norm += (b[i] = scale * std::sqrt(target[i])) * b[i];
+  for (std::size_t i = 0; i < n * n; ++i) {
+    detail::cancellation_point_every(i);
+    b_norm += (b[i] = scale * std::sqrt(target[i])) * b[i];
+  }
 
   // Start from the ray-optics plate, which maps the enclosed power of the Gaussian, 1 - exp(-2 r^2 / w0^2),
   // onto that of a uniform disc, (theta / theta_max)^2: theta(r) = theta_max sqrt(1 - exp(-2 r^2 / w0^2)),
@@ -128,13 +137,15 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
     auto theta = [&](double r) { return half * std::sqrt(-std::expm1(-2.0 * r * r / (waist_radius * waist_radius))); };
     for (std::size_t i = 1; i < ray_phase.size(); ++i)
       ray_phase[i] = ray_phase[i - 1] + 0.5 * k * dr * (theta((i - 1) * dr) + theta(i * dr));
-    for (std::size_t iy = 0; iy < n; ++iy)
+    for (std::size_t iy = 0; iy < n; ++iy) {
+      detail::cancellation_point();
       for (std::size_t ix = 0; ix < n; ++ix) {
         const double pos = std::hypot(d.transmitted.coordinate(ix), d.transmitted.coordinate(iy)) / dr;
         const std::size_t i = static_cast<std::size_t>(pos);
         const double phase = ray_phase[i] + (pos - i) * (ray_phase[i + 1] - ray_phase[i]);
         u[iy * n + ix] = std::polar(amplitude[iy * n + ix], std::remainder(phase, 2.0 * kPi));
       }
+    }
   }
   // Error reduction: impose the far-field amplitude, then the plate-plane amplitude, keeping the phases.
   auto with_modulus = [](Complex v, double m) {
@@ -146,6 +157,7 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
     fft2d(u, n, FftDirection::forward);
     double err = 0.0;
     for (std::size_t i = 0; i < n * n; ++i) {
+      detail::cancellation_point_every(i);  // a 4096² grid has 16.8 M samples
       const double a = std::sqrt(std::norm(u[i]));
       err += (a - b[i]) * (a - b[i]);
     }
@@ -157,9 +169,15 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
       d.stop = !settled ? FlatTopStop::max_iterations : err <= o.max_error ? FlatTopStop::converged : FlatTopStop::stagnated;
       break;  // u holds the far field of the current plate
     }
-    for (std::size_t i = 0; i < n * n; ++i) u[i] = with_modulus(u[i], b[i]);
+    for (std::size_t i = 0; i < n * n; ++i) {
+      detail::cancellation_point_every(i);
+      u[i] = with_modulus(u[i], b[i]);
+    }
     fft2d(u, n, FftDirection::backward);
-    for (std::size_t i = 0; i < n * n; ++i) u[i] = with_modulus(u[i], amplitude[i]);
+    for (std::size_t i = 0; i < n * n; ++i) {
+      detail::cancellation_point_every(i);
+      u[i] = with_modulus(u[i], amplitude[i]);
+    }
   }
 
   // The plate is the phase of the last plate-plane field (the one whose far field was just measured).
@@ -167,18 +185,23 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
   fft2d(plate, n, FftDirection::backward);
   d.phase.resize(n * n);
   for (std::size_t i = 0; i < n * n; ++i) {
+    detail::cancellation_point_every(i);  // a 4096² grid has 16.8 M samples
     d.phase[i] = std::arg(plate[i]);
     d.transmitted.values[i] = std::polar(amplitude[i], d.phase[i]);
   }
   // Radiant intensity J = |dx^2 FFT|^2 / lambda^2 (W/sr): sum J dtheta^2 is the power.
   const double to_w_per_sr = std::pow(dx, 4) / (wavelength * wavelength);
   std::vector<double> j(n * n), t(n * n);
-  for (std::size_t i = 0; i < n * n; ++i) j[i] = std::norm(u[i]) * to_w_per_sr, t[i] = b[i] * b[i] * to_w_per_sr;
+  for (std::size_t i = 0; i < n * n; ++i) {
+    detail::cancellation_point_every(i);
+    j[i] = std::norm(u[i]) * to_w_per_sr, t[i] = b[i] * b[i] * to_w_per_sr;
+  }
   d.far_field = centred(j, n);
   d.target = centred(t, n);
 
   double inside = 0.0, total = 0.0, sum = 0.0, sum2 = 0.0, lo = INFINITY, hi = 0.0, count = 0.0;
   for (std::size_t i = 0; i < n * n; ++i) {
+    detail::cancellation_point_every(i);  // a 4096² grid has 16.8 M samples
     total += j[i];
     if (far_angle[i] <= half) inside += j[i];
     if (target[i] >= 0.9) {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
@@ -83,13 +84,17 @@ std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std
     return b;
   };
   std::vector<Receiver> receivers;  // built before the parallel region (the beam does not enter them)
-  for (double z : ranges) receivers.emplace_back(system, z);
+  for (std::size_t z = 0; z < ranges.size(); ++z) {
+    detail::cancellation_point_every(z);
+    receivers.emplace_back(system, ranges[z]);
+  }
   detail::parallel_for(n_ranges, threads, [&](std::size_t z) {
     const Receiver& rx = receivers[z];
     const double w = system.beam.radius(ranges[z]);
     std::vector<Key> keys(points);
     std::vector<std::size_t> order(points);
     for (std::size_t p = 0; p < points; ++p) {
+      detail::cancellation_point_every(p);  // one range of a 10^6-point map is a long iteration
       const Vec2 c = point_system(p).beam.center(ranges[z]);
       CouplingTerm terms[2];
       const std::size_t n_terms = rx.terms(c, 5.0 * w, terms);  // as sum_over_terms
@@ -195,8 +200,10 @@ AlignmentMap alignment_map(const LidarSystem& system, const std::vector<Alignmen
   out.shape.push_back(n_ranges);
   out.values = detail::collect_rt_entries(results, entry_ranges, options.tolerance, "alignment_map");
   out.values.axisymmetric = true;
-  for (std::size_t p = 0; p < n / n_ranges; ++p)
+  for (std::size_t p = 0; p < n / n_ranges; ++p) {
+    detail::cancellation_point_every(p);
     out.values.axisymmetric = out.values.axisymmetric && point_system(p).is_axisymmetric();
+  }
   return out;
 }
 

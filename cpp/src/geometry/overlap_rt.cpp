@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/entry_checks.hpp"
@@ -63,7 +64,10 @@ RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& r
   // Receivers are built before the parallel region: nothing throws inside it.
   std::vector<Receiver> receivers;
   receivers.reserve(ranges.size());
-  for (double z : ranges) receivers.emplace_back(system, z);
+  for (std::size_t i = 0; i < ranges.size(); ++i) {
+    cancellation_point_every(i);  // millions of ranges take seconds to prepare on a busy core
+    receivers.emplace_back(system, ranges[i]);
+  }
 
   const std::size_t n = ranges.size();
   RtOverlap out;

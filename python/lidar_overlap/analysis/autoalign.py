@@ -24,8 +24,9 @@ from typing import Mapping, Optional
 
 import numpy as np
 
-from .. import _checks
+from .. import _checks, _core
 from ..forward.methods import RT
+from ..model.system import LidarSystem
 from .objectives import MaximumOverlapAt
 from .optimize import Problem, optimize
 from .signals import signal as _signal
@@ -79,7 +80,10 @@ def align(
     gradient's first
     step. seed : of the photon noise (measurement k uses seed + k).
     """
+    if not isinstance(system, LidarSystem):
+        raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")
     _checks.choice("search", search, ("raster", "gradient"))
+    seed = _checks.count("seed", seed, 0, 2**63 - 1)
     box, resolution, step = (
         _checks.positive(n, v)
         for n, v in (("box", box), ("resolution", resolution), ("step", step))
@@ -92,6 +96,13 @@ def align(
             "keywords (pulse_energy, receiver_efficiency, range_resolution, ...)"
         )
     start = np.array(system.beam.tilt, dtype=float)
+    reach = _core.MAX_ANGLE - float(np.max(np.abs(start)))
+    if not box <= reach:
+        raise ValueError(
+            f"box = {box!r} is invalid: expected at most {reach:.6g} rad, so that the tilts "
+            f"searched (the start {tuple(start.tolist())} ± box) stay within ±{_core.MAX_ANGLE:g} "
+            "rad"
+        )
     lower, upper = start - box, start + box
     best = optimize(
         system, MaximumOverlapAt(range), TILT, np.column_stack([lower, upper]), tolerance=tolerance

@@ -11,7 +11,7 @@ import math
 import os
 from typing import Callable, Sequence
 
-from .. import _checks
+from .. import _checks, _interrupts
 
 #: Each task runs about this long at least (s) when its size is left to the caller: scheduling a
 #: task costs ~1 ms on a local cluster, so this keeps the overhead near 1 %.
@@ -65,8 +65,17 @@ def run_tasks(
     ``shared`` (a system: it pickles as its constructor arguments) goes to each cluster worker once.
     A task that fails raises its error here; when several fail, the first in order, as in the loop
     (not the first to fail in time)."""
+    with _interrupts.interruptible():  # Ctrl-C reaches tasks in worker threads, and is not lost
+        return _run_tasks(kind, client, function, shared, arguments, parallel)
+
+
+def _run_tasks(kind, client, function, shared, arguments, parallel) -> list:
     if kind == "loop":
-        return [function(shared, *args) for args in arguments]
+        out = []
+        for args in arguments:
+            _interrupts.check()
+            out.append(function(shared, *args))
+        return out
     if kind == "distributed":
         scattered = client.scatter(shared, broadcast=True)
         futures = [client.submit(function, scattered, *args, pure=False) for args in arguments]

@@ -40,6 +40,7 @@ from ..forward.compute import run
 from ..forward.methods import RT, Turbulent
 from ..forward.planning import plan, resolve
 from ..model import parameters as _parameters
+from . import fit_inputs, fit_verdict
 from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
 from .sensitivity import jacobian, step_scale
 
@@ -150,11 +151,11 @@ def solve(
     optimize = _scipy()
     k = len(paths)
     n = y.size if independent is None else independent
-    if n < k or (not sigma_given and n == k):
+    if n <= k:  # n == k leaves no degrees of freedom: chi²/dof would be 0/0
         kind = "" if independent is None else " independent"
         raise ValueError(
             f"measured has {n}{kind} points for {k} free parameters: expected more points than "
-            "parameters (at least as many with sigma given); measure more ranges or free fewer"
+            "parameters; measure more ranges or free fewer"
         )
     loss = _checks.choice("loss", loss, LOSSES)
     max_evaluations = _checks.count("max_evaluations", max_evaluations, 1)
@@ -180,7 +181,8 @@ def solve(
         counts["jacobian"] += 1
         return model.jacobian(system_at(u)) * scale / w[:, None]
 
-    solution = optimize.least_squares(
+    solution = fit_verdict.least_squares(
+        optimize,
         residuals,
         start / scale,
         jac=normalised_jacobian,
@@ -200,13 +202,23 @@ def solve(
     counts["model"] += 1
     r = (vector - y) / w
     j = normalised_jacobian(solution.x) / scale  # per SI unit of each parameter
-    chi_square, dof = float(r @ r), n - k
-    cov = covariance(j, chi_square / dof if not sigma_given else 1.0)
+    with np.errstate(over="ignore", invalid="ignore"):
+        chi_square, dof = float(r @ r), n - k
+        unscaled = covariance(j, 1.0)
+        # inf (singular J) stays inf when scaled by a zero chi-square (inf x 0 would be NaN)
+        scale_by = chi_square / dof if not sigma_given else 1.0
+        cov = np.where(np.isinf(unscaled), unscaled, unscaled * scale_by)
+    fit_verdict.check_usable("fit", chi_square, cov)
     sd = np.sqrt(np.diag(cov))
+    unit_sd = np.sqrt(np.diag(unscaled))
     with np.errstate(invalid="ignore", divide="ignore"):
-        # Singular J (infinite covariance): -cos of the angle between two columns is their
-        # correlation when only they are free, and +-1 names the pair that cannot be told apart.
-        corr = cov / np.outer(sd, sd) if np.all(np.isfinite(sd)) else -_cosines(j)
+        # The correlation does not depend on the scale (so a zero-residual fit has one). Singular
+        # J (infinite covariance): -cos of the angle between two columns is their correlation
+        # when only they are free, and +-1 names the pair that cannot be told apart.
+        corr = (
+            unscaled / np.outer(unit_sd, unit_sd) if np.all(np.isfinite(unit_sd)) else -_cosines(j)
+        )
+        np.fill_diagonal(corr, 1.0)  # -cos gives -1 there
     pairs = tuple(
         (paths[a], paths[b], float(corr[a, b]))
         for a in range(k)
@@ -228,8 +240,17 @@ def solve(
             "alike); uncertainties are infinite",
             DegeneracyWarning,
         )
-    noise = math.sqrt(chi_square / dof) if dof > 0 else float("nan")
-    if not sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * noise:
+    # A robust loss expects outliers, which the chi-square and the runs test would count as misfit.
+    exact = loss == "linear" and fit_verdict.check_quality(
+        "fit", r, y, w, dof, sigma_given, tolerance
+    )
+    noise = math.sqrt(chi_square / dof)
+    if (
+        not sigma_given
+        and not exact
+        and math.isfinite(tolerance)
+        and tolerance > TOLERANCE_FRACTION * noise
+    ):
         _checks.warn(
             f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the "
             f"scatter of the residuals ({noise:.3g}): its error adds to the noise; lower tolerance"
@@ -242,7 +263,7 @@ def solve(
         correlation=corr,
         residuals=r,
         chi_square=chi_square,
-        reduced_chi_square=chi_square / dof if dof > 0 else float("nan"),
+        reduced_chi_square=chi_square / dof,
         degrees_of_freedom=dof,
         result=result,
         measured=y,
@@ -261,8 +282,12 @@ def solve(
 
 
 def _cosines(j: np.ndarray) -> np.ndarray:
+    """Cosines of the angles between J's columns; 0 with a column of zeros (a parameter G does
+    not depend on has no angle: 0/0 would be NaN)."""
     norms = np.linalg.norm(j, axis=0)
-    return np.clip(j.T @ j / np.outer(norms, norms), -1.0, 1.0)
+    outer = np.outer(norms, norms)
+    cos = np.where(outer > 0, j.T @ j / np.where(outer > 0, outer, 1.0), 0.0)
+    return np.clip(cos, -1.0, 1.0)
 
 
 def default_bounds(system, path: str, start: float):
@@ -323,12 +348,7 @@ def model_tolerance(tolerance) -> float:
 
 
 def _measured(measured, z):
-    try:
-        y = np.asarray(measured, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(
-            f"measured is invalid: expected a 1-D array of G, one per range ({exc})"
-        ) from None
+    y = fit_inputs.measured_array("measured", measured, "G, one per range")
     if y.shape != z.shape:
         raise ValueError(f"measured has shape {y.shape}: expected {z.shape}, one G per range")
     bad = ~np.isfinite(y)
@@ -344,20 +364,11 @@ def _measured(measured, z):
 def _sigma(sigma, y):
     if sigma is None:
         return np.ones_like(y)
-    try:
-        w = np.broadcast_to(np.asarray(sigma, dtype=float), y.shape).copy()
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number or one value per "
-            f"range (shape {y.shape})"
-        ) from None
-    bad = ~(np.isfinite(w) & (w > 0))
+    w = fit_inputs.sigma_array(sigma, y.shape, f"one value per range (shape {y.shape})")
+    bad = fit_inputs.bad_sigma(w)
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(
-            f"sigma[{i}] = {w[i]} is invalid: expected finite values > 0 (the 1-sigma error of "
-            "each point); use None for unit weights"
-        )
+        raise ValueError(f"sigma[{i}] = {w[i]} is invalid: expected {fit_inputs.SIGMA_EXPECTED}")
     return w
 
 

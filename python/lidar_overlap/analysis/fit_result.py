@@ -5,12 +5,14 @@ the Jacobian)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
+from .. import _checks
 from ..forward.compute import run
 from ..forward.result import OverlapResult
 from .sensitivity import jacobian, unit
@@ -89,6 +91,14 @@ class FitResult:
     plan: Any
     step_tolerance: float
 
+    def __reduce__(self):
+        # The plan holds the core's option objects, which do not pickle: it travels as what made
+        # it (start system, ranges, request, threads) and is made again, with the same decisions.
+        state = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        p = state.pop("plan")
+        recipe = (p.system, p.ranges, p.request, int(getattr(p.options, "threads", 0)))
+        return _rebuild_fit, (type(self), state, recipe)
+
     @property
     def system(self):
         """The fitted system."""
@@ -106,9 +116,17 @@ class FitResult:
         p = self.plan.with_system(self.system).at(ranges)
         z = p.ranges
         g = run(p).overlap
+        if not np.all(np.isfinite(self.covariance)):
+            # inf x 0 would give NaN where G does not depend on the parameters: say it instead.
+            _checks.warn(
+                "predict: the fit's covariance is infinite (its Jacobian was singular), so the "
+                "1-sigma band is unbounded (inf) at every range; fix a degenerate parameter and "
+                "fit again",
+                DegeneracyWarning,
+            )
+            return Prediction(z, g, np.full(z.shape, np.inf))
         j = jacobian(p, self.system, list(self.parameters), self.step_tolerance)
-        with np.errstate(invalid="ignore"):
-            band = np.sqrt(np.einsum("ij,jk,ik->i", j, self.covariance, j))
+        band = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", j, self.covariance, j), 0.0))
         return Prediction(z, g, band)
 
     def summary(self) -> str:
@@ -193,6 +211,18 @@ class FitResult:
         bottom.set_xlabel("range (m)")
         bottom.set_ylabel("residual / sigma" if self.sigma is not None else "residual")
         return fig
+
+
+def _rebuild_fit(cls, state, recipe):
+    """A pickled :class:`FitResult`, its plan made again from its recipe."""
+    import warnings
+
+    from ..forward.planning import plan
+
+    system, ranges, request, threads = recipe
+    with warnings.catch_warnings():  # said when the fit was planned
+        warnings.simplefilter("ignore")
+        return cls(**state, plan=plan(system, ranges, request, threads=threads))
 
 
 def _plot_telecover_fit(fit: FitResult, fig):

@@ -20,8 +20,8 @@ from typing import Optional
 
 import numpy as np
 
-from .. import _checks
 from ..forward.compute import run
+from . import fit_inputs
 from .fit import Model, fit_plan, free_paths, model_tolerance, solve
 from .fit_result import FitResult, step_tolerance
 from .sensitivity import central_differences
@@ -147,13 +147,9 @@ def _measured(measured, names, z) -> np.ndarray:
                 "measured_deviation is a TelecoverResult at other ranges: expected the ranges given"
             )
         measured = measured.deviation
-    try:
-        y = np.array(measured, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(
-            "measured_deviation is invalid: expected an array (sector x range) of deviations "
-            f"({exc})"
-        ) from None
+    y = fit_inputs.measured_array(
+        "measured_deviation", measured, "an array (sector x range) of deviations"
+    )
     if y.shape != (len(names), z.size):
         raise ValueError(
             f"measured_deviation has shape {y.shape}: expected {(len(names), z.size)}, one row per "
@@ -173,21 +169,10 @@ def _measured(measured, names, z) -> np.ndarray:
 def _sigma(sigma, shape, names) -> np.ndarray:
     if sigma is None:
         return np.ones(shape)
-    try:
-        w = np.broadcast_to(np.asarray(sigma, dtype=float), shape).copy()
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"sigma = {_checks.shown(sigma)} is invalid: expected None, a number, one value per "
-            f"range or one per sector and range (shape {shape})"
-        ) from None
-    _first_bad(
-        "sigma",
-        w,
-        ~(np.isfinite(w) & (w > 0)),
-        names,
-        None,
-        "finite values > 0 (the 1-sigma error of each deviation); use None for unit weights",
+    w = fit_inputs.sigma_array(
+        sigma, shape, f"one value per range or one per sector and range (shape {shape})"
     )
+    _first_bad("sigma", w, fit_inputs.bad_sigma(w), names, None, fit_inputs.SIGMA_EXPECTED)
     return w
 
 

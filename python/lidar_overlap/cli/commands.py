@@ -204,6 +204,12 @@ def _sectors(text: str):
 def _telecover(args) -> int:
     if (args.measurements is None) != (args.free is None):
         return _fail("telecover: --measurements and --free go together (a fit needs both)", 2)
+    if args.measurements is not None and args.method not in (None, "rt"):
+        return _fail(
+            f"telecover: --method {args.method} is invalid with --measurements: the telecover "
+            "fit runs ray tracing (leave --method out)",
+            2,
+        )
     scenario = load_scenario(args.scenario)
     out = args.out or Path(scenario.name)
     try:
@@ -249,7 +255,8 @@ def _compute_and_write(scenario: Scenario, out: Path, method: Optional[str], qui
     out.mkdir(parents=True, exist_ok=True)
     stem, attrs = (
         out / scenario.name,
-        {"scenario": scenario.name, "description": scenario.description},
+        # the description may span lines in the TOML file; a header value is one line
+        {"scenario": scenario.name, "description": " ".join(scenario.description.split())},
     )
     files, want = [], scenario.outputs
     if want.get("csv"):

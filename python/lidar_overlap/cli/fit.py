@@ -15,13 +15,15 @@ from typing import List, Sequence, Tuple
 
 import numpy as np
 
-from .. import _files
+from .. import _files, _reading
 from ..analysis.fit import fit
 from ..io.scenario import Scenario
 
 COLUMNS = ("range_m", "overlap", "sigma")
 #: The most rows read (as many as a scenario's ranges).
 MAX_ROWS = 100_000
+#: The largest file read (comments included); a larger one is refused whole, never cut.
+MAX_BYTES = 64_000_000
 
 
 def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
@@ -39,13 +41,9 @@ def read_table(
     Values are finite, and > 0 but in the ``signed`` columns. ValueError naming file, line and
     column."""
     name, header_text = str(path), ",".join(columns)
-    try:
-        with open(path, encoding="utf-8") as f:
-            lines = f.read(64 * (len(columns) + 1) * MAX_ROWS).splitlines()
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{name}: not UTF-8 text (byte {exc.start})") from None
-    except OSError as exc:
-        raise ValueError(f"{name}: cannot read: {exc.strerror or exc}") from None
+    lines = _reading.read_text(
+        path, MAX_BYTES, "the measurements", f"a CSV file with the columns '{header_text}'"
+    ).splitlines()
     rows: List[List[float]] = []
     header = None
     for number, line in enumerate(lines, start=1):

@@ -25,7 +25,7 @@ import numpy as np
 from .. import _files
 from ..analysis.fit_telecover import fit_telecover
 from ..analysis.telecover import sector_mask, telecover
-from ..forward.result import csv_value
+from ..forward.result_files import csv_value
 from ..io.scenario import Scenario
 from ..model.aperture_mask import ApertureMask, equal_sectors
 from .fit import read_table, write_fit
@@ -55,6 +55,12 @@ def compute(scenario: Scenario, mask: ApertureMask, out: Path, method: Optional[
     """The telecover of the scenario, written; returns (result, files, notes)."""
     model, threads = scenario.method_object(method), scenario.threads
     result = telecover(scenario.system, scenario.ranges, mask, model, threads=threads)
+    lit = np.isfinite(result.deviation).all(axis=0)  # some sector receives light
+    if not lit.any():
+        raise ValueError(
+            f"{scenario.name}: no sector receives light at any range (G = 0 everywhere), so the "
+            "telecover deviations are undefined: check the alignment (tilt, offsets) and ranges"
+        )
     out.mkdir(parents=True, exist_ok=True)
     stem = out / f"{scenario.name}_telecover"
     header = {
@@ -70,8 +76,16 @@ def compute(scenario: Scenario, mask: ApertureMask, out: Path, method: Optional[
     lines.append(
         ",".join(["range_m"] + [f"G_{n}" for n in names] + [f"deviation_{n}" for n in names])
     )
-    for row in np.column_stack((result.ranges, result.overlap.T, result.deviation.T)).tolist():
-        lines.append(",".join(repr(float(v)) for v in row))
+    if not lit.all():
+        lines.insert(
+            -1,
+            "# deviation: left empty at ranges where no sector receives light (G = 0: undefined)",
+        )
+    for z, g, d, light in zip(
+        result.ranges.tolist(), result.overlap.T.tolist(), result.deviation.T.tolist(), lit
+    ):
+        cells = [repr(float(v)) for v in [z, *g]] + [repr(float(v)) if light else "" for v in d]
+        lines.append(",".join(cells))
     with _files.replacing(f"{stem}.csv", "w", encoding="utf-8", newline="\n") as f:
         f.write("\n".join(lines) + "\n")
     files, notes = [f"{stem}.csv"], []

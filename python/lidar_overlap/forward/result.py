@@ -6,30 +6,27 @@ import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
-from datetime import datetime, timezone
 from typing import Any, Dict, Optional
 
 import numpy as np
 
-from .. import _checks, _files
+from .. import _checks, _pickling
 from .._core import __version__
 from ..model.system import LidarSystem
-from ..model.system_attributes import system_attributes, system_from_attributes
+from ..model.system_attributes import system_attributes
+from . import result_files
+from .result_files import CSV_COLUMNS  # noqa: F401  (re-exported)
 
-CSV_COLUMNS = ("range_m", "overlap", "error_estimate")
-#: Smallest allowance for G outside [0, 1] (the round-off of a sum of order-one terms), used where
-#: the result states neither an error estimate nor a tolerance.
-ROUND_OFF = 1e-12
+#: The one allowance for G outside [0, 1]: the round-off of a sum of up to ~10^6 order-one terms. It
+#: is fixed, not the stated error or tolerance (a result stating an error of 1e300 would otherwise
+#: pass any G); the engines clip their own accuracy before building a result.
+ROUND_OFF = 1e-9
 #: full_overlap_range warns when G still rises at the end of the ranges by more than this fraction
 #: of its maximum per decade of range.
 FAR_SLOPE = 0.01
 #: What ``error_estimate`` means: a bound from the quadrature (RT, plus auto's model error), the
 #: measured accuracy of a path (FO), or the standard error of a mean over random draws (turbulence).
 ERROR_KINDS = ("bound", "nominal", "standard_error")
-_IO_HINT = (
-    "reading and writing NetCDF needs xarray and h5netcdf (with h5py): pip install "
-    "'lidar-overlap[io]'"
-)
 
 
 @dataclass(frozen=True, eq=False)
@@ -56,9 +53,11 @@ class OverlapResult:
 
     Checked on construction, so that no computation failure can pass as a result: ``ranges`` finite,
     > 0 and strictly increasing; ``overlap`` and ``error_estimate`` one value per range;
-    ``error_estimate`` >= 0 or NaN; every G finite and within [0, 1] up to its slack,
-    max(error_estimate, tolerance, 1e-12) (each where finite). G outside that is a ValueError naming
-    the range, the value and the method; G within it (round-off) is clipped into [0, 1].
+    ``error_estimate`` >= 0 or NaN; every G finite and within [0, 1] up to round-off
+    (:data:`ROUND_OFF`, a fixed 1e-9, not the stated error). G outside that is a ValueError naming
+    the range, the value and the method; G within it is clipped into [0, 1]. The arrays are
+    read-only copies, and a pickle is rebuilt through the constructor, so a result is a value: it
+    cannot be changed after its checks.
     """
 
     ranges: np.ndarray
@@ -167,79 +166,29 @@ class OverlapResult:
     def to_csv(self, path, attrs: Optional[Dict[str, Any]] = None) -> None:
         """Write ``# key: value`` header lines (method, tolerance, system), then the columns
         ``range_m,overlap,error_estimate``. Numbers are written with ``repr``, so they read back
-        exactly. The file appears under ``path`` only once complete (written beside it, then
-        renamed)."""
-        header = {"format": "lidar-overlap result", **self.attributes(), **(attrs or {})}
-        if self.system is not None:
-            header["system"] = repr(self.system)
-        lines = [f"# {key}: {csv_value(value)}" for key, value in header.items()]
-        lines.append(",".join(CSV_COLUMNS))
-        for row in zip(self.ranges.tolist(), self.overlap.tolist(), self.error_estimate.tolist()):
-            lines.append(",".join(repr(float(v)) for v in row))
-        with _files.replacing(path, "w", encoding="utf-8", newline="\n") as f:
-            f.write("\n".join(lines) + "\n")
+        exactly. ``attrs`` adds header keys (numbers, or one-line text that does not read as a
+        number); a key the result writes itself (method, tolerance, error_kind, format, system and
+        its ``beam_``, ``telescope_``, ``detector_``, ``aberration_``, ``mask_`` keys) is a
+        ValueError. The result's values are checked again before writing. The file appears under
+        ``path`` only once complete (written beside it, then renamed)."""
+        _recheck(self)
+        result_files.write_csv(self, path, attrs)
 
     @classmethod
     def from_csv(cls, path) -> "OverlapResult":
         """Read a result written by :meth:`to_csv`. ``system`` is rebuilt from the header for a
-        Gaussian beam, else ``None``. A file that is not such a result, or whose values break the
-        class's checks (a NaN or out-of-range G), is a ValueError naming the file."""
-        try:
-            with open(path, encoding="utf-8") as f:
-                attrs, rows = _read_csv(path, f)
-        except UnicodeDecodeError as exc:
-            raise ValueError(
-                f"{path}: not a file written by OverlapResult.to_csv: byte {exc.start} is not "
-                "UTF-8 text"
-            ) from None
-        data = np.array(rows, dtype=float).reshape(-1, len(CSV_COLUMNS))
-        return _read(cls, path, attrs, data[:, 0].copy(), data[:, 1].copy(), data[:, 2].copy())
+        Gaussian beam, else ``None``. Header lines count only before the columns, each key once. A
+        file that is not such a result (or not a regular file), whose system header is corrupt, or
+        whose values break the class's checks (a NaN or out-of-range G) is a ValueError naming the
+        file."""
+        return result_files.read_csv(cls, path)
 
     def to_xarray(self, attrs: Optional[Dict[str, Any]] = None):
         """An ``xarray.Dataset`` with coordinate ``range`` (m), variables ``overlap`` and
         ``error_estimate``, CF-1.10 global attributes and the system as flattened numeric attributes
-        (needs ``[io]``)."""
-        xr = _xarray()
-        now = datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
-        tolerance = "" if math.isnan(self.tolerance) else f", tolerance={self.tolerance!r}"
-        glob = {
-            "Conventions": "CF-1.10",
-            "title": "Lidar overlap function G(z)",
-            "source": f"lidar_overlap {__version__}",
-            "history": f"{now}: computed by lidar_overlap {__version__}, "
-            f"overlap(method={self.method!r}{tolerance})",
-            "references": "Extended overlap function computation method for atmospheric lidars",
-            **self.attributes(),
-        }
-        if self.system is not None:
-            glob["system"] = repr(self.system)
-        glob.update(attrs or {})
-        coord = {"units": "m", "long_name": "range from the transmitting plane", "axis": "X"}
-        return xr.Dataset(
-            {
-                "overlap": (
-                    "range",
-                    np.asarray(self.overlap, dtype=float),
-                    {
-                        "units": "1",
-                        "long_name": "lidar overlap function",
-                        "comment": "power reaching the detector over the power entering the full "
-                        "aperture",
-                    },
-                ),
-                "error_estimate": (
-                    "range",
-                    np.asarray(self.error_estimate, dtype=float),
-                    {
-                        "units": "1",
-                        "long_name": "estimated absolute error of the overlap function",
-                        "comment": "NaN where the method gives no estimate",
-                    },
-                ),
-            },
-            coords={"range": ("range", np.asarray(self.ranges, dtype=float), coord)},
-            attrs=glob,
-        )
+        (needs ``[io]``). ``attrs`` as in :meth:`to_csv` (nor may it replace the CF attributes)."""
+        _recheck(self)
+        return result_files.to_xarray(self, attrs)
 
     def to_netcdf(
         self, path, attrs: Optional[Dict[str, Any]] = None, engine: Optional[str] = None
@@ -248,90 +197,36 @@ class OverlapResult:
         h5netcdf and its h5py backend are installed, else ``"scipy"`` (NetCDF-3, same variables and
         attributes). The file appears under ``path`` only once complete (written beside it, then
         renamed)."""
-        ds = self.to_xarray(attrs)
-        encoding = {name: {"_FillValue": None} for name in ("range", "overlap", "error_estimate")}
-        engine = engine or _netcdf_engine()
-        with _files.replacing_path(path) as temporary:
-            ds.to_netcdf(temporary, engine=engine, encoding=encoding)
+        _recheck(self)
+        result_files.write_netcdf(self, path, attrs, engine)
 
     @classmethod
     def from_netcdf(cls, path, engine: Optional[str] = None) -> "OverlapResult":
         """Read a result written by :meth:`to_netcdf`; ``system`` is rebuilt for a Gaussian beam,
-        else ``None``. Values that break the class's checks (a NaN or out-of-range G) are a
-        ValueError naming the file."""
-        xr = _xarray()
-        with xr.open_dataset(path, engine=engine) as ds:
-            ds = ds.load()
-        attrs = dict(ds.attrs)
-        if "method" not in attrs or any(
-            name not in ds.variables for name in ("range", "overlap", "error_estimate")
-        ):
-            raise ValueError(
-                f"{path}: not a file written by OverlapResult.to_netcdf (no 'method' attribute, or "
-                "no 'range', 'overlap' or 'error_estimate')"
-            )
-        return _read(
-            cls, path, attrs, ds["range"].values, ds["overlap"].values, ds["error_estimate"].values
+        else ``None``. A file that is not such a result (text, truncated, not a regular file), a
+        corrupt system attribute or values that break the class's checks are a ValueError naming the
+        file."""
+        return result_files.read_netcdf(cls, path, engine)
+
+    def __reduce__(self):
+        # Unpickled through the constructor, so a tampered pickle is checked like any new value.
+        return _pickling.rebuild, (
+            type(self),
+            {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.init},
         )
 
 
-def _read_csv(path, lines):
-    """The ``# key: value`` header and the rows of numbers of a file written by
-    :meth:`OverlapResult.to_csv`."""
-    attrs: Dict[str, Any] = {}
-    rows, columns = [], False
-    for number, line in enumerate(lines, 1):
-        line = line.strip()
-        if not line:
-            continue
-        if line.startswith("#"):
-            key, sep, value = line[1:].partition(":")
-            if sep:
-                attrs[key.strip()] = _parse_value(value.strip())
-        elif not columns:
-            if "method" not in attrs or line.replace(" ", "") != ",".join(CSV_COLUMNS):
-                raise ValueError(
-                    f"{path}: not a file written by OverlapResult.to_csv: expected '# method:' and "
-                    f"the other header lines, then the columns {','.join(CSV_COLUMNS)}"
-                )
-            columns = True
-        else:
-            try:
-                values = [float(v) for v in line.split(",")]
-            except ValueError:
-                values = []
-            if len(values) != len(CSV_COLUMNS):
-                raise ValueError(
-                    f"{path}: line {number} = {_short(line)} is invalid: expected "
-                    f"{len(CSV_COLUMNS)} numbers ({','.join(CSV_COLUMNS)})"
-                )
-            rows.append(values)
-    if not columns:
-        raise ValueError(
-            f"{path}: no columns {','.join(CSV_COLUMNS)}: not a file written by "
-            "OverlapResult.to_csv"
-        )
-    return attrs, rows
-
-
-def _read(cls, path, attrs: Dict[str, Any], ranges, overlap, error_estimate):
-    """``cls`` from what a file holds; a ValueError of the class's checks names the file."""
-    try:
-        method = str(attrs["method"])
-        kind = str(
-            attrs.get("error_kind", "nominal" if method == "fo" else "bound")
-        )  # files written before the kind existed
-        return cls(
-            ranges=ranges,
-            overlap=overlap,
-            method=method,
-            error_estimate=error_estimate,
-            system=system_from_attributes(attrs),
-            tolerance=attrs.get("tolerance", math.nan),
-            error_kind=kind,
-        )
-    except ValueError as exc:
-        raise ValueError(f"{path}: {exc}") from None
+def _recheck(result: "OverlapResult") -> None:
+    """The construction checks again on the stored values: a result whose arrays were made writable
+    and changed is not written."""
+    checked = _checked(
+        result.ranges, result.overlap, result.method, result.error_estimate, result.tolerance
+    )
+    if not all(
+        np.array_equal(a, b, equal_nan=True)
+        for a, b in zip(checked[:3], (result.ranges, result.overlap, result.error_estimate))
+    ):
+        raise ValueError("the result's arrays were changed after construction: not written")
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -387,14 +282,13 @@ def _checked(ranges, overlap, method, error_estimate, tolerance):
         ~(np.isnan(e) | (np.isfinite(e) & (e >= 0.0))),
         "expected a finite value >= 0, or NaN where the method gives none",
     )
-    slack = np.fmax(np.fmax(e, tolerance), ROUND_OFF)  # fmax: a NaN estimate or tolerance gives way
-    outside = ~((g >= -slack) & (g <= 1.0 + slack))  # NaN is outside too
+    outside = ~((g >= -ROUND_OFF) & (g <= 1.0 + ROUND_OFF))  # NaN is outside too
     if outside.any():
         i = int(np.argmax(outside))
         raise ValueError(
             f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is "
-            "invalid: G must be finite and within [0, 1] up to its error estimate or tolerance "
-            f"({slack[i]:.3g}); the computation failed at this range"
+            f"invalid: G must be finite and within [0, 1] (up to round-off, {ROUND_OFF:g}); the "
+            "computation failed at this range"
         )
     if g.min() < 0.0 or g.max() > 1.0:
         g = np.clip(g, 0.0, 1.0)
@@ -402,15 +296,20 @@ def _checked(ranges, overlap, method, error_estimate, tolerance):
 
 
 def _curve_array(name: str, value) -> np.ndarray:
+    """A read-only float copy of a 1-D array of real numbers; complex values, bools, strings and
+    objects are refused (not cut to their real part or parsed)."""
     try:
-        values = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        values = None
-    if values is None or values.ndim != 1:
+        return frozen(_checks.real_array(name, value, ndim=1))
+    except ValueError as exc:
         raise ValueError(
-            f"{name} is invalid: expected a 1-D array of numbers, got {type(value).__name__} "
-            f"{_short(value)}"
-        )
+            f"{name} is invalid: expected a 1-D array of real numbers ({exc})"
+        ) from None
+
+
+def frozen(values: np.ndarray) -> np.ndarray:
+    """``values`` as a read-only array of its own (a caller's array is copied, never frozen)."""
+    values = np.array(values, dtype=float, copy=True)
+    values.setflags(write=False)
     return values
 
 
@@ -452,41 +351,6 @@ def _still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) 
     )
 
 
-def _xarray():
-    try:
-        import xarray
-    except ImportError as exc:
-        raise ImportError(_IO_HINT) from exc
-    return xarray
-
-
-def _netcdf_engine() -> str:
-    """h5netcdf with its h5py backend if installed, else scipy's NetCDF-3 writer."""
-    import importlib.util
-
-    if importlib.util.find_spec("h5netcdf") and importlib.util.find_spec("h5py"):
-        return "h5netcdf"
-    if importlib.util.find_spec("scipy"):
-        return "scipy"
-    raise ImportError(_IO_HINT)
-
-
-def csv_value(value: Any) -> str:
-    """A header value as CSV text: floats exactly (repr), anything else on one line."""
-    if isinstance(value, (float, np.floating)):
-        return repr(float(value))
-    return " ".join(str(value).split())
-
-
-def _parse_value(text: str) -> Any:
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    return text
-
-
 #: Percentiles of the spread band a turbulent result reports per range.
 BAND = (5.0, 95.0)
 #: Realisations one turbulent overlap may draw (the core's bound on the FO path).
@@ -504,3 +368,32 @@ class TurbulentOverlapResult(OverlapResult):
     std: Optional[np.ndarray] = None
     low: Optional[np.ndarray] = None
     high: Optional[np.ndarray] = None
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        n = self.ranges.size
+        for name in ("realizations", "std", "low", "high"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            ndim = 2 if name == "realizations" else 1
+            values = _checks.real_array(name, value, ndim=ndim)
+            if values.shape[-1] != n or (ndim == 2 and values.shape[0] == 0):
+                raise ValueError(
+                    f"{name} has shape {values.shape}: expected "
+                    + ("K x N, one row per draw" if ndim == 2 else "one value per range")
+                    + f" for N = {n} ranges"
+                )
+            bad = ~np.isfinite(values)
+            if name != "std":
+                bad |= ~((values >= -ROUND_OFF) & (values <= 1.0 + ROUND_OFF))
+            elif not bad.any():
+                bad = values < 0.0
+            if bad.any():
+                raise ValueError(
+                    f"{name} holds {float(values[bad].flat[0])!r}: expected finite values"
+                    + (" >= 0" if name == "std" else " within [0, 1]")
+                )
+            if name != "std":
+                values = np.clip(values, 0.0, 1.0)
+            object.__setattr__(self, name, frozen(values))

@@ -31,6 +31,7 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
+from .. import _reading
 from ..forward.compute import run
 from ..forward.methods import Method, from_shortcuts
 from ..forward.planning import Plan, plan
@@ -272,15 +273,12 @@ def load_scenario(path) -> Scenario:
     path = Path(path)
     source = path.name
     try:
-        with open(path, "rb") as f:
-            raw = f.read(MAX_FILE_BYTES + 1)
-    except OSError as exc:
-        raise ScenarioError(f"{path}: cannot read the scenario: {exc.strerror or exc}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise ScenarioError(
-            f"{source}: the file is larger than {MAX_FILE_BYTES:,} bytes: expected a scenario "
-            "(TOML), which needs a few kB"
+        raw = _reading.read_bytes(
+            path, MAX_FILE_BYTES, "the scenario", "a scenario (TOML), which needs a few kB"
         )
+    except ValueError as exc:
+        raise ScenarioError(str(exc)) from None
+    raw = raw[len(_reading.BOM) :] if raw.startswith(_reading.BOM) else raw  # some editors add it
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except UnicodeDecodeError as exc:

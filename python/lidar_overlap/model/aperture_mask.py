@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from typing import Optional, Sequence, Tuple
 
 from .. import _checks, _core
+from .._pickling import ByArguments
 
 #: Names of the four quadrants, in the order of :meth:`ApertureMask.quadrants`.
 QUADRANTS = ("north", "east", "south", "west")
@@ -28,7 +29,7 @@ def _finite(name: str, value) -> float:
 
 
 @dataclass(frozen=True)
-class Sector:
+class Sector(ByArguments):
     """Aperture points at angle in [start_angle, stop_angle] (rad, from +x towards +y) and radius in
     [inner_radius, outer_radius] (m). ``outer_radius=None``: the aperture's edge. The radii are
     checked against the aperture (and the obstruction: a sector wholly inside it leaves nothing)
@@ -70,7 +71,7 @@ class Sector:
 
 
 @dataclass(frozen=True)
-class ApertureMask:
+class ApertureMask(ByArguments):
     """A union of disjoint :class:`Sector` s (touching is allowed). Empty masks and overlapping
     sectors are refused, naming the sectors. ``names`` labels the sectors (the helpers fill it)."""
 

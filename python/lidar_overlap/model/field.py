@@ -14,7 +14,7 @@ from typing import Tuple
 import numpy as np
 
 from .. import _checks, _core
-from .._pickling import ByArguments
+from .._pickling import ByArguments, ByValue
 
 #: Largest power (W) of a field, the core's bound for ``Field.gaussian``: irradiances stay far
 #: inside double precision.
@@ -22,7 +22,7 @@ MAX_POWER = 1e30
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class Field(ByArguments):
+class Field(ByValue, ByArguments):
     """Complex scalar field on an (n, n) grid; immutable (``values`` is a read-only copy). Use
     :func:`dataclasses.replace` for a field with other values, spacing or wavelength.
 

@@ -9,7 +9,7 @@ from dataclasses import field as dataclass_field
 from typing import Optional, Tuple
 
 from .. import _checks, _core
-from .._pickling import ByArguments
+from .._pickling import ByArguments, ByValue
 from .field import Field
 
 Pair = Tuple[float, float]
@@ -21,7 +21,7 @@ MIN_BEAM_POWER = 1e-100
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class FieldBeam(ByArguments):
+class FieldBeam(ByValue, ByArguments):
     """A transmitted beam given by its complex field at z = 0; immutable (:meth:`with_pointing` or
     :func:`dataclasses.replace` give a re-pointed copy).
 

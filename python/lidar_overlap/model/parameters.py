@@ -32,8 +32,10 @@ SCALARS = {
     "telescope": ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"),
     "detector": ("radius", "defocus", "numerical_aperture"),
 }
-_PATH = re.compile(r"^(beam|telescope|detector)\.(\w+)(?:\[(\d+)\])?$")
-_ABERRATION = re.compile(r"^telescope\.aberrations\.(?:zernike\[(\d+)\]|(\w+))$")
+# ASCII only and anchored at the very end (\Z, not $, which also matches before a final newline): a
+# path is one spelling of one scalar, so that duplicates can be found (see canonical()).
+_PATH = re.compile(r"(beam|telescope|detector)\.([A-Za-z_0-9]+)(?:\[([0-9]+)\])?\Z")
+_ABERRATION = re.compile(r"telescope\.aberrations\.(?:zernike\[([0-9]+)\]|([A-Za-z_0-9]+))\Z")
 
 
 def valid_paths() -> List[str]:
@@ -55,23 +57,49 @@ def expand(paths: Iterable[str]) -> List[str]:
     checked."""
     if isinstance(paths, str):
         paths = [paths]
+    if paths is None or not isinstance(paths, Iterable):
+        raise ValueError(
+            f"parameters = {_checks.shown(paths)} is invalid: expected a list of parameter paths, "
+            "e.g. ['beam.tilt', 'detector.defocus']"
+        )
+    paths = list(paths)
     out: List[str] = []
     for path in paths:
         m = _PATH.match(path) if isinstance(path, str) else None
         if m and m.group(3) is None and m.group(2) in PAIRS.get(m.group(1), ()):
             out += [f"{path}[0]", f"{path}[1]"]
         else:
-            _parse(path)
-            out.append(path)
-    if len(set(out)) != len(out):
-        raise ValueError(f"parameters = {list(paths)!r} is invalid: a parameter is named twice")
+            out.append(canonical(path))
+    twice = sorted({p for p in out if out.count(p) > 1})
+    if twice:
+        raise ValueError(
+            f"parameters = {_checks.shown(paths)} is invalid: {twice[0]} is named twice (paths are "
+            "compared in their plain form: no leading zeros in an index)"
+        )
     return out
+
+
+def canonical(path) -> str:
+    """The one spelling of the scalar ``path`` names (``"beam.tilt[00]"`` -> ``"beam.tilt[0]"``);
+    ValueError for anything that is not a path."""
+    kind, part, name, index = _parse(path)
+    if kind == "zernike":
+        return f"telescope.aberrations.zernike[{index}]"
+    if kind == "seidel":
+        return f"telescope.aberrations.{name}"
+    return f"{part}.{name}" + ("" if index is None else f"[{index}]")
 
 
 def plain_paths(paths, name: str, why: str) -> List[str]:
     """:func:`expand` of ``paths`` (the argument ``name``), refused when empty or naming aberration
     terms (``why`` says why the caller cannot vary them)."""
-    out = expand(paths)
+    try:
+        out = expand(paths)
+    except ValueError as exc:
+        text = str(exc)
+        if text.startswith("parameters = "):  # the caller's word for the list
+            raise ValueError(name + text[len("parameters") :]) from None
+        raise
     if not out:
         raise ValueError(
             f"{name} = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']"
@@ -140,7 +168,7 @@ def _parse(path) -> Tuple[str, str, str, Optional[int]]:
     """(kind, part, name, index) of a path: kind ``"plain"``, ``"zernike"`` or ``"seidel"``."""
     if isinstance(path, str):
         m = _ABERRATION.match(path)
-        if m and m.group(1) is not None:
+        if m and m.group(1) is not None and len(m.group(1)) <= 4:
             j = int(m.group(1))
             if 1 <= j <= 231:
                 return "zernike", "telescope", "zernike", j
@@ -151,7 +179,12 @@ def _parse(path) -> Tuple[str, str, str, Optional[int]]:
             part, name, index = m.group(1), m.group(2), m.group(3)
             if index is None and name in SCALARS[part]:
                 return "plain", part, name, None
-            if index is not None and name in PAIRS.get(part, ()) and int(index) in (0, 1):
+            if (
+                index is not None
+                and name in PAIRS.get(part, ())
+                and len(index) <= 4
+                and int(index) in (0, 1)
+            ):
                 return "plain", part, name, int(index)
     raise ValueError(
         f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}"

@@ -121,38 +121,76 @@ def _mask_from_attributes(attrs: Dict[str, Any]) -> Optional[ApertureMask]:
     )
 
 
+#: Prefixes of the keys :func:`system_attributes` writes.
+SYSTEM_PREFIXES = ("beam_", "telescope_", "detector_", "aberration_", "mask_")
+#: Beam types a file may name whose system is not rebuilt (the field is not stored).
+UNSTORED_BEAMS = ("flat_top", "field")
+
+
 def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
-    """Rebuild a Gaussian-beam system from :func:`system_attributes`; ``None`` for other beams or
-    incomplete attributes."""
-    if attrs.get("beam_type") != "gaussian":
+    """Rebuild a Gaussian-beam system from :func:`system_attributes`; ``None`` when the attributes
+    hold no system or one whose beam is a field (not stored). Attributes that name a system which
+    cannot be rebuilt (a missing key, a value out of range, an unknown beam type) are a ValueError
+    naming the attribute: never a silent ``None``."""
+    kind = attrs.get("beam_type")
+    if kind is None:
+        stray = sorted(k for k in attrs if k.startswith(SYSTEM_PREFIXES))
+        if stray:
+            raise ValueError(
+                f"system attributes without 'beam_type' (such as {stray[0]!r}): expected the "
+                "complete set a result writes, or none"
+            )
         return None
+    if kind in UNSTORED_BEAMS:
+        return None
+    if kind != "gaussian":
+        raise ValueError(
+            f"beam_type = {kind!r} is invalid: expected 'gaussian', 'flat_top' or 'field'"
+        )
+
+    def get(key: str, default=_REQUIRED):
+        if key not in attrs:
+            if default is _REQUIRED:
+                raise ValueError(f"system attribute {key!r} is missing: the header is incomplete")
+            return default
+        value = attrs[key]
+        if key.endswith(("_name", "_law")) or value is None:
+            return value
+        if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
+            raise ValueError(f"system attribute {key} = {value!r} is invalid: expected a number")
+        return float(value)
 
     def pair(prefix: str, unit: str):
-        return (attrs[f"{prefix}_x_{unit}"], attrs[f"{prefix}_y_{unit}"])
+        return (get(f"{prefix}_x_{unit}"), get(f"{prefix}_y_{unit}"))
 
     try:
         beam = GaussianBeam(
-            wavelength=attrs["beam_wavelength_m"],
-            waist_radius=attrs["beam_waist_radius_m"],
-            divergence=attrs.get("beam_divergence_rad"),
+            wavelength=get("beam_wavelength_m"),
+            waist_radius=get("beam_waist_radius_m"),
+            divergence=get("beam_divergence_rad", None),
             offset=pair("beam_offset", "m"),
             tilt=pair("beam_tilt", "rad"),
-            width_law=cast(WidthLaw, str(attrs.get("beam_width_law", "gaussian"))),
+            width_law=cast(WidthLaw, str(get("beam_width_law", "gaussian"))),
         )
         telescope = Telescope(
-            diameter=attrs["telescope_diameter_m"],
-            focal_length=attrs["telescope_focal_length_m"],
-            obstruction_radius=attrs["telescope_obstruction_radius_m"],
-            obstruction_distance=attrs["telescope_obstruction_distance_m"],
+            diameter=get("telescope_diameter_m"),
+            focal_length=get("telescope_focal_length_m"),
+            obstruction_radius=get("telescope_obstruction_radius_m"),
+            obstruction_distance=get("telescope_obstruction_distance_m"),
             aberrations=_aberrations_from_attributes(attrs),
             mask=_mask_from_attributes(attrs),
         )
         detector = Detector(
-            radius=attrs["detector_radius_m"],
-            defocus=attrs["detector_defocus_m"],
+            radius=get("detector_radius_m"),
+            defocus=get("detector_defocus_m"),
             offset=pair("detector_offset", "m"),
-            numerical_aperture=attrs.get("detector_numerical_aperture"),
+            numerical_aperture=get("detector_numerical_aperture", None),
         )
         return LidarSystem(beam=beam, telescope=telescope, detector=detector)
-    except (KeyError, ValueError):
-        return None
+    except (KeyError, TypeError) as exc:
+        raise ValueError(f"system attributes are invalid: {exc}") from None
+    except ValueError as exc:
+        raise ValueError(f"system attributes are invalid: {exc}") from None
+
+
+_REQUIRED = object()
