@@ -16,6 +16,7 @@ from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fit_telecover import fit_telecover
 from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.optimize import OptimizeResult, optimize
+from .analysis.relative_result import RelativeFitResult
 from .analysis.sensitivity import sensitivity
 from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
 from .analysis.studies import tolerance_study
@@ -69,6 +70,7 @@ __all__ = [
     "fit_telecover",
     "DegeneracyWarning",
     "FitResult",
+    "RelativeFitResult",
     "Prediction",
     "AlignResult",
     "align",
