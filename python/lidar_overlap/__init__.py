@@ -14,6 +14,7 @@ from .analysis.autoalign import AlignResult, align
 from .analysis.fit import fit
 from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fit_telecover import fit_telecover
+from .analysis.global_result import GlobalFitResult, GlobalRelativeFitResult
 from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.optimize import OptimizeResult, optimize
 from .analysis.relative_result import RelativeFitResult
@@ -70,6 +71,8 @@ __all__ = [
     "fit_telecover",
     "DegeneracyWarning",
     "FitResult",
+    "GlobalFitResult",
+    "GlobalRelativeFitResult",
     "RelativeFitResult",
     "Prediction",
     "AlignResult",

@@ -55,7 +55,7 @@ from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
 from .sensitivity import jacobian, step_scale
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
-SEARCHES = ("local",)
+SEARCHES = ("local", "global")
 #: |correlation| above which a pair of parameters is reported as degenerate.
 DEGENERATE_CORRELATION = 0.95
 #: The model's tolerance must stay below this fraction of the median sigma (else it adds to the
