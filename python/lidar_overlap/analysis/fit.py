@@ -105,14 +105,16 @@ def fit(
     data each normalised (:mod:`lidar_overlap.analysis.relative`; returns a ``RelativeFitResult``).
     search : ``"local"`` (from the start) or ``"global"`` (a seeded population search over the
     bounds, then the local fit: :mod:`lidar_overlap.analysis.global_search`; returns a
-    ``GlobalFitResult``). seed : the global search's seed (None: 0).
+    ``GlobalFitResult``). seed : the global search's seed (None: 0). ``free="auto"``: a ladder of
+    model families fitted in turn and chosen by BIC (needs sigma;
+    :mod:`lidar_overlap.analysis.model_ladder`; returns a ``LadderResult``).
 
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
     pair
     of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
     search = _checks.choice("search", search, SEARCHES)
-    if search == "global" or normalize is not None:
+    if search == "global" or normalize is not None or (isinstance(free, str) and free == "auto"):
         from .fit_extensions import fit_extended  # relative data and global search
 
         return fit_extended(

@@ -1,0 +1,202 @@
+"""``lo.fit(..., free="auto")``: a ladder of model families, each a physical explanation of an
+overlap curve, fitted in turn (global search, then the local fit) and compared by the Bayesian
+information criterion BIC = chi² + k ln n (n independent points, k free parameters; chi² with the
+given sigma, so an information criterion needs sigma).
+
+Choice: the family of lowest BIC; if a simpler family is within ``BIC_TIE`` of it, the simplest
+such one (a BIC difference below 2 is not evidence). Each family also says whether it reaches the
+noise: chi²/dof within ``CHI2_SIGMAS`` standard deviations sqrt(2/dof) of 1, and the residuals'
+signs not in fewer runs than chance gives (one-sided Wald-Wolfowitz runs test, p > ``RUNS_P``).
+When none does, the result says so: the curve needs a model the ladder does not have.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Optional, Tuple
+
+import numpy as np
+
+from ..model import parameters as _parameters
+
+#: BIC differences below this are no evidence (Kass and Raftery's "not worth more than a mention").
+BIC_TIE = 2.0
+#: chi²/dof reaches the noise when it is below 1 + CHI2_SIGMAS sqrt(2 / dof).
+CHI2_SIGMAS = 3.0
+#: The residual signs pass the runs test when its one-sided p-value exceeds this.
+RUNS_P = 0.01
+
+
+@dataclass(frozen=True)
+class Family:
+    """A model family: its ``name``, the ``paths`` it frees and the physical ``explanation``."""
+
+    name: str
+    paths: Tuple[str, ...]
+    explanation: str
+
+
+#: The default ladder for a biaxial lidar, simplest first (each adds to the one before).
+LADDER = (
+    Family(
+        "alignment",
+        ("beam.offset[0]", "beam.tilt[0]"),
+        "where the beam enters the field of view: the axis separation and the beam's tilt",
+    ),
+    Family(
+        "alignment + beam",
+        ("beam.offset[0]", "beam.tilt[0]", "beam.divergence", "detector.radius"),
+        "how fast the beam fills the field of view: its divergence and the field stop's size",
+    ),
+    Family(
+        "alignment + beam + receiver",
+        (
+            "beam.offset[0]",
+            "beam.tilt[0]",
+            "beam.divergence",
+            "detector.radius",
+            "detector.defocus",
+            "detector.numerical_aperture",
+        ),
+        "the slow approach to full overlap: a field stop out of focus (near-range light blurred "
+        "over it) and the relay's acceptance cutting the steep rays of near scatterers",
+    ),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class FamilyScore:
+    """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
+    ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
+    the system cannot free (a numerical aperture of None)."""
+
+    family: Family
+    fit: object
+    k: int
+    bic: float
+    chi2_dof: float
+    runs_p: float
+    reaches_noise: bool
+    dropped: Tuple[str, ...]
+
+
+@dataclass(frozen=True, eq=False)
+class LadderResult:
+    """The ladder's outcome: ``chosen`` (the FitResult of the family chosen), ``chosen_family``,
+    ``scores`` (every family, simplest first), ``criterion`` ("BIC") and ``note`` (None, or why
+    no family reaches the noise)."""
+
+    chosen: object
+    chosen_family: Family
+    scores: Tuple[FamilyScore, ...]
+    criterion: str
+    note: Optional[str]
+
+    def summary(self) -> str:
+        lines = [f"model ladder ({self.criterion}): chosen '{self.chosen_family.name}'"]
+        for s in self.scores:
+            mark = "*" if s.family is self.chosen_family else " "
+            lines.append(
+                f" {mark} {s.family.name:<30} k {s.k}  BIC {s.bic:9.2f}  chi2/dof {s.chi2_dof:6.3f}"
+                f"  runs p {s.runs_p:.3g}  {'reaches the noise' if s.reaches_noise else ''}"
+            )
+        if self.note:
+            lines.append(f"  {self.note}")
+        return "\n".join(lines) + "\n" + self.chosen.summary()
+
+    __str__ = summary
+
+
+def runs_p_value(residuals) -> float:
+    """One-sided p-value of the Wald-Wolfowitz runs test: the chance of as few sign runs as
+    ``residuals`` show if the signs were random (normal approximation). 1.0 when all signs agree
+    is impossible to judge, so such a case returns 0.0 (all one sign is structure)."""
+    s = np.sign(np.asarray(residuals, dtype=float))
+    s = s[s != 0]
+    n_pos, n_neg = int((s > 0).sum()), int((s < 0).sum())
+    n = n_pos + n_neg
+    if n_pos == 0 or n_neg == 0:
+        return 0.0
+    runs = 1 + int(np.count_nonzero(s[1:] != s[:-1]))
+    mean = 2.0 * n_pos * n_neg / n + 1.0
+    var = (mean - 1.0) * (mean - 2.0) / (n - 1.0)
+    if not var > 0:
+        return 1.0
+    z = (runs - mean) / math.sqrt(var)
+    return 0.5 * math.erfc(-z / math.sqrt(2.0))
+
+
+def fit_ladder(
+    system,
+    ranges,
+    measured,
+    sigma,
+    bounds,
+    method,
+    tolerance,
+    loss,
+    max_evaluations,
+    allow_unconverged,
+    threads,
+    normalize,
+    seed,
+    families=LADDER,
+) -> LadderResult:
+    """Fit each of ``families`` (global search from ``system``, arguments as
+    :func:`lidar_overlap.fit`) and choose one (module docstring)."""
+    from .global_search import fit_global
+
+    if sigma is None:
+        raise ValueError(
+            "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
+            "scatter): an information criterion compares chi-squares on the noise's scale"
+        )
+    scores = []
+    for family in families:
+        paths = tuple(p for p in family.paths if _freeable(system, p))
+        dropped = tuple(p for p in family.paths if p not in paths)
+        given = {p: v for p, v in (bounds or {}).items() if p in paths}
+        f = fit_global(
+            system,
+            ranges,
+            measured,
+            sigma,
+            list(paths),
+            given,
+            method,
+            tolerance,
+            loss,
+            max_evaluations,
+            True,
+            threads,
+            normalize,
+            seed,
+        )
+        n, k = f.degrees_of_freedom + len(paths), len(paths)
+        dof = max(f.degrees_of_freedom, 1)
+        runs = runs_p_value(f.residuals)
+        reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P
+        bic = f.chi_square + k * math.log(n)
+        scores.append(FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped))
+    best = min(scores, key=lambda s: s.bic)
+    chosen = next(s for s in scores if s.bic <= best.bic + BIC_TIE)
+    note = None
+    if not any(s.reaches_noise for s in scores):
+        note = (
+            "no family reaches the noise (chi2/dof or the runs test): the curve needs a model the "
+            "ladder does not have (a beam with wings, a second stop), or sigma is too small"
+        )
+    if not chosen.fit.converged and not allow_unconverged:
+        raise RuntimeError(
+            f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; "
+            "raise max_evaluations or pass allow_unconverged=True"
+        )
+    return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
+
+
+def _freeable(system, path: str) -> bool:
+    try:
+        return _parameters.get(system, path) is not None
+    except ValueError:
+        return False
