@@ -28,7 +28,7 @@ from .forward.coupling import emitter_coupling, optimal_focus_range
 from .forward.methods import FO, RT, Auto, Turbulent
 from .forward.planning import Plan, explain, plan
 from .forward.result import OverlapResult, TurbulentOverlapResult
-from .model import parameters
+from .model import instruments, parameters
 from .model.aberrations import (
     Aberrations,
     noll_index,
@@ -115,6 +115,7 @@ __all__ = [
     "overlap",
     "paper_table1",
     "parameters",
+    "instruments",
     "plotting",
     "phase_screen",
     "max_memory",
