@@ -17,6 +17,7 @@ from .analysis.fit_telecover import fit_telecover
 from .analysis.global_result import GlobalFitResult, GlobalRelativeFitResult
 from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.optimize import OptimizeResult, optimize
+from .analysis.realign import Realignment, realign
 from .analysis.relative_result import RelativeFitResult
 from .analysis.sensitivity import sensitivity
 from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
@@ -82,6 +83,8 @@ __all__ = [
     "OptimizeResult",
     "SmallestFieldOfView",
     "optimize",
+    "realign",
+    "Realignment",
     "sensitivity",
     "plan",
     "run",

@@ -42,18 +42,7 @@ class RelativeFitResult(FitResult):
         """The fitted model at ``ranges`` (m) on the data's normalised scale, and its 1-sigma band
         from the covariance, sqrt(diag(J C Jᵀ)) with J the derivative of the normalised model (its
         normaliser moves with the parameters too)."""
-        z = _checks.ranges("ranges", ranges)
-        self.system._native.validate_ranges(z)
-        both = np.union1d(z, self.normalizing_ranges)
-        p = dataclasses.replace(self.plan, system=self.system, ranges=both)
-        g = run(p).overlap
-        j = jacobian(p, self.system, list(self.parameters), self.step_tolerance)
-        at, norm = np.searchsorted(both, z), np.searchsorted(both, self.normalizing_ranges)
-        s, ds = g[norm].mean(), j[norm].mean(axis=0)
-        jn = j[at] / s - np.outer(g[at], ds) / s**2
-        with np.errstate(invalid="ignore"):
-            band = np.sqrt(np.einsum("ij,jk,ik->i", jn, self.covariance, jn))
-        return Prediction(z, g[at] / s, band)
+        return normalised_prediction(self, ranges, self.normalizing_ranges)
 
     def absolute(self, ranges) -> Prediction:
         """The fitted instrument's absolute G at ``ranges`` (m) with its band (the model before
@@ -74,3 +63,21 @@ class RelativeFitResult(FitResult):
         )
 
     __str__ = summary
+
+
+def normalised_prediction(fit: FitResult, ranges, normalizing_ranges) -> Prediction:
+    """The fitted model of ``fit`` at ``ranges`` (m) divided by its mean over
+    ``normalizing_ranges`` (m), with the 1-sigma band of that ratio from the fit's covariance (the
+    quotient rule on the Jacobian: the normaliser moves with the parameters too)."""
+    z = _checks.ranges("ranges", ranges)
+    fit.system._native.validate_ranges(z)
+    both = np.union1d(z, normalizing_ranges)
+    p = dataclasses.replace(fit.plan, system=fit.system, ranges=both)
+    g = run(p).overlap
+    j = jacobian(p, fit.system, list(fit.parameters), fit.step_tolerance)
+    at, norm = np.searchsorted(both, z), np.searchsorted(both, normalizing_ranges)
+    s, ds = g[norm].mean(), j[norm].mean(axis=0)
+    jn = j[at] / s - np.outer(g[at], ds) / s**2
+    with np.errstate(invalid="ignore"):
+        band = np.sqrt(np.einsum("ij,jk,ik->i", jn, fit.covariance, jn))
+    return Prediction(z, g[at] / s, band)
