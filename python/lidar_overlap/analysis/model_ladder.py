@@ -50,7 +50,19 @@ LADDER = (
         "how fast the beam fills the field of view: its divergence and the field stop's size",
     ),
     Family(
-        "alignment + beam + receiver",
+        "alignment + beam + focus",
+        (
+            "beam.offset[0]",
+            "beam.tilt[0]",
+            "beam.divergence",
+            "detector.radius",
+            "detector.defocus",
+        ),
+        "the slow approach to full overlap: a field stop out of focus, so near-range light is "
+        "blurred over its edge",
+    ),
+    Family(
+        "alignment + beam + focus + acceptance",
         (
             "beam.offset[0]",
             "beam.tilt[0]",
@@ -59,8 +71,7 @@ LADDER = (
             "detector.defocus",
             "detector.numerical_aperture",
         ),
-        "the slow approach to full overlap: a field stop out of focus (near-range light blurred "
-        "over it) and the relay's acceptance cutting the steep rays of near scatterers",
+        "the relay's (or fibre's) acceptance cutting the steep rays of near scatterers",
     ),
 )
 
