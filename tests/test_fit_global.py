@@ -29,6 +29,8 @@ SIGMA = 0.01
 #: optimum by about one; the local fit from a wrong valley misses by hundreds).
 FOUND_SIGMAS = 4.0
 N_SEEDS = 20
+#: A seed whose four polished candidates end in the two valleys (seeds 0-5 all do).
+SEED_TWO_MINIMA = 3
 SEARCH = dict(population=10, generations=15, minima=2)
 
 
@@ -80,13 +82,14 @@ def test_global_search_finds_the_known_optimum_on_20_seeds():
 
 
 def test_search_report_counts_batched_calls_and_lists_runner_up_minima():
-    f = _global(BAD_STARTS[0], 3)
+    f = _global(BAD_STARTS[0], SEED_TWO_MINIMA, minima=4)
     r = f.search
     assert isinstance(f, lo.GlobalFitResult) and f.converged
     assert r.core_calls == r.generations + 1  # the initial population, then one per generation
     assert r.candidates == r.population * r.core_calls
-    assert f.evaluations == r.candidates + sum(m.evaluations for m in r.minima)
-    assert len(r.minima) == 2
+    assert f.evaluations == r.candidates + r.local_evaluations
+    assert r.local_evaluations >= sum(m.evaluations for m in r.minima)
+    assert len(r.minima) == 2  # the truth's valley and the one at a 4.9 mm defocus
     assert r.minima[0].chi_square == f.chi_square <= r.minima[1].chi_square
     assert r.minima[0].parameters == f.parameters
     assert "runner-up 1" in str(f)

@@ -29,7 +29,8 @@ class SearchMinimum:
 class SearchReport:
     """How the global search ran: ``method``, ``seed``, ``population`` (candidates per generation),
     ``generations`` run, ``candidates`` evaluated, ``core_calls`` (one per generation on ray
-    tracing), ``minima`` (best first; the first is the result) and the ``bounds`` searched."""
+    tracing), ``local_evaluations`` (curves of the local fits, every polished candidate counted),
+    ``minima`` (distinct, best first; the first is the result) and the ``bounds`` searched."""
 
     method: str
     seed: int
@@ -37,6 +38,7 @@ class SearchReport:
     generations: int
     candidates: int
     core_calls: int
+    local_evaluations: int
     minima: Tuple[SearchMinimum, ...]
     bounds: Dict[str, Tuple[float, float]]
 

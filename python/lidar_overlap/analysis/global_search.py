@@ -12,7 +12,8 @@ larger). Default bounds are the fit's (:func:`lidar_overlap.analysis.fit.default
 beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider tilts put the beam out of
 the field of view at every range, where the cost is flat and tells the search nothing).
 
-Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), so
+Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), its
+first population a Latin hypercube with the start as one member (a good start is never lost), so
 a generation is one call of :func:`lidar_overlap.analysis.batch_curves.curves`. The minima: every
 candidate evaluated is kept; the best one, then the next best whose coordinates (scaled to the
 unit cube) differ from every one kept by more than ``DISTINCT`` in some parameter, up to
@@ -119,6 +120,9 @@ def fit_global(
         seed=seed,
         polish=False,
         init="latinhypercube",
+        x0=np.clip(
+            (np.where(logs, np.log(np.abs(start) + (start == 0)), start) - a) / (b - a), 0, 1
+        ),
         updating="deferred",
         vectorized=True,
     )
@@ -154,6 +158,7 @@ def fit_global(
         generations=int(solution.nit),
         candidates=int(c_all.size),
         core_calls=calls[0],
+        local_evaluations=sum(f.evaluations for f, _ in fits),
         minima=tuple(
             SearchMinimum(f.parameters, f.chi_square, candidate, f.converged, f.evaluations)
             for f, candidate in (fits[j] for j in order)

@@ -3,11 +3,17 @@ overlap curve, fitted in turn (global search, then the local fit) and compared b
 information criterion BIC = chi² + k ln n (n independent points, k free parameters; chi² with the
 given sigma, so an information criterion needs sigma).
 
-Choice: the family of lowest BIC; if a simpler family is within ``BIC_TIE`` of it, the simplest
-such one (a BIC difference below 2 is not evidence). Each family also says whether it reaches the
-noise: chi²/dof within ``CHI2_SIGMAS`` standard deviations sqrt(2/dof) of 1, and the residuals'
-signs not in fewer runs than chance gives (one-sided Wald-Wolfowitz runs test, p > ``RUNS_P``).
-When none does, the result says so: the curve needs a model the ladder does not have.
+Each family starts from the one before's best (its search holds that point), so a larger family
+never ends worse than a smaller one for want of search. A family whose fit leaves a parameter
+unconstrained (a singular Jacobian: infinite uncertainty, say an acceptance that cuts no ray) is
+not supported by the data and is not chosen.
+
+Choice: among the supported families, the one of lowest BIC; if a simpler one is within
+``BIC_TIE`` of it, the simplest such one (a BIC difference below 2 is not evidence). Each family
+also says whether it reaches the noise: chi²/dof within ``CHI2_SIGMAS`` standard deviations
+sqrt(2/dof) of 1, and the residuals' signs not in fewer runs than chance gives (one-sided
+Wald-Wolfowitz runs test, p > ``RUNS_P``). When none does, the result says so: the curve needs a
+model the ladder does not have.
 """
 
 from __future__ import annotations
@@ -80,7 +86,8 @@ LADDER = (
 class FamilyScore:
     """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
     ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
-    the system cannot free (a numerical aperture of None)."""
+    the system cannot free (a numerical aperture of None); ``supported``: every parameter has a
+    finite uncertainty."""
 
     family: Family
     fit: object
@@ -90,6 +97,7 @@ class FamilyScore:
     runs_p: float
     reaches_noise: bool
     dropped: Tuple[str, ...]
+    supported: bool = True
 
 
 @dataclass(frozen=True, eq=False)
@@ -111,6 +119,7 @@ class LadderResult:
             lines.append(
                 f" {mark} {s.family.name:<30} k {s.k}  BIC {s.bic:9.2f}  chi2/dof {s.chi2_dof:6.3f}"
                 f"  runs p {s.runs_p:.3g}  {'reaches the noise' if s.reaches_noise else ''}"
+                f"{'' if s.supported else ' (a parameter unconstrained)'}"
             )
         if self.note:
             lines.append(f"  {self.note}")
@@ -163,13 +172,13 @@ def fit_ladder(
             "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
             "scatter): an information criterion compares chi-squares on the noise's scale"
         )
-    scores = []
+    scores, start = [], system
     for family in families:
         paths = tuple(p for p in family.paths if _freeable(system, p))
         dropped = tuple(p for p in family.paths if p not in paths)
         given = {p: v for p, v in (bounds or {}).items() if p in paths}
         f = fit_global(
-            system,
+            start,
             ranges,
             measured,
             sigma,
@@ -189,9 +198,14 @@ def fit_ladder(
         runs = runs_p_value(f.residuals)
         reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P
         bic = f.chi_square + k * math.log(n)
-        scores.append(FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped))
-    best = min(scores, key=lambda s: s.bic)
-    chosen = next(s for s in scores if s.bic <= best.bic + BIC_TIE)
+        supported = all(math.isfinite(v) for v in f.uncertainties.values())
+        scores.append(
+            FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped, supported)
+        )
+        start = _parameters.replace(system, f.parameters)
+    eligible = [s for s in scores if s.supported] or scores
+    best = min(eligible, key=lambda s: s.bic)
+    chosen = next(s for s in eligible if s.bic <= best.bic + BIC_TIE)
     note = None
     if not any(s.reaches_noise for s in scores):
         note = (
