@@ -6,7 +6,9 @@ given sigma, so an information criterion needs sigma).
 Each family starts from the one before's best (its search holds that point), so a larger family
 never ends worse than a smaller one for want of search. A family whose fit leaves a parameter
 unconstrained (a singular Jacobian: infinite uncertainty, say an acceptance that cuts no ray) is
-not supported by the data and is not chosen.
+not supported by the data and is not chosen; nor is one whose fit of relative data puts the
+model's absolute G below ``MIN_FAR_OVERLAP`` where the data are normalised (a beam mostly outside
+the field of view can have the right shape, but a working lidar sees most of its beam far away).
 
 Choice: among the supported families, the one of lowest BIC; if a simpler one is within
 ``BIC_TIE`` of it, the simplest such one (a BIC difference below 2 is not evidence). Each family
@@ -32,6 +34,8 @@ BIC_TIE = 2.0
 CHI2_SIGMAS = 3.0
 #: The residual signs pass the runs test when its one-sided p-value exceeds this.
 RUNS_P = 0.01
+#: Relative fits: the least absolute G where the data are normalised for a plausible instrument.
+MIN_FAR_OVERLAP = 0.5
 
 
 @dataclass(frozen=True)
@@ -87,7 +91,8 @@ class FamilyScore:
     """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
     ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
     the system cannot free (a numerical aperture of None); ``supported``: every parameter has a
-    finite uncertainty."""
+    finite uncertainty and, for relative data, the model's absolute G where they are normalised
+    is at least MIN_FAR_OVERLAP."""
 
     family: Family
     fit: object
@@ -119,7 +124,7 @@ class LadderResult:
             lines.append(
                 f" {mark} {s.family.name:<30} k {s.k}  BIC {s.bic:9.2f}  chi2/dof {s.chi2_dof:6.3f}"
                 f"  runs p {s.runs_p:.3g}  {'reaches the noise' if s.reaches_noise else ''}"
-                f"{'' if s.supported else ' (a parameter unconstrained)'}"
+                f"{'' if s.supported else '  (not supported: see FamilyScore.supported)'}"
             )
         if self.note:
             lines.append(f"  {self.note}")
@@ -199,6 +204,7 @@ def fit_ladder(
         reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P
         bic = f.chi_square + k * math.log(n)
         supported = all(math.isfinite(v) for v in f.uncertainties.values())
+        supported = supported and getattr(f, "model_scale", 1.0) >= MIN_FAR_OVERLAP
         scores.append(
             FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped, supported)
         )
