@@ -4,11 +4,13 @@ information criterion BIC = chi² + k ln n (n independent points, k free paramet
 given sigma, so an information criterion needs sigma).
 
 Each family starts from the one before's best (its search holds that point), so a larger family
-never ends worse than a smaller one for want of search. A family whose fit leaves a parameter
-unconstrained (a singular Jacobian: infinite uncertainty, say an acceptance that cuts no ray) is
-not supported by the data and is not chosen; nor is one whose fit of relative data puts the
-model's absolute G below ``MIN_FAR_OVERLAP`` where the data are normalised (a beam mostly outside
-the field of view can have the right shape, but a working lidar sees most of its beam far away).
+never ends worse than a smaller one for want of search; and each smaller family is refitted
+locally from a larger family's solution when that ended lower (a valley its own search missed).
+A family whose fit leaves a parameter unconstrained (a singular Jacobian: infinite uncertainty,
+say an acceptance that cuts no ray) is not supported by the data and is not chosen; nor is one
+whose fit of relative data puts the model's absolute G below ``MIN_FAR_OVERLAP`` where the data
+are normalised (a beam mostly outside the field of view can have the right shape, but a working
+lidar sees most of its beam far away).
 
 Choice: among the supported families, the one of lowest BIC; if a simpler one is within
 ``BIC_TIE`` of it, the simplest such one (a BIC difference below 2 is not evidence). Each family
@@ -177,38 +179,32 @@ def fit_ladder(
             "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
             "scatter): an information criterion compares chi-squares on the noise's scale"
         )
-    scores, start = [], system
+    fits, start = [], system
     for family in families:
-        paths = tuple(p for p in family.paths if _freeable(system, p))
-        dropped = tuple(p for p in family.paths if p not in paths)
+        paths = [p for p in family.paths if _freeable(system, p)]
         given = {p: v for p, v in (bounds or {}).items() if p in paths}
-        f = fit_global(
-            start,
-            ranges,
-            measured,
-            sigma,
-            list(paths),
-            given,
-            method,
-            tolerance,
-            loss,
-            max_evaluations,
-            True,
-            threads,
-            normalize,
-            seed,
+        fits.append(
+            fit_global(
+                start,
+                ranges,
+                measured,
+                sigma,
+                paths,
+                given,
+                method,
+                tolerance,
+                loss,
+                max_evaluations,
+                True,
+                threads,
+                normalize,
+                seed,
+            )
         )
-        n, k = f.degrees_of_freedom + len(paths), len(paths)
-        dof = max(f.degrees_of_freedom, 1)
-        runs = runs_p_value(f.residuals)
-        reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P
-        bic = f.chi_square + k * math.log(n)
-        supported = all(math.isfinite(v) for v in f.uncertainties.values())
-        supported = supported and getattr(f, "model_scale", 1.0) >= MIN_FAR_OVERLAP
-        scores.append(
-            FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped, supported)
-        )
-        start = _parameters.replace(system, f.parameters)
+        start = _parameters.replace(system, fits[-1].parameters)
+    local = (ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads)
+    fits = _from_larger_families(system, families, fits, normalize, local)
+    scores = [_score(system, family, f) for family, f in zip(families, fits)]
     eligible = [s for s in scores if s.supported] or scores
     best = min(eligible, key=lambda s: s.bic)
     chosen = next(s for s in eligible if s.bic <= best.bic + BIC_TIE)
@@ -224,6 +220,49 @@ def fit_ladder(
             "raise max_evaluations or pass allow_unconverged=True"
         )
     return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
+
+
+def _score(system, family: Family, f) -> FamilyScore:
+    paths = [p for p in family.paths if _freeable(system, p)]
+    dropped = tuple(p for p in family.paths if p not in paths)
+    n, k = f.degrees_of_freedom + len(paths), len(paths)
+    dof = max(f.degrees_of_freedom, 1)
+    runs = runs_p_value(f.residuals)
+    reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P
+    supported = all(math.isfinite(v) for v in f.uncertainties.values())
+    supported = supported and getattr(f, "model_scale", 1.0) >= MIN_FAR_OVERLAP
+    bic = f.chi_square + k * math.log(n)
+    return FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped, supported)
+
+
+def _from_larger_families(system, families, fits, normalize, local) -> list:
+    """Each family's fit, replaced by a local fit of its own paths from a larger family's solution
+    when that ends lower: a larger family's search may find a valley the smaller one's missed, and
+    the smaller family can reach it too when the extra parameters do not matter there."""
+    from .fit import fit
+    from .global_result import with_search
+    from .relative import fit_relative
+
+    ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads = local
+    out = list(fits)
+    for i in range(len(families) - 2, -1, -1):
+        paths = [p for p in families[i].paths if _freeable(system, p)]
+        given = {p: v for p, v in (bounds or {}).items() if p in paths}
+        for j in range(i + 1, len(families)):
+            if not out[j].chi_square < out[i].chi_square:
+                continue
+            start = _parameters.replace(system, {p: out[j].parameters[p] for p in paths})
+            common = (start, ranges, measured, sigma, paths, given, method, tolerance, loss)
+            try:
+                if normalize is None:
+                    g = fit(*common, max_evaluations, allow_unconverged=True, threads=threads)
+                else:
+                    g = fit_relative(*common, max_evaluations, True, threads, normalize)
+            except ValueError:  # that start lies outside the smaller family's bounds
+                continue
+            if g.chi_square < out[i].chi_square:
+                out[i] = with_search(g, out[i].search, out[i].evaluations + g.evaluations)
+    return out
 
 
 def _freeable(system, path: str) -> bool:
