@@ -40,6 +40,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/telecover.py
 	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
 	cd $(OUT) && ../$(PY) ../examples/fit_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/fit_real_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/optimize_design.py
 	@echo "demo: plots written to $(OUT)/"
 
@@ -82,6 +83,7 @@ bench: setup
 	$(PY) benchmarks/bench_telecover.py
 	$(PY) benchmarks/bench_alignment.py
 	$(PY) benchmarks/bench_fit.py
+	$(PY) benchmarks/bench_real_fit.py
 	$(PY) benchmarks/bench_optimize.py
 
 clean:

@@ -15,8 +15,11 @@ from .analysis.fit import fit
 from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fit_telecover import fit_telecover
 from .analysis.fit_verdict import FitQualityWarning
+from .analysis.global_result import GlobalFitResult, GlobalRelativeFitResult
 from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.optimize import OptimizeResult, optimize
+from .analysis.realign import Realignment, realign
+from .analysis.relative_result import RelativeFitResult
 from .analysis.sensitivity import sensitivity
 from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
 from .analysis.studies import tolerance_study
@@ -27,7 +30,7 @@ from .forward.coupling import emitter_coupling, optimal_focus_range
 from .forward.methods import FO, RT, Auto, Turbulent
 from .forward.planning import Plan, explain, plan
 from .forward.result import OverlapResult, TurbulentOverlapResult
-from .model import parameters
+from .model import instruments, parameters
 from .model.aberrations import (
     Aberrations,
     noll_index,
@@ -71,6 +74,9 @@ __all__ = [
     "DegeneracyWarning",
     "FitQualityWarning",
     "FitResult",
+    "GlobalFitResult",
+    "GlobalRelativeFitResult",
+    "RelativeFitResult",
     "Prediction",
     "AlignResult",
     "align",
@@ -79,6 +85,8 @@ __all__ = [
     "OptimizeResult",
     "SmallestFieldOfView",
     "optimize",
+    "realign",
+    "Realignment",
     "sensitivity",
     "plan",
     "run",
@@ -112,6 +120,7 @@ __all__ = [
     "overlap",
     "paper_table1",
     "parameters",
+    "instruments",
     "plotting",
     "phase_screen",
     "max_memory",

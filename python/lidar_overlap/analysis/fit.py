@@ -45,6 +45,7 @@ from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
 from .sensitivity import jacobian, step_scale
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
+SEARCHES = ("local", "global")
 #: |correlation| above which a pair of parameters is reported as degenerate.
 DEGENERATE_CORRELATION = 0.95
 #: The model's tolerance must stay below this fraction of the median sigma (else it adds to the
@@ -66,6 +67,9 @@ def fit(
     *,
     allow_unconverged: bool = False,
     threads: int = 0,
+    normalize=None,
+    search: str = "local",
+    seed: Optional[int] = None,
 ) -> FitResult:
     """Fit the ``free`` scalars of ``system`` (its values are the start) to ``measured`` G at
     ``ranges``.
@@ -82,9 +86,38 @@ def fit(
     a result with ``converged=False`` instead of raising RuntimeError when the optimiser stops
     short.
 
+    normalize : None (absolute G), ``(z_low, z_high)`` in m or ``"far"``: relative data, model and
+    data each normalised (:mod:`lidar_overlap.analysis.relative`; returns a ``RelativeFitResult``).
+    search : ``"local"`` (from the start) or ``"global"`` (a seeded population search over the
+    bounds, then the local fit: :mod:`lidar_overlap.analysis.global_search`; returns a
+    ``GlobalFitResult``). seed : the global search's seed (None: 0). ``free="auto"``: a ladder of
+    model families fitted in turn and chosen by BIC (needs sigma;
+    :mod:`lidar_overlap.analysis.model_ladder`; returns a ``LadderResult``).
+
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
     pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
+    search = _checks.choice("search", search, SEARCHES)
+    if search == "global" or normalize is not None or (isinstance(free, str) and free == "auto"):
+        from .fit_extensions import fit_extended  # relative data and global search
+
+        return fit_extended(
+            system,
+            ranges,
+            measured,
+            sigma,
+            free,
+            bounds,
+            method,
+            tolerance,
+            loss,
+            max_evaluations,
+            allow_unconverged,
+            threads,
+            normalize,
+            search,
+            seed,
+        )
     paths = free_paths(free)
     p = fit_plan(system, ranges, method, tolerance, threads)
     y = _measured(measured, p.ranges)

@@ -25,6 +25,7 @@ import numpy as np
 from .. import _checks
 from ..forward.result import OverlapResult
 from ..model.atmosphere import Atmosphere
+from .fit_correction import fitted_overlap, is_fit
 
 #: Planck constant (J s) and speed of light (m/s), exact in SI.
 PLANCK, LIGHT_SPEED = 6.62607015e-34, 299792458.0
@@ -225,8 +226,9 @@ def correct(
     ranges : m, strictly increasing, one per signal value.
     signal : the measured signal S at each range, in any unit (photons per bin, range-corrected,
         ...): finite.
-    overlap : G at each range: an :class:`OverlapResult` at the same ranges, or an array of values
-        in [0, 1].
+    overlap : G at each range: an :class:`OverlapResult` at the same ranges, an array of values
+        in [0, 1], or a fit result (``lo.fit``): its curve at the ranges (a relative fit's divided
+        by its far-range limit) with its 1-sigma band as ``overlap_std`` unless that is given.
     min_overlap : (0, 1]: where G < min_overlap the signal is not corrected (too little of it
         reaches the detector, and S/G would amplify every error): ``values`` and ``std`` are NaN
         there and ``mask`` True.
@@ -240,6 +242,9 @@ def correct(
     """
     z = _checks.ranges("ranges", ranges)
     s = _profile("signal", signal, z.size)
+    if is_fit(overlap):  # a fitted curve: G and its band from the fit (analysis/fit_correction.py)
+        overlap, band = fitted_overlap(overlap, z)
+        overlap_std = band if overlap_std is None else overlap_std
     if isinstance(overlap, OverlapResult):
         if not np.array_equal(overlap.ranges, z):
             raise ValueError(

@@ -88,6 +88,14 @@ def _parser() -> argparse.ArgumentParser:
         metavar="PATH",
         help="parameters to fit, e.g. beam.tilt detector.defocus (beam.tilt: both components)",
     )
+    fit.add_argument(
+        "--normalize",
+        nargs=2,
+        type=float,
+        metavar=("Z_LOW", "Z_HIGH"),
+        help="relative data: divide the model and the data each by their mean over Z_LOW..Z_HIGH "
+        "(m), e.g. an overlap curve normalised to 1 in the far range",
+    )
     tc = sub.add_parser(
         "telecover",
         help="the telecover test of a scenario, or a fit to measured deviations",
@@ -184,7 +192,12 @@ def _fit(scenario: Scenario, args) -> int:
     try:
         with _printed_warnings():  # printed only if the fit succeeds
             result, files, note = fit_command.fit_scenario(
-                scenario, args.measurements, args.free, args.out or Path(scenario.name), args.method
+                scenario,
+                args.measurements,
+                args.free,
+                args.out or Path(scenario.name),
+                args.method,
+                normalize=None if args.normalize is None else tuple(args.normalize),
             )
             _note((None, note))
     except (RuntimeError, ImportError) as exc:  # not converged; scipy missing

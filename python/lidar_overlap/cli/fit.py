@@ -94,13 +94,19 @@ def read_table(
     return data[:, : len(columns)], (data[:, -1] if len(header) > len(columns) else None)
 
 
-def fit_scenario(scenario: Scenario, measurements: Path, free: List[str], out: Path, method=None):
+def fit_scenario(
+    scenario: Scenario, measurements: Path, free: List[str], out: Path, method=None, normalize=None
+):
     """Fit, then write ``<name>_fit.csv`` and ``<name>_fit.png`` into ``out``; returns (result,
-    files, note)."""
+    files, note). ``normalize``: None or (z_low, z_high) in m, as :func:`lidar_overlap.fit`."""
     z, g, sigma = read_measurements(measurements)
     model, threads = scenario.method_object(method), scenario.threads
-    result = fit(scenario.system, z, g, sigma, free=free, method=model, threads=threads)
+    result = fit(
+        scenario.system, z, g, sigma, free=free, method=model, threads=threads, normalize=normalize
+    )
     header = [f"# scenario: {scenario.name}", f"# measurements: {measurements}"]
+    if normalize is not None:
+        header.append(f"# normalize: model and data each by their mean over {normalize} m")
     files, note = write_fit(
         result,
         out / f"{scenario.name}_fit",

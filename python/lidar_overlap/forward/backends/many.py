@@ -37,9 +37,11 @@ __all__ = [
 BATCHED = ("rt",)
 
 
-def systems(plan, variants: Sequence[LidarSystem]) -> Curves:
+def systems(plan, variants: Sequence[LidarSystem], warn: bool = True) -> Curves:
     """G of each system in ``variants`` (systems of the kind ``plan.system`` is: shifted,
-    misaligned, drawn) at ``plan.ranges``: shape (len(variants), ranges)."""
+    misaligned, drawn) at ``plan.ranges``: shape (len(variants), ranges). ``warn=False`` keeps
+    ray tracing's validity and convergence warnings back (a search's candidates, many of them far
+    from the answer, whose own warnings are said)."""
     z = plan.ranges
     if plan.backend not in BATCHED:
         runs = [run_plan(plan.with_system(s)) for s in variants]
@@ -54,7 +56,8 @@ def systems(plan, variants: Sequence[LidarSystem]) -> Curves:
     natives = [s._native for s in variants for _ in z]
     flat = pairs(plan, natives, np.tile(z, len(variants)), warn=False)
     shape = (len(variants), z.size)
-    warn_rt(plan, flat.converged, flat.error_estimate, np.tile(z, len(variants)))
+    if warn:
+        warn_rt(plan, flat.converged, flat.error_estimate, np.tile(z, len(variants)))
     return Curves(
         flat.overlap.reshape(shape),
         flat.error_estimate.reshape(shape),

@@ -1,0 +1,117 @@
+"""Global fit and model ladder on a real curve's scale: six parameters of the PollyXT far-range
+preset fitted by lo.fit(search="global") to a 150-point relative curve (synthetic, from a known
+system of that preset, sigma = 0.007 like the NOA 355 nm curve's far-range scatter), normalised over
+800-1200 m; then free="auto" (the model ladder of analysis/model_ladder.py) on the same curve.
+
+Counts: candidates of the search (one batched core call per generation), local-fit curves and
+Jacobians, and every model evaluation. One timed run each (a global fit is long and seeded: its
+cost does not vary between runs). Targets on 2 cores: global fit <= 20 s, ladder <= 60 s. Writes
+results/bench_real_fit.json.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+from _common import load_average, source_commit
+
+import lidar_overlap as lo
+from lidar_overlap import parameters
+from lidar_overlap.model.instruments import pollyxt
+
+RANGES = np.linspace(150.0, 1200.0, 150)  # m, the NOA curve's spacing is 7.5 m
+SIGMA = 0.007
+NORMALIZE = (800.0, 1200.0)
+TRUE = {
+    "beam.offset[0]": 0.16,
+    "beam.tilt[0]": -8e-5,
+    "beam.divergence": 1.0e-4,
+    "detector.radius": 4e-4,
+    "detector.defocus": 2.5e-3,
+    "detector.numerical_aperture": 0.12,
+}
+BOUNDS = {"detector.numerical_aperture": (0.05, 0.5), "detector.defocus": (-0.01, 0.01)}
+TARGETS_S = {"global": 20.0, "ladder": 60.0}
+
+
+def main():
+    load = load_average()
+    print(f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | load average {load:.2f}")
+    if load > 0.5:
+        print(f"warning: load average {load:.2f} before the run: the times may be inflated")
+    start = pollyxt("far", 355e-9, numerical_aperture=0.22)
+    truth = parameters.replace(start, TRUE)
+    g = lo.overlap(truth, RANGES, "rt", tolerance=1e-6).overlap
+    y = 0.97 * (g + np.random.default_rng(0).normal(0.0, SIGMA, RANGES.size))
+    common = dict(
+        sigma=0.97 * SIGMA,
+        bounds=BOUNDS,
+        method="rt",
+        tolerance=5e-4,
+        normalize=NORMALIZE,
+        seed=1,
+        max_evaluations=300,
+        allow_unconverged=True,
+    )
+    warnings.simplefilter("ignore")
+    t0 = time.perf_counter()
+    f = lo.fit(start, RANGES, y, free=list(TRUE), search="global", **common)
+    t_global = time.perf_counter() - t0
+    print(f)
+    t0 = time.perf_counter()
+    ladder = lo.fit(start, RANGES, y, free="auto", **common)
+    t_ladder = time.perf_counter() - t0
+    print(ladder)
+    evaluations = sum(s.fit.evaluations for s in ladder.scores)
+    rows = {
+        "global": {
+            "time_s": t_global,
+            "candidates": f.search.candidates,
+            "core_calls": f.search.core_calls,
+            "model_evaluations": f.evaluations,
+            "jacobian_evaluations": f.jacobian_evaluations,
+            "reduced_chi_square": f.reduced_chi_square,
+        },
+        "ladder": {
+            "time_s": t_ladder,
+            "model_evaluations": evaluations,
+            "chosen": ladder.chosen_family.name,
+            "scores": {s.family.name: s.bic for s in ladder.scores},
+        },
+    }
+    for name, row in rows.items():
+        met = row["time_s"] <= TARGETS_S[name]
+        print(
+            f"{name}: {row['time_s']:.1f} s (target {TARGETS_S[name]:g} s: "
+            f"{'met' if met else 'NOT met'}), {row['model_evaluations']} model evaluations"
+        )
+        row["target_met"] = met
+    out = Path(__file__).resolve().parent / "results" / "bench_real_fit.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    meta = {
+        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+        "lidar_overlap": lo.__version__,
+        "numpy": np.__version__,
+        "python": sys.version.split()[0],
+        "source_commit": source_commit(),
+        "machine": platform.machine(),
+        "cores": os.cpu_count(),
+        "load_average_1min": load,
+        "ranges_m": {"start": 150.0, "stop": 1200.0, "count": int(RANGES.size)},
+        "sigma": SIGMA,
+        "true": TRUE,
+        "targets_s": TARGETS_S,
+    }
+    out.write_text(json.dumps({"meta": meta, "results": rows}, indent=2) + "\n")
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":
+    main()

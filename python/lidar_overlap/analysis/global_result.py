@@ -1,0 +1,89 @@
+"""What a global fit reports beyond the local fit it ends with: the search (candidates, core calls)
+and the distinct minima it polished, with their costs (:mod:`lidar_overlap.analysis.global_search`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Dict, Optional, Tuple
+
+from .fit_result import FitResult
+from .relative_result import RelativeFitResult
+
+
+@dataclass(frozen=True)
+class SearchMinimum:
+    """One polished minimum: ``parameters`` (path -> SI value) and ``chi_square`` after the local
+    fit, ``candidate_cost`` (the search's cost of its starting candidate), ``converged`` and
+    ``evaluations`` of the local fit."""
+
+    parameters: Dict[str, float]
+    chi_square: float
+    candidate_cost: float
+    converged: bool
+    evaluations: int
+
+
+@dataclass(frozen=True)
+class SearchReport:
+    """How the global search ran: ``method``, ``seed``, ``population`` (candidates per generation),
+    ``generations`` run, ``candidates`` evaluated, ``core_calls`` (one per generation on ray
+    tracing), ``local_evaluations`` (curves of the local fits, every polished candidate counted),
+    ``minima`` (distinct, best first; the first is the result) and the ``bounds`` searched."""
+
+    method: str
+    seed: int
+    population: int
+    generations: int
+    candidates: int
+    core_calls: int
+    local_evaluations: int
+    minima: Tuple[SearchMinimum, ...]
+    bounds: Dict[str, Tuple[float, float]]
+
+    def summary(self) -> str:
+        lines = [
+            f"global search ({self.method}, seed {self.seed}): {self.generations} generations of "
+            f"{self.population}, {self.candidates} candidates in {self.core_calls} batched calls"
+        ]
+        for rank, m in enumerate(self.minima):
+            what = "best" if rank == 0 else f"runner-up {rank}"
+            values = ", ".join(f"{p} {v:.4g}" for p, v in m.parameters.items())
+            lines.append(f"  {what}: chi-square {m.chi_square:.4g} ({values})")
+        return "\n".join(lines)
+
+
+class _WithSearch:
+    search: Optional[SearchReport]
+
+    def summary(self) -> str:
+        base = super().summary()  # type: ignore[misc]
+        return base if self.search is None else base + "\n" + self.search.summary()
+
+    def __str__(self) -> str:
+        return self.summary()
+
+
+@dataclass(frozen=True, eq=False)
+class GlobalFitResult(_WithSearch, FitResult):
+    """A :class:`FitResult` of ``lo.fit(..., search="global")`` with its ``search`` report;
+    ``evaluations`` counts the search's candidates and the local fits' curves."""
+
+    search: Optional[SearchReport] = None
+
+
+@dataclass(frozen=True, eq=False)
+class GlobalRelativeFitResult(_WithSearch, RelativeFitResult):
+    """A :class:`RelativeFitResult` of a global fit, with its ``search`` report."""
+
+    search: Optional[SearchReport] = None
+
+
+def with_search(result: FitResult, report: SearchReport, evaluations: int) -> FitResult:
+    """``result`` as the matching global result type, with ``report`` and the total
+    ``evaluations``."""
+    kind = GlobalRelativeFitResult if isinstance(result, RelativeFitResult) else GlobalFitResult
+    fields = {f.name: getattr(result, f.name) for f in dataclasses.fields(result)}
+    fields.update(search=report, evaluations=evaluations)
+    return kind(**fields)

@@ -1,0 +1,238 @@
+"""``lo.fit(..., search="global")``: a seeded differential-evolution search over the bounds, each
+generation's candidates in one batched core call, then the local least-squares fit from the best
+distinct minima (the best becomes the result, with its covariance; the others are reported).
+
+Why: the cost of an overlap fit is multimodal (a tilt that brings the beam into the field of view
+from the other side, a defocus that trades against the detector radius), so a local fit from a
+design value can stop in the wrong valley.
+
+Search space. Tilt, offset and defocus are searched linearly, every other (positive) scalar in its
+logarithm (a divergence between a tenth and ten times the start is as likely to be 3x smaller as 3x
+larger). Default bounds are the fit's (:func:`lidar_overlap.analysis.fit.default_bounds`) except the
+beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider tilts put the beam out of
+the field of view at every range, where the cost is flat and tells the search nothing).
+
+Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), its
+first population a Latin hypercube with the start as one member (a good start is never lost), so
+a generation is one call of :func:`lidar_overlap.analysis.batch_curves.curves`. The minima: every
+candidate evaluated is kept; the best one, then the next best whose coordinates (scaled to the
+unit cube) differ from every one kept by more than ``DISTINCT`` in some parameter, up to
+``minima`` of them; each is polished by the local fit.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from typing import Any, Dict, List, Tuple
+
+import numpy as np
+
+from .. import _checks
+from ..model import parameters as _parameters
+from .batch_curves import curves, variants
+from .global_result import SearchMinimum, SearchReport, with_search
+from .relative import extended_plan, fit_relative, normalization
+
+#: Default tilt bounds: the start ± this many half fields of view r_d / f.
+TILT_FIELDS = 4.0
+#: Two candidates are distinct minima when some unit-cube coordinate differs by more than this.
+DISTINCT = 0.1
+#: Default population: this many candidates per free parameter (at least MIN_POPULATION).
+POPULATION_PER_PARAMETER, MIN_POPULATION = 5, 15
+#: Default generations at most; the search stops earlier when the population's costs agree
+#: (scipy's relative tolerance TOLERANCE).
+GENERATIONS, TOLERANCE = 40, 1e-3
+#: The search compares candidates on at most this many of the measured ranges (evenly thinned:
+#: a valley's place does not need every point, its polish uses them all).
+SEARCH_POINTS = 60
+_LINEAR = ("beam.tilt[", "beam.offset[", "detector.offset[", "detector.defocus")
+
+
+def fit_global(
+    system,
+    ranges,
+    measured,
+    sigma,
+    free,
+    bounds,
+    method,
+    tolerance,
+    loss,
+    max_evaluations,
+    allow_unconverged,
+    threads,
+    normalize,
+    seed=None,
+    population=None,
+    generations=GENERATIONS,
+    minima=3,
+):
+    """The global fit (module docstring); arguments as :func:`lidar_overlap.fit`, and
+    ``population`` (candidates per generation), ``generations`` (most generations) and ``minima``
+    (distinct candidates polished, >= 1; those that end in one valley are reported once).
+    Returns a ``GlobalFitResult`` (or ``GlobalRelativeFitResult`` with ``normalize``): the best
+    local fit and its ``search`` report (candidates, generations, core calls, and every distinct
+    polished minimum with its chi-square)."""
+    from .fit import _bounds, _measured, _sigma, fit, fit_plan, free_paths
+
+    optimize = _scipy()
+    paths = free_paths(free)
+    k = len(paths)
+    seed = 0 if seed is None else _checks.count("seed", seed, 0, 2**32 - 1)
+    population = _checks.count(
+        "population", population or max(MIN_POPULATION, POPULATION_PER_PARAMETER * k), 5
+    )
+    generations = _checks.count("generations", generations, 1)
+    minima = _checks.count("minima", minima, 1)
+    p0 = fit_plan(system, ranges, method, tolerance, threads)
+    y = _measured(measured, p0.ranges)
+    w = _sigma(sigma, y)
+    norm, p = thinned(p0, normalize, y, w)
+    start = np.array([_parameters.get(system, path) for path in paths])
+    low, high = _bounds(system, paths, start, search_bounds(system, paths, start, bounds))
+    logs = np.array([not path.startswith(_LINEAR) and lo > 0 for path, lo in zip(paths, low)])
+    a = np.where(logs, np.log(np.where(logs, low, 1.0)), low)
+    b = np.where(logs, np.log(np.where(logs, high, 1.0)), high)
+
+    def values(u):  # unit cube (S, k) -> parameter values
+        x = a + u * (b - a)
+        return np.where(logs, np.exp(np.where(logs, x, 0.0)), x)
+
+    seen_u, seen_cost, calls = [], [], [0]
+
+    def cost(u_columns):  # scipy passes (k, S)
+        u = np.atleast_2d(np.asarray(u_columns, dtype=float).T)
+        g = curves(p, variants(system, paths, values(u)))
+        calls[0] += 1
+        c = norm.whitened_cost(g)
+        seen_u.append(u)
+        seen_cost.append(c)
+        return c
+
+    solution = optimize.differential_evolution(
+        cost,
+        [(0.0, 1.0)] * k,
+        popsize=max(1, math.ceil(population / k)),
+        maxiter=generations,
+        tol=TOLERANCE,
+        seed=seed,
+        polish=False,
+        init="latinhypercube",
+        x0=np.clip(
+            (np.where(logs, np.log(np.abs(start) + (start == 0)), start) - a) / (b - a), 0, 1
+        ),
+        updating="deferred",
+        vectorized=True,
+    )
+    u_all, c_all = np.vstack(seen_u), np.concatenate(seen_cost)
+    starts = distinct_minima(u_all, c_all, minima)
+    given = {path: (float(lo), float(hi)) for path, lo, hi in zip(paths, low, high)}
+    fits, caught = [], []
+    for i in starts:
+        trial = _parameters.replace(system, dict(zip(paths, values(u_all[i][None])[0].tolist())))
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            common = (trial, ranges, measured, sigma, free, given, method, tolerance, loss)
+            if normalize is None:
+                local = fit(*common, max_evaluations, allow_unconverged=True, threads=threads)
+            else:
+                local = fit_relative(*common, max_evaluations, True, threads, normalize)
+        fits.append((local, float(c_all[i])))
+        caught.append(record)
+    order = _distinct_fits(fits, paths, a, b, logs)
+    best = fits[order[0]][0]
+    for item in caught[order[0]]:
+        warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
+    if not best.converged and not allow_unconverged:
+        raise RuntimeError(
+            f"fit did not converge: the local fit from the global search's best candidate "
+            f"stopped short ({best.message}); raise max_evaluations or pass "
+            "allow_unconverged=True"
+        )
+    report = SearchReport(
+        method="differential evolution",
+        seed=seed,
+        population=int(np.asarray(solution.population).shape[0]),
+        generations=int(solution.nit),
+        candidates=int(c_all.size),
+        core_calls=calls[0],
+        local_evaluations=sum(f.evaluations for f, _ in fits),
+        minima=tuple(
+            SearchMinimum(f.parameters, f.chi_square, candidate, f.converged, f.evaluations)
+            for f, candidate in (fits[j] for j in order)
+        ),
+        bounds={path: given[path] for path in paths},
+    )
+    evaluations = int(c_all.size) + sum(f.evaluations for f, _ in fits)
+    return with_search(best, report, evaluations)
+
+
+def thinned(p0, normalize, y, w):
+    """(Normalization, plan) of the search: on every j-th measured range so that at most
+    SEARCH_POINTS remain (all of them when thinning would leave fewer than 2 in the interval)."""
+    step = max(1, math.ceil(y.size / SEARCH_POINTS))
+    keep = np.unique(np.append(np.arange(0, y.size, step), y.size - 1))
+    if keep.size == y.size:
+        norm = normalization(normalize, p0.ranges, y, w)
+        return norm, extended_plan(p0, norm)
+    normalization(normalize, p0.ranges, y, w)  # the argument's errors name the data as given
+    try:
+        norm = normalization(normalize, p0.ranges[keep], y[keep], w[keep])
+    except ValueError:
+        keep = np.arange(y.size)
+        norm = normalization(normalize, p0.ranges, y, w)
+    p = dataclasses.replace(p0, ranges=p0.ranges[keep]) if keep.size < y.size else p0
+    return norm, extended_plan(p, norm)
+
+
+def search_bounds(system, paths, start, bounds) -> Dict[str, Tuple[float, float]]:
+    """The bounds the search uses: those given, else the fit's defaults but for the tilt (start ±
+    TILT_FIELDS r_d / f, within the fit's ±1e-2 rad)."""
+    out = dict(bounds or {})
+    field = TILT_FIELDS * system.detector.radius / system.telescope.focal_length
+    for path, x0 in zip(paths, start):
+        named = path in out or path.split("[")[0] in out
+        if path.startswith("beam.tilt[") and not named:
+            out[path] = (max(-1e-2, x0 - field), min(1e-2, x0 + field))
+    return out
+
+
+def _distinct_fits(fits, paths, a, b, logs) -> list:
+    """Indices of the polished fits, best first, without those that ended within DISTINCT / 10
+    (unit cube) of a better one: two candidates of one valley are one minimum."""
+    kept: List[Any] = []
+    for j in sorted(range(len(fits)), key=lambda j: fits[j][0].chi_square):
+        x = np.array([fits[j][0].parameters[path] for path in paths])
+        u = (np.where(logs, np.log(np.abs(x) + (x == 0)), x) - a) / (b - a)
+        if all(np.max(np.abs(u - v)) > DISTINCT / 10 for _, v in kept):
+            kept.append((j, u))
+    return [j for j, _ in kept]
+
+
+def distinct_minima(u: np.ndarray, cost: np.ndarray, count: int) -> list:
+    """Indices of up to ``count`` candidates, best first, each differing from every earlier one
+    by more than DISTINCT in some unit-cube coordinate (finite costs only)."""
+    chosen: List[int] = []
+    for i in np.argsort(cost, kind="stable"):
+        if not math.isfinite(cost[i]):
+            break
+        if all(np.max(np.abs(u[i] - u[j])) > DISTINCT for j in chosen):
+            chosen.append(int(i))
+            if len(chosen) == count:
+                break
+    if not chosen:
+        raise ValueError(
+            "search: every candidate's model vanishes where the data are normalised or leaves "
+            "the model's range; widen or move the bounds"
+        )
+    return chosen
+
+
+def _scipy():
+    try:
+        from scipy import optimize
+    except ImportError:
+        raise ImportError("lo.fit needs scipy: pip install 'lidar-overlap[fit]'") from None
+    return optimize

@@ -1,0 +1,272 @@
+"""``lo.fit(..., free="auto")``: a ladder of model families, each a physical explanation of an
+overlap curve, fitted in turn (global search, then the local fit) and compared by the Bayesian
+information criterion BIC = chi² + k ln n (n independent points, k free parameters; chi² with the
+given sigma, so an information criterion needs sigma).
+
+Each family starts from the one before's best (its search holds that point), so a larger family
+never ends worse than a smaller one for want of search; and each smaller family is refitted
+locally from a larger family's solution when that ended lower (a valley its own search missed).
+A family whose fit leaves a parameter unconstrained (a singular Jacobian: infinite uncertainty,
+say an acceptance that cuts no ray) is not supported by the data and is not chosen; nor is one
+whose fit of relative data puts the model's absolute G below ``MIN_FAR_OVERLAP`` where the data
+are normalised (a beam mostly outside the field of view can have the right shape, but a working
+lidar sees most of its beam far away).
+
+Choice: among the supported families, the one of lowest BIC; if a simpler one is within
+``BIC_TIE`` of it, the simplest such one (a BIC difference below 2 is not evidence). Each family
+also says whether it reaches the noise: chi²/dof within ``CHI2_SIGMAS`` standard deviations
+sqrt(2/dof) of 1, and the residuals' signs not in fewer runs than chance gives (one-sided
+Wald-Wolfowitz runs test, p > ``RUNS_P``). When none does, the result says so: the curve needs a
+model the ladder does not have.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Optional, Tuple
+
+import numpy as np
+
+from ..model import parameters as _parameters
+
+#: BIC differences below this are no evidence (Kass and Raftery's "not worth more than a mention").
+BIC_TIE = 2.0
+#: chi²/dof reaches the noise when it is below 1 + CHI2_SIGMAS sqrt(2 / dof).
+CHI2_SIGMAS = 3.0
+#: The residual signs pass the runs test when its one-sided p-value exceeds this.
+RUNS_P = 0.01
+#: Relative fits: the least absolute G where the data are normalised for a plausible instrument.
+MIN_FAR_OVERLAP = 0.5
+
+
+@dataclass(frozen=True)
+class Family:
+    """A model family: its ``name``, the ``paths`` it frees and the physical ``explanation``."""
+
+    name: str
+    paths: Tuple[str, ...]
+    explanation: str
+
+
+#: The default ladder for a biaxial lidar, simplest first (each adds to the one before).
+LADDER = (
+    Family(
+        "alignment",
+        ("beam.offset[0]", "beam.tilt[0]"),
+        "where the beam enters the field of view: the axis separation and the beam's tilt",
+    ),
+    Family(
+        "alignment + beam",
+        ("beam.offset[0]", "beam.tilt[0]", "beam.divergence", "detector.radius"),
+        "how fast the beam fills the field of view: its divergence and the field stop's size",
+    ),
+    Family(
+        "alignment + beam + focus",
+        (
+            "beam.offset[0]",
+            "beam.tilt[0]",
+            "beam.divergence",
+            "detector.radius",
+            "detector.defocus",
+        ),
+        "the slow approach to full overlap: a field stop out of focus, so near-range light is "
+        "blurred over its edge",
+    ),
+    Family(
+        "alignment + beam + focus + acceptance",
+        (
+            "beam.offset[0]",
+            "beam.tilt[0]",
+            "beam.divergence",
+            "detector.radius",
+            "detector.defocus",
+            "detector.numerical_aperture",
+        ),
+        "the relay's (or fibre's) acceptance cutting the steep rays of near scatterers",
+    ),
+)
+
+
+@dataclass(frozen=True, eq=False)
+class FamilyScore:
+    """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
+    ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
+    the system cannot free (a numerical aperture of None); ``supported``: every parameter has a
+    finite uncertainty and, for relative data, the model's absolute G where they are normalised
+    is at least MIN_FAR_OVERLAP."""
+
+    family: Family
+    fit: Any
+    k: int
+    bic: float
+    chi2_dof: float
+    runs_p: float
+    reaches_noise: bool
+    dropped: Tuple[str, ...]
+    supported: bool = True
+
+
+@dataclass(frozen=True, eq=False)
+class LadderResult:
+    """The ladder's outcome: ``chosen`` (the FitResult of the family chosen), ``chosen_family``,
+    ``scores`` (every family, simplest first), ``criterion`` ("BIC") and ``note`` (None, or why
+    no family reaches the noise)."""
+
+    chosen: Any
+    chosen_family: Family
+    scores: Tuple[FamilyScore, ...]
+    criterion: str
+    note: Optional[str]
+
+    def summary(self) -> str:
+        lines = [f"model ladder ({self.criterion}): chosen '{self.chosen_family.name}'"]
+        for s in self.scores:
+            mark = "*" if s.family is self.chosen_family else " "
+            lines.append(
+                f" {mark} {s.family.name:<30} k {s.k}  BIC {s.bic:9.2f}  chi2/dof {s.chi2_dof:6.3f}"
+                f"  runs p {s.runs_p:.3g}  {'reaches the noise' if s.reaches_noise else ''}"
+                f"{'' if s.supported else '  (not supported: see FamilyScore.supported)'}"
+            )
+        if self.note:
+            lines.append(f"  {self.note}")
+        return "\n".join(lines) + "\n" + self.chosen.summary()
+
+    __str__ = summary
+
+
+def runs_p_value(residuals) -> float:
+    """One-sided p-value of the Wald-Wolfowitz runs test: the chance of as few sign runs as
+    ``residuals`` show if the signs were random (normal approximation). 1.0 when all signs agree
+    is impossible to judge, so such a case returns 0.0 (all one sign is structure)."""
+    s = np.sign(np.asarray(residuals, dtype=float))
+    s = s[s != 0]
+    n_pos, n_neg = int((s > 0).sum()), int((s < 0).sum())
+    n = n_pos + n_neg
+    if n_pos == 0 or n_neg == 0:
+        return 0.0
+    runs = 1 + int(np.count_nonzero(s[1:] != s[:-1]))
+    mean = 2.0 * n_pos * n_neg / n + 1.0
+    var = (mean - 1.0) * (mean - 2.0) / (n - 1.0)
+    if not var > 0:
+        return 1.0
+    z = (runs - mean) / math.sqrt(var)
+    return 0.5 * math.erfc(-z / math.sqrt(2.0))
+
+
+def fit_ladder(
+    system,
+    ranges,
+    measured,
+    sigma,
+    bounds,
+    method,
+    tolerance,
+    loss,
+    max_evaluations,
+    allow_unconverged,
+    threads,
+    normalize,
+    seed,
+    families=LADDER,
+) -> LadderResult:
+    """Fit each of ``families`` (global search from ``system``, arguments as
+    :func:`lidar_overlap.fit`) and choose one (module docstring)."""
+    from .global_search import fit_global
+
+    if sigma is None:
+        raise ValueError(
+            "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
+            "scatter): an information criterion compares chi-squares on the noise's scale"
+        )
+    fits, start = [], system
+    for family in families:
+        paths = [p for p in family.paths if _freeable(system, p)]
+        given = {p: v for p, v in (bounds or {}).items() if p in paths}
+        fits.append(
+            fit_global(
+                start,
+                ranges,
+                measured,
+                sigma,
+                paths,
+                given,
+                method,
+                tolerance,
+                loss,
+                max_evaluations,
+                True,
+                threads,
+                normalize,
+                seed,
+            )
+        )
+        start = _parameters.replace(system, fits[-1].parameters)
+    local = (ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads)
+    fits = _from_larger_families(system, families, fits, normalize, local)
+    scores = [_score(system, family, f) for family, f in zip(families, fits)]
+    eligible = [s for s in scores if s.supported] or scores
+    best = min(eligible, key=lambda s: s.bic)
+    chosen = next(s for s in eligible if s.bic <= best.bic + BIC_TIE)
+    note = None
+    if not any(s.reaches_noise for s in scores):
+        note = (
+            "no family reaches the noise (chi2/dof or the runs test): the curve needs a model the "
+            "ladder does not have (a beam with wings, a second stop), or sigma is too small"
+        )
+    if not chosen.fit.converged and not allow_unconverged:
+        raise RuntimeError(
+            f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; "
+            "raise max_evaluations or pass allow_unconverged=True"
+        )
+    return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
+
+
+def _score(system, family: Family, f) -> FamilyScore:
+    paths = [p for p in family.paths if _freeable(system, p)]
+    dropped = tuple(p for p in family.paths if p not in paths)
+    n, k = f.degrees_of_freedom + len(paths), len(paths)
+    dof = max(f.degrees_of_freedom, 1)
+    runs = runs_p_value(f.residuals)
+    reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P
+    supported = all(math.isfinite(v) for v in f.uncertainties.values())
+    supported = supported and getattr(f, "model_scale", 1.0) >= MIN_FAR_OVERLAP
+    bic = f.chi_square + k * math.log(n)
+    return FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped, supported)
+
+
+def _from_larger_families(system, families, fits, normalize, local) -> list:
+    """Each family's fit, replaced by a local fit of its own paths from a larger family's solution
+    when that ends lower: a larger family's search may find a valley the smaller one's missed, and
+    the smaller family can reach it too when the extra parameters do not matter there."""
+    from .fit import fit
+    from .global_result import with_search
+    from .relative import fit_relative
+
+    ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads = local
+    out = list(fits)
+    for i in range(len(families) - 2, -1, -1):
+        paths = [p for p in families[i].paths if _freeable(system, p)]
+        given = {p: v for p, v in (bounds or {}).items() if p in paths}
+        for j in range(i + 1, len(families)):
+            if not out[j].chi_square < out[i].chi_square:
+                continue
+            start = _parameters.replace(system, {p: out[j].parameters[p] for p in paths})
+            common = (start, ranges, measured, sigma, paths, given, method, tolerance, loss)
+            try:
+                if normalize is None:
+                    g = fit(*common, max_evaluations, allow_unconverged=True, threads=threads)
+                else:
+                    g = fit_relative(*common, max_evaluations, True, threads, normalize)
+            except ValueError:  # that start lies outside the smaller family's bounds
+                continue
+            if g.chi_square < out[i].chi_square:
+                out[i] = with_search(g, out[i].search, out[i].evaluations + g.evaluations)
+    return out
+
+
+def _freeable(system, path: str) -> bool:
+    try:
+        return _parameters.get(system, path) is not None
+    except ValueError:
+        return False
