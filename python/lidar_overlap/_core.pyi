@@ -250,9 +250,11 @@ class TurbulenceOptions(metaclass=_pybind11_type):
     beam_window: float
     max_spectrum_grid: int
     threads: int
+    paths: str
+    receiver_fields: int
     def __init__(self, *, realizations: _Int = ..., first_realization: _Int = ..., screens: _Int = ...,
                  seed: _Int = ..., beam_grid: _Int = ..., beam_window: _Float = ..., max_spectrum_grid: _Int = ...,
-                 threads: _Int = ...) -> None: ...
+                 threads: _Int = ..., paths: str = ..., receiver_fields: _Int = ...) -> None: ...
 
 class TurbulentOverlap(_MadeByTheCore):
     @property
@@ -263,6 +265,14 @@ class TurbulentOverlap(_MadeByTheCore):
     def wander_y(self) -> _Reals: ...
     @property
     def radius_last(self) -> _Reals: ...
+    @property
+    def uncorrelated(self) -> _Reals: ...  # paths = both: a draw's beam with an independent draw's receiver
+    @property
+    def screen_range(self) -> _Reals: ...
+    @property
+    def screen_spacing(self) -> _Reals: ...
+    @property
+    def screen_r0(self) -> _Reals: ...
 
 def phase_screen(n: _Int, spacing: _Float, r0: _Float, outer_scale: _Float, inner_scale: _Float, seed: _Int,
                  index: _Int) -> _Reals: ...

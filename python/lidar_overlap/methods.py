@@ -23,6 +23,8 @@ from . import _checks, _core
 _RT, _FAN, _FO = _core.RtOptions(), _core.RtAberratedOptions(), _core.FoOptions()
 _TURBULENCE = _core.TurbulenceOptions()
 FO_PATHS = ("auto", "radial", "2d")
+#: Which paths cross the turbulence: the beam's, or the beam's and the return path's (FO; docs/turbulence.md).
+TURBULENT_PATHS = ("transmit", "both")
 SHORTCUTS = ("rt", "fo", "auto")
 
 
@@ -103,13 +105,17 @@ Model = Union[RT, FO, Auto]
 class Turbulent:
     """``method`` through ``turbulence``: the mean G over ``realizations`` random draws of the atmosphere
     (reproducible with ``seed``), with its spread. Fourier optics carries the beam through ``screens`` phase
-    screens; ray tracing displaces the short-term beam by the random wander (all draws in one core call)."""
+    screens; ray tracing displaces the short-term beam by the random wander (all draws in one core call).
+    ``paths="both"`` (Fourier optics) also carries the return path through the same screens, the detector
+    standing as ``receiver_fields`` random-phase fields; ``"transmit"`` takes the return path as unperturbed."""
 
     turbulence: object
     method: Model = Auto()
     realizations: int = _TURBULENCE.realizations
     seed: int = _TURBULENCE.seed
     screens: int = _TURBULENCE.screens
+    paths: str = _TURBULENCE.paths
+    receiver_fields: int = _TURBULENCE.receiver_fields
 
     def __post_init__(self) -> None:
         from .turbulence import Turbulence
@@ -121,6 +127,8 @@ class Turbulent:
         object.__setattr__(self, "realizations", _checks.count("realizations", self.realizations, 1))
         object.__setattr__(self, "seed", _checks.count("seed", self.seed, 0, 2**64 - 1))
         object.__setattr__(self, "screens", _checks.count("screens", self.screens, 1))
+        _checks.choice("paths", self.paths, TURBULENT_PATHS)
+        object.__setattr__(self, "receiver_fields", _checks.count("receiver_fields", self.receiver_fields, 1, 1000))
 
 
 Method = Union[RT, FO, Auto, Turbulent]
@@ -138,14 +146,15 @@ def model(method) -> Model:
 
 
 def from_shortcuts(method, *, tolerance=None, max_segments=None, fo_path=None, beam_grid=None, beam_window=None,
-                   max_spectrum_grid=None, turbulence=None, realizations=None, seed=None, screens=None) -> Method:
+                   max_spectrum_grid=None, turbulence=None, realizations=None, seed=None, screens=None,
+                   paths=None) -> Method:
     """The method object for ``overlap(system, ranges, method, **options)``: a method object passes unchanged
     (options given beside it are refused: they belong on the object); a shortcut string takes the options
     that apply to its model (the others are ignored, so one set of options can serve every method)."""
     given = {k: v for k, v in dict(tolerance=tolerance, max_segments=max_segments, fo_path=fo_path,
                                    beam_grid=beam_grid, beam_window=beam_window, max_spectrum_grid=max_spectrum_grid,
                                    turbulence=turbulence, realizations=realizations, seed=seed,
-                                   screens=screens).items() if v is not None}
+                                   screens=screens, paths=paths).items() if v is not None}
     if not isinstance(method, str):
         if given:
             raise ValueError(f"{', '.join(given)} given beside method = {_checks.shown(method)}: set them on the "
@@ -160,7 +169,8 @@ def from_shortcuts(method, *, tolerance=None, max_segments=None, fo_path=None, b
     chosen = {"rt": rt, "fo": fo, "auto": Auto(tolerance=rt.tolerance, rt=rt, fo=fo)}[method]
     if turbulence is None:
         return chosen
-    return Turbulent(turbulence, chosen, **_only(given, realizations="realizations", seed="seed", screens="screens"))
+    return Turbulent(turbulence, chosen, **_only(given, realizations="realizations", seed="seed", screens="screens",
+                                                 paths="paths"))
 
 
 def _only(given: dict, **names: str) -> dict:

@@ -223,7 +223,9 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
-    if isinstance(model, Auto):
+    if isinstance(model, Auto) and request.paths == "both":
+        model = model.fo                      # the return path through the turbulence is Fourier optics only
+    elif isinstance(model, Auto):
         d = auto.decide(system, z, model.tolerance)
         model = dataclasses.replace(model.rt, tolerance=model.tolerance) if d.method == "rt" else model.fo
     if request.turbulence.rytov_variance(system.beam.wavelength, float(z[-1])) == 0.0:   # no turbulence at all
@@ -233,6 +235,9 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
                                                         "turbulence-free curve",))
     common = dict(system=system, ranges=z, request=request, turbulence=request, error_kind="standard_error")
     if isinstance(model, RT):
+        if request.paths == "both":
+            raise ValueError("paths = 'both' is invalid with ray tracing: the return path through the turbulence is "
+                             "modelled in Fourier optics only; expected method FO or paths = 'transmit'")
         return Plan(**common, method="rt", fo_path="", backend="rt_turbulent", tolerance=model.tolerance,
                     options=_rt_options(model, model.tolerance, threads), rt_quadrature_tolerance=model.tolerance,
                     reasons=(f"{request.realizations} draws of the beam wander, ray traced to {model.tolerance:g}",))
@@ -243,9 +248,12 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
     if model.beam_window is not None:
         options.beam_window = model.beam_window
     options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
+    options.paths, options.receiver_fields = request.paths, request.receiver_fields
+    both = (f"; the return path through the same screens ({request.receiver_fields} random-phase receiver fields)"
+            if request.paths == "both" else "")
     return Plan(**common, method="fo", fo_path="2d", backend="fo_turbulent", tolerance=float("nan"), options=options,
                 reasons=(f"{request.realizations} draws of {request.screens} phase screens, the beam on "
-                         f"{options.beam_grid}^2",))
+                         f"{options.beam_grid}^2{both}",))
 
 
 def _auto_rt(common: dict, backend: str, options, d) -> Plan:

@@ -65,9 +65,15 @@ class OverlapResult:
 
     def __post_init__(self) -> None:
         for name, value in zip(("ranges", "overlap", "error_estimate", "tolerance"),
-                               _checked(self.ranges, self.overlap, self.method, self.error_estimate, self.tolerance)):
+                               _checked(self.ranges, self.overlap, self.method, self.error_estimate, self.tolerance,
+                                        self._upper_bound())):
             object.__setattr__(self, name, value)
         _checks.choice("error_kind", self.error_kind, ERROR_KINDS)
+
+    def _upper_bound(self) -> float:
+        """Largest G the result may hold: 1 (power on the detector over the power into the aperture), more only
+        where physics allows it (two-way turbulence, :class:`lidar_overlap.turbulence.TurbulentOverlapResult`)."""
+        return 1.0
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
@@ -274,7 +280,7 @@ def _same(a: Any, b: Any) -> bool:
     return bool(a == b)
 
 
-def _checked(ranges, overlap, method, error_estimate, tolerance):
+def _checked(ranges, overlap, method, error_estimate, tolerance, upper=1.0):
     """The class's invariants (see :class:`OverlapResult`): the arrays as float arrays, G clipped within its
     slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
     if not isinstance(method, str) or not method:
@@ -297,15 +303,15 @@ def _checked(ranges, overlap, method, error_estimate, tolerance):
     _first_bad("error_estimate", e, ~(np.isnan(e) | (np.isfinite(e) & (e >= 0.0))),
                "expected a finite value >= 0, or NaN where the method gives none")
     slack = np.fmax(np.fmax(e, tolerance), ROUND_OFF)   # fmax: a NaN estimate or tolerance gives way
-    outside = ~((g >= -slack) & (g <= 1.0 + slack))    # NaN is outside too
+    outside = ~((g >= -slack) & (g <= upper + slack))  # NaN is outside too
     if outside.any():
         i = int(np.argmax(outside))
         raise ValueError(f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is invalid: "
                          "G must be "
-                         f"finite and within [0, 1] up to its error estimate or tolerance ({slack[i]:.3g}); "
+                         f"finite and within [0, {upper:g}] up to its error estimate or tolerance ({slack[i]:.3g}); "
                          "the computation failed at this range")
-    if g.min() < 0.0 or g.max() > 1.0:
-        g = np.clip(g, 0.0, 1.0)
+    if g.min() < 0.0 or g.max() > upper:
+        g = np.clip(g, 0.0, upper)
     return z, g, e, tolerance
 
 

@@ -32,6 +32,9 @@ from . import _checks, _core
 from ._checks import choice
 from .result import OverlapResult
 
+#: Largest mean G with turbulence on both paths: the backscatter amplification of a point receiver in strong
+#: turbulence tends to 2 (docs/turbulence.md); a finite aperture and the detector's field of view only lower it.
+TWO_WAY_BOUND = 2.0
 #: Cn² (m^-2/3) a profile may reach: the core's bound, a thousand times the strongest turbulence measured
 #: near the ground.
 MAX_CN2 = 1e-9
@@ -149,9 +152,19 @@ def _checked_profile(cn2: Callable[[float], float]) -> Callable[[float], float]:
 class TurbulentOverlapResult(OverlapResult):
     """An :class:`OverlapResult` whose ``overlap`` is the mean over ``realizations`` (K × N array, one
     row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``, ``high``;
-    ``error_estimate`` is the standard error of the mean (``error_kind`` ``"standard_error"``)."""
+    ``error_estimate`` is the standard error of the mean (``error_kind`` ``"standard_error"``).
+
+    ``paths`` says which paths crossed the turbulence. With ``"both"``: ``uncorrelated`` (K × N) is each draw's
+    beam with an independent draw's receiver and ``amplification`` (N) the backscatter amplification, mean G over
+    the mean of ``uncorrelated``; and the mean G may exceed 1 (up to :data:`TWO_WAY_BOUND`, docs/turbulence.md)."""
 
     realizations: Optional[np.ndarray] = None
     std: Optional[np.ndarray] = None
     low: Optional[np.ndarray] = None
     high: Optional[np.ndarray] = None
+    paths: str = "transmit"
+    uncorrelated: Optional[np.ndarray] = None
+    amplification: Optional[np.ndarray] = None
+
+    def _upper_bound(self) -> float:
+        return TWO_WAY_BOUND if self.paths == "both" else 1.0

@@ -34,19 +34,28 @@ BYTES_PER_DRAW = 512
 
 
 def run_fo(plan) -> TurbulentOverlapResult:
-    """The FO draws, all in the core."""
-    return statistics(plan, fo_rows(plan, 0, plan.turbulence.realizations))
+    """The FO draws, all in the core; with both paths also each draw's beam with an independent draw's receiver
+    (the uncorrelated paths), for the amplification."""
+    g, uncorrelated = fo_parts(plan, 0, plan.turbulence.realizations)
+    return statistics(plan, g, uncorrelated)
 
 
 def fo_rows(plan, first: int, count: int) -> np.ndarray:
     """Realisations ``first .. first + count - 1`` of the FO run of ``plan`` (count x ranges): bit for bit those rows
     of the whole run (the core's ``first_realization``), on ``plan.options.threads`` threads."""
+    return fo_parts(plan, first, count)[0]
+
+
+def fo_parts(plan, first: int, count: int):
+    """:func:`fo_rows` and, with both paths, the same rows of the uncorrelated G (None for transmit only)."""
     o = plan.options
     part = _core.TurbulenceOptions(realizations=count, first_realization=first, screens=o.screens, seed=o.seed,
                                    beam_grid=o.beam_grid, beam_window=o.beam_window,
-                                   max_spectrum_grid=o.max_spectrum_grid, threads=o.threads)
+                                   max_spectrum_grid=o.max_spectrum_grid, threads=o.threads, paths=o.paths,
+                                   receiver_fields=o.receiver_fields)
     raw = _core.overlap_fo_turbulent(plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part)
-    return np.asarray(raw.overlap)
+    both = o.paths == "both"
+    return np.asarray(raw.overlap), (np.asarray(raw.uncorrelated) if both else None)
 
 
 def run_rt(plan) -> TurbulentOverlapResult:
@@ -127,15 +136,23 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
                   low=plain.overlap.copy(), high=plain.overlap.copy())
 
 
-def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
+def statistics(plan, samples: np.ndarray, uncorrelated=None) -> TurbulentOverlapResult:
     """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples`` (C-contiguous:
-    the reductions then sum in one order, whoever computed the rows)."""
+    the reductions then sum in one order, whoever computed the rows); with both paths, the amplification: the
+    mean over the mean of the ``uncorrelated`` rows."""
     samples = np.ascontiguousarray(samples)
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
     std = samples.std(axis=0, ddof=1) if k > 1 else np.zeros(plan.ranges.size)
+    extra = {"paths": plan.turbulence.paths}
+    if uncorrelated is not None:
+        uncorrelated = np.ascontiguousarray(uncorrelated)
+        mean_u = uncorrelated.mean(axis=0)
+        extra.update(uncorrelated=uncorrelated,
+                     amplification=np.divide(samples.mean(axis=0), mean_u, out=np.full(mean_u.shape, np.nan),
+                                             where=mean_u > 0))
     return result(plan, samples.mean(axis=0), std / math.sqrt(k), TurbulentOverlapResult, realizations=samples,
-                  std=std, low=low, high=high)
+                  std=std, low=low, high=high, **extra)
 
 
 def spread(beam, z: float, radius: float) -> float:
