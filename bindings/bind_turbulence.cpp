@@ -102,6 +102,8 @@ void bind_turbulence(py::module_& m) {
                              "m, second-moment radius at the last range, per realisation.")
       .def_property_readonly("uncorrelated", [](const TurbulentOverlap& r) { return to_array(r.uncorrelated); },
                              "paths = both: G of each draw's beam with an independent draw's receiver (empty for transmit).")
+      .def_property_readonly("receiver_error", [](const TurbulentOverlap& r) { return to_array(r.receiver_error); },
+                             "paths = both: standard error of each draw's G from its random-phase receiver fields.")
       .def_property_readonly("screen_range", [](const TurbulentOverlap& r) { return to_array(r.screen_range); }, "m")
       .def_property_readonly("screen_spacing", [](const TurbulentOverlap& r) { return to_array(r.screen_spacing); }, "m")
       .def_property_readonly("screen_r0", [](const TurbulentOverlap& r) { return to_array(r.screen_r0); }, "m");

@@ -136,6 +136,7 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
   TurbulentOverlap out;
   out.overlap.assign(o.realizations, std::vector<double>(ranges.size(), 0.0));
   out.uncorrelated = out.overlap;
+  out.receiver_error = out.overlap;
   out.wander_x.assign(o.realizations, 0.0);
   out.wander_y.assign(o.realizations, 0.0);
   out.radius_last.assign(o.realizations, 0.0);
@@ -149,7 +150,6 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
     std::vector<std::vector<Field>> back(2);
     for (std::size_t c = 0; c < 2; ++c)
       for (std::size_t m = 0; m < fields; ++m) back[c].push_back(rx.pupil_field(rx_seed, 2 * pair + c, m));
-    std::vector<double> sens[2];
     ComplexBuffer phasor(n * n);
     for (std::size_t s = 0; s < planes.size(); ++s) {
       const Plane& p = planes[s];
@@ -170,20 +170,32 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
         }
       }
       if (p.range < 0) continue;
-      const double lz = lambda * p.z, factor = lz * lz / (area * n4 * double(fields));
-      for (std::size_t c = 0; c < 2; ++c) detail::add_sensitivity(back[c], factor, sens[c]);
+      // G of each receiver field alone (their mean is the draw's G; their spread over sqrt(M) its random-phase
+      // standard error), with this draw's beam and with the other draw's.
+      const double lz = lambda * p.z, factor = lz * lz / (area * n4);
       for (std::size_t c = 0; c < 2; ++c) {
         const std::size_t k = 2 * pair + c;
         if (k < first || k >= end) continue;
-        double e = 0.0, es = 0.0, eu = 0.0;
-        for (std::size_t i = 0; i < n * n; ++i) {
-          const double v = std::norm(beams[c].values[i]);
-          e += v;
-          es += v * sens[c][i];
-          eu += v * sens[1 - c][i];
+        double e = 0.0;
+        for (std::size_t i = 0; i < n * n; ++i) e += std::norm(beams[c].values[i]);
+        double sum = 0.0, sum2 = 0.0, unc = 0.0;
+        for (std::size_t m = 0; m < fields; ++m) {
+          double es = 0.0, eu = 0.0;
+          for (std::size_t i = 0; i < n * n; ++i) {
+            const double v = std::norm(beams[c].values[i]);
+            es += v * std::norm(back[c][m].values[i]);
+            eu += v * std::norm(back[1 - c][m].values[i]);
+          }
+          const double g = es * factor / e;
+          sum += g;
+          sum2 += g * g;
+          unc += eu * factor / e;
         }
-        out.overlap[k - first][p.range] = es / e;
-        out.uncorrelated[k - first][p.range] = eu / e;
+        const double mean = sum / double(fields);
+        out.overlap[k - first][p.range] = mean;
+        out.uncorrelated[k - first][p.range] = unc / double(fields);
+        out.receiver_error[k - first][p.range] =
+            fields > 1 ? std::sqrt(std::max(sum2 / double(fields) - mean * mean, 0.0) / double(fields - 1)) : 0.0;
       }
     }
     for (std::size_t c = 0; c < 2; ++c) {

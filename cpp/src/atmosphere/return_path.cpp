@@ -119,12 +119,4 @@ Field ReturnPath::pupil_field(std::uint64_t seed, std::size_t k, std::size_t m) 
   return f;
 }
 
-void add_sensitivity(const std::vector<Field>& fields, double factor, std::vector<double>& s) {
-  const std::size_t size = fields.front().values.size();
-  s.assign(size, 0.0);
-  for (const Field& v : fields)
-    for (std::size_t i = 0; i < size; ++i) s[i] += std::norm(v.values[i]);
-  for (double& x : s) x *= factor;
-}
-
 }  // namespace lidar_overlap::detail

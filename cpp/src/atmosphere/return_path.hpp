@@ -8,7 +8,8 @@
 // carried to the sky on the beam's grids through the beam's screens. The mean of |V_m|^2 over the M fields is
 // the receiver's sensitivity, unbiased for every M; its speckle (contrast 1 per field, correlated over
 // lambda z / D) averages over the beam: relative noise ~ 1 / sqrt(M x speckles under the beam) per draw, an
-// independent noise that the standard error over realisations already contains.
+// independent noise that the standard error over realisations already contains, and each draw states its own
+// (the fields' spread over sqrt(M): they are independent given the atmosphere).
 //
 // Normalisation (G's, docs/turbulence.md): a sample of unit amplitude stands for a delta-correlated detector
 // field, so the pupil field's mean irradiance is A_det / (lambda d)^2 and, in vacuum, its irradiance at range
@@ -53,9 +54,5 @@ class ReturnPath {
   std::vector<double> detector_weight_;  // sqrt(area share) of each sample's cell inside the disc
   std::vector<Complex> kernel_x_, kernel_y_;  // [detector column or row][pupil index]
 };
-
-// Sensitivity S(x) at one range from the M fields there: (lambda z)^2 / (A_ap M power_scale) sum |V_m|^2,
-// power_scale the grid's constant factor on |u|^2 (the beam's power there over its power at range 0).
-void add_sensitivity(const std::vector<Field>& fields, double factor, std::vector<double>& s);
 
 }  // namespace lidar_overlap::detail

@@ -54,6 +54,9 @@ struct TurbulentOverlap {
   // paths = both: G of each draw's beam with the receiver's sensitivity through the other draw of its screen
   // pair (an independent atmosphere): the uncorrelated paths, whose mean the amplification divides by.
   std::vector<std::vector<double>> uncorrelated;  // [realisation - first_realization][range]; empty for transmit
+  // paths = both: standard error of each draw's G from its receiver_fields random-phase fields (their spread over
+  // sqrt(receiver_fields)); empty for transmit.
+  std::vector<std::vector<double>> receiver_error;
   // The run's screens: range (m), grid spacing (m) and Fried parameter (m) of screen j, whose draw for
   // realisation k is PhaseScreenGenerator(beam_grid, spacing, r0, outer, inner).generate(seed ^ (j + 1) *
   // 0x9E3779B97F4A7C15, k) on the grid centred on the beam's axis at that range: enough to replay them.
