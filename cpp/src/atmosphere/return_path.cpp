@@ -111,7 +111,7 @@ Field ReturnPath::pupil_field(std::uint64_t seed, std::size_t k, std::size_t m) 
       const double ax = gx + offset.x, ay = gy + offset.y, r2 = ax * ax + ay * ay;
       if (r2 > outer * outer || r2 < inner * inner) continue;
       Complex v{};
-      for (int jy = 0; jy < side; ++jy) v += kernel_y_[static_cast<std::size_t>(jy) * n + iy] * rows[static_cast<std::size_t>(jy) * n + ix];
+      for (std::size_t jy = 0; jy < static_cast<std::size_t>(side); ++jy) v += kernel_y_[jy * n + iy] * rows[jy * n + ix];
       // The defocus's curvature (focus at the conjugate range) and, on a tilted beam's drifting grid, the
       // opposite tilt.
       f.values[iy * n + ix] = v * std::polar(scale, curvature * r2 - k_wave * (tilt.x * gx + tilt.y * gy));

@@ -3,13 +3,13 @@
 // detector's light sent out backwards through lens, aperture and the same phase screens. The detector is
 // incoherent (a field stop or fibre core many diffraction spots wide), so that light is a partially coherent
 // field: here M random-phase realisations. Each is the detector disc (8 samples per radius) with an independent
-// uniform random phase per sample, transformed onto the pupil by a direct (matrix) Fourier sum (the lens maps detector points to plane waves, the defocus
-// adds the curvature that focuses them at the conjugate range), cut by the aperture and the obstruction, then
-// carried to the sky on the beam's grids through the beam's screens. The mean of |V_m|^2 over the M fields is
-// the receiver's sensitivity, unbiased for every M; its speckle (contrast 1 per field, correlated over
-// lambda z / D) averages over the beam: relative noise ~ 1 / sqrt(M x speckles under the beam) per draw, an
-// independent noise that the standard error over realisations already contains, and each draw states its own
-// (the fields' spread over sqrt(M): they are independent given the atmosphere).
+// uniform random phase per sample, transformed onto the pupil by a direct (matrix) Fourier sum (the lens maps
+// detector points to plane waves, the defocus adds the curvature that focuses them at the conjugate range), cut
+// by the aperture and the obstruction, then carried to the sky on the beam's grids through the beam's screens.
+// The mean of |V_m|^2 over the M fields is the receiver's sensitivity, unbiased for every M; its speckle
+// (contrast 1 per field, correlated over lambda z / D) averages over the beam: relative noise ~ 1 / sqrt(M x
+// speckles under the beam) per draw, an independent noise that the standard error over realisations already
+// contains; each draw states its own (the fields' spread over sqrt(M): independent given the atmosphere).
 //
 // Normalisation (G's, docs/turbulence.md): a sample of unit amplitude stands for a delta-correlated detector
 // field, so the pupil field's mean irradiance is A_det / (lambda d)^2 and, in vacuum, its irradiance at range
