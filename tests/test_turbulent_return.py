@@ -117,3 +117,15 @@ def test_a_mean_above_one_is_refused_without_two_way_turbulence():
         lo.turbulence.TurbulentOverlapResult(ranges=z, overlap=np.array([2.3]), method="fo",
                                              error_estimate=np.array([0.01]), system=s, tolerance=math.nan,
                                              error_kind="standard_error", paths="both")
+
+
+def test_turbulent_realizations_through_both_paths_is_lo_overlap():
+    pytest.importorskip("xarray")
+    s, z = small_lidar(), [300.0, 600.0]
+    method = lo.Turbulent(lo.Turbulence(1e-14), lo.FO(beam_grid=128), realizations=5, seed=3, screens=3,
+                          paths="both", receiver_fields=2)
+    ds = lo.turbulent_realizations(s, z, method, chunk=2, threads=1)
+    res = lo.overlap(s, z, method)
+    assert ds.attrs["paths"] == "both"
+    assert np.array_equal(ds["overlap"].values, res.realizations)           # the parts are the whole run's rows
+    assert np.array_equal(ds["amplification"].values, res.amplification)

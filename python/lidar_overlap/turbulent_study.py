@@ -86,9 +86,13 @@ def turbulent_realizations(system: LidarSystem, ranges, method: Turbulent, *, cl
         g = np.concatenate([r[0] for r in rows])
         if wander is not None:
             turbulent.warn_rt(p, np.concatenate([r[1] for r in rows]), np.concatenate([r[2] for r in rows]))
-        res = turbulent.statistics(p, g)
+        both = wander is None and rows[0][3] is not None      # FO through both paths: the uncorrelated rows too
+        res = turbulent.statistics(p, g, np.concatenate([r[3] for r in rows]) if both else None)
 
     unit = {"units": "1"}
+    extra = {} if getattr(res, "amplification", None) is None else {"amplification": (
+        "range", res.amplification, {**unit, "long_name": "backscatter amplification: mean overlap over the mean "
+                                                         "with uncorrelated paths"})}
     return xr.Dataset(
         {"overlap": (("realization", "range"), res.realizations,
                      {**unit, "long_name": "lidar overlap function in each realisation of the atmosphere"}),
@@ -98,10 +102,11 @@ def turbulent_realizations(system: LidarSystem, ranges, method: Turbulent, *, cl
          "low": ("range", res.low, {**unit, "percentile": turbulent.BAND[0],
                                     "long_name": "percentile of the overlap over the realisations"}),
          "high": ("range", res.high, {**unit, "percentile": turbulent.BAND[1],
-                                      "long_name": "percentile of the overlap over the realisations"})},
+                                      "long_name": "percentile of the overlap over the realisations"}),
+         **extra},
         coords={"realization": np.arange(k), "range": range_coordinate(z)},
         attrs={"title": "Lidar overlap through a turbulent atmosphere", "realizations": k, "seed": method.seed,
-               "screens": method.screens, "method": repr(method), "model": p.method,
+               "screens": method.screens, "paths": method.paths, "method": repr(method), "model": p.method,
                "computed_by": BACKENDS[p.backend], "turbulence": repr(method.turbulence), "error_kind": p.error_kind,
                "engine": kind, "realizations_per_task": chunk})
 
@@ -132,9 +137,10 @@ def _slice(wander, first: int, count: int):
 
 
 def _part(system, z, request, threads: int, first: int, count: int, wander):
-    """Rows first .. first + count - 1 of the run (the task): planned here as the caller planned it; (G, and for RT
-    the core's convergence flags and error estimates, else None)."""
+    """Rows first .. first + count - 1 of the run (the task): planned here as the caller planned it; (G, for RT the
+    core's convergence flags and error estimates, else None, and for FO through both paths the uncorrelated G)."""
     p = plan(system, z, request, threads=threads)
     if wander is None:
-        return turbulent.fo_rows(p, first, count), None, None
-    return turbulent.rt_rows(p, *wander)
+        g, uncorrelated = turbulent.fo_parts(p, first, count)
+        return g, None, None, uncorrelated
+    return (*turbulent.rt_rows(p, *wander), None)
