@@ -34,6 +34,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/rt_vs_fo_diffraction.py
 	cd $(OUT) && ../$(PY) ../examples/scene_table1.py
 	cd $(OUT) && ../$(PY) ../examples/turbulence_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/turbulence_both_paths.py
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/signal_correction.py
 	cd $(OUT) && ../$(PY) ../examples/tolerance_study.py

@@ -16,6 +16,25 @@
 namespace py = pybind11;
 using namespace lidar_overlap;
 
+// TurbulencePaths as the strings "transmit" and "both" (an unknown string is refused by name).
+namespace pybind11::detail {
+template <>
+struct type_caster<TurbulencePaths> {
+  PYBIND11_TYPE_CASTER(TurbulencePaths, const_name("str"));
+  bool load(handle src, bool) {
+    if (!isinstance<str>(src)) return false;
+    const std::string s = src.cast<std::string>();
+    if (s != "transmit" && s != "both")
+      throw std::invalid_argument("paths = '" + s + "' is invalid: expected 'transmit' or 'both'");
+    value = s == "both" ? TurbulencePaths::both : TurbulencePaths::transmit;
+    return true;
+  }
+  static handle cast(TurbulencePaths v, return_value_policy, handle) {
+    return str(v == TurbulencePaths::both ? "both" : "transmit").release();
+  }
+};
+}  // namespace pybind11::detail
+
 void bind_turbulence(py::module_& m) {
   py::class_<Cn2Profile>(m, "Cn2Profile")
       .def_static("constant", &Cn2Profile::constant, py::arg("cn2"))
@@ -67,7 +86,11 @@ void bind_turbulence(py::module_& m) {
                       "Window in long-term radii (plus 8 rms wander) at every plane."),
                option("max_spectrum_grid", &TurbulenceOptions::max_spectrum_grid,
                       "Cap on the zero-padded beam spectrum."),
-               option("threads", &TurbulenceOptions::threads, "OpenMP threads across realisations; 0: all cores."));
+               option("threads", &TurbulenceOptions::threads, "OpenMP threads across realisations; 0: all cores."),
+               option("paths", &TurbulenceOptions::paths,
+                      "transmit: the return path unperturbed; both: the return path through the same screens."),
+               option("receiver_fields", &TurbulenceOptions::receiver_fields,
+                      "paths = both: random-phase fields standing for the incoherent detector."));
 
   py::class_<TurbulentOverlap>(m, "TurbulentOverlap", "Result of overlap_fo_turbulent.")
       .def_property_readonly("overlap", [](const TurbulentOverlap& r) { return to_array(r.overlap); },
@@ -76,7 +99,14 @@ void bind_turbulence(py::module_& m) {
                              "m, beam centroid at the last range, per realisation.")
       .def_property_readonly("wander_y", [](const TurbulentOverlap& r) { return to_array(r.wander_y); })
       .def_property_readonly("radius_last", [](const TurbulentOverlap& r) { return to_array(r.radius_last); },
-                             "m, second-moment radius at the last range, per realisation.");
+                             "m, second-moment radius at the last range, per realisation.")
+      .def_property_readonly("uncorrelated", [](const TurbulentOverlap& r) { return to_array(r.uncorrelated); },
+                             "paths = both: G of each draw's beam with an independent draw's receiver (empty for transmit).")
+      .def_property_readonly("receiver_error", [](const TurbulentOverlap& r) { return to_array(r.receiver_error); },
+                             "paths = both: standard error of each draw's G from its random-phase receiver fields.")
+      .def_property_readonly("screen_range", [](const TurbulentOverlap& r) { return to_array(r.screen_range); }, "m")
+      .def_property_readonly("screen_spacing", [](const TurbulentOverlap& r) { return to_array(r.screen_spacing); }, "m")
+      .def_property_readonly("screen_r0", [](const TurbulentOverlap& r) { return to_array(r.screen_r0); }, "m");
 
   m.def(
       "overlap_fo_turbulent",

@@ -329,6 +329,8 @@ class TurbulenceOptions(metaclass=_pybind11_type):
     beam_window: float
     max_spectrum_grid: int
     threads: int
+    paths: str
+    receiver_fields: int
     def __init__(
         self,
         *,
@@ -340,6 +342,8 @@ class TurbulenceOptions(metaclass=_pybind11_type):
         beam_window: _Float = ...,
         max_spectrum_grid: _Int = ...,
         threads: _Int = ...,
+        paths: str = ...,
+        receiver_fields: _Int = ...,
     ) -> None: ...
     def __copy__(self) -> TurbulenceOptions: ...
 
@@ -352,6 +356,18 @@ class TurbulentOverlap(_MadeByTheCore):
     def wander_y(self) -> _Reals: ...
     @property
     def radius_last(self) -> _Reals: ...
+    @property
+    def uncorrelated(
+        self,
+    ) -> _Reals: ...  # paths = both: a draw's beam with an independent draw's receiver
+    @property
+    def receiver_error(self) -> _Reals: ...
+    @property
+    def screen_range(self) -> _Reals: ...
+    @property
+    def screen_spacing(self) -> _Reals: ...
+    @property
+    def screen_r0(self) -> _Reals: ...
 
 def phase_screen(
     n: _Int,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,6 +10,8 @@
 #include "lidar_overlap/atmosphere/phase_screen.hpp"
 #include "lidar_overlap/core/limits.hpp"
 #include "lidar_overlap/fourier/overlap_fo.hpp"
+#include "atmosphere/return_path.hpp"
+#include "atmosphere/scaled_step.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/entry_checks.hpp"
@@ -22,61 +25,13 @@ namespace lidar_overlap {
 
 namespace {
 
+using detail::ScaledStep;
+
 // A plane the beam passes: a phase screen or a range where the overlap is wanted.
 struct Plane {
   double z;
   int screen = -1;  // index into the screens, or -1
   int range = -1;   // index into the ranges, or -1
-};
-
-// One split step of the scaled angular-spectrum (Fresnel transfer function) method: n x n samples of
-// spacing d1 at one plane to spacing d2 = m d1 at a plane dz further, with m chosen to follow the beam's
-// growth, U2 = Q3 IFFT[Q2 FFT(Q1 U1 / m)] / n^2 with Q1 = exp(i k (1 - m) r1^2 / (2 dz)), Q2 = exp(-i 2
-// pi^2 dz f^2 / (m k)), Q3 = exp(i k (m - 1) r2^2 / (2 m dz)) (J. D. Schmidt, Numerical Simulation of
-// Optical Wave Propagation, 2010, Sec. 8.2). All three are separable in x and y. A step leaves its Q3 / n^2
-// to the next one, which applies it with its own Q1 in one pass (finish() after the last): a phase and a
-// constant change neither the phase screens' effect nor the irradiance's shape the overlap reads.
-class ScaledStep {
- public:
-  ScaledStep(std::size_t n, double d1, double d2, double dz, double lambda, const ScaledStep* before)
-      : n_(n), d2_(d2), in_x_(n), in_y_(n), q2_(n), q3_(n) {
-    const double k = 2.0 * kPi / lambda, m = d2 / d1;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double x1 = (static_cast<double>(i) - 0.5 * n) * d1, x2 = (static_cast<double>(i) - 0.5 * n) * d2;
-      const double f = (i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n)) / (n * d1);
-      const Complex q1 = std::polar(1.0, k * (1.0 - m) * x1 * x1 / (2.0 * dz));
-      in_y_[i] = before ? before->q3_[i] * q1 : q1;
-      in_x_[i] = in_y_[i] * (before ? before->scale_out_ / m : 1.0 / m);
-      q2_[i] = std::polar(1.0, -2.0 * kPi * kPi * dz * f * f / (m * k));
-      q3_[i] = std::polar(1.0, k * (m - 1.0) * x2 * x2 / (2.0 * m * dz));
-    }
-    scale_out_ = 1.0 / (static_cast<double>(n) * n);
-  }
-  void execute(Field& u) const {
-    multiply(u, in_y_, in_x_);
-    fft2d(u.values, n_, FftDirection::forward);
-    multiply(u, q2_, q2_);
-    fft2d(u.values, n_, FftDirection::backward);
-    u.spacing = d2_;
-  }
-  void finish(Field& u) const {
-    std::vector<Complex> out_x(q3_);
-    for (Complex& c : out_x) c *= scale_out_;
-    multiply(u, q3_, out_x);
-  }
-
- private:
-  void multiply(Field& u, const std::vector<Complex>& fy, const std::vector<Complex>& fx) const {
-    for (std::size_t iy = 0; iy < n_; ++iy) {
-      Complex* row = &u.values[iy * n_];
-      const Complex a = fy[iy];
-      for (std::size_t ix = 0; ix < n_; ++ix) row[ix] *= a * fx[ix];
-    }
-  }
-
-  std::size_t n_;
-  double d2_, scale_out_ = 1.0;
-  std::vector<Complex> in_x_, in_y_, q2_, q3_;
 };
 
 // G at one range as a weighted mean of the realisation's irradiance: G = sum E m / sum E. The map m is
@@ -148,6 +103,119 @@ class CouplingMap {
   std::vector<double> map_;
 };
 
+// Both paths (TurbulencePaths::both). Each task carries one pair of screen draws (2p, 2p + 1): both beams and
+// both sets of receiver fields through the pair's screens, so that the uncorrelated G (a draw's beam with the
+// other draw's receiver) costs no propagation of its own; the call's rows are taken from it. A draw's G
+// depends on its screens and its receiver fields' seeds alone: the same in any part and on any thread.
+TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>& ranges, const TurbulenceOptions& o,
+                            int threads, const std::vector<Plane>& planes,
+                            const std::vector<std::unique_ptr<ScaledStep>>& steps,
+                            const std::vector<std::unique_ptr<PhaseScreenGenerator>>& generators,
+                            const std::vector<double>& range_spacing, double dx0,
+                            const std::function<double(double)>& seeing, const ScaledStep* last_step) {
+  const std::size_t n = o.beam_grid, fields = o.receiver_fields;
+  const double lambda = system.beam.wavelength, w0 = system.beam.waist_radius;
+  const detail::ReturnPath rx(system, n, dx0, fields);
+  // The receiver's light leaves the pupil at up to max_angle and the eddies add ~lambda / r0: every plane's
+  // spacing must sample it (lambda / (2 spacing)), or it aliases.
+  double worst = 0.0;  // the largest spacing / allowed spacing over the planes
+  for (const Plane& p : planes) {
+    const double dx = p.range >= 0 ? range_spacing[p.range] : generators[p.screen]->spacing();
+    worst = std::max(worst, dx * 2.0 * (rx.max_angle() + seeing(p.z)) / lambda);
+  }
+  if (worst > 1.0)
+    checks::fail("beam_grid", static_cast<double>(n),
+                 "an even size >= " + std::to_string(2 * static_cast<std::size_t>(std::ceil(0.5 * n * worst))) +
+                     " for paths = both: every plane's grid must sample the receiver's field of view and the eddies' "
+                     "spread (lambda / r0)");
+  const double n2 = double(n) * double(n);
+  checks::memory("beam_grid", static_cast<double>(n),
+                 16.0 * n2 * double(o.screens) + 16.0 * double(threads) * n2 * (2.0 * double(fields) + 5.0),
+                 "lower beam_grid, receiver_fields or screens");
+
+  TurbulentOverlap out;
+  out.overlap.assign(o.realizations, std::vector<double>(ranges.size(), 0.0));
+  out.uncorrelated = out.overlap;
+  out.receiver_error = out.overlap;
+  out.wander_x.assign(o.realizations, 0.0);
+  out.wander_y.assign(o.realizations, 0.0);
+  out.radius_last.assign(o.realizations, 0.0);
+  const std::size_t first = o.first_realization, end = first + o.realizations, p0 = first / 2;
+  // The split steps leave each field n^2 times its physical value (their 1 / n^2 waits for the next step).
+  const double n4 = n2 * n2, area = rx.aperture_area();
+  const std::uint64_t rx_seed = o.seed ^ 0xD1B54A32D192ED03ULL;  // not the screens' streams
+  detail::parallel_for((end - 1) / 2 - p0 + 1, threads, [&](std::size_t t) {
+    const std::size_t pair = p0 + t;
+    std::vector<Field> beams(2, Field::gaussian(lambda, w0, n, dx0));
+    std::vector<std::vector<Field>> back(2);
+    for (std::size_t c = 0; c < 2; ++c)
+      for (std::size_t m = 0; m < fields; ++m) back[c].push_back(rx.pupil_field(rx_seed, 2 * pair + c, m));
+    ComplexBuffer phasor(n * n);
+    for (std::size_t s = 0; s < planes.size(); ++s) {
+      const Plane& p = planes[s];
+      for (std::size_t c = 0; c < 2; ++c) {
+        if (steps[s]) {
+          steps[s]->execute(beams[c]);
+          for (Field& v : back[c]) steps[s]->execute(v);
+        }
+      }
+      if (p.screen >= 0) {
+        const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
+        const auto screens = generators[p.screen]->generate_pair(stream, pair);
+        for (std::size_t c = 0; c < 2; ++c) {
+          for (std::size_t i = 0; i < n * n; ++i) phasor[i] = Complex(std::cos(screens[c][i]), std::sin(screens[c][i]));
+          auto shared = [&](Field& u) { for (std::size_t i = 0; i < n * n; ++i) u.values[i] *= phasor[i]; };
+          shared(beams[c]);
+          for (Field& v : back[c]) shared(v);
+        }
+      }
+      if (p.range < 0) continue;
+      // G of each receiver field alone (their mean is the draw's G; their spread over sqrt(M) its random-phase
+      // standard error), with this draw's beam and with the other draw's.
+      const double lz = lambda * p.z, factor = lz * lz / (area * n4);
+      for (std::size_t c = 0; c < 2; ++c) {
+        const std::size_t k = 2 * pair + c;
+        if (k < first || k >= end) continue;
+        double e = 0.0;
+        for (std::size_t i = 0; i < n * n; ++i) e += std::norm(beams[c].values[i]);
+        double sum = 0.0, sum2 = 0.0, unc = 0.0;
+        for (std::size_t m = 0; m < fields; ++m) {
+          double es = 0.0, eu = 0.0;
+          for (std::size_t i = 0; i < n * n; ++i) {
+            const double v = std::norm(beams[c].values[i]);
+            es += v * std::norm(back[c][m].values[i]);
+            eu += v * std::norm(back[1 - c][m].values[i]);
+          }
+          const double g = es * factor / e;
+          sum += g;
+          sum2 += g * g;
+          unc += eu * factor / e;
+        }
+        const double mean = sum / double(fields);
+        out.overlap[k - first][p.range] = mean;
+        out.uncorrelated[k - first][p.range] = unc / double(fields);
+        out.receiver_error[k - first][p.range] =
+            fields > 1 ? std::sqrt(std::max(sum2 / double(fields) - mean * mean, 0.0) / double(fields - 1)) : 0.0;
+      }
+    }
+    for (std::size_t c = 0; c < 2; ++c) {
+      const std::size_t k = 2 * pair + c;
+      if (k < first || k >= end) continue;
+      if (last_step) last_step->finish(beams[c]);
+      const Vec2 centre = beams[c].centroid();
+      out.wander_x[k - first] = centre.x;
+      out.wander_y[k - first] = centre.y;
+      out.radius_last[k - first] = beams[c].beam_radius();
+    }
+  });
+  for (const auto& rows : {&out.overlap, &out.uncorrelated})
+    for (const std::vector<double>& g : *rows)
+      for (std::size_t i = 0; i < g.size(); ++i)
+        if (!(g[i] >= 0.0 && std::isfinite(g[i])))
+          checks::fail(detail::range_name(i), ranges[i], "a range where the turbulent overlap is finite (internal error)");
+  return out;
+}
+
 }  // namespace
 
 TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vector<double>& ranges,
@@ -174,6 +242,13 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     checks::fail("beam_window", o.beam_window, "a window from 2 to beam_grid long-term beam radii");
   if (o.max_spectrum_grid < 32 || o.max_spectrum_grid > kMaxGridSide)
     checks::fail("max_spectrum_grid", static_cast<double>(o.max_spectrum_grid), "a size from 32 to 65536");
+  const bool both = o.paths == TurbulencePaths::both;
+  if (o.paths != TurbulencePaths::transmit && !both) checks::fail("paths", static_cast<double>(o.paths), "transmit or both");
+  if (both && (o.receiver_fields < 1 || o.receiver_fields > kMaxReceiverFields))
+    checks::fail("receiver_fields", static_cast<double>(o.receiver_fields), "a count from 1 to 1000");
+  if (both && system.detector.numerical_aperture)
+    checks::fail("detector.numerical_aperture", *system.detector.numerical_aperture,
+                 "none (a fibre's NA is not modelled on the turbulent return path) for paths = both");
   const int threads = detail::checked_threads_and_ranges(system, ranges, o.threads);
   if (ranges.empty()) return {};
   const double z_max = *std::max_element(ranges.begin(), ranges.end());
@@ -181,11 +256,25 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
 
   // Each plane's grid spans beam_window long-term radii plus 8 rms wander: the beam of any realisation
   // stays inside it (all but ~1e-9 of its power at 8 W_LT); the transmitter plane samples the waist alike.
-  auto spacing_at = [&](double z) {
+  auto beam_spacing_at = [&](double z) {
     if (z == 0.0) return o.beam_window * w0 / n;
     const double wander = std::sqrt(atmosphere.beam_wander_variance(w0, lambda, z));
     return (o.beam_window * atmosphere.long_term_radius(w0, lambda, z) + 8.0 * wander) / n;
   };
+  // Both paths share each plane's grid (and so its screen): it also holds the receiver's light, 1.25 times its
+  // geometric footprint plus the spread by eddies of r0 (2 lambda z / r0), about the receiver's axis.
+  auto seeing = [&](double z) {
+    const double r0 = z > 0.0 ? atmosphere.fried_parameter_plane(lambda, z) : 0.0;
+    return std::isfinite(r0) && r0 > 0.0 ? lambda / r0 : 0.0;
+  };
+  auto rx_window = [&](double z) {
+    const double foot = 0.5 * system.telescope.diameter * std::abs(1.0 - z * (1.0 / system.telescope.focal_length -
+                            1.0 / (system.telescope.focal_length + system.detector.defocus))) +
+                        (system.detector.radius + norm(system.detector.offset)) * z /
+                            (system.telescope.focal_length + system.detector.defocus);
+    return 2.0 * (norm(beam.center(z)) + 1.25 * foot + 2.0 * z * seeing(z));
+  };
+  auto spacing_at = [&](double z) { return both ? std::max(beam_spacing_at(z), rx_window(z) / n) : beam_spacing_at(z); };
   const std::vector<ScreenPlacement> placements = atmosphere.place_screens(lambda, z_max, o.screens);
   std::vector<Plane> planes;
   for (std::size_t j = 0; j < placements.size(); ++j) planes.push_back({placements[j].range, static_cast<int>(j), -1});
@@ -217,6 +306,16 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     z_prev = p.z;
     dx_prev = dx;
   }
+  auto described = [&](TurbulentOverlap out) {
+    for (std::size_t j = 0; j < placements.size(); ++j) {
+      out.screen_range.push_back(placements[j].range);
+      out.screen_spacing.push_back(generators[j]->spacing());
+      out.screen_r0.push_back(placements[j].r0);
+    }
+    return out;
+  };
+  if (both) return described(both_paths(system, ranges, o, threads, planes, steps, generators, range_spacing,
+                                        spacing_at(0.0), seeing, last_step));
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     receivers.emplace_back(system, ranges[i], detail::range_name(i));
     const double radius = 2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +
@@ -276,7 +375,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     }
   });
   for (std::vector<double>& g : out.overlap) checks::overlap_values(g, ranges, detail::kFoOverlapSlack, "overlap_fo_turbulent");
-  return out;
+  return described(std::move(out));
 }
 
 }  // namespace lidar_overlap

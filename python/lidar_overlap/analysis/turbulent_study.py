@@ -107,6 +107,17 @@ def turbulent_realizations(
         res = many.turbulent_result(p, parts)
 
     unit = {"units": "1"}
+    amplification = {}
+    if res.amplification is not None:
+        amplification["amplification"] = (
+            "range",
+            res.amplification,
+            {
+                **unit,
+                "long_name": "backscatter amplification: mean overlap over the mean with "
+                "uncorrelated paths",
+            },
+        )
     return xr.Dataset(
         {
             "overlap": (
@@ -150,6 +161,7 @@ def turbulent_realizations(
                     "long_name": "percentile of the overlap over the realisations",
                 },
             ),
+            **amplification,
         },
         coords={"realization": np.arange(k), "range": range_coordinate(z)},
         attrs={
@@ -157,6 +169,7 @@ def turbulent_realizations(
             "realizations": k,
             "seed": method.seed,
             "screens": method.screens,
+            "paths": method.paths,
             "method": repr(method),
             "model": p.method,
             "computed_by": BACKENDS[p.backend].description,
@@ -169,8 +182,8 @@ def turbulent_realizations(
 
 
 def _rows(kind, client, system, p, drawn, chunk, threads):
-    """The rows of every realisation, as (G, RT convergence flags, RT error estimates) per part in
-    order, and the realisations per task."""
+    """The rows of every realisation, as (G, RT convergence flags, RT error estimates, FO's
+    uncorrelated G) per part in order, and the realisations per task."""
     k, request, z = p.turbulence.realizations, p.request, p.ranges
     if kind == "loop" and chunk is None:  # one call: the core's threads over the realisations
         return [_part(system, z, request, threads, 0, k, drawn)], k

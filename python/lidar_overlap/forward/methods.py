@@ -27,6 +27,9 @@ from ..model.turbulence import Turbulence
 _RT, _FAN, _FO = _core.RtOptions(), _core.RtAberratedOptions(), _core.FoOptions()
 _TURBULENCE = _core.TurbulenceOptions()
 FO_PATHS = ("auto", "radial", "2d")
+#: Which paths cross the turbulence: the beam's, or the beam's and the return path's (FO;
+#: docs/turbulence.md).
+TURBULENT_PATHS = ("transmit", "both")
 SHORTCUTS = ("rt", "fo", "auto")
 
 
@@ -121,13 +124,17 @@ class Turbulent:
     """``method`` through ``turbulence``: the mean G over ``realizations`` random draws of the
     atmosphere (reproducible with ``seed``), with its spread. Fourier optics carries the beam
     through ``screens`` phase screens; ray tracing displaces the short-term beam by the random
-    wander (all draws in one core call)."""
+    wander (all draws in one core call). ``paths="both"`` (Fourier optics) also carries the return
+    path through the same screens, the detector standing as ``receiver_fields`` random-phase
+    fields; ``"transmit"`` takes the return path as unperturbed (docs/turbulence.md)."""
 
     turbulence: Turbulence
     method: Model = Auto()
     realizations: int = _TURBULENCE.realizations
     seed: int = _TURBULENCE.seed
     screens: int = _TURBULENCE.screens
+    paths: str = _TURBULENCE.paths
+    receiver_fields: int = _TURBULENCE.receiver_fields
 
     def __post_init__(self) -> None:
         if not isinstance(self.turbulence, Turbulence):
@@ -141,6 +148,9 @@ class Turbulent:
         )
         object.__setattr__(self, "seed", _checks.count("seed", self.seed, 0, 2**64 - 1))
         object.__setattr__(self, "screens", _checks.count("screens", self.screens, 1))
+        _checks.choice("paths", self.paths, TURBULENT_PATHS)
+        fields = _checks.count("receiver_fields", self.receiver_fields, 1, 1000)
+        object.__setattr__(self, "receiver_fields", fields)
 
 
 Method = Union[RT, FO, Auto, Turbulent]
@@ -173,6 +183,7 @@ def from_shortcuts(
     realizations=None,
     seed=None,
     screens=None,
+    paths=None,
 ) -> Method:
     """The method object for ``overlap(system, ranges, method, **options)``: a method object passes
     unchanged (options given beside it are refused: they belong on the object); a shortcut string
@@ -191,6 +202,7 @@ def from_shortcuts(
             realizations=realizations,
             seed=seed,
             screens=screens,
+            paths=paths,
         ).items()
         if v is not None
     }
@@ -225,7 +237,7 @@ def from_shortcuts(
     return Turbulent(
         turbulence,
         chosen,
-        **_only(given, realizations="realizations", seed="seed", screens="screens"),
+        **_only(given, realizations="realizations", seed="seed", screens="screens", paths="paths"),
     )
 
 

@@ -34,15 +34,15 @@ MIN_TURBULENT_GRID = 32
 class Plan:
     """One overlap computation, decided.
 
-    system, ranges : what it computes (ranges in m, checked). request : the method asked for (an
-        RT, FO, Auto or Turbulent object). backend : the code that runs, a key of
-        :data:`~lidar_overlap.forward.backends.BACKENDS`; ``method``, ``fo_path`` and
-        ``error_kind`` follow from it. options : the core's options for it (``_core.RtOptions`` and
-        its kin). tolerance : what the result states (NaN for plain FO). rt_model_error : auto's
-        estimate of RT's diffraction error, added to RT's stated error (0 when not estimated, NaN
-        where RT cannot model the beam). rt_diffraction_warning : whether ray tracing warns about
-        diffraction (not where auto bounded it). reasons : why, one line each. warnings : said when
-        the plan runs.
+    system, ranges : what it computes (ranges in m, checked). request : the method asked for (an RT,
+        FO, Auto or Turbulent object). backend : the code that runs, a key of
+        :data:`~lidar_overlap.forward.backends.BACKENDS`; ``method``, ``fo_path`` and ``error_kind``
+        follow from it. options : the core's options for it (``_core.RtOptions`` and its kin).
+        tolerance : what the result states (NaN for plain FO). rt_model_error : auto's estimate of
+        RT's diffraction error, added to RT's stated error (0 when not estimated, NaN where RT
+        cannot model the beam). rt_diffraction_warning : whether ray tracing warns about diffraction
+        (not where auto bounded it). reasons : why, one line each. warnings : said when the plan
+        runs.
     """
 
     system: LidarSystem
@@ -69,8 +69,8 @@ class Plan:
 
     @property
     def error_kind(self) -> str:
-        """What the result's error estimate is: ``"bound"`` (RT's quadrature bound plus auto's
-        model error), ``"nominal"`` (FO: the path's measured accuracy) or ``"standard_error"``
+        """What the result's error estimate is: ``"bound"`` (RT's quadrature bound plus auto's model
+        error), ``"nominal"`` (FO: the path's measured accuracy) or ``"standard_error"``
         (turbulence: of the mean over the draws)."""
         return backend(self.backend).error_kind
 
@@ -159,8 +159,8 @@ def explain(system, ranges, method="auto", *, threads: int = 0, **shortcuts) -> 
 
 def resolve(p: Plan) -> Plan:
     """``p`` with every decision made: a plan that decides when it runs (auto with receiver
-    aberrations) gets auto's choice, from two coarse RT curves (:func:`auto.decide_aberrated`);
-    any other plan is returned as it is."""
+    aberrations) gets auto's choice, from two coarse RT curves (:func:`auto.decide_aberrated`); any
+    other plan is returned as it is."""
     if not p.deferred:
         return p
     model = p.request
@@ -380,7 +380,9 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
-    if isinstance(model, Auto):
+    if isinstance(model, Auto) and request.paths == "both":
+        model = model.fo  # the return path through the turbulence is Fourier optics only
+    elif isinstance(model, Auto):
         d = auto.decide(system, z, model.tolerance)
         model = (
             dataclasses.replace(model.rt, tolerance=model.tolerance)
@@ -398,6 +400,12 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         )
     base = _base(system, z, request)
     if isinstance(model, RT):
+        if request.paths == "both":
+            raise ValueError(
+                "paths = 'both' is invalid with ray tracing: the return path through the "
+                "turbulence is modelled in Fourier optics only; expected method FO or paths = "
+                "'transmit'"
+            )
         return Plan(
             **base,
             backend="rt_turbulent",
@@ -416,6 +424,13 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
     if model.beam_window is not None:
         options.beam_window = model.beam_window
     options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
+    options.paths, options.receiver_fields = request.paths, request.receiver_fields
+    both = (
+        f"; the return path through the same screens ({request.receiver_fields} random-phase "
+        "receiver fields)"
+        if request.paths == "both"
+        else ""
+    )
     return Plan(
         **base,
         backend="fo_turbulent",
@@ -423,7 +438,7 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         options=options,
         reasons=(
             f"{request.realizations} draws of {request.screens} phase screens, the beam on "
-            f"{options.beam_grid}^2",
+            f"{options.beam_grid}^2{both}",
         ),
     )
 

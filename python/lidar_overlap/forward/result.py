@@ -14,6 +14,7 @@ from .. import _checks, _pickling
 from .._core import __version__
 from ..model.system import LidarSystem
 from ..model.system_attributes import system_attributes
+from ..model.turbulence import TWO_WAY_BOUND
 from . import result_files
 from .result_files import CSV_COLUMNS  # noqa: F401  (re-exported)
 
@@ -71,10 +72,23 @@ class OverlapResult:
     def __post_init__(self) -> None:
         for name, value in zip(
             ("ranges", "overlap", "error_estimate", "tolerance"),
-            _checked(self.ranges, self.overlap, self.method, self.error_estimate, self.tolerance),
+            _checked(
+                self.ranges,
+                self.overlap,
+                self.method,
+                self.error_estimate,
+                self.tolerance,
+                self._upper_bound(),
+            ),
         ):
             object.__setattr__(self, name, value)
         _checks.choice("error_kind", self.error_kind, ERROR_KINDS)
+
+    def _upper_bound(self) -> float:
+        """Largest G the result may hold: 1 (power on the detector over the power into the
+        aperture), more only where physics allows it (two-way turbulence,
+        :class:`TurbulentOverlapResult`)."""
+        return 1.0
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
@@ -242,7 +256,7 @@ def _same(a: Any, b: Any) -> bool:
     return bool(a == b)
 
 
-def _checked(ranges, overlap, method, error_estimate, tolerance):
+def _checked(ranges, overlap, method, error_estimate, tolerance, upper=1.0):
     """The class's invariants (see :class:`OverlapResult`): the arrays as float arrays, G clipped
     within its slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
     if not isinstance(method, str) or not method:
@@ -282,16 +296,16 @@ def _checked(ranges, overlap, method, error_estimate, tolerance):
         ~(np.isnan(e) | (np.isfinite(e) & (e >= 0.0))),
         "expected a finite value >= 0, or NaN where the method gives none",
     )
-    outside = ~((g >= -ROUND_OFF) & (g <= 1.0 + ROUND_OFF))  # NaN is outside too
+    outside = ~((g >= -ROUND_OFF) & (g <= upper + ROUND_OFF))  # NaN is outside too
     if outside.any():
         i = int(np.argmax(outside))
         raise ValueError(
             f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is "
-            f"invalid: G must be finite and within [0, 1] (up to round-off, {ROUND_OFF:g}); the "
-            "computation failed at this range"
+            f"invalid: G must be finite and within [0, {upper:g}] (up to round-off, "
+            f"{ROUND_OFF:g}); the computation failed at this range"
         )
-    if g.min() < 0.0 or g.max() > 1.0:
-        g = np.clip(g, 0.0, 1.0)
+    if g.min() < 0.0 or g.max() > upper:
+        g = np.clip(g, 0.0, upper)
     return z, g, e, tolerance
 
 
@@ -362,21 +376,49 @@ class TurbulentOverlapResult(OverlapResult):
     """An :class:`OverlapResult` whose ``overlap`` is the mean over ``realizations`` (K × N array,
     one row per draw of the atmosphere), with ``std`` and the 5–95 % percentile band ``low``,
     ``high``; ``error_estimate`` is the standard error of the mean (``error_kind``
-    ``"standard_error"``)."""
+    ``"standard_error"``).
+
+    ``paths`` says which paths crossed the turbulence. With ``"both"``: ``uncorrelated`` (K × N) is
+    each draw's beam with an independent draw's receiver and ``amplification`` (N) the backscatter
+    amplification, mean G over the mean of ``uncorrelated``; and the mean G may exceed 1 (up to
+    :data:`~lidar_overlap.model.turbulence.TWO_WAY_BOUND`, docs/turbulence.md)."""
 
     realizations: Optional[np.ndarray] = None
     std: Optional[np.ndarray] = None
     low: Optional[np.ndarray] = None
     high: Optional[np.ndarray] = None
+    paths: str = "transmit"
+    uncorrelated: Optional[np.ndarray] = None
+    amplification: Optional[np.ndarray] = None
+
+    def _upper_bound(self) -> float:
+        return TWO_WAY_BOUND if self.paths == "both" else 1.0
 
     def __post_init__(self) -> None:
+        _checks.choice("paths", self.paths, ("transmit", "both"))
         super().__post_init__()
         n = self.ranges.size
-        for name in ("realizations", "std", "low", "high"):
+        if self.paths == "transmit" and (
+            self.uncorrelated is not None or self.amplification is not None
+        ):
+            raise ValueError(
+                "uncorrelated and amplification are given for paths = 'transmit': expected them "
+                "only with turbulence on both paths"
+            )
+        for name in ("realizations", "std", "low", "high", "uncorrelated", "amplification"):
             value = getattr(self, name)
             if value is None:
                 continue
-            ndim = 2 if name == "realizations" else 1
+            if name == "amplification":  # a ratio of means, NaN where no light comes back
+                values = _checks.real_array(name, value, ndim=1)
+                if values.shape != (n,) or np.any(values[np.isfinite(values)] < 0.0):
+                    raise ValueError(
+                        f"amplification has shape {values.shape} or a negative value: expected one "
+                        f"ratio >= 0 (or NaN) per range, N = {n}"
+                    )
+                object.__setattr__(self, name, frozen(values))
+                continue
+            ndim = 2 if name in ("realizations", "uncorrelated") else 1
             values = _checks.real_array(name, value, ndim=ndim)
             if values.shape[-1] != n or (ndim == 2 and values.shape[0] == 0):
                 raise ValueError(
@@ -384,16 +426,17 @@ class TurbulentOverlapResult(OverlapResult):
                     + ("K x N, one row per draw" if ndim == 2 else "one value per range")
                     + f" for N = {n} ranges"
                 )
+            upper = self._upper_bound()
             bad = ~np.isfinite(values)
             if name != "std":
-                bad |= ~((values >= -ROUND_OFF) & (values <= 1.0 + ROUND_OFF))
+                bad |= ~((values >= -ROUND_OFF) & (values <= upper + ROUND_OFF))
             elif not bad.any():
                 bad = values < 0.0
             if bad.any():
                 raise ValueError(
                     f"{name} holds {float(values[bad].flat[0])!r}: expected finite values"
-                    + (" >= 0" if name == "std" else " within [0, 1]")
+                    + (" >= 0" if name == "std" else f" within [0, {upper:g}]")
                 )
             if name != "std":
-                values = np.clip(values, 0.0, 1.0)
+                values = np.clip(values, 0.0, upper)
             object.__setattr__(self, name, frozen(values))

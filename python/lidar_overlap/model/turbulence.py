@@ -31,6 +31,10 @@ from .. import _checks, _core
 from .._checks import choice
 from .._pickling import ByArguments
 
+#: Largest mean G with turbulence on both paths: the backscatter amplification of a point receiver
+#: in strong turbulence tends to 2 (docs/turbulence.md); a finite aperture and the detector's field
+#: of view only lower it.
+TWO_WAY_BOUND = 2.0
 #: Cn² (m^-2/3) a profile may reach: the core's bound, a thousand times the strongest turbulence
 #: measured near the ground.
 MAX_CN2 = 1e-9

@@ -6,8 +6,11 @@
 // That sum is linear in the irradiance, so it is made once per range as a map on the beam grid (n^2
 // doubles per range) and costs each realisation one pass over its irradiance.
 // Each realisation is one random draw of the atmosphere (frozen during the pulse): the statistics over
-// realisations give the mean overlap and its spread. The return path is taken as unperturbed (the
-// receiver sees the scattering volume through the same turbulence, which mostly moves the image).
+// realisations give the mean overlap and its spread. TurbulencePaths::transmit takes the return path as
+// unperturbed; TurbulencePaths::both carries the receiver's light (reciprocity, atmosphere/return_path.hpp in
+// cpp/src) through the same screens, so that G of a draw is the integral of the beam's irradiance times the
+// receiver's sensitivity, both through one atmosphere: its mean may exceed 1 (backscatter amplification, at
+// most 2, docs/turbulence.md).
 // A run (seed, screens, grid) is a fixed sequence of realisations: realisation k's screens depend only on
 // (seed, k), never on the thread count or on the other realisations, so a call with first_realization = f and
 // realizations = c gives rows f .. f + c - 1 of the run, bit for bit: the run splits into parts on many machines.
@@ -24,6 +27,10 @@ namespace lidar_overlap {
 // Bounds on the work one call may ask for (each realisation costs one split-step pass per screen).
 inline constexpr std::size_t kMaxRealizations = 1000000;
 inline constexpr std::size_t kMaxScreens = 1000;
+inline constexpr std::size_t kMaxReceiverFields = 1000;
+
+// Which paths cross the turbulence: the beam's only, or the beam's and the return path's.
+enum class TurbulencePaths { transmit, both };
 
 struct TurbulenceOptions {
   std::size_t realizations = 20;        // realisations computed: first_realization, first_realization + 1, ...
@@ -36,12 +43,24 @@ struct TurbulenceOptions {
                                         // calls from several threads pass 1 (or their share): core/limits.hpp
   std::size_t first_realization = 0;    // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
                                         // (last, so that braced initialisers of the fields above keep their meaning)
+  TurbulencePaths paths = TurbulencePaths::transmit;  // both: the return path through the same screens
+  std::size_t receiver_fields = 8;      // both: random-phase fields standing for the incoherent detector
 };
 
 struct TurbulentOverlap {
   std::vector<std::vector<double>> overlap;  // [realisation - first_realization][range]
   std::vector<double> wander_x, wander_y;    // m, beam centroid at the last range, per realisation
   std::vector<double> radius_last;           // m, second-moment radius at the last range, per realisation
+  // paths = both: G of each draw's beam with the receiver's sensitivity through the other draw of its screen
+  // pair (an independent atmosphere): the uncorrelated paths, whose mean the amplification divides by.
+  std::vector<std::vector<double>> uncorrelated;  // [realisation - first_realization][range]; empty for transmit
+  // paths = both: standard error of each draw's G from its receiver_fields random-phase fields (their spread over
+  // sqrt(receiver_fields)); empty for transmit.
+  std::vector<std::vector<double>> receiver_error;
+  // The run's screens: range (m), grid spacing (m) and Fried parameter (m) of screen j, whose draw for
+  // realisation k is PhaseScreenGenerator(beam_grid, spacing, r0, outer, inner).generate(seed ^ (j + 1) *
+  // 0x9E3779B97F4A7C15, k) on the grid centred on the beam's axis at that range: enough to replay them.
+  std::vector<double> screen_range, screen_spacing, screen_r0;
 };
 
 // Throws std::invalid_argument for a system or profile that is not valid, a beam that is not a

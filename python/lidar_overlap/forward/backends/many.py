@@ -83,12 +83,13 @@ def turbulent_draws(plan):
 
 def turbulent_rows(plan, first: int, count: int, drawn) -> tuple:
     """Realisations ``first .. first + count - 1`` of a turbulent ``plan``: (G, realisations x
-    ranges; the RT convergence flags and error estimates, flat, or None for FO). ``drawn``: what
-    :func:`turbulent_draws` gave."""
+    ranges; the RT convergence flags and error estimates, flat, or None for FO; the uncorrelated G
+    of FO through both paths, or None). ``drawn``: what :func:`turbulent_draws` gave."""
     if drawn is None:
-        return turbulent_backend.fo_rows(plan, first, count), None, None
+        g, uncorrelated = turbulent_backend.fo_rows(plan, first, count)
+        return g, None, None, uncorrelated
     short_term, offsets = drawn
-    return turbulent_backend.rt_rows(plan, short_term, offsets[first : first + count])
+    return (*turbulent_backend.rt_rows(plan, short_term, offsets[first : first + count]), None)
 
 
 def turbulent_result(plan, parts):
@@ -100,7 +101,9 @@ def turbulent_result(plan, parts):
         converged = np.concatenate([part[1] for part in parts])
         error = np.concatenate([part[2] for part in parts])
         warn_rt(plan, converged, error, np.tile(plan.ranges, g.shape[0]))
-    return turbulent_backend.statistics(plan, g)
+    both = parts[0][3] is not None
+    uncorrelated = np.concatenate([part[3] for part in parts]) if both else None
+    return turbulent_backend.statistics(plan, g, uncorrelated)
 
 
 def results(plan, variants: Sequence[LidarSystem], curves: Curves) -> list:

@@ -18,7 +18,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
-from typing import Any, List, cast
+from typing import Any, Dict, List, cast
 
 import numpy as np
 
@@ -33,20 +33,24 @@ BYTES_PER_DRAW = 512
 
 
 def run_fo(plan) -> TurbulentOverlapResult:
-    """The FO draws, all in the core."""
-    return statistics(plan, fo_rows(plan, 0, plan.turbulence.realizations))
+    """The FO draws, all in the core; with both paths also each draw's beam with an independent
+    draw's receiver (the uncorrelated paths), for the amplification."""
+    g, uncorrelated = fo_rows(plan, 0, plan.turbulence.realizations)
+    return statistics(plan, g, uncorrelated)
 
 
-def fo_rows(plan, first: int, count: int) -> np.ndarray:
+def fo_rows(plan, first: int, count: int):
     """Realisations ``first .. first + count - 1`` of the FO run of ``plan`` (count x ranges): bit
     for bit those rows of the whole run (the core's ``first_realization``), on
-    ``plan.options.threads`` threads."""
+    ``plan.options.threads`` threads; and with both paths the same rows of the uncorrelated G
+    (None for transmit only)."""
     part = copy.copy(plan.options)  # the plan's own options stay as they are
     part.realizations, part.first_realization = count, first
     raw = _core.overlap_fo_turbulent(
         plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
     )
-    return np.asarray(raw.overlap)
+    both = part.paths == "both"
+    return np.asarray(raw.overlap), (np.asarray(raw.uncorrelated) if both else None)
 
 
 def run_rt(plan) -> TurbulentOverlapResult:
@@ -146,13 +150,22 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
     return cast(TurbulentOverlapResult, out)
 
 
-def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
+def statistics(plan, samples: np.ndarray, uncorrelated=None) -> TurbulentOverlapResult:
     """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples``
-    (C-contiguous: the reductions then sum in one order, whoever computed the rows)."""
+    (C-contiguous: the reductions then sum in one order, whoever computed the rows); with both
+    paths, the amplification: the mean over the mean of the ``uncorrelated`` rows."""
     samples = np.ascontiguousarray(samples)
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
     std = samples.std(axis=0, ddof=1) if k > 1 else np.zeros(plan.ranges.size)
+    extra: Dict[str, Any] = {"paths": plan.turbulence.paths}
+    if uncorrelated is not None:
+        uncorrelated = np.ascontiguousarray(uncorrelated)
+        mean_u = uncorrelated.mean(axis=0)
+        ratio = np.divide(
+            samples.mean(axis=0), mean_u, out=np.full(mean_u.shape, np.nan), where=mean_u > 0
+        )
+        extra.update(uncorrelated=uncorrelated, amplification=ratio)
     out = result(
         plan,
         samples.mean(axis=0),
@@ -162,6 +175,7 @@ def statistics(plan, samples: np.ndarray) -> TurbulentOverlapResult:
         std=std,
         low=low,
         high=high,
+        **extra,
     )
     return cast(TurbulentOverlapResult, out)
 

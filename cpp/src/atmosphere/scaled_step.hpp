@@ -1,0 +1,64 @@
+// The split step of the turbulent FO path (overlap_turbulent.cpp): the scaled angular-spectrum method that
+// lets each plane's grid follow the beam's growth.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include "core/constants.hpp"
+#include "fourier/fft.hpp"
+#include "lidar_overlap/fourier/field.hpp"
+
+namespace lidar_overlap::detail {
+
+// One split step of the scaled angular-spectrum (Fresnel transfer function) method: n x n samples of
+// spacing d1 at one plane to spacing d2 = m d1 at a plane dz further, with m chosen to follow the beam's
+// growth, U2 = Q3 IFFT[Q2 FFT(Q1 U1 / m)] / n^2 with Q1 = exp(i k (1 - m) r1^2 / (2 dz)), Q2 = exp(-i 2
+// pi^2 dz f^2 / (m k)), Q3 = exp(i k (m - 1) r2^2 / (2 m dz)) (J. D. Schmidt, Numerical Simulation of
+// Optical Wave Propagation, 2010, Sec. 8.2). All three are separable in x and y. A step leaves its Q3 / n^2
+// to the next one, which applies it with its own Q1 in one pass (finish() after the last): a phase and a
+// constant change neither the phase screens' effect nor the irradiance's shape the overlap reads.
+class ScaledStep {
+ public:
+  ScaledStep(std::size_t n, double d1, double d2, double dz, double lambda, const ScaledStep* before)
+      : n_(n), d2_(d2), in_x_(n), in_y_(n), q2_(n), q3_(n) {
+    const double k = 2.0 * kPi / lambda, m = d2 / d1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x1 = (static_cast<double>(i) - 0.5 * n) * d1, x2 = (static_cast<double>(i) - 0.5 * n) * d2;
+      const double f = (i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n)) / (n * d1);
+      const Complex q1 = std::polar(1.0, k * (1.0 - m) * x1 * x1 / (2.0 * dz));
+      in_y_[i] = before ? before->q3_[i] * q1 : q1;
+      in_x_[i] = in_y_[i] * (before ? before->scale_out_ / m : 1.0 / m);
+      q2_[i] = std::polar(1.0, -2.0 * kPi * kPi * dz * f * f / (m * k));
+      q3_[i] = std::polar(1.0, k * (m - 1.0) * x2 * x2 / (2.0 * m * dz));
+    }
+    scale_out_ = 1.0 / (static_cast<double>(n) * n);
+  }
+  void execute(Field& u) const {
+    multiply(u, in_y_, in_x_);
+    fft2d(u.values, n_, FftDirection::forward);
+    multiply(u, q2_, q2_);
+    fft2d(u.values, n_, FftDirection::backward);
+    u.spacing = d2_;
+  }
+  void finish(Field& u) const {
+    std::vector<Complex> out_x(q3_);
+    for (Complex& c : out_x) c *= scale_out_;
+    multiply(u, q3_, out_x);
+  }
+
+ private:
+  void multiply(Field& u, const std::vector<Complex>& fy, const std::vector<Complex>& fx) const {
+    for (std::size_t iy = 0; iy < n_; ++iy) {
+      Complex* row = &u.values[iy * n_];
+      const Complex a = fy[iy];
+      for (std::size_t ix = 0; ix < n_; ++ix) row[ix] *= a * fx[ix];
+    }
+  }
+
+  std::size_t n_;
+  double d2_, scale_out_ = 1.0;
+  std::vector<Complex> in_x_, in_y_, q2_, q3_;
+};
+
+}  // namespace lidar_overlap::detail
