@@ -1,7 +1,7 @@
 """The package's layers hold: each module imports only its own layer and those below it, at module
 level; only optional dependencies are imported inside functions; no module takes another's private
-names; only the backends call the core's overlap computations; and the package imports with
-numpy and its compiled core alone."""
+names; only the backends call the core's overlap computations; and the package imports with numpy
+and its compiled core alone."""
 
 import ast
 import pathlib
@@ -15,7 +15,7 @@ import lidar_overlap
 PACKAGE = pathlib.Path(lidar_overlap.__file__).parent
 #: Bottom to top; the private foundation modules (_core, _checks, _pickling, _files) are below all.
 LAYERS = ("model", "optics", "forward", "analysis", "io", "views", "cli")
-FOUNDATION = ("_core", "_checks", "_pickling", "_files")
+FOUNDATION = ("_core", "_checks", "_pickling", "_files", "_reading", "_interrupts")
 #: Packages the library may import only inside the functions that need them.
 OPTIONAL = (
     "scipy",

@@ -1,6 +1,6 @@
-"""G of many variants of a system on one plan's model and ranges, through the forward layer's
-runner for many variants (one core call on ray tracing): the single place the searches of the fits
-evaluate candidates."""
+"""G of many variants of a system on one plan's model and ranges, through the forward layer's runner
+for many variants (one core call on ray tracing): the single place the searches of the fits evaluate
+candidates."""
 
 from __future__ import annotations
 
@@ -15,9 +15,9 @@ from ..model.system import LidarSystem
 
 
 def curves(p, systems) -> np.ndarray:
-    """G of each system in ``systems`` (None for a candidate outside the model's range: its row
-    is NaN) on plan ``p``: shape (len(systems), ranges). Ray tracing: one batched core call for
-    all of them; any other backend: one run of ``p`` re-targeted at each system."""
+    """G of each system in ``systems`` (None for a candidate outside the model's range: its row is
+    NaN) on plan ``p``: shape (len(systems), ranges). Ray tracing: one batched core call for all of
+    them; any other backend: one run of ``p`` re-targeted at each system."""
     z = p.ranges
     out = np.full((len(systems), z.size), np.nan)
     valid = [i for i, s in enumerate(systems) if s is not None]

@@ -4,9 +4,9 @@ curve at the signal's ranges and its 1-sigma band from the fit's covariance.
 Absolute fits give G as fitted. Relative fits (``normalize=``) know G only up to a factor, and a
 signal is corrected to the far-range level: their curve is the fitted instrument's G divided by its
 far-range limit (G at ``FAR_FACTOR`` x the last range), which tends to 1 where the signal needs no
-correction; when a defocused curve peaks above its far limit, by that peak instead (G stays in
-[0, 1], and the corrected signal is low by peak / far limit, which the fit states). The band
-covers the parameters' uncertainty, not the model's own error.
+correction; when a defocused curve peaks above its far limit, by that peak instead (G stays in [0,
+1], and the corrected signal is low by peak / far limit, which the fit states). The band covers the
+parameters' uncertainty, not the model's own error.
 """
 
 from __future__ import annotations

@@ -3,6 +3,10 @@ the model is chosen by the data (one hook, so the fit's own body stays the absol
 
 from __future__ import annotations
 
+from .global_search import fit_global
+from .model_ladder import fit_ladder
+from .relative import fit_relative
+
 
 def fit_extended(
     system,
@@ -24,8 +28,6 @@ def fit_extended(
     """:func:`lidar_overlap.fit` with ``normalize`` given, ``search="global"`` or
     ``free="auto"``."""
     if isinstance(free, str) and free == "auto":
-        from .model_ladder import fit_ladder
-
         return fit_ladder(
             system,
             ranges,
@@ -42,8 +44,6 @@ def fit_extended(
             seed,
         )
     if search == "global":
-        from .global_search import fit_global
-
         return fit_global(
             system,
             ranges,
@@ -60,8 +60,6 @@ def fit_extended(
             normalize,
             seed,
         )
-    from .relative import fit_relative
-
     return fit_relative(
         system,
         ranges,

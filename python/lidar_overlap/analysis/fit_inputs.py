@@ -1,6 +1,6 @@
-"""The numbers a fit takes from its caller (measured values and their sigma), checked strictly:
-real numbers only (no complex value cut to its real part, no strings or booleans read as numbers),
-within the bounds where the weighted residuals and their squares stay finite in double precision."""
+"""The numbers a fit takes from its caller (measured values and their sigma), checked strictly: real
+numbers only (no complex value cut to its real part, no strings or booleans read as numbers), within
+the bounds where the weighted residuals and their squares stay finite in double precision."""
 
 from __future__ import annotations
 
@@ -35,8 +35,8 @@ def measured_array(name: str, value, expected: str) -> np.ndarray:
 
 
 def sigma_array(sigma, shape, expected_shape: str) -> np.ndarray:
-    """``sigma`` broadcast to ``shape`` (a float array of real numbers); only the type and shape
-    are checked here, the values by :func:`bad_sigma`."""
+    """``sigma`` broadcast to ``shape`` (a float array of real numbers); only the type and shape are
+    checked here, the values by :func:`bad_sigma`."""
     try:
         w = _checks.real_array("sigma", sigma)
         return np.broadcast_to(w, shape).copy()

@@ -14,6 +14,7 @@ import numpy as np
 
 from .. import _checks
 from ..forward.compute import run
+from ..forward.planning import plan
 from ..forward.result import OverlapResult
 from .sensitivity import jacobian, unit
 from .telecover import TelecoverResult
@@ -92,8 +93,8 @@ class FitResult:
     step_tolerance: float
 
     def __reduce__(self):
-        # The plan holds the core's option objects, which do not pickle: it travels as what made
-        # it (start system, ranges, request, threads) and is made again, with the same decisions.
+        # The plan holds the core's option objects, which do not pickle: it travels as what made it
+        # (start system, ranges, request, threads) and is made again, with the same decisions.
         state = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         p = state.pop("plan")
         recipe = (p.system, p.ranges, p.request, int(getattr(p.options, "threads", 0)))
@@ -216,8 +217,6 @@ class FitResult:
 def _rebuild_fit(cls, state, recipe):
     """A pickled :class:`FitResult`, its plan made again from its recipe."""
     import warnings
-
-    from ..forward.planning import plan
 
     system, ranges, request, threads = recipe
     with warnings.catch_warnings():  # said when the fit was planned

@@ -22,8 +22,8 @@ import numpy as np
 
 from ..forward.compute import run
 from . import fit_inputs
-from .fit import Model, fit_plan, free_paths, model_tolerance, solve
 from .fit_result import FitResult, step_tolerance
+from .fit_solve import Model, fit_plan, free_paths, model_tolerance, solve
 from .sensitivity import central_differences
 from .telecover import TelecoverResult, deviations, sector_curves, sector_mask, with_mask
 
@@ -61,8 +61,8 @@ def fit_telecover(
     model, ``"rt"`` (its sectors in one core call), ``"fo"``, ``"auto"`` or a method object, planned
     once on the start. tolerance : RT's absolute tolerance on each sector's G (None: RT's default).
     Other arguments as in :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is the fitted
-    :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are
-    sector-major (sector x range, flattened); ``predict`` gives the full aperture's G. Needs scipy.
+    :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are sector-major
+    (sector x range, flattened); ``predict`` gives the full aperture's G. Needs scipy.
     """
     paths = free_paths(free)
     mask = sector_mask(system, sectors)

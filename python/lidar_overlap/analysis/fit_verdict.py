@@ -5,8 +5,8 @@ nothing about whether the minimum is the right one or the model fits. The checks
 statistics show into a named warning or an error, never a NaN returned as a number:
 
 - non-finite statistics (chi-square, covariance) are an error: the fit has no meaning;
-- with sigma given, chi²/dof far above 1 (a chi-square p-value below :data:`P_VALUE`, and
-  chi²/dof above :data:`CHI2_RATIO`) warns: the minimum may be local or the model inadequate;
+- with sigma given, chi²/dof far above 1 (a chi-square p-value below :data:`P_VALUE`, and chi²/dof
+  above :data:`CHI2_RATIO`) warns: the minimum may be local or the model inadequate;
 - residuals larger than the model's own tolerance whose signs come in too few runs (a Wald–Wolfowitz
   runs test, z below -:data:`RUNS_Z`) warn the same way: noise alternates, a wrong curve does not;
 - a zero-residual fit without sigma warns: the noise is estimated from the residuals, so the
@@ -54,14 +54,14 @@ def check_usable(what: str, chi_square: float, covariance: np.ndarray) -> None:
         )
     if np.isnan(covariance).any():
         raise ValueError(
-            f"{what}: the covariance at the solution is not a number: the weights 1/sigma "
-            "overflow or underflow; give sigma of the order of the measurement error"
+            f"{what}: the covariance at the solution is not a number: the weights 1/sigma overflow "
+            "or underflow; give sigma of the order of the measurement error"
         )
 
 
 def runs_z(residuals: np.ndarray) -> Optional[float]:
-    """z-score of the number of sign runs in ``residuals`` (zeros left out) against its
-    expectation for random signs; None when too few of either sign for the test."""
+    """z-score of the number of sign runs in ``residuals`` (zeros left out) against its expectation
+    for random signs; None when too few of either sign for the test."""
     signs = np.sign(residuals[residuals != 0.0])
     n1, n2 = int(np.sum(signs > 0)), int(np.sum(signs < 0))
     if min(n1, n2) < RUNS_MIN:
@@ -83,8 +83,8 @@ def check_quality(
     model_tolerance: float,
 ) -> bool:
     """Warn :class:`FitQualityWarning` by the rules of the module docstring. ``residuals`` are
-    (model - measured) / ``weights``; ``model_tolerance`` is the model's absolute error on G (NaN
-    if unknown). True when the fit is exact without sigma (no noise to compare anything with)."""
+    (model - measured) / ``weights``; ``model_tolerance`` is the model's absolute error on G (NaN if
+    unknown). True when the fit is exact without sigma (no noise to compare anything with)."""
     r = np.asarray(residuals, dtype=float)
     chi_square = float(r @ r)
     raw = r * weights  # in units of G
@@ -128,15 +128,15 @@ def _chi2_p_value(chi_square: float, dof: int) -> float:
 
 
 def least_squares(optimize, residuals, start, **options):
-    """``optimize.least_squares`` with its refusals of non-finite residuals or Jacobians (which
-    name no parameter) said in the fit's words."""
+    """``optimize.least_squares`` with its refusals of non-finite residuals or Jacobians (which name
+    no parameter) said in the fit's words."""
     try:
         return optimize.least_squares(residuals, start, **options)
     except ValueError as exc:
         if "finite" not in str(exc) and "infs or NaNs" not in str(exc):
             raise
         raise ValueError(
-            "fit: the weighted residuals or their Jacobian are not finite at the start "
-            f"({exc}): sigma is too small or measured too large for double precision; give "
-            "measured G (of order 0 to 1) and sigma of the order of its error"
+            f"fit: the weighted residuals or their Jacobian are not finite at the start ({exc}): "
+            "sigma is too small or measured too large for double precision; give measured G (of "
+            "order 0 to 1) and sigma of the order of its error"
         ) from None

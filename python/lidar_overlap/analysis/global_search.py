@@ -13,11 +13,11 @@ beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider tilts
 the field of view at every range, where the cost is flat and tells the search nothing).
 
 Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), its
-first population a Latin hypercube with the start as one member (a good start is never lost), so
-a generation is one call of :func:`lidar_overlap.analysis.batch_curves.curves`. The minima: every
-candidate evaluated is kept; the best one, then the next best whose coordinates (scaled to the
-unit cube) differ from every one kept by more than ``DISTINCT`` in some parameter, up to
-``minima`` of them; each is polished by the local fit.
+first population a Latin hypercube with the start as one member (a good start is never lost), so a
+generation is one call of :func:`lidar_overlap.analysis.batch_curves.curves`. The minima: every
+candidate evaluated is kept; the best one, then the next best whose coordinates (scaled to the unit
+cube) differ from every one kept by more than ``DISTINCT`` in some parameter, up to ``minima`` of
+them; each is polished by the local fit.
 """
 
 from __future__ import annotations
@@ -32,6 +32,14 @@ import numpy as np
 from .. import _checks
 from ..model import parameters as _parameters
 from .batch_curves import curves, variants
+from .fit_solve import (
+    fit_local,
+    fit_plan,
+    free_paths,
+    measured_values,
+    parameter_bounds,
+    sigma_weights,
+)
 from .global_result import SearchMinimum, SearchReport, with_search
 from .relative import extended_plan, fit_relative, normalization
 
@@ -41,11 +49,11 @@ TILT_FIELDS = 4.0
 DISTINCT = 0.1
 #: Default population: this many candidates per free parameter (at least MIN_POPULATION).
 POPULATION_PER_PARAMETER, MIN_POPULATION = 5, 15
-#: Default generations at most; the search stops earlier when the population's costs agree
-#: (scipy's relative tolerance TOLERANCE).
+#: Default generations at most; the search stops earlier when the population's costs agree (scipy's
+#: relative tolerance TOLERANCE).
 GENERATIONS, TOLERANCE = 40, 1e-3
-#: The search compares candidates on at most this many of the measured ranges (evenly thinned:
-#: a valley's place does not need every point, its polish uses them all).
+#: The search compares candidates on at most this many of the measured ranges (evenly thinned: a
+#: valley's place does not need every point, its polish uses them all).
 SEARCH_POINTS = 60
 _LINEAR = ("beam.tilt[", "beam.offset[", "detector.offset[", "detector.defocus")
 
@@ -69,14 +77,12 @@ def fit_global(
     generations=GENERATIONS,
     minima=3,
 ):
-    """The global fit (module docstring); arguments as :func:`lidar_overlap.fit`, and
-    ``population`` (candidates per generation), ``generations`` (most generations) and ``minima``
-    (distinct candidates polished, >= 1; those that end in one valley are reported once).
-    Returns a ``GlobalFitResult`` (or ``GlobalRelativeFitResult`` with ``normalize``): the best
-    local fit and its ``search`` report (candidates, generations, core calls, and every distinct
-    polished minimum with its chi-square)."""
-    from .fit import _bounds, _measured, _sigma, fit, fit_plan, free_paths
-
+    """The global fit (module docstring); arguments as :func:`lidar_overlap.fit`, and ``population``
+    (candidates per generation), ``generations`` (most generations) and ``minima`` (distinct
+    candidates polished, >= 1; those that end in one valley are reported once). Returns a
+    ``GlobalFitResult`` (or ``GlobalRelativeFitResult`` with ``normalize``): the best local fit and
+    its ``search`` report (candidates, generations, core calls, and every distinct polished minimum
+    with its chi-square)."""
     optimize = _scipy()
     paths = free_paths(free)
     k = len(paths)
@@ -87,11 +93,11 @@ def fit_global(
     generations = _checks.count("generations", generations, 1)
     minima = _checks.count("minima", minima, 1)
     p0 = fit_plan(system, ranges, method, tolerance, threads)
-    y = _measured(measured, p0.ranges)
-    w = _sigma(sigma, y)
+    y = measured_values(measured, p0.ranges)
+    w = sigma_weights(sigma, y)
     norm, p = thinned(p0, normalize, y, w)
     start = np.array([_parameters.get(system, path) for path in paths])
-    low, high = _bounds(system, paths, start, search_bounds(system, paths, start, bounds))
+    low, high = parameter_bounds(system, paths, start, search_bounds(system, paths, start, bounds))
     logs = np.array([not path.startswith(_LINEAR) and lo > 0 for path, lo in zip(paths, low)])
     a = np.where(logs, np.log(np.where(logs, low, 1.0)), low)
     b = np.where(logs, np.log(np.where(logs, high, 1.0)), high)
@@ -136,7 +142,7 @@ def fit_global(
             warnings.simplefilter("always")
             common = (trial, ranges, measured, sigma, free, given, method, tolerance, loss)
             if normalize is None:
-                local = fit(*common, max_evaluations, allow_unconverged=True, threads=threads)
+                local = fit_local(*common, max_evaluations, allow_unconverged=True, threads=threads)
             else:
                 local = fit_relative(*common, max_evaluations, True, threads, normalize)
         fits.append((local, float(c_all[i])))
@@ -147,9 +153,8 @@ def fit_global(
         warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
     if not best.converged and not allow_unconverged:
         raise RuntimeError(
-            f"fit did not converge: the local fit from the global search's best candidate "
-            f"stopped short ({best.message}); raise max_evaluations or pass "
-            "allow_unconverged=True"
+            "fit did not converge: the local fit from the global search's best candidate stopped "
+            f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
         )
     report = SearchReport(
         method="differential evolution",
@@ -200,8 +205,8 @@ def search_bounds(system, paths, start, bounds) -> Dict[str, Tuple[float, float]
 
 
 def _distinct_fits(fits, paths, a, b, logs) -> list:
-    """Indices of the polished fits, best first, without those that ended within DISTINCT / 10
-    (unit cube) of a better one: two candidates of one valley are one minimum."""
+    """Indices of the polished fits, best first, without those that ended within DISTINCT / 10 (unit
+    cube) of a better one: two candidates of one valley are one minimum."""
     kept: List[Any] = []
     for j in sorted(range(len(fits)), key=lambda j: fits[j][0].chi_square):
         x = np.array([fits[j][0].parameters[path] for path in paths])
@@ -212,8 +217,8 @@ def _distinct_fits(fits, paths, a, b, logs) -> list:
 
 
 def distinct_minima(u: np.ndarray, cost: np.ndarray, count: int) -> list:
-    """Indices of up to ``count`` candidates, best first, each differing from every earlier one
-    by more than DISTINCT in some unit-cube coordinate (finite costs only)."""
+    """Indices of up to ``count`` candidates, best first, each differing from every earlier one by
+    more than DISTINCT in some unit-cube coordinate (finite costs only)."""
     chosen: List[int] = []
     for i in np.argsort(cost, kind="stable"):
         if not math.isfinite(cost[i]):
@@ -224,8 +229,8 @@ def distinct_minima(u: np.ndarray, cost: np.ndarray, count: int) -> list:
                 break
     if not chosen:
         raise ValueError(
-            "search: every candidate's model vanishes where the data are normalised or leaves "
-            "the model's range; widen or move the bounds"
+            "search: every candidate's model vanishes where the data are normalised or leaves the "
+            "model's range; widen or move the bounds"
         )
     return chosen
 

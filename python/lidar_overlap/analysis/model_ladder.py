@@ -4,13 +4,13 @@ information criterion BIC = chi² + k ln n (n independent points, k free paramet
 given sigma, so an information criterion needs sigma).
 
 Each family starts from the one before's best (its search holds that point), so a larger family
-never ends worse than a smaller one for want of search; and each smaller family is refitted
-locally from a larger family's solution when that ended lower (a valley its own search missed).
-A family whose fit leaves a parameter unconstrained (a singular Jacobian: infinite uncertainty,
-say an acceptance that cuts no ray) is not supported by the data and is not chosen; nor is one
-whose fit of relative data puts the model's absolute G below ``MIN_FAR_OVERLAP`` where the data
-are normalised (a beam mostly outside the field of view can have the right shape, but a working
-lidar sees most of its beam far away).
+never ends worse than a smaller one for want of search; and each smaller family is refitted locally
+from a larger family's solution when that ended lower (a valley its own search missed). A family
+whose fit leaves a parameter unconstrained (a singular Jacobian: infinite uncertainty, say an
+acceptance that cuts no ray) is not supported by the data and is not chosen; nor is one whose fit of
+relative data puts the model's absolute G below ``MIN_FAR_OVERLAP`` where the data are normalised (a
+beam mostly outside the field of view can have the right shape, but a working lidar sees most of its
+beam far away).
 
 Choice: among the supported families, the one of lowest BIC; if a simpler one is within
 ``BIC_TIE`` of it, the simplest such one (a BIC difference below 2 is not evidence). Each family
@@ -29,6 +29,10 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..model import parameters as _parameters
+from .fit_solve import fit_local
+from .global_result import with_search
+from .global_search import fit_global
+from .relative import fit_relative
 
 #: BIC differences below this are no evidence (Kass and Raftery's "not worth more than a mention").
 BIC_TIE = 2.0
@@ -93,8 +97,8 @@ class FamilyScore:
     """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
     ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
     the system cannot free (a numerical aperture of None); ``supported``: every parameter has a
-    finite uncertainty and, for relative data, the model's absolute G where they are normalised
-    is at least MIN_FAR_OVERLAP."""
+    finite uncertainty and, for relative data, the model's absolute G where they are normalised is
+    at least MIN_FAR_OVERLAP."""
 
     family: Family
     fit: Any
@@ -110,8 +114,8 @@ class FamilyScore:
 @dataclass(frozen=True, eq=False)
 class LadderResult:
     """The ladder's outcome: ``chosen`` (the FitResult of the family chosen), ``chosen_family``,
-    ``scores`` (every family, simplest first), ``criterion`` ("BIC") and ``note`` (None, or why
-    no family reaches the noise)."""
+    ``scores`` (every family, simplest first), ``criterion`` ("BIC") and ``note`` (None, or why no
+    family reaches the noise)."""
 
     chosen: Any
     chosen_family: Family
@@ -137,8 +141,8 @@ class LadderResult:
 
 def runs_p_value(residuals) -> float:
     """One-sided p-value of the Wald-Wolfowitz runs test: the chance of as few sign runs as
-    ``residuals`` show if the signs were random (normal approximation). 1.0 when all signs agree
-    is impossible to judge, so such a case returns 0.0 (all one sign is structure)."""
+    ``residuals`` show if the signs were random (normal approximation). 1.0 when all signs agree is
+    impossible to judge, so such a case returns 0.0 (all one sign is structure)."""
     s = np.sign(np.asarray(residuals, dtype=float))
     s = s[s != 0]
     n_pos, n_neg = int((s > 0).sum()), int((s < 0).sum())
@@ -172,8 +176,6 @@ def fit_ladder(
 ) -> LadderResult:
     """Fit each of ``families`` (global search from ``system``, arguments as
     :func:`lidar_overlap.fit`) and choose one (module docstring)."""
-    from .global_search import fit_global
-
     if sigma is None:
         raise ValueError(
             "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
@@ -216,8 +218,8 @@ def fit_ladder(
         )
     if not chosen.fit.converged and not allow_unconverged:
         raise RuntimeError(
-            f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; "
-            "raise max_evaluations or pass allow_unconverged=True"
+            f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; raise "
+            "max_evaluations or pass allow_unconverged=True"
         )
     return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
 
@@ -239,10 +241,6 @@ def _from_larger_families(system, families, fits, normalize, local) -> list:
     """Each family's fit, replaced by a local fit of its own paths from a larger family's solution
     when that ends lower: a larger family's search may find a valley the smaller one's missed, and
     the smaller family can reach it too when the extra parameters do not matter there."""
-    from .fit import fit
-    from .global_result import with_search
-    from .relative import fit_relative
-
     ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads = local
     out = list(fits)
     for i in range(len(families) - 2, -1, -1):
@@ -255,7 +253,7 @@ def _from_larger_families(system, families, fits, normalize, local) -> list:
             common = (start, ranges, measured, sigma, paths, given, method, tolerance, loss)
             try:
                 if normalize is None:
-                    g = fit(*common, max_evaluations, allow_unconverged=True, threads=threads)
+                    g = fit_local(*common, max_evaluations, allow_unconverged=True, threads=threads)
                 else:
                     g = fit_relative(*common, max_evaluations, True, threads, normalize)
             except ValueError:  # that start lies outside the smaller family's bounds

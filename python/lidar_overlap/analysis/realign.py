@@ -4,8 +4,8 @@ far-range limit (G at ``FAR_FACTOR`` x the target), the other parameters as they
 a fitted system (``fit.system``).
 
 How: G(target) / G(far) as a function of the path's value is scanned over its bounds (one batched
-core call), the sign change of ratio - threshold nearest the current value is bracketed, and
-Brent's method finds the root to ``xtol``.
+core call), the sign change of ratio - threshold nearest the current value is bracketed, and Brent's
+method finds the root to ``xtol``.
 """
 
 from __future__ import annotations
@@ -74,9 +74,9 @@ def realign(
         ]
         if not crossings:
             raise ValueError(
-                f"{path}: no value in [{low:g}, {high:g}] puts full overlap at {target:g} m "
-                f"(G reaches {threshold:g} of its far limit nowhere there, or everywhere); "
-                "widen the bounds or choose another target"
+                f"{path}: no value in [{low:g}, {high:g}] puts full overlap at {target:g} m (G "
+                f"reaches {threshold:g} of its far limit nowhere there, or everywhere); widen the "
+                "bounds or choose another target"
             )
         i = min(crossings, key=lambda i: abs(0.5 * (grid[i] + grid[i + 1]) - x0))
 

@@ -6,14 +6,14 @@ measured ranges in [z_low, z_high], so the fit compares shapes and no scale is f
 ``normalize="far"``: the model is divided by its far-range limit, G at ``FAR_FACTOR`` x the last
 measured range; the data are taken as they are (already normalised to their far level).
 
-Covariance. Dividing the data by their own mean Ȳ correlates the points: to first order
-ỹ = A y with A = (I - ỹ e_Iᵀ / n_I) / Ȳ (e_I marks the n_I points of the interval), so
-cov(ỹ) = A diag(σ²) Aᵀ. It has rank n - 1: the mean of ỹ over the interval is exactly 1, and so is
-the normalised model's, so the residual has no component along e_I. The fit minimises rᵀ C⁺ r
-(C⁺ the pseudo-inverse) by whitening: r is mapped to W r with Wᵀ W = C⁺ (W has n - 1 rows), and
-the fit's degrees of freedom are n - 1 - k. ``"far"`` leaves the points independent (W = 1/σ).
-The Jacobian of the normalised model follows from the quotient rule, so the covariance of the
-parameters is the Gauss-Newton one of the normalised problem (:mod:`lidar_overlap.analysis.fit`).
+Covariance. Dividing the data by their own mean Ȳ correlates the points: to first order ỹ = A y with
+A = (I - ỹ e_Iᵀ / n_I) / Ȳ (e_I marks the n_I points of the interval), so cov(ỹ) = A diag(σ²) Aᵀ. It
+has rank n - 1: the mean of ỹ over the interval is exactly 1, and so is the normalised model's, so
+the residual has no component along e_I. The fit minimises rᵀ C⁺ r (C⁺ the pseudo-inverse) by
+whitening: r is mapped to W r with Wᵀ W = C⁺ (W has n - 1 rows), and the fit's degrees of freedom
+are n - 1 - k. ``"far"`` leaves the points independent (W = 1/σ). The Jacobian of the normalised
+model follows from the quotient rule, so the covariance of the parameters is the Gauss-Newton one of
+the normalised problem (:mod:`lidar_overlap.analysis.fit`).
 """
 
 from __future__ import annotations
@@ -26,6 +26,8 @@ import numpy as np
 
 from .. import _checks
 from ..forward.compute import run
+from .fit_result import step_tolerance
+from .fit_solve import Model, fit_plan, free_paths, measured_values, sigma_weights, solve
 from .relative_result import RelativeFitResult
 from .sensitivity import jacobian
 
@@ -39,8 +41,8 @@ MIN_INTERVAL_POINTS = 2
 
 @dataclass(frozen=True, eq=False)
 class Normalization:
-    """How model and data are normalised (module docstring). ``kind``: ``"interval"``, ``"far"``
-    or ``"none"``; ``extra_ranges``: ranges (m) the model needs beyond the measured ones (the far
+    """How model and data are normalised (module docstring). ``kind``: ``"interval"``, ``"far"`` or
+    ``"none"``; ``extra_ranges``: ranges (m) the model needs beyond the measured ones (the far
     point); ``inside``: the measured points in the interval; ``data``, ``sigma``: the normalised
     data and their 1-sigma errors; ``data_scale``: Ȳ (1 for "far" and "none"); ``whitening``: W,
     (rows, n)."""
@@ -61,8 +63,8 @@ class Normalization:
         return np.concatenate([self.ranges, self.extra_ranges])
 
     def scale(self, g):
-        """The model's normaliser for curves ``g`` (..., model_ranges): mean over the interval, G
-        at the far point, or 1."""
+        """The model's normaliser for curves ``g`` (..., model_ranges): mean over the interval, G at
+        the far point, or 1."""
         g = np.asarray(g)
         n = self.ranges.size
         if self.kind == "interval":
@@ -109,8 +111,8 @@ def normalization(normalize, ranges, measured, sigma) -> Normalization:
     if isinstance(normalize, str):
         if normalize != "far":
             raise ValueError(
-                f"normalize = {normalize!r} is invalid: expected None, 'far' or (z_low, z_high) "
-                "in m"
+                f"normalize = {normalize!r} is invalid: expected None, 'far' or (z_low, z_high) in "
+                "m"
             )
         far = np.array([FAR_FACTOR * z[-1]])
         return Normalization(
@@ -120,13 +122,13 @@ def normalization(normalize, ranges, measured, sigma) -> Normalization:
         z_low, z_high = _checks.pair("normalize", normalize)
     except ValueError:
         raise ValueError(
-            f"normalize = {_checks.shown(normalize)} is invalid: expected None, 'far' or "
-            "(z_low, z_high) in m"
+            f"normalize = {_checks.shown(normalize)} is invalid: expected None, 'far' or (z_low, "
+            "z_high) in m"
         ) from None
     if not (z_low < z_high and z_low >= z[0] and z_high <= z[-1]):
         raise ValueError(
-            f"normalize = ({z_low:g}, {z_high:g}) m is invalid: expected z_low < z_high within "
-            f"the measured ranges [{z[0]:g}, {z[-1]:g}] m"
+            f"normalize = ({z_low:g}, {z_high:g}) m is invalid: expected z_low < z_high within the "
+            f"measured ranges [{z[0]:g}, {z[-1]:g}] m"
         )
     inside = (z >= z_low) & (z <= z_high)
     if inside.sum() < MIN_INTERVAL_POINTS:
@@ -137,8 +139,8 @@ def normalization(normalize, ranges, measured, sigma) -> Normalization:
     mean = float(y[inside].mean())
     if not mean > 0:
         raise ValueError(
-            f"normalize = ({z_low:g}, {z_high:g}) m: the data's mean there is {mean:g}: expected "
-            "> 0 (choose an interval where the signal is in the field of view)"
+            f"normalize = ({z_low:g}, {z_high:g}) m: the data's mean there is {mean:g}: expected > "
+            "0 (choose an interval where the signal is in the field of view)"
         )
     data = y / mean
     a = (np.eye(z.size) - np.outer(data, inside / inside.sum())) / mean
@@ -167,15 +169,10 @@ def fit_relative(
     normalize,
 ) -> RelativeFitResult:
     """:func:`lidar_overlap.fit` with ``normalize`` given (arguments as there)."""
-    from .fit import Model, fit_plan, free_paths, solve
-    from .fit import _measured as checked_measured
-    from .fit import _sigma as checked_sigma
-    from .fit_result import step_tolerance
-
     paths = free_paths(free)
     p0 = fit_plan(system, ranges, method, tolerance, threads)
-    y = checked_measured(measured, p0.ranges)
-    w = checked_sigma(sigma, y)
+    y = measured_values(measured, p0.ranges)
+    w = sigma_weights(sigma, y)
     norm = normalization(normalize, p0.ranges, y, w)
     p, h_tolerance = extended_plan(p0, norm), step_tolerance(p0, tolerance)
     white = norm.whitening
@@ -216,8 +213,8 @@ def extended_plan(p, norm: Normalization):
 
 def relative_result(raw, norm: Normalization, sigma_given: bool) -> RelativeFitResult:
     """The :class:`RelativeFitResult` of a solve on the whitened problem: chi-square and the
-    covariance as solved; residuals, measured and sigma per measured range on the normalised
-    scale (for plots and tables)."""
+    covariance as solved; residuals, measured and sigma per measured range on the normalised scale
+    (for plots and tables)."""
     g = raw.result.overlap
     model = norm.model(g)
     residuals = (model - norm.data) / (norm.sigma if sigma_given else 1.0)

@@ -66,8 +66,8 @@ class RelativeFitResult(FitResult):
 
 
 def normalised_prediction(fit: FitResult, ranges, normalizing_ranges) -> Prediction:
-    """The fitted model of ``fit`` at ``ranges`` (m) divided by its mean over
-    ``normalizing_ranges`` (m), with the 1-sigma band of that ratio from the fit's covariance (the
+    """The fitted model of ``fit`` at ``ranges`` (m) divided by its mean over ``normalizing_ranges``
+    (m), with the 1-sigma band of that ratio from the fit's covariance (the
     quotient rule on the Jacobian: the normaliser moves with the parameters too)."""
     z = _checks.ranges("ranges", ranges)
     fit.system._native.validate_ranges(z)

@@ -226,9 +226,9 @@ def correct(
     ranges : m, strictly increasing, one per signal value.
     signal : the measured signal S at each range, in any unit (photons per bin, range-corrected,
         ...): finite.
-    overlap : G at each range: an :class:`OverlapResult` at the same ranges, an array of values
-        in [0, 1], or a fit result (``lo.fit``): its curve at the ranges (a relative fit's divided
-        by its far-range limit) with its 1-sigma band as ``overlap_std`` unless that is given.
+    overlap : G at each range: an :class:`OverlapResult` at the same ranges, an array of values in
+        [0, 1], or a fit result (``lo.fit``): its curve at the ranges (a relative fit's divided by
+        its far-range limit) with its 1-sigma band as ``overlap_std`` unless that is given.
     min_overlap : (0, 1]: where G < min_overlap the signal is not corrected (too little of it
         reaches the detector, and S/G would amplify every error): ``values`` and ``std`` are NaN
         there and ``mask`` True.

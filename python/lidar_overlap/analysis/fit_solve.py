@@ -1,0 +1,390 @@
+"""Fitting a lidar system to a measured overlap curve: the free scalars (paths of
+:mod:`lidar_overlap.model.parameters`) by weighted least squares (``scipy.optimize.least_squares``,
+trust-region reflective with bounds).
+
+Model. Planned once, on the starting system: auto's choice (RT or FO, and RT's quadrature tolerance)
+holds for the whole fit, so the model cannot switch between RT and FO while the parameters move (a
+switch would put a step of the size of the model error into the cost). Each evaluation runs that
+plan with the trial system.
+
+Jacobian. Central differences with the step rule of :mod:`lidar_overlap.analysis.sensitivity` (h = s
+(3 tolerance)^(1/3), s the parameter's natural scale); on ray tracing all 2 k shifted systems go
+through one ``overlap_rt_batch`` call, so one Jacobian is one core call. The optimiser works on p /
+s, so a tilt (1e-4 rad) and a defocus (1e-3 m) are of one order for it.
+
+Covariance. (Jᵀ J)⁻¹ of the sigma-normalised residuals at the solution (Gauss-Newton). With
+``sigma=None`` the points have unit weights and the covariance is scaled by the reduced chi-square:
+the noise is then estimated from the scatter of the residuals. With a robust loss it is the same
+form with every point counted (outliers included): an approximation, on the large side.
+
+Driver. :func:`solve` is shared by the fits (:func:`fit` here, :func:`.fit_telecover`): each gives a
+:class:`Model` (its vector and Jacobian as functions of a trial system); the optimiser, covariance,
+degeneracy warnings and convergence error are the same.
+
+Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar
+whose beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
+``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; any
+other (positive) scalar from a tenth to ten times its start.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Callable, Optional
+
+import numpy as np
+
+from .. import _checks
+from ..forward.compute import run
+from ..forward.methods import RT, Turbulent
+from ..forward.planning import plan, resolve
+from ..model import parameters as _parameters
+from . import fit_inputs, fit_verdict
+from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
+from .sensitivity import jacobian, step_scale
+
+LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
+SEARCHES = ("local", "global")
+#: |correlation| above which a pair of parameters is reported as degenerate.
+DEGENERATE_CORRELATION = 0.95
+#: The model's tolerance must stay below this fraction of the median sigma (else it adds to the
+#: noise).
+TOLERANCE_FRACTION = 0.1
+
+
+def fit_local(
+    system,
+    ranges,
+    measured,
+    sigma=None,
+    free=("beam.tilt", "detector.defocus"),
+    bounds=None,
+    method="auto",
+    tolerance: Optional[float] = None,
+    loss: str = "linear",
+    max_evaluations: int = 200,
+    *,
+    allow_unconverged: bool = False,
+    threads: int = 0,
+) -> FitResult:
+    """:func:`lidar_overlap.fit` of absolute data from the start (no normalisation, no global
+    search): the free scalars by weighted least squares; arguments as :func:`lidar_overlap.fit`."""
+    paths = free_paths(free)
+    p = fit_plan(system, ranges, method, tolerance, threads)
+    y = measured_values(measured, p.ranges)
+    h_tolerance = step_tolerance(p, model_tolerance(tolerance))
+
+    def result(trial):
+        curve = run(p.with_system(trial))
+        return curve, curve.overlap
+
+    model = Model(
+        lambda trial: result(trial)[1],
+        lambda trial: jacobian(p, trial, paths, h_tolerance),
+        result,
+        p,
+        h_tolerance,
+        p.tolerance,
+    )
+    return solve(
+        system,
+        paths,
+        model,
+        y,
+        sigma_weights(sigma, y),
+        sigma is not None,
+        bounds,
+        loss,
+        max_evaluations,
+        allow_unconverged,
+    )
+
+
+@dataclass(frozen=True)
+class Model:
+    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured
+    point; ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` ->
+    (the result kept as ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by
+    the FitResult; ``tolerance``, the model's error on the vector (compared with sigma)."""
+
+    evaluate: Callable
+    jacobian: Callable
+    result: Callable
+    plan: Any
+    step_tolerance: float
+    tolerance: float
+
+
+def solve(
+    system,
+    paths,
+    model: Model,
+    y,
+    w,
+    sigma_given: bool,
+    bounds,
+    loss,
+    max_evaluations,
+    allow_unconverged: bool,
+    independent: Optional[int] = None,
+) -> FitResult:
+    """The least-squares driver shared by the fits: the free ``paths`` of ``system`` (the start) so
+    that ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of
+    independent points (default ``y.size``), which sets the degrees of freedom. See :func:`fit` for
+    the rest."""
+    optimize = _scipy()
+    k = len(paths)
+    n = y.size if independent is None else independent
+    if n <= k:  # n == k leaves no degrees of freedom: chi²/dof would be 0/0
+        kind = "" if independent is None else " independent"
+        raise ValueError(
+            f"measured has {n}{kind} points for {k} free parameters: expected more points than "
+            "parameters; measure more ranges or free fewer"
+        )
+    loss = _checks.choice("loss", loss, LOSSES)
+    max_evaluations = _checks.count("max_evaluations", max_evaluations, 1)
+    start = np.array([_parameters.get(system, path) for path in paths])
+    low, high = parameter_bounds(system, paths, start, bounds)
+    scale = np.array([step_scale(system, path) for path in paths])
+    tolerance = model.tolerance
+    if sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * np.median(w):
+        _checks.warn(
+            f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
+            f"sigma ({np.median(w):.3g}): its error adds to the noise; lower tolerance"
+        )
+    counts = {"model": 0, "jacobian": 0}
+
+    def system_at(u):
+        return _parameters.replace(system, dict(zip(paths, (u * scale).tolist())))
+
+    def residuals(u):
+        counts["model"] += 1
+        return (model.evaluate(system_at(u)) - y) / w
+
+    def normalised_jacobian(u):
+        counts["jacobian"] += 1
+        return model.jacobian(system_at(u)) * scale / w[:, None]
+
+    solution = fit_verdict.least_squares(
+        optimize,
+        residuals,
+        start / scale,
+        jac=normalised_jacobian,
+        bounds=(low / scale, high / scale),
+        method="trf",
+        loss=loss,
+        max_nfev=max_evaluations,
+    )
+    converged = solution.status > 0
+    if not converged and not allow_unconverged:
+        raise RuntimeError(
+            f"fit did not converge: {solution.message} (status {solution.status}, "
+            f"{counts['model']} model evaluations, max_evaluations={max_evaluations}); raise "
+            "max_evaluations, start closer, or pass allow_unconverged=True to get the last point"
+        )
+    result, vector = model.result(system_at(solution.x))
+    counts["model"] += 1
+    r = (vector - y) / w
+    j = normalised_jacobian(solution.x) / scale  # per SI unit of each parameter
+    with np.errstate(over="ignore", invalid="ignore"):
+        chi_square, dof = float(r @ r), n - k
+        unscaled = covariance(j, 1.0)
+        # inf (singular J) stays inf when scaled by a zero chi-square (inf x 0 would be NaN)
+        scale_by = chi_square / dof if not sigma_given else 1.0
+        cov = np.where(np.isinf(unscaled), unscaled, unscaled * scale_by)
+    fit_verdict.check_usable("fit", chi_square, cov)
+    sd = np.sqrt(np.diag(cov))
+    unit_sd = np.sqrt(np.diag(unscaled))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # The correlation does not depend on the scale (so a zero-residual fit has one). Singular J
+        # (infinite covariance): -cos of the angle between two columns is their correlation when
+        # only they are free, and +-1 names the pair that cannot be told apart.
+        corr = (
+            unscaled / np.outer(unit_sd, unit_sd) if np.all(np.isfinite(unit_sd)) else -_cosines(j)
+        )
+        np.fill_diagonal(corr, 1.0)  # -cos gives -1 there
+    pairs = tuple(
+        (paths[a], paths[b], float(corr[a, b]))
+        for a in range(k)
+        for b in range(a + 1, k)
+        if abs(corr[a, b]) > DEGENERATE_CORRELATION
+    )
+    if pairs:
+        _checks.warn(
+            "fit: degenerate parameters, the data cannot tell them apart: "
+            + ", ".join(f"{a} and {b} (correlation {c:+.3f})" for a, b, c in pairs)
+            + "; fix one, or measure other ranges",
+            DegeneracyWarning,
+        )
+    if not np.all(np.isfinite(sd)):
+        _checks.warn(
+            "fit: the Jacobian is singular at the solution, so the data do not constrain every "
+            "free parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or "
+            "a beam tilt and a detector offset along one axis, which move the field of view "
+            "alike); uncertainties are infinite",
+            DegeneracyWarning,
+        )
+    # A robust loss expects outliers, which the chi-square and the runs test would count as misfit.
+    exact = loss == "linear" and fit_verdict.check_quality(
+        "fit", r, y, w, dof, sigma_given, tolerance
+    )
+    noise = math.sqrt(chi_square / dof)
+    if (
+        not sigma_given
+        and not exact
+        and math.isfinite(tolerance)
+        and tolerance > TOLERANCE_FRACTION * noise
+    ):
+        _checks.warn(
+            f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the "
+            f"scatter of the residuals ({noise:.3g}): its error adds to the noise; lower tolerance"
+        )
+    return FitResult(
+        parameters={path: float(v) for path, v in zip(paths, solution.x * scale)},
+        uncertainties={path: float(v) for path, v in zip(paths, sd)},
+        start={path: float(v) for path, v in zip(paths, start)},
+        covariance=cov,
+        correlation=corr,
+        residuals=r,
+        chi_square=chi_square,
+        reduced_chi_square=chi_square / dof,
+        degrees_of_freedom=dof,
+        result=result,
+        measured=y,
+        sigma=w if sigma_given else None,
+        covariance_scaled=not sigma_given,
+        degenerate_pairs=pairs,
+        evaluations=counts["model"],
+        jacobian_evaluations=counts["jacobian"],
+        status=int(solution.status),
+        message=str(solution.message),
+        converged=bool(converged),
+        loss=loss,
+        plan=model.plan,
+        step_tolerance=model.step_tolerance,
+    )
+
+
+def _cosines(j: np.ndarray) -> np.ndarray:
+    """Cosines of the angles between J's columns; 0 with a column of zeros (a parameter G does
+    not depend on has no angle: 0/0 would be NaN)."""
+    norms = np.linalg.norm(j, axis=0)
+    outer = np.outer(norms, norms)
+    cos = np.where(outer > 0, j.T @ j / np.where(outer > 0, outer, 1.0), 0.0)
+    return np.clip(cos, -1.0, 1.0)
+
+
+def default_bounds(system, path: str, start: float):
+    """(low, high) of ``path`` when none is given (module docstring), in SI units."""
+    if path.startswith("beam.tilt["):
+        return -1e-2, 1e-2
+    if path.startswith("beam.offset["):
+        return start - system.telescope.diameter, start + system.telescope.diameter
+    if path.startswith("detector.offset["):
+        return start - 10 * system.detector.radius, start + 10 * system.detector.radius
+    if path == "detector.defocus":
+        return (
+            start - 0.1 * system.telescope.focal_length,
+            start + 0.1 * system.telescope.focal_length,
+        )
+    return start / 10, start * 10
+
+
+def _scipy():
+    try:
+        from scipy import optimize
+    except ImportError:
+        raise ImportError("lo.fit needs scipy: pip install 'lidar-overlap[fit]'") from None
+    return optimize
+
+
+def free_paths(free):
+    """The fit's ``free`` argument as scalar paths (pairs expanded), refused naming ``free``."""
+    try:
+        return _parameters.plain_paths(
+            free,
+            "free",
+            "the fit is planned on the start, whose model may not include aberrations; fit the "
+            "alignment scalars",
+        )
+    except ValueError as exc:
+        if str(exc).startswith("parameter"):
+            raise ValueError(f"free: {exc}; name parameters of the system") from None
+        raise
+
+
+def fit_plan(system, ranges, method, tolerance, threads):
+    """The plan every evaluation of a fit runs: made once, on the start, with every decision taken
+    (auto's choice kept for the whole fit; no turbulence)."""
+    if isinstance(method, Turbulent):
+        raise ValueError(
+            "method = Turbulent(...) is invalid for a fit: its curves are random draws; fit with "
+            "'rt', 'fo' or 'auto'"
+        )
+    shortcuts = {"tolerance": model_tolerance(tolerance)} if isinstance(method, str) else {}
+    return resolve(plan(system, ranges, method, threads=threads, **shortcuts))
+
+
+def model_tolerance(tolerance) -> float:
+    """The fit's ``tolerance`` (absolute, on G), checked; None: :class:`lidar_overlap.RT`'s
+    default."""
+    return RT().tolerance if tolerance is None else _checks.positive("tolerance", tolerance)
+
+
+def measured_values(measured, z):
+    y = fit_inputs.measured_array("measured", measured, "G, one per range")
+    if y.shape != z.shape:
+        raise ValueError(f"measured has shape {y.shape}: expected {z.shape}, one G per range")
+    bad = ~np.isfinite(y)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"measured[{i}] = {y[i]} is invalid: expected finite values; drop that range (and its "
+            "measured value) instead"
+        )
+    return y
+
+
+def sigma_weights(sigma, y):
+    if sigma is None:
+        return np.ones_like(y)
+    w = fit_inputs.sigma_array(sigma, y.shape, f"one value per range (shape {y.shape})")
+    bad = fit_inputs.bad_sigma(w)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"sigma[{i}] = {w[i]} is invalid: expected {fit_inputs.SIGMA_EXPECTED}")
+    return w
+
+
+def parameter_bounds(system, paths, start, bounds):
+    given = {}
+    if bounds is not None:
+        if not isinstance(bounds, dict):
+            raise ValueError(
+                f"bounds = {_checks.shown(bounds)} is invalid: expected a dict path -> (low, high)"
+            )
+        for key, value in bounds.items():
+            keys = _parameters.expand([key]) if isinstance(key, str) else [key]
+            for path in keys:
+                if path not in paths:
+                    raise ValueError(
+                        f"bounds: {_checks.shown(key)} is not a free parameter: expected one of "
+                        f"{', '.join(paths)}"
+                    )
+                given[path] = value
+    low, high = np.empty(len(paths)), np.empty(len(paths))
+    for i, (path, x0) in enumerate(zip(paths, start)):
+        if path in given:
+            lo, hi = _checks.pair(f"bounds[{path!r}]", given[path])
+        else:
+            lo, hi = default_bounds(system, path, x0)
+        if not lo < hi:
+            raise ValueError(f"bounds[{path!r}] = ({lo:g}, {hi:g}) is invalid: expected low < high")
+        if not lo <= x0 <= hi:
+            raise ValueError(
+                f"bounds[{path!r}] = ({lo:g}, {hi:g}) excludes the start {x0:g}: widen the bounds "
+                "or start the system within them"
+            )
+        low[i], high[i] = lo, hi
+    return low, high
