@@ -70,7 +70,10 @@ sanitize: setup
 	$(BIN)/pip install -q pybind11
 	VENV=$(VENV) JOBS=$(JOBS) scripts/sanitize.sh
 
+# Every file in benchmarks/results/ (speed_accuracy.py also draws failure_map.png and scaling.png) but the
+# physics snapshot, a reference that changes are compared with and is written on purpose (--write).
 bench: setup
+	$(PY) benchmarks/bench_threads.py
 	$(PY) benchmarks/bench_rt.py
 	$(PY) benchmarks/bench_fo.py
 	$(PY) benchmarks/bench_fo_overlap.py

@@ -4,8 +4,8 @@ system of that preset, sigma = 0.007 like the NOA 355 nm curve's far-range scatt
 800-1200 m; then free="auto" (the model ladder of analysis/model_ladder.py) on the same curve.
 
 Counts: candidates of the search (one batched core call per generation), local-fit curves and
-Jacobians, and every model evaluation. One timed run each (a global fit is long and seeded: its
-cost does not vary between runs). Targets on 2 cores: global fit <= 20 s, ladder <= 60 s. Writes
+Jacobians, and every model evaluation. One timed run each (a global fit is long and seeded: its cost
+does not vary between runs). Targets on 2 cores: global fit <= 20 s, ladder <= 60 s. Writes
 results/bench_real_fit.json.
 """
 

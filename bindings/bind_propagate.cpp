@@ -1,5 +1,9 @@
 // Propagation: the GIL is released around the FFT work; the report comes back as a PropagationReport.
+#include <fftw3.h>
 #include <pybind11/stl.h>
+
+#include <map>
+#include <mutex>
 
 #include <stdexcept>
 #include <string>
@@ -90,4 +94,42 @@ void bind_propagate(py::module_& m) {
         return array_from_field(f);
       },
       py::arg("values"));
+
+  // The floor the benchmarks time the library's transforms against: FFTW's own 2-D plan of the same size,
+  // planned with FFTW_MEASURE for `threads` threads (fastest on this machine now, but chosen by timing, so
+  // its bits may differ between processes: a benchmark reference only). `transforms` = 1: one forward FFT;
+  // 2: forward and backward. The same copies in and out as fft2d_roundtrip; plans made on first use.
+  m.def(
+      "_fftw_measured",
+      [](const ComplexArray& values, int transforms, int threads) {
+        if (transforms != 1 && transforms != 2)
+          throw std::invalid_argument("transforms = " + std::to_string(transforms) + " is invalid: expected 1 or 2");
+        if (threads < 1 || threads > 1024)
+          throw std::invalid_argument("threads = " + std::to_string(threads) + " is invalid: expected 1 to 1024");
+        Field f = field_from_array(values, 1.0, 1.0);
+        static std::map<std::tuple<std::size_t, int, int>, fftw_plan> plans;
+        auto plan = [&](int sign) {
+          std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+          auto& p = plans[{f.n, threads, sign}];
+          if (!p) {
+            static const bool threads_ready = fftw_init_threads() != 0;
+            if (!threads_ready) throw std::runtime_error("FFTW threads could not be initialised");
+            fftw_plan_with_nthreads(threads);
+            ComplexBuffer scratch(f.n * f.n);
+            auto* s = reinterpret_cast<fftw_complex*>(scratch.data());
+            p = fftw_plan_dft_2d(static_cast<int>(f.n), static_cast<int>(f.n), s, s, sign, FFTW_MEASURE);
+            fftw_plan_with_nthreads(1);
+          }
+          return p;
+        };
+        const fftw_plan forward = plan(FFTW_FORWARD), backward = transforms == 2 ? plan(FFTW_BACKWARD) : nullptr;
+        {
+          Interruptible release;
+          auto* p = reinterpret_cast<fftw_complex*>(f.values.data());
+          fftw_execute_dft(forward, p, p);
+          if (backward) fftw_execute_dft(backward, p, p);
+        }
+        return array_from_field(f);
+      },
+      py::arg("values"), py::arg("transforms"), py::arg("threads"));
 }

@@ -2,7 +2,9 @@
 // call, so N caller threads each passing 0 run N teams at once; with `threads = 1` every call runs on its
 // caller's thread alone. Checked by counting the process's threads (/proc/self/task) while the calls run:
 // N caller threads with threads = 1, then one OpenMP team of callers (nested calls), add no thread beyond
-// the callers themselves; N callers with threads = 0 add a team each (on a machine with more than one core).
+// the callers themselves; N callers with an explicit count of all cores add a team each (on a machine with more
+// than one core), and with threads = 0 (all cores, or one while the machine is too busy to start a team on
+// time: core/parallel.hpp) no caller uses more than all cores.
 #include <dirent.h>
 #include <omp.h>
 
@@ -107,15 +109,22 @@ int main() {
                  std::to_string(nested - base) + " threads besides this one",
              nested <= base + kCallers);
 
-  // threads = 0: every call takes all cores, so concurrent callers oversubscribe them.
+  // An explicit count of all cores: every call takes them, so concurrent callers oversubscribe them.
   // (Counted from here: the nested region above left its idle team threads alive.)
+  const int cores = omp_get_max_threads();
   const std::size_t before = process_threads();
-  const std::size_t all = peak_with_callers(kCallers, 0);
-  if (omp_get_max_threads() > 1)
-    test::that("threads = 0: each caller runs a team of all cores (" + std::to_string(all - before) + " threads)",
+  const std::size_t all = peak_with_callers(kCallers, cores);
+  if (cores > 1)
+    test::that("threads = " + std::to_string(cores) + ": each caller runs a team of all cores (" +
+                   std::to_string(all - before) + " threads)",
                all > before + kCallers);
+  // threads = 0: all cores at most (fewer while teams start late), never more.
+  const std::size_t zero = peak_with_callers(kCallers, 0);
+  test::that("threads = 0: " + std::to_string(kCallers) + " callers use at most " + std::to_string(kCallers) +
+                 " teams of all cores (" + std::to_string(zero - before) + " threads)",
+             zero <= before + static_cast<std::size_t>(kCallers * cores));
   std::cout << "threads besides the main one, " << kCallers << " callers: threads = 1 " << one - base
-            << ", nested with threads = 1 " << nested - base << ", threads = 0 " << all - before << " (omp_get_max_threads() = "
-            << omp_get_max_threads() << ")\n";
+            << ", nested with threads = 1 " << nested - base << ", threads = " << cores << " " << all - before
+            << ", threads = 0 " << zero - before << " (omp_get_max_threads() = " << cores << ")\n";
   return test::report("test_threading_contract");
 }

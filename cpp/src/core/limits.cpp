@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <string>
 
 #include "core/checks.hpp"
@@ -32,11 +33,39 @@ int max_threads() { return std::max(256, 4 * omp_get_num_procs()); }
 
 namespace detail {
 
+namespace {
+// Until when (steady clock, ns) `threads = 0` means one thread: set when a team's threads started late.
+std::atomic<long long> g_busy_until_ns{0};
+
+long long steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// A team whose last thread started this late (and this share of the region) waited for the machine: on an
+// idle one threads start within tens of microseconds.
+constexpr long long kLateStartNs = 1'000'000;
+constexpr double kLateShare = 0.25;
+// How long a late start holds all-core calls to one thread before a team is tried again: long against the
+// cost of one late team (a few scheduler time slices), short against a change of load.
+constexpr long long kHoldOffNs = 1'000'000'000;
+}  // namespace
+
+void note_team_start(int threads, long long latest_start_ns, long long region_ns) {
+  if (threads < 2 || latest_start_ns < kLateStartNs || latest_start_ns < kLateShare * region_ns) return;
+  g_busy_until_ns.store(steady_ns() + kHoldOffNs, std::memory_order_relaxed);
+}
+
+int all_cores() {
+  if (steady_ns() < g_busy_until_ns.load(std::memory_order_relaxed)) return 1;
+  return std::min(omp_get_max_threads(), max_threads());
+}
+
 int thread_count(int requested) {
   if (requested < 0 || requested > max_threads())
     checks::fail("threads", requested,
                  "0 (all cores) or a count from 1 to " + std::to_string(max_threads()) + " (4 per core, at least 256)");
-  return requested > 0 ? requested : std::min(omp_get_max_threads(), max_threads());
+  return requested > 0 ? requested : all_cores();
 }
 
 }  // namespace detail

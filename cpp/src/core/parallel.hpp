@@ -5,6 +5,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -20,9 +21,40 @@ std::atomic<bool>*& current_stop_flag();
 // enclosing parallel_for has failed. Cheap enough for every loop that may run for long.
 void cancellation_point();
 
-// The OpenMP team size for the user's `threads` option: 0 means all cores; a negative count or one above
-// max_threads() throws std::invalid_argument naming the option.
+// The OpenMP team size for the user's `threads` option: 0 means all cores (all_cores()); a negative count
+// or one above max_threads() throws std::invalid_argument naming the option.
 int thread_count(int requested);
+
+// Thread policy for `threads = 0` on a busy machine. A team cannot end before its last thread has started,
+// and on a loaded machine a thread may wait several scheduler time slices to start: a call of a few
+// milliseconds then takes many times its one-thread time. Every team reports when its last thread started;
+// one that started late (> 1 ms and > 1/4 of the region) makes all_cores() answer 1 for the next second,
+// after which a full team is tried again. Explicit counts are always honoured. Results do not depend on it.
+int all_cores();
+void note_team_start(int threads, long long latest_start_ns, long long region_ns);
+
+// Measures when the threads of one team start (TeamClock clock; in the region: clock.started(); after
+// it: clock.report(threads)).
+class TeamClock {
+ public:
+  TeamClock() : start_(now_ns()) {}
+  void started() {
+    const long long late = now_ns() - start_;
+    long long seen = latest_.load(std::memory_order_relaxed);
+    while (late > seen && !latest_.compare_exchange_weak(seen, late, std::memory_order_relaxed)) {
+    }
+  }
+  void report(int threads) const { note_team_start(threads, latest_.load(), now_ns() - start_); }
+
+ private:
+  static long long now_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  long long start_;
+  std::atomic<long long> latest_{0};
+};
 
 // body(i) for i in [0, count) on `threads` threads (from thread_count), dynamic schedule.
 template <class Body>
@@ -33,8 +65,10 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  TeamClock clock;
 #pragma omp parallel num_threads(threads)
   {
+    clock.started();
     std::atomic<bool>*& flag = current_stop_flag();
     std::atomic<bool>* const enclosing = flag;
     flag = &stop;
@@ -52,6 +86,7 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
     }
     flag = enclosing;
   }
+  clock.report(threads);
   if (failure) std::rethrow_exception(failure);
 }
 

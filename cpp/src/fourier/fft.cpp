@@ -9,72 +9,39 @@
 #include <tuple>
 
 #include "core/parallel.hpp"
+#include "fourier/fft_passes.hpp"
 
 namespace lidar_overlap {
 
 namespace {
 
-std::mutex& planner_mutex() {
-  static std::mutex m;
-  return m;
-}
+// From this many points a transform is shared over threads: 256^2 takes ~0.3 ms on one core, which a
+// dynamically scheduled team still shortens; below it a team's start-up is not repaid.
+constexpr std::size_t kThreadedPoints = std::size_t{1} << 16;
 
-
-// (rows, length, sign, threads, FFTW planner flag) -> plan. Plans live for the whole process.
-using PlanKey = std::tuple<std::size_t, std::size_t, int, int, unsigned>;
-
-// Below this many points a transform is too small to gain from threads, and inside a parallel region
-// (several transforms at once) threads would only oversubscribe the cores.
-constexpr std::size_t kThreadedPoints = std::size_t{1} << 20;
-
-// Inside the library's loops over ranges or realisations (any OpenMP region, even a team of one) every
-// transform is single-threaded and planned with FFTW_ESTIMATE, whose choice is fixed for a machine: the
-// overlap paths then give the same bits whatever the thread count and in every process. FFTW_MEASURE,
-// which times candidates, serves the calls made outside such loops (propagate, point_image).
-bool in_library_loop() { return omp_get_level() > 0; }
-
-int threads_for(std::size_t points) {
-  if (points < kThreadedPoints || in_library_loop()) return 1;
-  return omp_get_max_threads();
-}
-
-// FFTW_MEASURE plans a 2048^2 transform for tens of seconds: beyond 1024^2 points it would cost more than it saves.
-constexpr std::size_t kMeasuredPoints = std::size_t{1} << 20;
-
-unsigned planner_flag(FftPlanning planning, std::size_t points) {
-  const bool measure = planning == FftPlanning::measure && !in_library_loop() && points <= kMeasuredPoints;
-  return measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-}
-
-fftw_plan get_plan(const PlanKey& key, bool two_d) {
-  // Plans live as long as the process: the cache is never destroyed, so no plan outlives FFTW's cleanup
-  // and leak checkers see reachable memory.
-  static auto& plans = *new std::map<std::pair<bool, PlanKey>, fftw_plan>;
-  std::lock_guard<std::mutex> lock(planner_mutex());
-  auto it = plans.find({two_d, key});
-  if (it != plans.end()) return it->second;
-  static bool threads_ready = false;
+// (length, rows per plan, sign) -> plan, made once and kept for the whole process (the map is never
+// destroyed, so no plan outlives FFTW's cleanup and leak checkers see reachable memory).
+fftw_plan block_plan(std::size_t length, std::size_t count, int sign) {
+  static auto& plans = *new std::map<std::tuple<std::size_t, std::size_t, int>, fftw_plan>;
+  std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+  const auto key = std::make_tuple(length, count, sign);
+  if (auto it = plans.find(key); it != plans.end()) return it->second;
+  // Estimated plans depend on the shape alone, unless wisdom gathered by timing (in this process, by any
+  // FFTW user) steers them: forget it first. Plans are single-threaded: threads share blocks instead.
+  static bool threads_ready = false;  // other FFTW users in the process may plan with threads
   if (!threads_ready) {
     if (fftw_init_threads() == 0) throw std::runtime_error("FFTW threads could not be initialised");
     threads_ready = true;
   }
-  const auto [rows, length, sign, threads, flag] = key;
-  fftw_plan_with_nthreads(threads);
-  // FFTW_ESTIMATE would reuse wisdom that FFTW_MEASURE gathered (timings, different in every process) for
-  // subproblems: forget it, so that estimate plans depend on the shape alone.
-  if (flag == FFTW_ESTIMATE) fftw_forget_wisdom();
-  // Plan on a scratch buffer (FFTW_MEASURE overwrites it); execution uses the caller's buffers.
-  ComplexBuffer scratch(rows * length);
+  fftw_forget_wisdom();
+  fftw_plan_with_nthreads(1);
+  ComplexBuffer scratch(length * count);
   auto* p = reinterpret_cast<fftw_complex*>(scratch.data());
-  fftw_plan plan;
-  if (two_d) {
-    plan = fftw_plan_dft_2d(static_cast<int>(rows), static_cast<int>(length), p, p, sign, flag);
-  } else {
-    const int n = static_cast<int>(length);
-    plan = fftw_plan_many_dft(1, &n, static_cast<int>(rows), p, nullptr, 1, n, p, nullptr, 1, n, sign, flag);
-  }
+  const int n = static_cast<int>(length);
+  const fftw_plan plan = fftw_plan_many_dft(1, &n, static_cast<int>(count), p, nullptr, 1, n, p, nullptr, 1, n,
+                                            sign, FFTW_ESTIMATE);
   if (!plan) throw std::runtime_error("FFTW could not make a plan");
-  plans[{two_d, key}] = plan;
+  plans[key] = plan;
   return plan;
 }
 
@@ -82,19 +49,54 @@ int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD :
 
 }  // namespace
 
-void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning planning) {
+std::mutex& fftw_planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+RowTransform::RowTransform(std::size_t length, FftDirection direction)
+    : length_(length),
+      block_(block_plan(length, kFftBlock, sign_of(direction))),
+      single_(block_plan(length, 1, sign_of(direction))) {}
+
+void RowTransform::operator()(Complex* rows, std::size_t count) const {
+  auto* p = reinterpret_cast<fftw_complex*>(rows);
+  // Plans were made on FFTW-aligned memory; std::complex<double> arrays keep that alignment (16 bytes).
+  if (fftw_alignment_of(reinterpret_cast<double*>(rows)) != 0)
+    throw std::logic_error("RowTransform: a buffer without the alignment of std::complex<double>");
+  if (count == kFftBlock) {
+    fftw_execute_dft(static_cast<fftw_plan>(block_), p, p);
+    return;
+  }
+  for (std::size_t r = 0; r < count; ++r)
+    fftw_execute_dft(static_cast<fftw_plan>(single_), p + r * length_, p + r * length_);
+}
+
+void RowTransform::columns(Complex* block, std::size_t count, std::size_t stride) const {
+  for (std::size_t c = 0; c < count; ++c) (*this)(block + c * stride, 1);
+}
+
+int fft_threads(std::size_t points) {
+  if (points < kThreadedPoints || omp_get_level() > 0) return 1;
+  return detail::all_cores();
+}
+
+void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning) {
   detail::cancellation_point();  // transforms are where long FO runs spend their time
   if (data.size() != n * n) throw std::invalid_argument("fft2d: buffer size is not n * n");
-  auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({n, n, sign_of(direction), threads_for(n * n), planner_flag(planning, n * n)}, true), p, p);
+  const int threads = fft_threads(n * n);
+  detail::row_pass(data.data(), n, n, direction, threads);
+  const RowTransform columns(n, direction);
+  detail::column_pass(data.data(), n, n, threads,
+                      [&](std::size_t, std::size_t count, Complex* block) {
+                        columns.columns(block, count, detail::column_stride(n));
+                      });
 }
 
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
   detail::cancellation_point();
   if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
-  auto* p = reinterpret_cast<fftw_complex*>(data.data());
-  fftw_execute_dft(get_plan({rows, length, sign_of(direction), threads_for(rows * length),
-                            planner_flag(FftPlanning::measure, rows * length)}, false), p, p);
+  detail::row_pass(data.data(), rows, length, direction, fft_threads(rows * length));
 }
 
 }  // namespace lidar_overlap

@@ -1,10 +1,14 @@
-// FFTW plans made once per shape and reused (plan/execute). Planning is serialised behind one mutex,
-// FFTW's threads are initialised once, and execution on other buffers of the same shape uses FFTW's
-// thread-safe new-array interface, so plans may be shared by concurrent calls. Internal header, not installed.
+// Deterministic FFTs: every transform is made of 1-D FFTW plans over fixed blocks of kFftBlock rows (or
+// columns, gathered into a contiguous scratch block), planned with FFTW_ESTIMATE on forgotten wisdom. The
+// arithmetic of each row and column then depends on the shape alone, never on the thread count, the
+// schedule or timings, so results are the same bits for any number of threads and in every process, while
+// the blocks are shared over OpenMP threads. Plans are made once per shape behind one mutex and executed on
+// the caller's buffers (FFTW's thread-safe new-array interface). Internal header, not installed.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
+#include <mutex>
 
 #include "lidar_overlap/fourier/complex_buffer.hpp"
 
@@ -12,17 +16,43 @@ namespace lidar_overlap {
 
 enum class FftDirection { forward, backward };  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
 
-// How hard FFTW plans: `measure` times candidate algorithms once per shape (worth it for shapes used many
-// times); `estimate` plans at once, for large shapes that change from call to call. Inside an OpenMP region
-// (the library's loops over ranges) every plan is `estimate` and single-threaded, so that the overlap paths
-// give the same bits for any thread count and in any process.
+// Kept for callers that state how hard to plan: both now give the same deterministic plans (estimated
+// 1-D plans over blocks), which measure within the time of a measured FFTW 2-D plan (docs/fo_propagation.md).
 enum class FftPlanning { measure, estimate };
+
+// Rows (or columns) per block: one 1-D plan transforms kFftBlock of them; 8 x 16 bytes fill two cache
+// lines per row of a gathered column block.
+inline constexpr std::size_t kFftBlock = 8;
 
 // In-place 2-D transform of an n x n row-major array.
 void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning planning = FftPlanning::measure);
 
 // In-place 1-D transforms of `rows` contiguous rows of `length` each.
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction);
+
+// 1-D transforms of up to kFftBlock contiguous rows of `length`, in place, on the calling thread. The
+// plans come from the process-wide cache on construction; calls are thread-safe. A block of `count` rows
+// always uses the same plan, so a row's bits depend only on (length, count).
+class RowTransform {
+ public:
+  RowTransform(std::size_t length, FftDirection direction);
+  void operator()(Complex* rows, std::size_t count) const;
+  // The `count` columns of a block gathered by detail::column_pass (column c at block + c * stride).
+  void columns(Complex* block, std::size_t count, std::size_t stride) const;
+  std::size_t length() const { return length_; }
+
+ private:
+  std::size_t length_;
+  void* block_;   // fftw_plan of kFftBlock rows
+  void* single_;  // fftw_plan of one row (the rest of a shape that kFftBlock does not divide)
+};
+
+// The lock around every FFTW planner call in the process (FFTW's planner is not thread-safe).
+std::mutex& fftw_planner_mutex();
+
+// Threads for one transform of `points` points: one inside the library's loops over ranges or
+// realisations (any OpenMP region), and for transforms too small to share; else omp_get_max_threads().
+int fft_threads(std::size_t points);
 
 // Smallest power of two >= v: the sizes FFTW transforms fastest (2^63 for any v beyond it).
 inline std::size_t next_power_of_two(std::size_t v) {

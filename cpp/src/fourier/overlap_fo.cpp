@@ -13,6 +13,7 @@
 #include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/fft_passes.hpp"
 #include "fourier/fo_receiver.hpp"
 #include "fourier/overlap_fo_detail.hpp"
 #include "fourier/transfer_table.hpp"
@@ -23,26 +24,36 @@ namespace detail {
 
 double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
   if (np == 0 || !rx.passes_light()) return 0.0;
-  const GaussianBeam& beam = system.beam;
   const std::size_t nb = at_z.n;
   const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
-  const Vec2 c = beam.center(z), o = system.detector.offset;
+  const Vec2 c = system.beam.center(z), o = system.detector.offset;
 
-  ComplexBuffer spectrum(np * np, Complex{});
-  const std::size_t off = np / 2 - nb / 2;
+  // The irradiance zero-padded to np x np, transformed: only its nb rows hold values, so only they are
+  // transformed along x; the spectrum of a real irradiance is Hermitian (S(-f) = conj S(f)), so only the
+  // columns kx = 0 ... np/2 are transformed along y. About a third of the full 2-D transform.
+  const std::size_t off = np / 2 - nb / 2, half = np / 2 + 1;
+  ComplexBuffer rows(nb * np, Complex{});
   for (std::size_t iy = 0; iy < nb; ++iy)
-    for (std::size_t ix = 0; ix < nb; ++ix) spectrum[(iy + off) * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
-  fft2d(spectrum, np, FftDirection::forward);
+    for (std::size_t ix = 0; ix < nb; ++ix) rows[iy * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
+  const int threads = fft_threads(np * np);
+  detail::row_pass(rows.data(), nb, np, FftDirection::forward, threads);
+  ComplexBuffer spectrum(half * np, Complex{});  // column kx at spectrum[kx * np + ky]
+  for (std::size_t k0 = 0; k0 < half; k0 += kFftBlock) {  // gathered in blocks of columns (cache lines)
+    const std::size_t count = std::min(kFftBlock, half - k0);
+    for (std::size_t iy = 0; iy < nb; ++iy)
+      for (std::size_t k = 0; k < count; ++k) spectrum[(k0 + k) * np + iy + off] = rows[iy * np + k0 + k];
+  }
+  detail::row_pass(spectrum.data(), half, np, FftDirection::forward, threads);
   const double e0 = spectrum[0].real();
   const double df = 1.0 / (np * dx);
   auto signed_index = [np](std::size_t k) { return k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np; };
 
   // Frequencies where the beam spectrum exceeds 1e-13 of its peak bound the table of OTF x disc^
-  // (a 1e-10 cut already moves G by 1e-6 at 1000 m).
+  // (a 1e-10 cut already moves G by 1e-6 at 1000 m); |f| is the same at -f.
   double f2_max = 0.0;
-  for (std::size_t ky = 0; ky < np; ++ky)
-    for (std::size_t kx = 0; kx < np; ++kx)
-      if (std::norm(spectrum[ky * np + kx]) > 1e-26 * e0 * e0) {
+  for (std::size_t kx = 0; kx < half; ++kx)
+    for (std::size_t ky = 0; ky < np; ++ky)
+      if (std::norm(spectrum[kx * np + ky]) > 1e-26 * e0 * e0) {
         const double fx = signed_index(kx), fy = signed_index(ky);
         f2_max = std::max(f2_max, fx * fx + fy * fy);
       }
@@ -50,16 +61,29 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   const TransferTable transfer(system, rx, q_max);
 
   // G = (z/d)^2 sum_f T(|f| z/d) Re[exp(2 pi i f.(c + o z/d)) (-1)^(kx+ky) conj(FFT E)] df^2 / (A E(0)),
-  // the phase separable per axis.
+  // the phase separable per axis. T depends on |f| only, so it is evaluated once for the four frequencies
+  // (+-fx, +-fy): column kx in (0, np/2) also stands for its mirror np - kx, whose spectrum is conj(S) at
+  // the opposite fy (Hermitian), and rows ky and np - ky share |fy|.
   const ShiftPhases phase(np, df, c + (1.0 / to_image) * o);
   double sum = 0.0;
-  for (std::size_t ky = 0; ky < np; ++ky) {
-    const double fy = df * signed_index(ky);
-    for (std::size_t kx = 0; kx < np; ++kx) {
-      const double fx = df * signed_index(kx);
+  for (std::size_t kx = 0; kx < half; ++kx) {
+    const double fx = df * signed_index(kx);
+    if (std::abs(fx) / to_image >= q_max) continue;  // every q in this column is beyond the table
+    const bool mirrored = kx != 0 && kx != np / 2;
+    const Complex px = phase.x[kx], px_mirror = phase.x[(np - kx) % np];
+    const Complex* column = spectrum.data() + kx * np;
+    // The terms of rows ky of this column and of its mirror (row np - ky there).
+    auto terms = [&](std::size_t ky) {
+      const Complex s = column[ky];
+      const double t = (px * phase.y[ky] * std::conj(s)).real();
+      return mirrored ? t + (px_mirror * phase.y[(np - ky) % np] * s).real() : t;
+    };
+    for (std::size_t ky = 0; ky <= np / 2; ++ky) {
+      const double fy = df * static_cast<double>(ky);
       const double q = std::sqrt(fx * fx + fy * fy) / to_image;
-      if (q >= q_max) continue;
-      sum += transfer(q) * (phase.x[kx] * phase.y[ky] * std::conj(spectrum[ky * np + kx])).real();
+      if (q >= q_max) break;  // q grows with ky
+      const bool paired = ky != 0 && ky != np / 2;
+      sum += transfer(q) * (paired ? terms(ky) + terms(np - ky) : terms(ky));
     }
   }
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);

@@ -11,16 +11,14 @@
 #include "lidar_overlap/core/limits.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "core/parallel.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/fft_passes.hpp"
 #include "fourier/scaled_dft.hpp"
 
 namespace lidar_overlap {
 
 namespace {
-
-// Grids from this side up are worth splitting across threads (smaller ones lose more to start-up and
-// to other processes than they gain).
-constexpr std::size_t kParallelSide = 1024;
 
 // Fraction of power that decides a field's extent for the validity checks.
 constexpr double kSupportFraction = 1.0 - 1e-6;
@@ -48,16 +46,14 @@ std::vector<Complex> axis_chirp(std::size_t n, double dx, double k, double z, bo
   return c;
 }
 
-// What the validity checks need of a field, gathered in a pass that has other work to do: total
-// power, power in the outer n/16 of the window, and the power per squared radius about the optical
-// axis (bins of n/8 samples^2: no square root per sample, and a quarter sample of radius at r = n/4),
-// taken on every other row and column.
+// What the validity checks need of a field: total power, power in the outer n/16 of the window, and the
+// power per squared radius about the optical axis (bins of n/8 samples^2: no square root per sample, and a
+// quarter sample of radius at r = n/4), taken on every other row and column.
 struct Extent {
   double total = 0.0, border = 0.0;
   std::size_t n;
   std::vector<double> radial;
   explicit Extent(std::size_t n_) : n(n_), radial(4 * n_ + 2, 0.0) {}
-  std::size_t bin(double r2) const { return std::min(radial.size() - 1, static_cast<std::size_t>(r2 * 8.0 / n)); }
   double edge_fraction() const { return total > 0.0 ? border / total : 0.0; }
   // Radius (m) holding `fraction` of the (sampled) radial profile's power, for samples of spacing dx.
   double radius(double fraction, double dx) const {
@@ -71,62 +67,85 @@ struct Extent {
   }
 };
 
-// u[iy, ix] *= scale * a[iy] * a[ix], and the Extent of the result.
-Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a, Complex scale) {
-  Extent e(n);
-  const std::size_t border = std::max<std::size_t>(1, n / 16);
-  const double half = 0.5 * static_cast<double>(n);
-#pragma omp parallel if (n >= kParallelSide)
-  {
-    Extent mine(n);  // per thread, merged once: shared accumulators would bounce between caches
-#pragma omp for
-    for (long iy = 0; iy < static_cast<long>(n); ++iy) {
-      const Complex row = scale * a[iy];
-      const bool edge_row = static_cast<std::size_t>(iy) < border || static_cast<std::size_t>(iy) >= n - border;
-      Complex* line = u.data() + iy * n;
-      double total = 0.0, edge = 0.0;
-      for (std::size_t ix = 0; ix < n; ++ix) {
-        line[ix] *= row * a[ix];
-        total += std::norm(line[ix]);
-      }
-      for (std::size_t ix = 0; ix < border; ++ix) edge += std::norm(line[ix]) + std::norm(line[n - 1 - ix]);
-      mine.total += total;
-      mine.border += edge_row ? total : edge;
-      // The radial profile only bounds the extent for the validity checks: every other row and column
-      // (weighted 4) resolve it to two samples at a quarter of the cost.
-      if (iy % 2) continue;
-      const double y2 = (iy - half) * (iy - half);
-      for (std::size_t ix = 0; ix < n; ix += 2) {
-        const double x = ix - half;
-        mine.radial[mine.bin(x * x + y2)] += 4.0 * std::norm(line[ix]);
-      }
-    }
-#pragma omp critical
-    {
-      e.total += mine.total;
-      e.border += mine.border;
-      for (std::size_t b = 0; b < e.radial.size(); ++b) e.radial[b] += mine.radial[b];
-    }
-  }
-  return e;
+// sum |v_j|^2 over count values, in four interleaved partial sums (one dependent add per four samples);
+// the order is fixed, so the bits are.
+double power(const Complex* v, std::size_t count) {
+  const double* d = reinterpret_cast<const double*>(v);
+  double a[4] = {0.0, 0.0, 0.0, 0.0};
+  std::size_t j = 0;
+  for (; j + 4 <= 2 * count; j += 4)
+    for (int k = 0; k < 4; ++k) a[k] += d[j + k] * d[j + k];
+  for (; j < 2 * count; ++j) a[0] += d[j] * d[j];
+  return (a[0] + a[1]) + (a[2] + a[3]);
 }
 
-// Power in the outer n/16 of the window (the border only is read).
-double border_power(const ComplexBuffer& u, std::size_t n) {
-  const std::size_t border = std::max<std::size_t>(1, n / 16);
-  double sum = 0.0;
-  auto add = [&](std::size_t iy, std::size_t from, std::size_t to) {
-    for (std::size_t ix = from; ix < to; ++ix) sum += std::norm(u[iy * n + ix]);
-  };
-  for (std::size_t iy = 0; iy < n; ++iy) {
-    if (iy < border || iy >= n - border) {
-      add(iy, 0, n);
-    } else {
-      add(iy, 0, border);
-      add(iy, n - border, n);
+// a b for finite values, as std::complex's operator* computes it but without its NaN recovery branch,
+// so that loops of it vectorise (non-finite outputs are caught by the output's total power).
+inline Complex times(Complex a, Complex b) {
+  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
+}
+
+// Gathers an Extent from the lines (rows, or columns: the window is square and the checks symmetric) of a
+// field as a pass finishes each of them, on any thread and in any order. Totals are kept per line and
+// added in line order, so they are the same bits for any schedule; the radial profile is kept per thread
+// (it only places the extent on its bin edges).
+class ExtentSums {
+ public:
+  ExtentSums(std::size_t n, int threads, bool radial)
+      : n_(n), border_(std::max<std::size_t>(1, n / 16)), total_(n), edge_(n),
+        radial_(radial ? threads : 0, std::vector<double>(4 * n + 2, 0.0)) {}
+
+  // Line i holding its final values v[0..n).
+  void add(std::size_t i, const Complex* v) {
+    const double total = power(v, n_);
+    total_[i] = total;
+    edge_[i] = (i < border_ || i >= n_ - border_) ? total : power(v, border_) + power(v + n_ - border_, border_);
+    // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
+    if (radial_.empty() || i % 2) return;
+    std::vector<double>& bins = radial_[omp_get_thread_num()];
+    const std::size_t last = bins.size() - 1;
+    const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half, per_bin = 8.0 / n_;
+    for (std::size_t j = 0; j < n_; j += 2) {
+      const double w = static_cast<double>(j) - half;
+      bins[std::min(last, static_cast<std::size_t>((w * w + u * u) * per_bin))] += 4.0 * std::norm(v[j]);
     }
   }
-  return sum;
+
+  Extent result() const {
+    Extent e(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      e.total += total_[i];
+      e.border += edge_[i];
+    }
+    for (const std::vector<double>& bins : radial_)
+      for (std::size_t b = 0; b < bins.size(); ++b) e.radial[b] += bins[b];
+    return e;
+  }
+
+ private:
+  std::size_t n_, border_;
+  std::vector<double> total_, edge_;
+  std::vector<std::vector<double>> radial_;
+};
+
+// u[iy, ix] *= scale * a[iy] * a[ix], and the Extent of the result (the chirp-z path's multiplications).
+Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a, Complex scale) {
+  const int threads = fft_threads(n * n);
+  ExtentSums sums(n, threads, true);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) if (threads > 1)
+  for (long iy = 0; iy < static_cast<long>(n); ++iy) {
+    const Complex row = scale * a[iy];
+    Complex* line = u.data() + iy * n;
+    for (std::size_t ix = 0; ix < n; ++ix) line[ix] = times(line[ix], times(row, a[ix]));
+    sums.add(static_cast<std::size_t>(iy), line);
+  }
+  return sums.result();
+}
+
+void require_finite(double power, double distance) {
+  if (!std::isfinite(power))
+    throw std::domain_error("propagate: the field holds non-finite values after " + checks::number(distance) +
+                            " m: its input was not finite, or the distance and sampling leave double precision");
 }
 
 }  // namespace
@@ -164,7 +183,8 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
     const double f_limit = 1.0 / (wavelength * std::sqrt(std::pow(2.0 * df * z, 2) + 1.0));
     const Complex carrier = unit_phasor(k * z) / static_cast<double>(n * n);
     transfer_.assign(n * n, Complex{});
-#pragma omp parallel for if (n >= kParallelSide)
+    const int threads = fft_threads(n * n);
+#pragma omp parallel for num_threads(threads) if (threads > 1)
     for (long iy = 0; iy < static_cast<long>(n); ++iy) {
       const double fy = frequency(iy, n, spacing);
       for (std::size_t ix = 0; ix < n; ++ix) {
@@ -222,41 +242,91 @@ Propagated PropagationPlan::execute(Field in) const {
   r.method = method_;
   r.critical_distance = critical_distance_;
   ComplexBuffer& u = in.values;  // the field is ours: transform it in place
+  const int threads = fft_threads(n_ * n_);
 
   if (method_ == PropagationMethod::angular_spectrum) {
-    // Totals come from the spectrum (Parseval), so only the window borders are read in space.
-    const double input_border = border_power(u, n_);
-    double input_total = 0.0, output_total = 0.0, removed = 0.0;
-    if (distance_ != 0.0) {
-      fft2d(u, n_, FftDirection::forward);
-#pragma omp parallel for reduction(+ : input_total, output_total, removed) if (n_ >= kParallelSide)
-      for (long i = 0; i < static_cast<long>(n_ * n_); ++i) {
-        const double p = std::norm(u[i]);
-        input_total += p;
-        if (transfer_[i] == Complex{}) removed += p;
-        u[i] *= transfer_[i];
-        output_total += std::norm(u[i]);
-      }
-      fft2d(u, n_, FftDirection::backward);
-      const double nn = static_cast<double>(n_ * n_);
-      input_total /= nn;        // sum |u|^2 = sum |U|^2 / n^2 (unnormalised FFT)
-      output_total *= nn;       // the inverse FFT multiplies power by n^2
+    // Three passes over the field: forward rows (the input's sums on the way), then per block of columns
+    // the forward column transforms, the transfer function and the backward column transforms while the
+    // block is in cache, then backward rows (the output's sums). The transfer function is symmetric in
+    // (fx, fy), so column kx reads it contiguously at transfer_[kx * n + ky].
+    ExtentSums input(n_, threads, false), output(n_, threads, false);
+    auto none = [](std::size_t, Complex*) {};
+    if (distance_ == 0.0) {
+      for (std::size_t iy = 0; iy < n_; ++iy) input.add(iy, u.data() + iy * n_);
+      output = input;
     } else {
-      for (const Complex& v : u) input_total += std::norm(v);
-      output_total = input_total;
+      detail::cancellation_point();
+      std::vector<double> spectrum(n_), removed(n_);
+      detail::row_pass(u.data(), n_, n_, FftDirection::forward, threads,
+                       [&](std::size_t iy, Complex* line) { input.add(iy, line); }, none);
+      const RowTransform forward(n_, FftDirection::forward), backward(n_, FftDirection::backward);
+      detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
+        const std::size_t stride = detail::column_stride(n_);
+        forward.columns(block, count, stride);
+        for (std::size_t c = 0; c < count; ++c) {
+          Complex* column = block + c * stride;
+          const Complex* h = transfer_.data() + (x0 + c) * n_;
+          // Only the band edge is zero: the power it removes is summed where h vanishes, the rest multiplied.
+          double cut = 0.0;
+          spectrum[x0 + c] = power(column, n_);
+          for (std::size_t ky = 0; ky < n_; ++ky) {
+            if (h[ky] == Complex{}) cut += std::norm(column[ky]);
+            column[ky] = times(column[ky], h[ky]);
+          }
+          removed[x0 + c] = cut;
+        }
+        backward.columns(block, count, stride);
+      });
+      detail::row_pass(u.data(), n_, n_, FftDirection::backward, threads, none,
+                       [&](std::size_t iy, Complex* line) { output.add(iy, line); });
+      double spectrum_total = 0.0, removed_total = 0.0;
+      for (std::size_t k = 0; k < n_; ++k) {
+        spectrum_total += spectrum[k];
+        removed_total += removed[k];
+      }
+      r.band_limit_loss = spectrum_total > 0.0 ? removed_total / spectrum_total : 0.0;
     }
-    r.band_limit_loss = input_total > 0.0 ? removed / (input_total * n_ * n_) : 0.0;
-    r.input_edge_power = input_total > 0.0 ? input_border / input_total : 0.0;
-    r.output_edge_power = output_total > 0.0 ? border_power(u, n_) / output_total : 0.0;
+    const Extent before = input.result(), after = output.result();
+    require_finite(after.total, distance_);
+    r.input_edge_power = before.edge_fraction();
+    r.output_edge_power = after.edge_fraction();
     out.field = Field{std::move(u), n_, spacing_, wavelength_};
     return out;
   }
 
-  const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
-  const Extent before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
-  if (single_fft_) fft2d(u, n_, FftDirection::forward);
-  else u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
-  const Extent after = apply_separable(u, n_, chirp_out_, front_);
+  Extent before(n_), after(n_);
+  if (single_fft_) {
+    // One forward transform: the input chirp applied to each row before its transform, the output chirp
+    // and front factor to each column after its transform, the sums of both on the way.
+    detail::cancellation_point();
+    ExtentSums input(n_, threads, true), output(n_, threads, true);
+    detail::row_pass(u.data(), n_, n_, FftDirection::forward, threads,
+                     [&](std::size_t iy, Complex* line) {
+                       const Complex row = chirp_in_[iy];
+                       for (std::size_t ix = 0; ix < n_; ++ix) line[ix] = times(line[ix], times(row, chirp_in_[ix]));
+                       input.add(iy, line);
+                     },
+                     [](std::size_t, Complex*) {});
+    const RowTransform columns(n_, FftDirection::forward);
+    detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
+      const std::size_t stride = detail::column_stride(n_);
+      columns.columns(block, count, stride);
+      for (std::size_t c = 0; c < count; ++c) {
+        Complex* column = block + c * stride;
+        const Complex scale = front_ * chirp_out_[x0 + c];
+        for (std::size_t ky = 0; ky < n_; ++ky) column[ky] = times(column[ky], times(scale, chirp_out_[ky]));
+        output.add(x0 + c, column);
+      }
+    });
+    before = input.result();
+    after = output.result();
+  } else {
+    const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
+    before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
+    u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
+    after = apply_separable(u, n_, chirp_out_, front_);
+  }
+  require_finite(after.total, distance_);
   out.field = Field{std::move(u), n_, output_spacing_, wavelength_};
   r.input_edge_power = before.edge_fraction();
   r.output_edge_power = after.edge_fraction();
@@ -273,12 +343,7 @@ Propagated PropagationPlan::execute(Field in) const {
 
 Propagated propagate(Field in, double distance, PropagationMethod method, double output_spacing) {
   const auto plan = PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing);
-  Propagated out = plan->execute(std::move(in));
-  for (const Complex& v : out.field.values)
-    if (!std::isfinite(v.real()) || !std::isfinite(v.imag()))
-      throw std::domain_error("propagate: the field holds non-finite values after " + checks::number(distance) +
-                              " m: its input was not finite, or the distance and sampling leave double precision");
-  return out;
+  return plan->execute(std::move(in));  // which checks that the output is finite
 }
 
 }  // namespace lidar_overlap

@@ -9,8 +9,9 @@ namespace lidar_overlap {
 
 namespace {
 
-// Work from this size up is split across threads.
+// Work from this size up is split across threads (the transforms' own policy, fft_threads).
 constexpr std::size_t kParallelPoints = std::size_t{1} << 20;
+int threads_for(std::size_t points) { return points >= kParallelPoints ? fft_threads(points) : 1; }
 
 // exp(i pi alpha k^2) with the phase reduced before the exponential (k^2 alpha can be large).
 Complex chirp(double alpha, double k) {
@@ -31,19 +32,19 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
   fft_rows(kernel, 1, len, FftDirection::forward);
 
   ComplexBuffer work(rows * len, Complex{});
-#pragma omp parallel for if (rows * len >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r)
     for (std::size_t i = 0; i < n; ++i)
       work[r * len + i] = in[r * n + i] * std::conj(chirp(alpha, static_cast<double>(i) - half_n));
   fft_rows(work, rows, len, FftDirection::forward);
-#pragma omp parallel for if (rows * len >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r)
     for (std::size_t i = 0; i < len; ++i) work[r * len + i] *= kernel[i];
   fft_rows(work, rows, len, FftDirection::backward);
 
   ComplexBuffer out(rows * m);
   const double scale = 1.0 / static_cast<double>(len);
-#pragma omp parallel for if (rows * len >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r)
     for (std::size_t j = 0; j < m; ++j)
       out[r * m + j] = scale * work[r * len + j + n - 1] * std::conj(chirp(alpha, static_cast<double>(j) - half_m));
@@ -52,7 +53,7 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
 
 ComplexBuffer transpose(const ComplexBuffer& a, std::size_t rows, std::size_t cols) {
   ComplexBuffer t(rows * cols);
-#pragma omp parallel for if (rows * cols >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows * cols)) if (rows * cols >= kParallelPoints)
   for (long c = 0; c < static_cast<long>(cols); ++c)
     for (std::size_t r = 0; r < rows; ++r) t[c * rows + r] = a[r * cols + c];
   return t;

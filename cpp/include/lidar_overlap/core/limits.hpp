@@ -29,12 +29,14 @@ void set_max_memory(std::size_t bytes);
 // Threads one call may use (the `threads` option; 0 means all cores): at most max(256, 4 x cores).
 //
 // Threading contract. Each overlap call runs its ranges (or realisations) on an OpenMP team of `threads`
-// threads; 0 means all cores for that call alone. Calls are thread-safe, so a program may call from several
+// threads; 0 means all cores for that call alone, or one thread for a second after a team of this process
+// started late on a busy machine (docs/reliability.md, "Thread policy"). Calls are thread-safe, so a program may call from several
 // threads of its own, but N callers that each pass 0 run N teams of all cores at once: such callers pass
 // threads = 1 (the call then runs on the caller's thread alone, also inside the caller's own OpenMP team)
 // or their share of the cores. Results do not depend on `threads` (tests/cpp/test_threading_contract.cpp).
-// propagate, design_flat_top and point_image have no `threads` option: on grids from 1024 x 1024 they use
-// the calling thread's OpenMP team size (omp_set_num_threads in that thread, or OMP_NUM_THREADS).
+// propagate, design_flat_top and point_image have no `threads` option: on grids from 256 x 256 they use
+// the calling thread's OpenMP team size (omp_set_num_threads in that thread, or OMP_NUM_THREADS), with the
+// same policy as threads = 0.
 int max_threads();
 
 }  // namespace lidar_overlap

@@ -1,0 +1,96 @@
+// The two passes a 2-D transform is made of, with hooks that run on each row or column block while it is
+// in cache, so that the multiplications and sums of a propagation cost no pass of their own (fused).
+// Blocks are fixed by the shape and handed out dynamically: a thread that the machine's load delays holds
+// up one block, not a share of the pass. Hooks must not throw. Internal header, not installed.
+#pragma once
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+
+#include "core/parallel.hpp"
+#include "fourier/fft.hpp"
+
+namespace lidar_overlap::detail {
+
+// For each row r of a rows x length row-major array: before(r, row), its 1-D transform, after(r, row).
+template <class Before, class After>
+void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads,
+              Before&& before, After&& after) {
+  const RowTransform transform(length, direction);
+  const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
+  TeamClock clock;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    clock.started();
+#pragma omp for schedule(dynamic, 1)
+    for (long b = 0; b < blocks; ++b) {
+      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
+      Complex* block = data + r0 * length;
+      for (std::size_t r = 0; r < count; ++r) before(r0 + r, block + r * length);
+      transform(block, count);
+      for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
+    }
+  }
+  clock.report(threads);
+}
+
+inline void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads) {
+  auto none = [](std::size_t, Complex*) {};
+  row_pass(data, rows, length, direction, threads, none, none);
+}
+
+// One complex value as one 16-byte move (a plain assignment copies its two parts one by one).
+inline void copy_one(const Complex* from, Complex* to) { std::memcpy(static_cast<void*>(to), from, sizeof(Complex)); }
+
+// Columns [0, K) of a rows x cols array (starting at `first`) into K contiguous columns, and back.
+template <std::size_t K>
+void gather(const Complex* first, std::size_t rows, std::size_t cols, std::size_t stride, Complex* block) {
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t c = 0; c < K; ++c) copy_one(first + r * cols + c, block + c * stride + r);
+}
+template <std::size_t K>
+void scatter(const Complex* block, std::size_t rows, std::size_t cols, std::size_t stride, Complex* first) {
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t c = 0; c < K; ++c) copy_one(block + c * stride + r, first + r * cols + c);
+}
+
+// Distance between the gathered columns of a block: one cache line more than the column, so that the
+// block's columns (and the rows they come from, a power of two apart) do not share cache sets.
+inline std::size_t column_stride(std::size_t rows) { return rows + 4; }
+
+// For each block of up to kFftBlock columns of a rows x cols row-major array: the columns gathered into
+// a scratch block (column c of the block at scratch + c * column_stride(rows), contiguous), work(first
+// column, count, scratch), the block written back. RowTransform::columns transforms such a block.
+template <class Work>
+void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {
+  const long blocks = static_cast<long>((cols + kFftBlock - 1) / kFftBlock);
+  TeamClock clock;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    clock.started();
+    const std::size_t stride = column_stride(rows);
+    ComplexBuffer scratch(kFftBlock * stride);
+#pragma omp for schedule(dynamic, 1)
+    for (long b = 0; b < blocks; ++b) {
+      const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, cols - c0);
+      Complex* s = scratch.data();
+      if (count == kFftBlock) {  // the common case, unrolled by the compiler
+        gather<kFftBlock>(data + c0, rows, cols, stride, s);
+        work(c0, count, s);
+        scatter<kFftBlock>(s, rows, cols, stride, data + c0);
+      } else {
+        for (std::size_t r = 0; r < rows; ++r)
+          for (std::size_t c = 0; c < count; ++c) copy_one(data + r * cols + c0 + c, s + c * stride + r);
+        work(c0, count, s);
+        for (std::size_t r = 0; r < rows; ++r)
+          for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, data + r * cols + c0 + c);
+      }
+    }
+  }
+  clock.report(threads);
+}
+
+}  // namespace lidar_overlap::detail

@@ -1,0 +1,101 @@
+// The deterministic transforms (cpp/src/fourier/fft.cpp): each is the DFT (against a direct sum and a plane
+// wave's closed form), and its bits do not depend on the thread count, inside a caller's team or not.
+#include <omp.h>
+
+#include <cmath>
+#include <complex>
+#include <cstring>
+#include <string>
+
+#include "check.hpp"
+#include "core/constants.hpp"
+#include "fourier/fft.hpp"
+
+using namespace lidar_overlap;
+
+namespace {
+
+// Round-off of an n-point FFT relative to the largest value: ~1e-16 log2(n); 1e-12 leaves room.
+constexpr double kRoundOff = 1e-12;
+
+ComplexBuffer pseudo_random(std::size_t size) {
+  ComplexBuffer v(size);
+  unsigned long long s = 12345;
+  for (Complex& x : v) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double a = static_cast<double>(s >> 11) / 9007199254740992.0;
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    x = {a - 0.5, static_cast<double>(s >> 11) / 9007199254740992.0 - 0.5};
+  }
+  return v;
+}
+
+bool same_bits(const ComplexBuffer& a, const ComplexBuffer& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Complex)) == 0;
+}
+
+ComplexBuffer transformed(const ComplexBuffer& in, std::size_t n, int threads, FftDirection d) {
+  ComplexBuffer out = in;
+  omp_set_num_threads(threads);
+  fft2d(out, n, d);
+  return out;
+}
+
+}  // namespace
+
+int main() {
+  const int cores = omp_get_num_procs();
+  for (std::size_t n : {8, 12, 64, 250, 256, 512, 1024}) {  // 12 and 250: sizes kFftBlock does not divide
+    const std::string at = " (n = " + std::to_string(n) + ")";
+    // A plane wave exp(2 pi i (a x + b y) / n) transforms to n^2 at (a, b) and 0 elsewhere.
+    const std::size_t a = 3 % n, b = (n / 2 + 1) % n;
+    ComplexBuffer wave(n * n);
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x)
+        wave[y * n + x] = std::polar(1.0, 2.0 * kPi * static_cast<double>(a * x + b * y) / static_cast<double>(n));
+    const ComplexBuffer spectrum = transformed(wave, n, 1, FftDirection::forward);
+    double worst = 0.0;
+    for (std::size_t k = 0; k < n * n; ++k)
+      worst = std::max(worst, std::abs(spectrum[k] - (k == b * n + a ? Complex(double(n * n)) : Complex{})));
+    test::near("plane wave -> n^2 delta" + at, worst / double(n * n), 0.0, kRoundOff);
+
+    // Forward then backward is n^2 times the input; bits equal for 1, 2 and all cores, and the
+    // same inside a caller's OpenMP team (where the transform runs on one thread).
+    const ComplexBuffer in = pseudo_random(n * n);
+    const ComplexBuffer one = transformed(in, n, 1, FftDirection::forward);
+    bool same = true;
+    for (int t : {2, cores, 3}) same = same && same_bits(one, transformed(in, n, t, FftDirection::forward));
+    ComplexBuffer nested;
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp single
+      {
+        nested = in;
+        fft2d(nested, n, FftDirection::forward);
+      }
+    }
+    test::that("forward transform: same bits for 1, 2, 3 and all threads and inside a team" + at,
+               same && same_bits(one, nested));
+    ComplexBuffer back = one;
+    fft2d(back, n, FftDirection::backward);
+    double err = 0.0;
+    for (std::size_t k = 0; k < n * n; ++k) err = std::max(err, std::abs(back[k] / double(n * n) - in[k]));
+    test::near("backward(forward(u)) / n^2 = u" + at, err, 0.0, kRoundOff);
+  }
+
+  // fft_rows against a direct sum on rows of a length that kFftBlock does not divide (and 13 rows).
+  const std::size_t rows = 13, length = 40;
+  const ComplexBuffer in = pseudo_random(rows * length);
+  ComplexBuffer out = in;
+  fft_rows(out, rows, length, FftDirection::backward);
+  double worst = 0.0;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t k = 0; k < length; ++k) {
+      Complex sum{};
+      for (std::size_t j = 0; j < length; ++j)
+        sum += in[r * length + j] * std::polar(1.0, 2.0 * kPi * double(j * k % length) / double(length));
+      worst = std::max(worst, std::abs(sum - out[r * length + k]));
+    }
+  test::near("fft_rows = direct sum, exp(+2 pi i jk/n)", worst, 0.0, kRoundOff);
+  return test::report("test_fft");
+}
