@@ -33,6 +33,7 @@ from .telecover import TelecoverResult, telecover
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 from .turbulence import Turbulence, TurbulentOverlapResult
 from .turbulent_study import turbulent_realizations
+from .views.app import view
 
 __all__ = [
     "__version__",
@@ -100,6 +101,7 @@ __all__ = [
     "telecover",
     "tolerance_study",
     "turbulent_realizations",
+    "view",
     "propagate",
     "save_scene",
     "scene",

@@ -1,6 +1,7 @@
 """Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see :mod:`.scenario`),
 ``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH ...`` (see :mod:`.cli_fit`) and
-``lidar-overlap telecover SCENARIO.toml [--measurements CSV --free PATH ...]`` (see :mod:`.cli_telecover`).
+``lidar-overlap telecover SCENARIO.toml [--measurements CSV --free PATH ...]`` (see :mod:`.cli_telecover`) and
+``lidar-overlap view SCENARIO.toml`` (the interactive page, see :mod:`.views.app`).
 
 Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library refuses, a
 file that cannot be read or written; 2 a command-line syntax error (argparse); 130 interrupted (Ctrl-C). A
@@ -28,6 +29,8 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import List, Optional
 
+import numpy as np
+
 from . import _files
 from ._core import __version__
 from .scenario import METHODS, Scenario, load_scenario, table1_scenarios
@@ -49,7 +52,7 @@ class _Parser(argparse.ArgumentParser):
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file.")
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit,telecover}")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit,telecover,view}")
     run = sub.add_parser("run", help="compute one scenario (TOML) and write its files",
                          description="Compute a scenario and write <name>.csv, <name>.nc, <name>_overlap.png and "
                                      "<name>_scene.png, as its [output] section asks.")
@@ -75,6 +78,18 @@ def _parser() -> argparse.ArgumentParser:
                     help="the quadrants north, east, south, west (default) or N equal sectors from +x")
     tc.add_argument("--measurements", type=Path, help="CSV with the header range_m,<sector>,...[,sigma]")
     tc.add_argument("--free", nargs="+", metavar="PATH", help="parameters to fit with --measurements, e.g. beam.tilt")
+    view = sub.add_parser("view", help="the scenario's system as an interactive page in the browser",
+                          description="Serve the scenario's system on localhost: its 3-D scene, sliders for the "
+                                      "alignment and receiver, G(z) by ray tracing (200 ranges over the scenario's "
+                                      "span), the detector image; the save button writes <name>.toml and .csv. "
+                                      "Needs pip install 'lidar-overlap[app]'.")
+    view.add_argument("scenario", help="scenario file (TOML) with a Gaussian beam")
+    view.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one, printed)")
+    view.add_argument("--telecover", action="store_true", help="show the quadrants' telecover deviations")
+    view.add_argument("--no-browser", action="store_true", help="do not open the system browser")
+    view.add_argument("--timeout", type=float, default=0.0,
+                      help="stop when no page has been connected for this many seconds (default 0: never)")
+    view.add_argument("--out", type=Path, help="where the save button writes (default: ./<name>/)")
     for p, default in ((run, "./<name>/"), (demo, "./lidar-overlap-demo/"), (fit, "./<name>/"), (tc, "./<name>/")):
         p.add_argument("--out", type=Path, help=f"output directory (default: {default})")
         p.add_argument("--method", choices=METHODS,
@@ -97,6 +112,8 @@ def main(argv: Optional[List[str]] = None) -> int:
             return _fit(load_scenario(args.scenario), args)
         if args.command == "telecover":
             return _telecover(args)
+        if args.command == "view":
+            return _view(args)
         if args.command == "run":
             scenario = load_scenario(args.scenario)
             _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
@@ -165,6 +182,21 @@ def _telecover(args) -> int:
         return _fail(str(exc), 1)
     if not args.quiet:
         print("\n".join(lines + [f"  files         {', '.join(files)}"]))
+    return 0
+
+
+def _view(args) -> int:
+    from .views.app import view
+
+    scenario = load_scenario(args.scenario)
+    z = scenario.ranges
+    ranges = np.geomspace(z[0], z[-1], 200) if z.size > 1 else z
+    try:
+        view(scenario.system, ranges, telecover="quadrants" if args.telecover else None, name=scenario.name,
+             out=args.out or Path(scenario.name), port=args.port, open_browser=not args.no_browser,
+             timeout=args.timeout, tolerance=scenario.options.get("tolerance", 1e-4), block=True)
+    except ImportError as exc:
+        return _fail(str(exc), 1)
     return 0
 
 

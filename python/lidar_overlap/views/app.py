@@ -58,7 +58,8 @@ class App:
         for key, s in twin.sliders.items():
             state[key] = self._positions[key]
         state.update(dict(probe=twin.probe, error="", saved="", timing="", scene_version=0))
-        self._publish(0.0)
+        self._publish()
+        self._show_timing(0.0)
         self.state.change(*twin.sliders, "probe")(self._on_change)
 
         with Layout(self.server) as layout:
@@ -72,12 +73,14 @@ class App:
             with layout.drawer as drawer:
                 drawer.width = 330
                 for key, s in twin.sliders.items():
-                    html.Div(f"{s.label}: {{{{ text_{key} }}}}", classes="text-caption px-4 pt-1")
-                    v3.VSlider(v_model=(key, self._positions[key]), min=0, max=s.n, step=1, id=f"slider-{key}",
-                               hide_details=True, density="compact", classes="px-4")
+                    html.Div(f"{s.label}: {{{{ text_{key} }}}}", id=f"label-{key}", classes="text-caption px-4 pt-1")
+                    with html.Div(id=f"slider-{key}"):
+                        v3.VSlider(v_model=(key, self._positions[key]), min=0, max=s.n, step=1, hide_details=True,
+                                   density="compact", classes="px-4")
                 html.Div("detector image at z = {{ text_probe }}", classes="text-caption px-4 pt-3")
-                v3.VSlider(v_model=("probe", twin.probe), min=0, max=twin.ranges.size - 1, step=1,
-                           id="slider-probe", hide_details=True, density="compact", classes="px-4")
+                with html.Div(id="slider-probe"):
+                    v3.VSlider(v_model=("probe", twin.probe), min=0, max=twin.ranges.size - 1, step=1,
+                               hide_details=True, density="compact", classes="px-4")
                 html.Div("{{ saved }}", id="saved", classes="text-caption px-4 pt-3")
             with layout.content:
                 with v3.VContainer(fluid=True, classes="pa-0 fill-height"):
@@ -113,11 +116,17 @@ class App:
             self.state.update({k: self._positions[k] for k in moved})
             return
         self._positions.update(moved)
+        t0 = time.perf_counter()
         self.scene.update()
-        self.ctrl.view_update()
-        self._publish(time.perf_counter() - start)
+        self.twin.timing["scene"] = time.perf_counter() - t0
+        with self.state:                 # the figures go out first: they are drawn faster than the scene
+            self._publish()
+        t1 = time.perf_counter()
+        self.ctrl.view_update()          # the moved coordinates to vtk.js
+        self.twin.timing["send"] = time.perf_counter() - t1
+        self._show_timing(time.perf_counter() - start)
 
-    def _publish(self, elapsed: float) -> None:
+    def _publish(self) -> None:
         """Every figure and text of the twin's current state into the page's state."""
         twin, state = self.twin, self.state
         for key, s in twin.sliders.items():
@@ -135,10 +144,17 @@ class App:
         state.image_figure = self._image_figure()
         if twin.deviation is not None:
             state.telecover_figure = self._telecover_figure()
-        t = twin.timing
-        state.timing = (f"update {1e3 * elapsed:.0f} ms (G {1e3 * t['overlap']:.0f}, image {1e3 * t['image']:.0f}"
-                        + (f", telecover {1e3 * t['telecover']:.0f}" if twin.deviation is not None else "") + ")")
         state.error = ""
+
+    def _show_timing(self, elapsed: float) -> None:
+        """The server's time for the last update, and its parts, on the page; counts the scene's updates."""
+        twin, state = self.twin, self.state
+        t = twin.timing
+        parts = [("G", "overlap"), ("image", "image"), ("telecover", "telecover"), ("scene", "scene"),
+                 ("scene sent", "send")]
+        state.timing = f"update {1e3 * elapsed:.0f} ms (" + ", ".join(
+            f"{label} {1e3 * t[key]:.0f}" for label, key in parts if key in t and (key != "telecover" or
+                                                                               twin.deviation is not None)) + ")"
         state.scene_version = int(state.scene_version or 0) + 1
 
     def _image_figure(self) -> dict:

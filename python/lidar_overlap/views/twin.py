@@ -46,7 +46,7 @@ class Slider:
 
     def value(self, position: int) -> float:
         """The SI value at slider ``position`` (an integer 0..n)."""
-        if isinstance(position, bool) or not float(position).is_integer() or not 0 <= position <= self.n:
+        if not _is_index(position, self.n):
             raise ValueError(f"{self.key} = {position!r} is invalid: expected a slider position, an integer "
                              f"from 0 to {self.n}")
         return (self.start + int(position)) * self.step    # an integer times step: 20 * 1e-5 is 2e-4
@@ -61,6 +61,12 @@ class Slider:
 
     def shown(self, value: float) -> str:
         return f"{value * self.factor:.4g} {self.unit}"
+
+
+def _is_index(value, high: int) -> bool:
+    """``value`` is an integer (int or integral float, not bool) from 0 to ``high``."""
+    return (isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+            and float(value).is_integer() and 0 <= value <= high)
 
 
 def _nice(x: float) -> float:
@@ -172,8 +178,7 @@ class Twin:
             if key not in self.sliders:
                 raise ValueError(f"slider {key!r} is invalid: expected one of {', '.join(self.sliders)}")
         values = {**self.values, **{k: self.sliders[k].value(p) for k, p in positions.items()}}
-        if probe is not None and (isinstance(probe, bool) or not float(probe).is_integer()
-                                  or not 0 <= probe < self.ranges.size):
+        if probe is not None and not _is_index(probe, self.ranges.size - 1):
             raise ValueError(f"probe = {probe!r} is invalid: expected an index from 0 to {self.ranges.size - 1}")
         t0 = time.perf_counter()
         system = self.system_for(values)

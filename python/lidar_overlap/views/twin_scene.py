@@ -10,8 +10,9 @@ import numpy as np
 
 from .headless import use_headless_gl
 
-N_PHI = 72              # samples around every circle, as lidar_overlap.scene
-N_Z = 121               # ranges along the tubes
+# Fewer samples than lidar_overlap.scene: each update sends the tubes' coordinates to the browser.
+N_PHI = 48              # samples around every circle
+N_Z = 81                # ranges along the tubes
 SECTOR_COLORS = ("#e41a1c", "#377eb8", "#4daf4a", "#984ea3", "#ff7f00", "#a65628", "#f781bf", "#999999")
 MISSING = "the interactive view needs its extra: pip install 'lidar-overlap[app]'"
 
