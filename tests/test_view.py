@@ -107,6 +107,22 @@ def test_view_refuses_bad_server_options(kwargs, message):
         lo.view(lo.paper_table1(), block=False, **kwargs)
 
 
+def test_view_in_a_running_event_loop_returns_the_app_unstarted(tmp_path):
+    pytest.importorskip("trame")
+
+    async def in_a_notebook():            # Jupyter runs cells in an event loop: lo.view must not block it
+        return lo.view(lo.paper_table1(), telecover="quadrants", out=tmp_path)
+
+    app = __import__("asyncio").run(in_a_notebook())
+    try:
+        assert not app.server.running and app.twin.deviation is not None
+        assert app.state.curve_figure["data"][0]["y"] == app.twin.result.overlap.tolist()
+        app.save()
+        assert (tmp_path / "view.toml").exists() and "saved" in app.state.saved
+    finally:
+        app.scene.close()
+
+
 def test_saved_scenario_reads_back_to_the_same_system_and_curve(tmp_path):
     system = lo.paper_table1(obstruction_radius=0.02)
     twin = Twin(system, np.geomspace(2.0, 800.0, 40), name="saved")
@@ -139,8 +155,14 @@ def test_twin_scene_follows_the_system():
         mesh = reference.lidar_meshes["fov"]
         reference.close()
         theirs = mesh.points[np.abs(mesh.points[:, 2] - z) <= 1e-9 * z]
-        ours = scene.meshes["fov"].points[k * N_PHI:(k + 1) * N_PHI]
-        np.testing.assert_allclose(ours, theirs, rtol=1e-9, atol=1e-9)
+        fov_centre = theirs[:, :2].mean(axis=0)
+        fov_radius = np.linalg.norm(theirs[0, :2] - fov_centre)
+        for ring in (mesh.points[np.abs(mesh.points[:, 2] - z) <= 1e-9 * z],
+                     scene.meshes["fov"].points[k * N_PHI:(k + 1) * N_PHI]):
+            centre = ring[:, :2].mean(axis=0)
+            radius = np.linalg.norm(ring[:, :2] - centre, axis=1)
+            np.testing.assert_allclose(centre, fov_centre, rtol=1e-9, atol=1e-12)
+            np.testing.assert_allclose(radius, fov_radius, rtol=1e-9)
         det = scene.meshes["detector"].points
         np.testing.assert_allclose(det[0], [50.0 * system.detector.offset[0], 0.0, -system.image_distance])
         assert sum(name.startswith("mask_") for name in scene.meshes) == 4
