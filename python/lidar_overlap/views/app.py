@@ -144,7 +144,7 @@ class App:
         state.image_figure = self._image_figure()
         if twin.deviation is not None:
             state.telecover_figure = self._telecover_figure()
-        state.error = ""
+        state.error = " ".join(f"warning: {w}" for w in twin.warnings)
 
     def _show_timing(self, elapsed: float) -> None:
         """The server's time for the last update, and its parts, on the page; counts the scene's updates."""

@@ -14,6 +14,7 @@ import os
 import pathlib
 import re
 import time
+import warnings
 from dataclasses import dataclass
 from typing import Dict, Optional, Tuple
 
@@ -149,6 +150,7 @@ class Twin:
         self.probe = int(np.searchsorted(self.ranges, min(300.0, self.ranges[-1])))
         self.system = system
         self.timing: Dict[str, float] = {}
+        self.warnings: list = []                         # the last update's warnings (validity of ray tracing)
         self.image = self.deviation = None
         self.update({})
 
@@ -181,18 +183,21 @@ class Twin:
         if probe is not None and not _is_index(probe, self.ranges.size - 1):
             raise ValueError(f"probe = {probe!r} is invalid: expected an index from 0 to {self.ranges.size - 1}")
         t0 = time.perf_counter()
-        system = self.system_for(values)
-        result = lo.overlap(system, self.ranges, method="rt", tolerance=self.tolerance, threads=self.threads)
-        t1 = time.perf_counter()
-        self.values, self.system, self.result = values, system, result
-        if probe is not None:
-            self.probe = int(probe)
-        self.image = lo.detector_image(system, float(self.ranges[self.probe]), n=N_IMAGE)
-        t2 = time.perf_counter()
-        if self.telecover is not None:
-            self.deviation = lo.telecover(system, self.ranges, sectors=self.telecover, tolerance=self.tolerance,
-                                          threads=self.threads)
-        t3 = time.perf_counter()
+        with warnings.catch_warnings(record=True) as caught:     # said on the page, not in the server's log
+            warnings.simplefilter("always")
+            system = self.system_for(values)
+            result = lo.overlap(system, self.ranges, method="rt", tolerance=self.tolerance, threads=self.threads)
+            t1 = time.perf_counter()
+            self.values, self.system, self.result = values, system, result
+            if probe is not None:
+                self.probe = int(probe)
+            self.image = lo.detector_image(system, float(self.ranges[self.probe]), n=N_IMAGE)
+            t2 = time.perf_counter()
+            if self.telecover is not None:
+                self.deviation = lo.telecover(system, self.ranges, sectors=self.telecover,
+                                              tolerance=self.tolerance, threads=self.threads)
+            t3 = time.perf_counter()
+        self.warnings = list(dict.fromkeys(str(w.message) for w in caught))
         self.timing = {"overlap": t1 - t0, "image": t2 - t1, "telecover": t3 - t2}
 
     @property
