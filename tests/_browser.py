@@ -15,8 +15,8 @@ import time
 import pytest
 
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
-SETUP = ("sudo apt-get install -y chromium chromium-driver && .venv/bin/pip install selenium "
-         "'lidar-overlap[app]' (make test does both as root)")
+SETUP = ("sudo apt-get install -y chromium chromium-driver && .venv/bin/pip install selenium '.[app]' && "
+         ".venv/bin/python -m pytest tests/test_view.py (make test installs both when run as root)")
 #: Where the tests keep their screenshots and timings.
 ARTIFACTS = pathlib.Path(__file__).resolve().parent.parent / "build" / "test-artifacts"
 WAIT = 60.0         # s, the longest any page, server or browser step may take on a loaded machine
