@@ -183,6 +183,27 @@ def test_twin_scene_follows_the_system():
         scene.close()
 
 
+def test_html_archive_leaves_the_plotter_as_it_was():
+    pytest.importorskip("trame_vtk")
+    import zipfile
+
+    from lidar_overlap.views.html_export import scene_archive
+
+    plotter = lo.scene(lo.paper_table1(), off_screen=True, planes=(100.0,))
+    try:
+        props = plotter.renderer.GetViewProps()
+        before = props.GetNumberOfItems()
+        archive = scene_archive(plotter)
+        assert props.GetNumberOfItems() == before
+    finally:
+        plotter.close()
+    with zipfile.ZipFile(__import__("io").BytesIO(archive)) as z:
+        scene = json.loads(z.read("index.json"))
+    classes = json.dumps(scene["scene"])
+    assert "vtkCubeAxesActor" not in classes and classes.count("vtkScalarBarActor") == 1
+    assert len(scene["hashes"]) > 10                     # the meshes' arrays are in the file
+
+
 def test_save_scene_refuses_unknown_format(tmp_path):
     with pytest.raises(ValueError, match="format = 'svg' is invalid"):
         lo.save_scene(lo.paper_table1(), tmp_path / "scene.svg", format="svg")

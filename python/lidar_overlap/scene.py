@@ -270,9 +270,9 @@ def save_scene(system: LidarSystem, filename, *, window_size=(1200, 800), format
 
     format : "png", a picture of ``window_size`` (width, height) pixels, or "html", a standalone interactive
         page (vtk.js: turn and zoom in any browser, no server, no network; needs ``pip install
-        'lidar-overlap[app]'``) with the meshes, colours and camera, the axes grid labelled in displayed
-        (exaggerated) coordinates and no 2-D text. Default: "html" for a name ending in .html or .htm, else
-        "png"."""
+        'lidar-overlap[app]'``) with the meshes, colours, camera and the first colour bar, without the axes
+        grid (vtk.js would label it in exaggerated coordinates) and 2-D text. Default: "html" for a name
+        ending in .html or .htm, else "png"."""
     if "off_screen" in kwargs:
         raise ValueError("off_screen is invalid for save_scene: it always renders off-screen")
     path = pathlib.Path(filename)
