@@ -132,6 +132,19 @@ def test_view_in_a_running_event_loop_returns_the_app_unstarted(tmp_path):
         assert app.state.curve_figure["data"][0]["y"] == app.twin.result.overlap.tolist()
         app.save()
         assert (tmp_path / "view.toml").exists() and "saved" in app.state.saved
+        # What a slider move does on the server (the browser test drives it through the page).
+        positions = {**app.twin.positions(), "probe": app.twin.probe}
+        app._on_change(**{**positions, "defocus": 150})
+        assert app.twin.system.detector.defocus == app.twin.sliders["defocus"].value(150)
+        assert app.state.curve_figure["data"][0]["y"] == app.twin.result.overlap.tolist()
+        assert app.state.text_defocus == "5 mm" and app.state.timing.startswith("update ")
+
+        def refuse(positions, probe):
+            raise ValueError("detector.defocus = 1 is invalid")
+
+        app.twin.update = refuse                  # a system the library refuses: the slider goes back
+        app._on_change(**{**positions, "defocus": 160})
+        assert app.state.error == "detector.defocus = 1 is invalid" and app.state.defocus == 150
     finally:
         app.scene.close()
 
