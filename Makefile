@@ -20,7 +20,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask,fit]"
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask,fit,app]"
 	touch $@
 
 demo: setup

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what the build needs from Debian's packages when it is missing: a C++ compiler,
 # pkg-config, FFTW3 (double precision, with its threads library), Python's venv module, and an
-# off-screen OpenGL (Mesa's EGL, or OSMesa) for the 3D scenes rendered without a display.
+# off-screen OpenGL (Mesa's EGL, or OSMesa) for the 3D scenes rendered without a display, and as root
+# Debian's chromium and chromedriver for the browser tests of the interactive view.
 # Without root or apt-get it prints the exact command to run instead and fails.
 set -euo pipefail
 PYTHON=${PYTHON:-python3}
@@ -28,6 +29,16 @@ fi
 libs=$(ldconfig -p 2>/dev/null || true)
 if ! { grep -q "libEGL_mesa.so.0" <<<"$libs" && grep -q "libEGL.so.1" <<<"$libs"; } && ! grep -q "libOSMesa.so" <<<"$libs"; then
   missing+=(libosmesa6)
+fi
+
+# The browser tests of the interactive view (tests/test_view.py) drive Debian's chromium through its
+# chromedriver; nothing downloads a browser. Missing without root, those tests are skipped and say this.
+if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
+  if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
+    missing+=(chromium chromium-driver)
+  else
+    echo "setup: the browser tests need chromium and its driver: sudo apt-get install -y chromium chromium-driver" >&2
+  fi
 fi
 
 [ ${#missing[@]} -eq 0 ] && exit 0

@@ -1,7 +1,7 @@
 """lidar_overlap: the overlap function of atmospheric lidars (SI units throughout).
 
 The package is built in layers, each importing only those below it (docs/architecture.md): ``model``
-(value types), ``optics`` (fields and their propagation), ``overlap`` (methods, plans, backends,
+(value types), ``optics`` (fields and their propagation), ``forward`` (methods, plans, backends,
 results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, studies), ``io``
 (scenario files), ``cli`` and ``views`` (plots, 3-D scenes). This namespace re-exports what users
 call.
@@ -53,6 +53,7 @@ from .optics.imaging import point_image
 from .optics.phase_screen import phase_screen
 from .optics.propagation import SamplingWarning, propagate
 from .views import plotting
+from .views.app import view
 from .views.scene import save_scene, scene
 
 __all__ = [
@@ -129,6 +130,7 @@ __all__ = [
     "telecover",
     "tolerance_study",
     "turbulent_realizations",
+    "view",
     "propagate",
     "save_scene",
     "scene",

@@ -1,7 +1,8 @@
 """Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see
 :mod:`lidar_overlap.io.scenario`), ``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH
 ...`` (see :mod:`lidar_overlap.analysis.fit`) and ``lidar-overlap telecover SCENARIO.toml
-[--measurements CSV --free PATH ...]`` (see :mod:`lidar_overlap.analysis.telecover`).
+[--measurements CSV --free PATH ...]`` (see :mod:`lidar_overlap.analysis.telecover`) and
+``lidar-overlap view SCENARIO.toml`` (the interactive page: :mod:`lidar_overlap.views.app`).
 
 Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library
 refuses, a file that cannot be read or written; 2 a command-line syntax error (argparse); 130
@@ -28,9 +29,13 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import List, Optional
 
+import numpy as np
+
 from .. import _files
 from .._core import __version__
+from ..forward.methods import RT
 from ..io.scenario import METHODS, Scenario, load_scenario, table1_scenarios
+from ..views.app import view
 from ..views.scene import save_scene
 from . import fit as fit_command
 from . import telecover as telecover_command
@@ -54,7 +59,9 @@ def _parser() -> argparse.ArgumentParser:
         prog=PROG, description="Overlap function G(z) of an atmospheric lidar from a scenario file."
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, metavar="{run,demo,fit,telecover}")
+    sub = parser.add_subparsers(
+        dest="command", required=True, metavar="{run,demo,fit,telecover,view}"
+    )
     run = sub.add_parser(
         "run",
         help="compute one scenario (TOML) and write its files",
@@ -121,6 +128,29 @@ def _parser() -> argparse.ArgumentParser:
         metavar="PATH",
         help="parameters to fit with --measurements, e.g. beam.tilt",
     )
+    view = sub.add_parser(
+        "view",
+        help="the scenario's system as an interactive page in the browser",
+        description="Serve the scenario's system on localhost: its 3-D scene, sliders for the "
+        "alignment and receiver, G(z) by ray tracing (200 ranges over the scenario's span), the "
+        "detector image; the save button writes <name>.toml and .csv. Needs pip install "
+        "'lidar-overlap[app]'.",
+    )
+    view.add_argument("scenario", help="scenario file (TOML) with a Gaussian beam")
+    view.add_argument(
+        "--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one, printed)"
+    )
+    view.add_argument(
+        "--telecover", action="store_true", help="show the quadrants' telecover deviations"
+    )
+    view.add_argument("--no-browser", action="store_true", help="do not open the system browser")
+    view.add_argument(
+        "--timeout",
+        type=float,
+        default=0.0,
+        help="stop when no page has been connected for this many seconds (default 0: never)",
+    )
+    view.add_argument("--out", type=Path, help="where the save button writes (default: ./<name>/)")
     for p, default in (
         (run, "./<name>/"),
         (demo, "./lidar-overlap-demo/"),
@@ -151,6 +181,8 @@ def main(argv: Optional[List[str]] = None) -> int:
     except _UsageError as exc:
         return _fail(str(exc), 2)
     try:
+        if args.command == "view":
+            return _view(args)
         if args.command == "fit":
             return _fit(load_scenario(args.scenario), args)
         if args.command == "telecover":
@@ -207,6 +239,30 @@ def _fit(scenario: Scenario, args) -> int:
     return 0
 
 
+def _view(args) -> int:
+    """``lidar-overlap view``: the scenario's system served as the interactive page."""
+    scenario = load_scenario(args.scenario)
+    z = scenario.ranges
+    ranges = np.geomspace(z[0], z[-1], 200) if z.size > 1 else z
+    tolerance = scenario.options.get("tolerance", RT().tolerance)
+    try:
+        view(
+            scenario.system,
+            ranges,
+            telecover="quadrants" if args.telecover else None,
+            name=scenario.name,
+            out=args.out or Path(scenario.name),
+            port=args.port,
+            open_browser=not args.no_browser,
+            timeout=args.timeout,
+            tolerance=tolerance,
+            block=True,
+        )
+    except ImportError as exc:
+        return _fail(str(exc), 1)
+    return 0
+
+
 def _sectors(text: str):
     try:
         return telecover_command.sectors_argument(text)
@@ -219,8 +275,8 @@ def _telecover(args) -> int:
         return _fail("telecover: --measurements and --free go together (a fit needs both)", 2)
     if args.measurements is not None and args.method not in (None, "rt"):
         return _fail(
-            f"telecover: --method {args.method} is invalid with --measurements: the telecover "
-            "fit runs ray tracing (leave --method out)",
+            f"telecover: --method {args.method} is invalid with --measurements: the telecover fit "
+            "runs ray tracing (leave --method out)",
             2,
         )
     scenario = load_scenario(args.scenario)

@@ -1,2 +1,2 @@
-"""Pictures: matplotlib figures of results and PyVista 3-D scenes (optional dependencies, imported
-when used)."""
+"""Pictures: matplotlib figures of results, PyVista 3-D scenes and the interactive digital twin in
+the browser (:mod:`.app`); optional dependencies, imported when used."""

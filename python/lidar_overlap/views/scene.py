@@ -22,8 +22,11 @@ from ..model.field_beam import FieldBeam
 from ..model.system import LidarSystem
 from ..optics.detector_image import beam_image, blurred, fov_cone, window_about
 from ..optics.propagation import propagate
+from .headless import use_headless_gl
+from .html_export import require, write_scene_html
 
 COLOR_BY = ("irradiance", "overlap")
+FORMATS = ("png", "html")
 N_PHI = 72  # samples around every circle
 N_IMAGE = 192  # samples per side of the plane textures
 PLANE_SCALARS = "panels:\nrelative\nirradiance"
@@ -49,6 +52,7 @@ def _pyvista():
         import pyvista
     except ImportError as exc:
         raise ImportError(_MISSING) from exc
+    use_headless_gl()  # without a display: EGL or OSMesa, not an X window that fails with a message
     return pyvista
 
 
@@ -369,21 +373,37 @@ def scene(
     return plotter
 
 
-def save_scene(system: LidarSystem, filename, *, window_size=(1200, 800), **kwargs) -> pathlib.Path:
-    """Build :func:`scene` off-screen (keywords passed on), write it as a PNG of ``window_size``
-    (width, height) pixels to ``filename`` and return its path."""
+def save_scene(
+    system: LidarSystem, filename, *, window_size=(1200, 800), format: str | None = None, **kwargs
+) -> pathlib.Path:
+    """Build :func:`scene` off-screen (keywords passed on), write it to ``filename`` and return its
+    path.
+
+    format : "png", a picture of ``window_size`` (width, height) pixels, or "html", a standalone
+        interactive page (vtk.js: turn and zoom in any browser, no server, no network; needs ``pip
+        install 'lidar-overlap[app]'``) with the meshes, colours, camera and the first colour bar,
+        without the axes grid (vtk.js would label it in exaggerated coordinates) and 2-D text.
+        Default: "html" for a name ending in .html or .htm, else "png"."""
     if "off_screen" in kwargs:
         raise ValueError("off_screen is invalid for save_scene: it always renders off-screen")
+    path = pathlib.Path(filename)
+    if format is None:
+        format = "html" if path.suffix.lower() in (".html", ".htm") else "png"
+    _checks.choice("format", format, FORMATS)
     if np.ndim(window_size) != 1 or len(window_size) != 2:
         raise ValueError(
             f"window_size = {window_size!r} is invalid: expected (width, height) in pixels"
         )
     size = tuple(_checks.count(f"window_size[{i}]", v, 16) for i, v in enumerate(window_size))
+    if format == "html":
+        require()  # the ImportError naming the extra comes before the scene is built
     plotter = scene(system, off_screen=True, **kwargs)
     try:
         plotter.window_size = size
-        path = pathlib.Path(filename)
-        plotter.screenshot(str(path))
+        if format == "html":
+            write_scene_html(plotter, path)
+        else:
+            plotter.screenshot(str(path))
     finally:
         plotter.close()
     return path

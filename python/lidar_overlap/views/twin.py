@@ -1,0 +1,357 @@
+"""The digital twin behind the interactive view: a lidar system whose alignment and receiver are set
+by sliders, and what follows from it at each setting (G(z) by ray tracing, the detector-plane image
+at one range, the telecover deviations through a mask). Needs NumPy and the library only, no web
+framework, so it is tested on its own.
+
+Every slider is an integer position 0..n; its value is ``low + position * step`` in SI units (rad or
+m), so the browser never rounds a physical value. A slider the user has not moved keeps the system's
+own value.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import pathlib
+import re
+import time
+import warnings
+from dataclasses import dataclass
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+
+from ..analysis.telecover import telecover
+from ..forward.compute import overlap
+from ..model import parameters
+from ..model.aperture_mask import ApertureMask
+from ..model.system import GaussianBeam, LidarSystem
+from ..optics.detector_image import detector_image
+
+#: Ranges of the curve when none are given.
+N_RANGES = 200
+#: Slider positions across each range.
+N_STEPS = 200
+#: Samples per side of the detector-plane image.
+N_IMAGE = 96
+
+
+@dataclass(frozen=True)
+class Slider:
+    """One slider: ``path`` is a :mod:`lidar_overlap.parameters` path or ``"fov"`` (the full field
+        of view,
+    rad, set through the detector radius r_d = fov f / 2). Values ``(start + i) * step``, i =
+    0..``n`` (SI), from ``low = start * step``; ``unit`` and ``factor`` are for display only (shown
+    value = SI value x factor)."""
+
+    key: str
+    path: str
+    label: str
+    start: int
+    step: float
+    n: int
+    unit: str
+    factor: float
+
+    def value(self, position: int) -> float:
+        """The SI value at slider ``position`` (an integer 0..n)."""
+        if not _is_index(position, self.n):
+            raise ValueError(
+                f"{self.key} = {position!r} is invalid: expected a slider position, an integer "
+                f"from 0 to {self.n}"
+            )
+        return (self.start + int(position)) * self.step  # an integer times step: 20 * 1e-5 is 2e-4
+
+    @property
+    def low(self) -> float:
+        return self.start * self.step
+
+    def position(self, value: float) -> int:
+        """The slider position nearest to ``value`` (SI), clamped to 0..n."""
+        return int(min(self.n, max(0, round((value - self.low) / self.step))))
+
+    def shown(self, value: float) -> str:
+        return f"{value * self.factor:.4g} {self.unit}"
+
+
+def _is_index(value, high: int) -> bool:
+    """``value`` is an integer (int or integral float, not bool) from 0 to ``high``."""
+    return bool(
+        isinstance(value, (int, float, np.integer, np.floating))
+        and not isinstance(value, bool)
+        and float(value).is_integer()
+        and 0 <= value <= high
+    )
+
+
+def _nice(x: float) -> float:
+    """The smallest of 1, 2, 5 x 10^k that is >= x (> 0)."""
+    k = math.floor(math.log10(x))
+    # m / 10**5 is the double nearest m e-5 (10.0**-5 is not, and 10 * 1e-6 is not 1e-5)
+    nice = (m * 10**j if j >= 0 else m / 10**-j for j in (k, k + 1) for m in (1, 2, 5))
+    return next(v for v in nice if v >= x * (1 - 1e-12))
+
+
+def _symmetric(key, path, label, half, unit, factor) -> Slider:
+    step = _nice(2 * half / N_STEPS)
+    n = 2 * math.ceil(half / step)
+    return Slider(key, path, label, -(n // 2), step, n, unit, factor)
+
+
+def sliders_for(system) -> Dict[str, Slider]:
+    """The sliders of ``system``, their spans set by its size: beam tilt (± the full FOV or 4x the
+    tilt), beam offset (± the aperture's diameter, or 2x the offset), detector offset (± 2 detector
+    radii), defocus (± 1 % of f or 2x the defocus), FOV (0 to 4x) and divergence (the diffraction
+    limit to 5x)."""
+    beam, tel, det = system.beam, system.telescope, system.detector
+    f, fov = tel.focal_length, system.fov
+    tilt = max(fov, 4 * max(map(abs, beam.tilt)))
+    offset = max(tel.diameter, 2 * max(map(abs, beam.offset)))
+    shift = max(2 * det.radius, 2 * max(map(abs, det.offset)))
+    out = {}
+    for axis, i in (("x", 0), ("y", 1)):
+        out[f"tilt_{axis}"] = _symmetric(
+            f"tilt_{axis}", f"beam.tilt[{i}]", f"beam tilt {axis}", tilt, "mrad", 1e3
+        )
+    for axis, i in (("x", 0), ("y", 1)):
+        out[f"offset_{axis}"] = _symmetric(
+            f"offset_{axis}", f"beam.offset[{i}]", f"beam offset {axis}", offset, "mm", 1e3
+        )
+    for axis, i in (("x", 0), ("y", 1)):
+        out[f"detector_{axis}"] = _symmetric(
+            f"detector_{axis}", f"detector.offset[{i}]", f"detector offset {axis}", shift, "mm", 1e3
+        )
+    out["defocus"] = _symmetric(
+        "defocus", "detector.defocus", "defocus", max(0.01 * f, 2 * abs(det.defocus)), "mm", 1e3
+    )
+    step = _nice(4 * fov / N_STEPS)
+    out["fov"] = Slider(
+        "fov", "fov", "field of view (full)", 1, step, math.ceil(4 * fov / step) - 1, "mrad", 1e3
+    )
+    limit = beam.wavelength / (math.pi * beam.waist_radius)
+    top = 5 * max(limit, beam.half_angle_divergence)
+    step = _nice((top - limit) / N_STEPS)
+    start = math.ceil(limit / step * (1 - 1e-12))  # at or above the diffraction limit
+    start += start * step < limit
+    out["divergence"] = Slider(
+        "divergence",
+        "beam.divergence",
+        "divergence (half-angle)",
+        start,
+        step,
+        math.floor(top / step) - start,
+        "mrad",
+        1e3,
+    )
+    return out
+
+
+class Twin:
+    """A lidar ``system`` (a GaussianBeam: the view ray traces) at ``ranges`` (m, default 200
+    log-spaced, as :func:`lidar_overlap.scene`), with ``telecover`` (None, ``"quadrants"`` or an
+    ApertureMask) and the ``tolerance`` of ray tracing, on ``threads`` threads (default 1: a curve
+    of 200 ranges takes about a millisecond on one core, less than waking an OpenMP team costs on a
+    busy machine). ``name`` names the saved files. :meth:`update` sets slider positions and
+    recomputes."""
+
+    def __init__(
+        self,
+        system,
+        ranges=None,
+        *,
+        telecover=None,
+        tolerance: float = 1e-4,
+        threads: int = 1,
+        name: str = "view",
+    ):
+        if not isinstance(system, LidarSystem):
+            raise ValueError(
+                f"system = {system!r} is invalid: expected a lidar_overlap.LidarSystem"
+            )
+        if not isinstance(system.beam, GaussianBeam):
+            raise ValueError(
+                f"system.beam = {type(system.beam).__name__} is invalid for the view: expected a "
+                "GaussianBeam (the view ray traces G(z) as the sliders move)"
+            )
+        if telecover is not None and not (
+            telecover == "quadrants" or isinstance(telecover, ApertureMask)
+        ):
+            raise ValueError(
+                f"telecover = {telecover!r} is invalid: expected None, 'quadrants' or an "
+                "ApertureMask"
+            )
+        if not isinstance(name, str) or not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.+-]{0,99}", name):
+            raise ValueError(
+                f"name = {name!r} is invalid: expected 1 to 100 letters, digits and _ . + - (it "
+                "names the saved files)"
+            )
+        if ranges is None:
+            z_obs = system.telescope.obstruction_distance
+            ranges = np.geomspace(1.0 if z_obs < 1.0 else 1.5 * z_obs, 1000.0, N_RANGES)
+        self.base = system
+        self.name = name
+        self.telecover = telecover
+        self.tolerance, self.threads = tolerance, threads
+        self.sliders = sliders_for(system)
+        self.values: Dict[str, float] = {}  # moved sliders only: SI value by key
+        # checks ranges, tolerance and threads
+        self.result = overlap(system, ranges, method="rt", tolerance=tolerance, threads=threads)
+        self.ranges = self.result.ranges
+        self.probe = int(np.searchsorted(self.ranges, min(300.0, self.ranges[-1])))
+        self.system = system
+        self.timing: Dict[str, float] = {}
+        self.warnings: list = []  # the last update's warnings (validity of ray tracing)
+        self.image: Any = None  # a DetectorImage once computed
+        self.deviation: Any = None  # a TelecoverResult, with a mask
+        self.update({})
+
+    def positions(self) -> Dict[str, int]:
+        """The slider positions of the current system."""
+        return {key: s.position(self.value(key)) for key, s in self.sliders.items()}
+
+    def value(self, key: str) -> float:
+        """The current SI value of slider ``key`` (moved or the system's own)."""
+        if key in self.values:
+            return self.values[key]
+        path = self.sliders[key].path
+        return self.base.fov if path == "fov" else parameters.get(self.base, path)
+
+    def system_for(self, values: Dict[str, float]):
+        """The base system with the slider values ``values`` (key -> SI value) applied."""
+        f = self.base.telescope.focal_length
+        changes = {
+            ("detector.radius" if self.sliders[k].path == "fov" else self.sliders[k].path): (
+                0.5 * v * f if self.sliders[k].path == "fov" else v
+            )
+            for k, v in values.items()
+        }
+        return parameters.replace(self.base, changes) if changes else self.base
+
+    def update(self, positions: Dict[str, int], probe: Optional[int] = None) -> None:
+        """Move the sliders in ``positions`` (key -> integer position) and the probe range (an index
+        into ``ranges``), then recompute G, the detector image and the telecover deviations. A
+        position that makes an invalid system raises ValueError and leaves the twin as it was."""
+        for key in positions:
+            if key not in self.sliders:
+                raise ValueError(
+                    f"slider {key!r} is invalid: expected one of {', '.join(self.sliders)}"
+                )
+        values = {**self.values, **{k: self.sliders[k].value(p) for k, p in positions.items()}}
+        if probe is not None and not _is_index(probe, self.ranges.size - 1):
+            raise ValueError(
+                f"probe = {probe!r} is invalid: expected an index from 0 to {self.ranges.size - 1}"
+            )
+        t0 = time.perf_counter()
+        with warnings.catch_warnings(
+            record=True
+        ) as caught:  # said on the page, not in the server's log
+            warnings.simplefilter("always")
+            system = self.system_for(values)
+            result = overlap(
+                system, self.ranges, method="rt", tolerance=self.tolerance, threads=self.threads
+            )
+            t1 = time.perf_counter()
+            self.values, self.system, self.result = values, system, result
+            if probe is not None:
+                self.probe = int(probe)
+            self.image = detector_image(system, float(self.ranges[self.probe]), n=N_IMAGE)
+            t2 = time.perf_counter()
+            if self.telecover is not None:
+                self.deviation = telecover(
+                    system,
+                    self.ranges,
+                    sectors=self.telecover,
+                    tolerance=self.tolerance,
+                    threads=self.threads,
+                )
+            t3 = time.perf_counter()
+        self.warnings = list(dict.fromkeys(str(w.message) for w in caught))
+        self.timing = {"overlap": t1 - t0, "image": t2 - t1, "telecover": t3 - t2}
+
+    @property
+    def mask(self):
+        """The aperture mask shown on the aperture: the telecover's, else the system's own, else
+        None."""
+        if self.telecover == "quadrants":
+            return ApertureMask.quadrants()
+        return self.telecover if self.telecover is not None else self.system.telescope.mask
+
+    def save(self, directory=".") -> Tuple[pathlib.Path, pathlib.Path]:
+        """Write the scenario as it stands (``<name>.toml``, readable by ``lidar-overlap run``) and
+        its curve (``<name>.csv``, :meth:`OverlapResult.to_csv`) to ``directory``; returns both
+        paths."""
+        directory = pathlib.Path(directory)
+        directory.mkdir(parents=True, exist_ok=True)
+        toml, csv = directory / f"{self.name}.toml", directory / f"{self.name}.csv"
+        text = scenario_toml(self.system, self.ranges, self.name, self.tolerance)
+        temporary = toml.with_name(f".{toml.name}.part")
+        temporary.write_text(text, encoding="utf-8")
+        os.replace(temporary, toml)  # the file appears only once complete
+        self.result.to_csv(csv, {"scenario": self.name})
+        return toml, csv
+
+
+def _toml_value(value) -> str:
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, (tuple, list)):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    return repr(float(value))  # repr: read back exactly
+
+
+def scenario_toml(system, ranges, name: str, tolerance: float) -> str:
+    """``system`` (a GaussianBeam) at ``ranges`` (m) as a scenario file (TOML, SI units) for ray
+    tracing; the values are written with repr, so the file reads back to the same system. A
+    telescope's aperture mask has no place in a scenario and is left out (said in a comment)."""
+    beam, tel, det = system.beam, system.telescope, system.detector
+    sections = {
+        "beam": {
+            "type": "gaussian",
+            "wavelength": beam.wavelength,
+            "waist_radius": beam.waist_radius,
+            "divergence": beam.divergence,
+            "offset": beam.offset,
+            "tilt": beam.tilt,
+            "width_law": beam.width_law,
+        },
+        "telescope": {
+            "diameter": tel.diameter,
+            "focal_length": tel.focal_length,
+            "obstruction_radius": tel.obstruction_radius,
+            "obstruction_distance": tel.obstruction_distance,
+        },
+        "detector": {
+            "radius": det.radius,
+            "defocus": det.defocus,
+            "offset": det.offset,
+            "numerical_aperture": det.numerical_aperture,
+        },
+        "ranges": {"values": [float(z) for z in ranges]},
+        "run": {"method": "rt", "tolerance": tolerance},
+    }
+    lines = [
+        "# Written by the lidar_overlap view: the system as its sliders stood (SI units: m, rad).",
+        f"name = {_toml_value(name)}",
+        'description = "Saved from the interactive view"',
+    ]
+    if tel.mask is not None:
+        lines.insert(
+            1, "# The telescope's aperture mask is not part of a scenario and is left out."
+        )
+    for section, table in sections.items():
+        lines.append(f"\n[{section}]")
+        lines += [
+            f"{key} = {_toml_value(value)}" for key, value in table.items() if value is not None
+        ]
+    ab = tel.aberrations
+    if ab is not None:
+        lines.append("\n[telescope.aberrations]")
+        lines += [
+            f"{key} = {getattr(ab, key)!r}"
+            for key in ("w040", "w131", "w222", "w220", "w311", "field_radius")
+            if getattr(ab, key)
+        ]
+        if ab.zernike:
+            lines.append("\n[telescope.aberrations.zernike]")
+            lines += [f'"{j}" = {float(c)!r}' for j, c in sorted(ab.zernike.items())]
+    return "\n".join(lines) + "\n"
