@@ -322,10 +322,12 @@ JS_STAMPS = """window.__t = {};
 const gd = document.querySelector('#curve .js-plotly-plot'), y0 = gd.data[0].y;
 document.addEventListener('keydown', () => { window.__t.key = window.__t.key || performance.now();
 }, true);
-(function frame(now) {
-  if (window.__t.key && !window.__t.curve && gd.data[0].y !== y0) window.__t.curve = now;
+(function frame() {      // the time the frame's callbacks run (a frame's own time stamp is when it
+began)
+  if (window.__t.key && !window.__t.curve && gd.data[0].y !== y0) window.__t.curve =
+  performance.now();
   if (!window.__t.curve) requestAnimationFrame(frame);
-})(performance.now());
+})();
 const stamp = (name, selector) => new MutationObserver(() => {
   if (window.__t.key && !window.__t[name]) window.__t[name] = performance.now(); }).observe(
   document.querySelector(selector), {childList: true, subtree: true, characterData: true});
