@@ -320,12 +320,14 @@ JS_CURVE = (
 # (sent after the scene's moved coordinates, on the same socket).
 JS_STAMPS = """window.__t = {};
 const gd = document.querySelector('#curve .js-plotly-plot'), y0 = gd.data[0].y;
-document.addEventListener('keydown', () => { window.__t.key = window.__t.key || performance.now();
+document.addEventListener('keydown', () => {
+  window.__t.key = window.__t.key || performance.now();
 }, true);
-(function frame() {      // the time the frame's callbacks run (a frame's own time stamp is when it
-began)
-  if (window.__t.key && !window.__t.curve && gd.data[0].y !== y0) window.__t.curve =
-  performance.now();
+// the time the frame's callbacks run (a frame's own time stamp is when it began)
+(function frame() {
+  if (window.__t.key && !window.__t.curve && gd.data[0].y !== y0) {
+    window.__t.curve = performance.now();
+  }
   if (!window.__t.curve) requestAnimationFrame(frame);
 })();
 const stamp = (name, selector) => new MutationObserver(() => {
