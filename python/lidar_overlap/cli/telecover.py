@@ -10,7 +10,7 @@ With measurements: a UTF-8 CSV with the header ``range_m,<sector>,...`` (one dev
 sector, in
 the order of the sectors: ``north,east,south,west`` for quadrants, ``sector_0,...`` for N sectors)
 and an optional last column ``sigma`` (the 1-sigma error of each deviation); :func:`.fit_telecover`
-fits the free parameters (with the ``[run]`` model, or ``--method``) and
+fits the free parameters (ray tracing at the ``[run]`` tolerance) and
 ``<name>_telecover_fit.csv`` and ``.png`` are written.
 """
 
@@ -137,10 +137,10 @@ def fit(
     measurements: Path,
     free: List[str],
     out: Path,
-    method: Optional[str] = None,
 ):
-    """Fit the deviations of ``measurements`` with the scenario's ``[run]`` model (``method``
-    instead, if given), written; returns (FitResult, files, notes)."""
+    """Fit the deviations of ``measurements`` by ray tracing at the scenario's ``[run]``
+    tolerance (the command line's telecover fit; ``lo.fit_telecover`` takes any model), written;
+    returns (FitResult, files, notes)."""
     names = [column(n) for n in sector_mask(scenario.system, mask).names]
     data, sigma = read_table(measurements, ["range_m"] + names, signed=names)
     result = fit_telecover(
@@ -150,7 +150,7 @@ def fit(
         None if sigma is None else sigma[None, :],
         free=free,
         sectors=mask,
-        method=scenario.method_object(method),
+        method=scenario.method_object("rt"),
         threads=scenario.threads,
     )
     header = [
