@@ -330,3 +330,14 @@ def test_a_plan_holds_each_decision_once():
     fields = {f.name for f in dataclasses.fields(p)}
     assert not fields & {"method", "fo_path", "error_kind", "turbulence", "rt_quadrature_tolerance"}
     assert (p.method, p.fo_path, p.error_kind) == ("fo", "radial", "nominal")
+
+
+@pytest.mark.parametrize("method", ["rt", "fo"])
+def test_a_plan_edited_by_hand_for_a_system_of_another_kind_is_refused_when_run(method):
+    """The reproducers: dataclasses.replace(plan, system=...) with a quadrant mask or aberrations
+    would run the old model on the new system (G 1.0 where 0.25 and 0.826 are right)."""
+    p = lo.plan(TABLE1, Z8, method)
+    aberrated = lo.with_aberrations(TABLE1, lo.Aberrations(zernike={11: 2e-6}))
+    for system, message in ((MASKED, "telescope.mask"), (aberrated, "aberrations")):
+        with pytest.raises(ValueError, match=message):
+            lo.run(dataclasses.replace(p, system=system))

@@ -13,7 +13,7 @@ import numpy as np
 
 from ..model.system import LidarSystem
 from . import backends
-from .planning import Plan, plan, resolve
+from .planning import Plan, check, plan, resolve
 from .result import OverlapResult
 
 
@@ -98,4 +98,4 @@ def run(plan: Plan) -> OverlapResult:
         raise ValueError(
             f"plan = {plan!r} is invalid: expected a lidar_overlap.Plan (from lidar_overlap.plan)"
         )
-    return backends.run(resolve(plan))
+    return backends.run(resolve(check(plan)))

@@ -42,7 +42,8 @@ class Plan:
         RT's diffraction error, added to RT's stated error (0 when not estimated, NaN where RT
         cannot model the beam). rt_diffraction_warning : whether ray tracing warns about diffraction
         (not where auto bounded it). reasons : why, one line each. warnings : said when the plan
-        runs.
+        runs. planned_on : the system the decisions were made for; a plan whose ``system`` is of
+        another kind is refused when it runs (re-target plans with :meth:`with_system`).
     """
 
     system: LidarSystem
@@ -55,6 +56,7 @@ class Plan:
     rt_diffraction_warning: bool = True
     reasons: Tuple[str, ...] = ()
     warnings: Tuple[str, ...] = ()
+    planned_on: Optional[LidarSystem] = None
 
     @property
     def method(self) -> str:
@@ -184,7 +186,21 @@ def resolve(p: Plan) -> Plan:
 
 
 def _base(system, z, request) -> dict:
-    return dict(system=system, ranges=z, request=request)
+    return dict(system=system, ranges=z, request=request, planned_on=system)
+
+
+def check(p: Plan) -> Plan:
+    """``p`` if its system is of the kind its decisions were made for; a ValueError naming what
+    changed otherwise (a plan edited by hand, say with ``dataclasses.replace``)."""
+    if p.planned_on is not None:
+        change = _kind_change(p.planned_on, p.system)
+        if change:
+            raise ValueError(
+                f"plan.system: {change}, so the plan ({BACKENDS[p.backend].description}) does not "
+                "describe it; re-target a plan with Plan.with_system, or make one with "
+                "lidar_overlap.plan(system, ranges, method)"
+            )
+    return p
 
 
 def _plain(system, z, model, request, threads) -> Plan:
