@@ -8,6 +8,7 @@ fit_real_overlap_<name>.png. SI units.
 """
 
 import time
+import warnings
 from pathlib import Path
 
 import matplotlib
@@ -34,11 +35,16 @@ def fit_curve(name, file, wavelength, fitted, noise_interval, interval, seed=1):
     data = curve.within(*fitted)
     start = pollyxt("far", wavelength, numerical_aperture=0.22)
     t0 = time.perf_counter()
-    ladder = lo.fit(
-        start, data.ranges, data.overlap, sigma=noise, free="auto", bounds=BOUNDS, method="rt",
-        tolerance=0.05 * noise, normalize=interval, seed=seed, max_evaluations=300,
-        allow_unconverged=True,
-    )  # fmt: skip
+    with warnings.catch_warnings():
+        # whether the chosen family reaches the noise, and its degeneracies, are in the ladder's
+        # report printed below
+        warnings.simplefilter("ignore", lo.FitQualityWarning)
+        warnings.simplefilter("ignore", lo.DegeneracyWarning)
+        ladder = lo.fit(
+            start, data.ranges, data.overlap, sigma=noise, free="auto", bounds=BOUNDS,
+            method="rt", tolerance=0.05 * noise, normalize=interval, seed=seed,
+            max_evaluations=300, allow_unconverged=True,
+        )  # fmt: skip
     seconds = time.perf_counter() - t0
     print(f"\n{name}: {ladder}")
     f = ladder.chosen

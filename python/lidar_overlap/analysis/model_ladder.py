@@ -23,13 +23,17 @@ model the ladder does not have.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from .. import _checks
 from ..model import parameters as _parameters
+from .fit_result import DegeneracyWarning
 from .fit_solve import fit_local
+from .fit_verdict import FitQualityWarning
 from .global_result import with_search
 from .global_search import fit_global
 from .relative import fit_relative
@@ -181,6 +185,71 @@ def fit_ladder(
             "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
             "scatter): an information criterion compares chi-squares on the noise's scale"
         )
+    with warnings.catch_warnings():
+        # each family's own quality and degeneracy warnings are its score in the ladder's report;
+        # what the chosen family deserves is said once, below
+        warnings.simplefilter("ignore", FitQualityWarning)
+        warnings.simplefilter("ignore", DegeneracyWarning)
+        fits = _fit_families(
+            system,
+            families,
+            ranges,
+            measured,
+            sigma,
+            bounds,
+            method,
+            tolerance,
+            loss,
+            max_evaluations,
+            threads,
+            normalize,
+            seed,
+        )
+    scores = [_score(system, family, f) for family, f in zip(families, fits)]
+    eligible = [s for s in scores if s.supported] or scores
+    best = min(eligible, key=lambda s: s.bic)
+    chosen = next(s for s in eligible if s.bic <= best.bic + BIC_TIE)
+    note = None
+    if not any(s.reaches_noise for s in scores):
+        note = (
+            "no family reaches the noise (chi2/dof or the runs test): the curve needs a model the "
+            "ladder does not have (a beam with wings, a second stop), or sigma is too small"
+        )
+    if not chosen.fit.converged and not allow_unconverged:
+        raise RuntimeError(
+            f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; raise "
+            "max_evaluations or pass allow_unconverged=True"
+        )
+    if not chosen.reaches_noise:
+        _checks.warn(
+            f"fit: the chosen family '{chosen.family.name}' does not reach the noise (chi2/dof "
+            f"{chosen.chi2_dof:.3g}, runs test p {chosen.runs_p:.2g})"
+            + (f"; {note}" if note else ""),
+            FitQualityWarning,
+        )
+    if chosen.fit.degenerate_pairs:
+        pairs = ", ".join(f"{a} and {b} ({c:+.3f})" for a, b, c in chosen.fit.degenerate_pairs)
+        _checks.warn(f"fit: degenerate parameters in the chosen family: {pairs}", DegeneracyWarning)
+    return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
+
+
+def _fit_families(
+    system,
+    families,
+    ranges,
+    measured,
+    sigma,
+    bounds,
+    method,
+    tolerance,
+    loss,
+    max_evaluations,
+    threads,
+    normalize,
+    seed,
+) -> list:
+    """Each family fitted in turn by the global search, each starting from the one before, then
+    refitted from a larger family's better solution."""
     fits, start = [], system
     for family in families:
         paths = [p for p in family.paths if _freeable(system, p)]
@@ -205,23 +274,7 @@ def fit_ladder(
         )
         start = _parameters.replace(system, fits[-1].parameters)
     local = (ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads)
-    fits = _from_larger_families(system, families, fits, normalize, local)
-    scores = [_score(system, family, f) for family, f in zip(families, fits)]
-    eligible = [s for s in scores if s.supported] or scores
-    best = min(eligible, key=lambda s: s.bic)
-    chosen = next(s for s in eligible if s.bic <= best.bic + BIC_TIE)
-    note = None
-    if not any(s.reaches_noise for s in scores):
-        note = (
-            "no family reaches the noise (chi2/dof or the runs test): the curve needs a model the "
-            "ladder does not have (a beam with wings, a second stop), or sigma is too small"
-        )
-    if not chosen.fit.converged and not allow_unconverged:
-        raise RuntimeError(
-            f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; raise "
-            "max_evaluations or pass allow_unconverged=True"
-        )
-    return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
+    return _from_larger_families(system, families, fits, normalize, local)
 
 
 def _score(system, family: Family, f) -> FamilyScore:
