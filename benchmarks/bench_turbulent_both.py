@@ -1,8 +1,8 @@
 """Turbulent FO overlap, both paths against transmit only, in the same run (docs/turbulence.md).
 
-The 5 cm lidar of issue 24 (1064 nm, w0 = 5 mm, f = 0.5 m, detector radius 70 um: 0.28 mrad), Cn^2 =
-1e-13 m^-2/3, RANGES ranges 100-1000 m, 10 screens, on the 432^2 grid both paths need (the
-transmit-only run on the same grid, so that the ratio is the return path's cost alone),
+The 5 cm lidar of docs/turbulence.md (1064 nm, w0 = 5 mm, f = 0.5 m, detector radius 70 um: 0.28
+mrad), Cn^2 = 1e-13 m^-2/3, RANGES ranges 100-1000 m, 10 screens, on the 432^2 grid both paths need
+(the transmit-only run on the same grid, so that the ratio is the return path's cost alone),
 RECEIVER_FIELDS random-phase receiver fields, all cores. One untimed call of each first (FFTW
 plans); then the best of REPEATS. Prints the times, their ratio and G at the last range with its
 standard error, the amplification there; writes results/bench_turbulent_both.json. Run: python
