@@ -1,16 +1,19 @@
 """``lo.fit``: free scalars of a lidar system fitted to a measured overlap curve. Absolute data from
 the start go to the local least-squares fit (:mod:`lidar_overlap.analysis.fit_solve`, the driver
-every fit shares); relative data, the global search and the model ladder to
-:mod:`lidar_overlap.analysis.fit_extensions`."""
+every fit shares); relative data, the global search and the model ladder to their own modules
+(:mod:`~lidar_overlap.analysis.relative`, :mod:`~lidar_overlap.analysis.global_search`,
+:mod:`~lidar_overlap.analysis.model_ladder`)."""
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import Optional, Union
 
 from .. import _checks
-from .fit_extensions import fit_extended
 from .fit_result import FitResult
 from .fit_solve import SEARCHES, fit_local
+from .global_search import fit_global
+from .model_ladder import LadderResult, fit_ladder
+from .relative import fit_relative
 
 
 def fit(
@@ -30,7 +33,7 @@ def fit(
     normalize=None,
     search: str = "local",
     seed: Optional[int] = None,
-) -> FitResult:
+) -> Union[FitResult, LadderResult]:
     """Fit the ``free`` scalars of ``system`` (its values are the start) to ``measured`` G at
     ``ranges``.
 
@@ -58,35 +61,18 @@ def fit(
     pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
     search = _checks.choice("search", search, SEARCHES)
-    if search == "global" or normalize is not None or (isinstance(free, str) and free == "auto"):
-        return fit_extended(
-            system,
-            ranges,
-            measured,
-            sigma,
-            free,
-            bounds,
-            method,
-            tolerance,
-            loss,
-            max_evaluations,
-            allow_unconverged,
-            threads,
-            normalize,
-            search,
-            seed,
-        )
+    data = (system, ranges, measured, sigma)
+    if isinstance(free, str) and free == "auto":
+        return fit_ladder(
+            *data, bounds, method, tolerance, loss, max_evaluations, allow_unconverged, threads,
+            normalize, seed,
+        )  # fmt: skip
+    options = (free, bounds, method, tolerance, loss, max_evaluations)
+    if search == "global":
+        return fit_global(*data, *options, allow_unconverged, threads, normalize, seed)
+    if normalize is not None:
+        return fit_relative(*data, *options, allow_unconverged, threads, normalize)
     return fit_local(
-        system,
-        ranges,
-        measured,
-        sigma,
-        free,
-        bounds,
-        method,
-        tolerance,
-        loss,
-        max_evaluations,
-        allow_unconverged=allow_unconverged,
-        threads=threads,
-    )
+        *data, free, bounds, method, tolerance, loss, max_evaluations,
+        allow_unconverged=allow_unconverged, threads=threads,
+    )  # fmt: skip
