@@ -25,11 +25,18 @@ from typing import Optional, Tuple
 import numpy as np
 
 from .. import _checks
-from ..forward.compute import run
 from .fit_result import step_tolerance
-from .fit_solve import Model, fit_plan, free_paths, measured_values, sigma_weights, solve
+from .fit_solve import (
+    Model,
+    fit_plan,
+    free_paths,
+    last_curve,
+    measured_values,
+    sigma_weights,
+    solve,
+)
 from .relative_result import RelativeFitResult
-from .sensitivity import jacobian
+from .sensitivity import forward_jacobian, jacobian
 
 #: normalize="far" divides by G at this multiple of the last measured range.
 FAR_FACTOR = 100.0
@@ -177,16 +184,28 @@ def fit_relative(
     p, h_tolerance = extended_plan(p0, norm), step_tolerance(p0, tolerance)
     white = norm.whitening
 
-    def result(trial):
-        curve = run(p.with_system(trial))
-        return curve, white @ norm.model(curve.overlap)
+    curve = last_curve(p)
 
-    def model_jacobian(trial):
-        g = run(p.with_system(trial)).overlap
+    def result(trial):
+        c = curve(trial)
+        return c, white @ norm.model(c.overlap)
+
+    def model_jacobian(trial):  # the iterations': one-sided differences from the curve just run
+        g = curve(trial).overlap
+        return white @ norm.model_jacobian(g, forward_jacobian(p, trial, paths, h_tolerance, g))
+
+    def covariance_jacobian(trial):
+        g = curve(trial).overlap
         return white @ norm.model_jacobian(g, jacobian(p, trial, paths, h_tolerance))
 
     model = Model(
-        lambda trial: result(trial)[1], model_jacobian, result, p, h_tolerance, p.tolerance
+        lambda trial: result(trial)[1],
+        model_jacobian,
+        result,
+        p,
+        h_tolerance,
+        p.tolerance,
+        covariance_jacobian,
     )
     raw = solve(
         system,
