@@ -19,30 +19,20 @@ are printed, one line each, once the scenario has succeeded.
 from __future__ import annotations
 
 import argparse
-import importlib.util
-import math
-import os
 import sys
-import time
-import warnings
-from contextlib import contextmanager
 from pathlib import Path
 from typing import List, Optional
 
 import numpy as np
 
-from .. import _files
 from .._core import __version__
 from ..forward.methods import RT
 from ..io.scenario import METHODS, Scenario, load_scenario, table1_scenarios
 from ..views.app import view
-from ..views.scene import save_scene
 from . import fit as fit_command
 from . import telecover as telecover_command
-
-PROG = "lidar-overlap"
-#: The longest error line printed (a message quoting a large value is cut there).
-MAX_MESSAGE = 1000
+from .output import PROG, fail, noted, printed_warnings
+from .run import plot_file, run_one
 
 
 class _UsageError(Exception):
@@ -179,7 +169,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     except SystemExit as exc:  # --help, --version
         return exc.code if isinstance(exc.code, int) else 0
     except _UsageError as exc:
-        return _fail(str(exc), 2)
+        return fail(str(exc), 2)
     try:
         if args.command == "view":
             return _view(args)
@@ -189,13 +179,13 @@ def main(argv: Optional[List[str]] = None) -> int:
             return _telecover(args)
         if args.command == "run":
             scenario = load_scenario(args.scenario)
-            _run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
+            run_one(scenario, args.out or Path(scenario.name), args.method, args.quiet)
         else:
             out = args.out or Path("lidar-overlap-demo")
-            results = [_run_one(s, out, args.method, args.quiet) for s in table1_scenarios()]
-            with _printed_warnings():
-                combined = _note(
-                    _plot_file(
+            results = [run_one(s, out, args.method, args.quiet) for s in table1_scenarios()]
+            with printed_warnings():
+                combined = noted(
+                    plot_file(
                         results, out / "table1_variants_overlap.png", "Table 1 and its variants"
                     )
                 )
@@ -204,17 +194,17 @@ def main(argv: Optional[List[str]] = None) -> int:
                 + (f"; compared in {combined}" if combined else "")
             )
     except KeyboardInterrupt:
-        return _fail("interrupted", 130)
+        return fail("interrupted", 130)
     except (
         ValueError
     ) as exc:  # ScenarioError, and the library's refusals (one line naming the parameter)
-        return _fail(str(exc), 1)
+        return fail(str(exc), 1)
     except OSError as exc:
-        return _fail(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", 1)
+        return fail(f"cannot write {exc.filename or 'the output'}: {exc.strerror or exc}", 1)
     except MemoryError:
-        return _fail("out of memory: ask for fewer ranges or smaller grids", 1)
+        return fail("out of memory: ask for fewer ranges or smaller grids", 1)
     except Exception as exc:  # a defect: still one line and a failure, never a traceback
-        return _fail(
+        return fail(
             f"internal error: {type(exc).__name__}: {exc} (please report it with the scenario)", 1
         )
     return 0
@@ -222,7 +212,7 @@ def main(argv: Optional[List[str]] = None) -> int:
 
 def _fit(scenario: Scenario, args) -> int:
     try:
-        with _printed_warnings():  # printed only if the fit succeeds
+        with printed_warnings():  # printed only if the fit succeeds
             result, files, note = fit_command.fit_scenario(
                 scenario,
                 args.measurements,
@@ -231,9 +221,9 @@ def _fit(scenario: Scenario, args) -> int:
                 args.method,
                 normalize=None if args.normalize is None else tuple(args.normalize),
             )
-            _note((None, note))
+            noted((None, note))
     except (RuntimeError, ImportError) as exc:  # not converged; scipy missing
-        return _fail(str(exc), 1)
+        return fail(str(exc), 1)
     print(f"{scenario.name}: {result.summary()}")
     print(f"  files         {', '.join(files)}")
     return 0
@@ -259,7 +249,7 @@ def _view(args) -> int:
             block=True,
         )
     except ImportError as exc:
-        return _fail(str(exc), 1)
+        return fail(str(exc), 1)
     return 0
 
 
@@ -272,9 +262,9 @@ def _sectors(text: str):
 
 def _telecover(args) -> int:
     if (args.measurements is None) != (args.free is None):
-        return _fail("telecover: --measurements and --free go together (a fit needs both)", 2)
+        return fail("telecover: --measurements and --free go together (a fit needs both)", 2)
     if args.measurements is not None and args.method not in (None, "rt"):
-        return _fail(
+        return fail(
             f"telecover: --method {args.method} is invalid with --measurements: the telecover fit "
             "runs ray tracing (leave --method out)",
             2,
@@ -282,7 +272,7 @@ def _telecover(args) -> int:
     scenario = load_scenario(args.scenario)
     out = args.out or Path(scenario.name)
     try:
-        with _printed_warnings():
+        with printed_warnings():
             if args.measurements is None:
                 result, files, notes = telecover_command.compute(
                     scenario, args.sectors, out, args.method
@@ -294,203 +284,12 @@ def _telecover(args) -> int:
                 )
                 lines = [f"{scenario.name}: telecover {result.summary()}"]
             for note in notes:
-                _note((None, note))
+                noted((None, note))
     except (RuntimeError, ImportError) as exc:  # not converged; scipy missing
-        return _fail(str(exc), 1)
+        return fail(str(exc), 1)
     if not args.quiet:
         print("\n".join(lines + [f"  files         {', '.join(files)}"]))
     return 0
-
-
-def _run_one(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
-    with _printed_warnings():
-        return _compute_and_write(scenario, out, method, quiet)
-
-
-def _compute_and_write(scenario: Scenario, out: Path, method: Optional[str], quiet: bool):
-    start = time.perf_counter()
-    plan = scenario.plan(method)  # decided once: auto's estimate is not made again to run it
-    n = scenario.ranges.size
-    slow = n > 50 or plan.method == "fo"
-    show, close = _progress(scenario.name, n) if slow and not quiet else (None, None)
-    done = False
-    try:
-        result = scenario.compute(plan=plan, callback=show)
-        done = True
-    finally:
-        if close is not None:
-            close(done)
-    elapsed = time.perf_counter() - start
-    out.mkdir(parents=True, exist_ok=True)
-    stem, attrs = (
-        out / scenario.name,
-        # the description may span lines in the TOML file; a header value is one line
-        {"scenario": scenario.name, "description": " ".join(scenario.description.split())},
-    )
-    files, want = [], scenario.outputs
-    if want.get("csv"):
-        result.to_csv(f"{stem}.csv", attrs)
-        files.append(f"{stem}.csv")
-    if want.get("netcdf"):
-        try:
-            result.to_netcdf(
-                f"{stem}.nc", {"title": f"Lidar overlap function G(z): {scenario.name}", **attrs}
-            )
-            files.append(f"{stem}.nc")
-        except ImportError as exc:
-            _note((None, f"{stem}.nc not written: {exc}"))
-    if want.get("plot"):
-        files.append(
-            _note(
-                _plot_file([(scenario, result)], Path(f"{stem}_overlap.png"), scenario.description)
-            )
-        )
-    if want.get("scene"):
-        files.append(_note(_scene_file(scenario, result, Path(f"{stem}_scene.png"))))
-    _summary(scenario, result, elapsed, [f for f in files if f])
-    return scenario, result
-
-
-def _summary(scenario: Scenario, result, elapsed: float, files: List[str]) -> None:
-    def at(z: float, rule: str) -> str:
-        return f"{z:.4g} m ({rule})" if math.isfinite(z) else f"none ({rule} nowhere on the grid)"
-
-    tolerance = f" (tolerance {result.tolerance:g})" if math.isfinite(result.tolerance) else ""
-    z = result.ranges
-    print(
-        f"{scenario.name}: {_one_line(scenario.description)}"
-        if scenario.description
-        else scenario.name
-    )
-    print(f"  method        {result.method}{tolerance}")
-    print(
-        f"  ranges        {z.size} from {z[0]:.4g} m to {z[-1]:.4g} m; max G = "
-        f"{result.overlap.max():.4g}"
-    )
-    print(f"  full overlap  {at(result.full_overlap_range(), 'G >= 0.99 max G')}")
-    print(f"  first signal  {at(result.first_signal_range(), 'G >= 1e-3')}")
-    print(f"  time          {elapsed:.3g} s")
-    print(f"  files         {', '.join(files) if files else 'none'}")
-
-
-def _plot_file(runs, path: Path, title: str):
-    """Plot G(z) of each (scenario, result) with its full-overlap and first-signal ranges; returns
-    (path, None) or (None, note)."""
-    try:
-        from matplotlib.figure import Figure
-    except ImportError:
-        return (
-            None,
-            f"{path} not written: plotting needs matplotlib: pip install 'lidar-overlap[plot]'",
-        )
-    fig = Figure(figsize=(7.0, 4.4), constrained_layout=True)
-    ax = fig.add_subplot()
-    for scenario, result in runs:
-        label = f"{scenario.name} ({result.method})" if len(runs) > 1 else result.method
-        result.plot(ax=ax, label=label)
-        color = ax.lines[-1].get_color()
-        for z, style, what in (
-            (result.full_overlap_range(), "--", "full overlap"),
-            (result.first_signal_range(), ":", "first signal"),
-        ):
-            if math.isfinite(z):
-                ax.plot([], [], style, color=color, lw=0.8, label=f"{what}: {z:.4g} m")
-    ax.legend(fontsize=8, loc="lower right")
-    ax.set_title(title, fontsize=9)
-    with _files.replacing_path(path) as temporary:  # keeps the .png suffix, which sets the format
-        fig.savefig(temporary, dpi=120)
-    return str(path), None
-
-
-def _scene_file(scenario: Scenario, result, path: Path):
-    """The 3-D scene (:func:`lidar_overlap.save_scene`) when pyvista is installed."""
-    if importlib.util.find_spec("pyvista") is None:
-        return (
-            None,
-            f"{path} not written: the 3-D scene needs pyvista: pip install 'lidar-overlap[viz]'",
-        )
-    try:
-        with _files.replacing_path(path) as temporary:
-            save_scene(scenario.system, str(temporary), result=result)
-            if os.path.getsize(temporary) == 0:
-                raise _NothingWritten
-    except _NothingWritten:
-        return None, f"{path} not written by save_scene"
-    except OSError:
-        raise  # a file error (a full disk) fails the run like any other file
-    except Exception as exc:  # an optional picture must not lose the computed results
-        return None, f"{path} not written: {type(exc).__name__}: {exc}"
-    return str(path), None
-
-
-class _NothingWritten(Exception):
-    pass
-
-
-def _progress(label: str, total: int):
-    """A callback(number_done) drawing a tqdm bar if installed, else a counter on stderr, and its
-    closer close(completed), which erases the counter of a failed run so that the error stays the
-    only line."""
-    try:
-        from tqdm import tqdm
-    except ImportError:
-
-        def show(done):
-            print(f"\r{label}: {done}/{total} ranges", end="", file=sys.stderr, flush=True)
-
-        def close(completed):
-            blank = " " * len(f"{label}: {total}/{total} ranges")
-            print(
-                "" if completed else f"\r{blank}\r",
-                end="\n" if completed else "",
-                file=sys.stderr,
-                flush=True,
-            )
-
-        return show, close
-    bar = tqdm(total=total, desc=label, unit="range", file=sys.stderr, leave=False)
-    return lambda done: bar.update(done - bar.n), lambda completed: bar.close()
-
-
-class _Note(UserWarning):
-    """An output left out (an optional dependency missing), printed as "note: ..." with the
-    warnings."""
-
-
-def _note(written_and_note):
-    path, note = written_and_note
-    if note:
-        warnings.warn(note, _Note)
-    return path
-
-
-@contextmanager
-def _printed_warnings():
-    """Collect the warnings of a block and print them, one line each and each once, if the block
-    succeeds (a failure prints its error alone). Runtime warnings are always shown, whatever filters
-    the caller set."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", RuntimeWarning)
-        warnings.simplefilter("always", UserWarning)
-        yield
-    kinds = {_Note: "note"}
-    lines = (f"{kinds.get(w.category, 'warning')}: {_one_line(str(w.message))}" for w in caught)
-    for line in dict.fromkeys(lines):  # each once, in order
-        print(line, file=sys.stderr)
-
-
-def _fail(message: str, code: int) -> int:
-    line = _one_line(str(message))
-    if len(line) > MAX_MESSAGE:
-        line = f"{line[: MAX_MESSAGE - 3]}..."
-    print(f"{PROG}: error: {line}", file=sys.stderr)
-    return code
-
-
-def _one_line(text: str) -> str:
-    """``text`` on one line, without control characters (a scenario's text must not drive the
-    terminal)."""
-    return " ".join("".join(c if c.isprintable() else " " for c in text).split())
 
 
 if __name__ == "__main__":
