@@ -146,15 +146,3 @@ def test_bad_search_options_are_clear_errors(kw, message):
 def test_bad_search_name_is_a_clear_error():
     with pytest.raises(ValueError, match="search"):
         lo.fit(BIAXIAL, Z, _data(), SIGMA, free=list(TRUE), search="anneal", **FAST)
-
-
-def test_runner_ups_polish_on_a_budget_and_say_so(monkeypatch):
-    from lidar_overlap.analysis import global_search
-
-    monkeypatch.setattr(global_search, "RUNNER_UP_EVALUATIONS", 2)
-    f = _global(BAD_STARTS[0], SEED_TWO_MINIMA, minima=4)
-    best, *others = f.search.minima
-    assert f.converged and best.converged and best.chi_square == f.chi_square
-    stopped = [m for m in others if not m.converged]
-    assert all(m.evaluations <= 3 for m in stopped)  # two steps and the final curve
-    assert stopped and "a bound" in str(f)

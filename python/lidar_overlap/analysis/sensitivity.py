@@ -180,35 +180,7 @@ def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
     return ((g[:, 0] - g[:, 1]) / (2.0 * steps[:, None])).T
 
 
-def forward_jacobian(p, system, paths, tolerance: float, base) -> np.ndarray:
-    """dG/dp of ``system`` on plan ``p``'s model, shape (range, path), by one-sided differences
-    from ``base`` (G of ``system`` on ``p``'s ranges, already computed): k shifted curves in one
-    core call on ray tracing, half the 2 k of :func:`jacobian`, for the iterations of a fit (its
-    covariance takes the central differences).
-
-    Step: the one-sided difference errs by h G''/2 plus 2 tolerance / h, smallest at h = s (4
-    tolerance)^(1/2) with G'' ~ 1/s². Each step is taken upward, or downward where the upward point
-    leaves the model's range."""
-    steps = np.array([step_scale(system, path) * (4.0 * tolerance) ** 0.5 for path in paths])
-    shifted, signs = [], []
-    for path, h in zip(paths, steps):
-        value = _parameters.get(system, path)
-        try:
-            shifted.append(_shifted(system, path, value, h, 1, "one-sided"))
-            signs.append(1.0)
-        except ValueError:
-            shifted.append(_shifted(system, path, value, h, -1, "one-sided"))
-            signs.append(-1.0)
-    z = p.ranges
-    _checks.check_memory(
-        "parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges"
-    )
-    g = many.systems(p.with_system(system), shifted).overlap.reshape(len(paths), z.size)
-    h = steps * np.array(signs)
-    return ((g - np.asarray(base)[None, :]) / h[:, None]).T
-
-
-def _shifted(system, path: str, value: float, step: float, k: int, kind: str = "central"):
+def _shifted(system, path: str, value: float, step: float, k: int):
     """``system`` with ``path`` at value + k step; refused naming the parameter when that leaves the
     model."""
     try:
@@ -216,5 +188,5 @@ def _shifted(system, path: str, value: float, step: float, k: int, kind: str = "
     except ValueError as exc:
         raise ValueError(
             f"parameters: {path} = {value:g} {'+' if k > 0 else '-'} {abs(k)} x step {step:.3g}, a "
-            f"point of the {kind} difference, leaves the model's range ({exc})"
+            f"point of the central difference, leaves the model's range ({exc})"
         ) from None
