@@ -396,10 +396,12 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
-    if isinstance(model, Auto) and request.paths == "both":
-        model = model.fo  # the return path through the turbulence is Fourier optics only
-    elif isinstance(model, Auto):
-        d = auto.decide(system, z, model.tolerance)
+    if isinstance(model, Auto):
+        d = (
+            auto.decide_both_paths(system, z, model.tolerance, request.turbulence)
+            if request.paths == "both"
+            else auto.decide(system, z, model.tolerance)
+        )
         model = (
             dataclasses.replace(model.rt, tolerance=model.tolerance)
             if d.method == "rt"
@@ -416,19 +418,19 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         )
     base = _base(system, z, request)
     if isinstance(model, RT):
-        if request.paths == "both":
-            raise ValueError(
-                "paths = 'both' is invalid with ray tracing: the return path through the "
-                "turbulence is modelled in Fourier optics only; expected method FO or paths = "
-                "'transmit'"
-            )
+        both = (
+            "; the return path's image tilted (correlated with the wander) and blurred, and the "
+            "same draws with independent tilts for the amplification"
+            if request.paths == "both"
+            else ""
+        )
         return Plan(
             **base,
             backend="rt_turbulent",
             tolerance=model.tolerance,
             options=_rt_options(model, model.tolerance, threads),
             reasons=(
-                f"{request.realizations} draws of the beam wander, ray traced to "
+                f"{request.realizations} draws of the beam wander{both}, ray traced to "
                 f"{model.tolerance:g}",
             ),
         )

@@ -24,6 +24,7 @@ import numpy as np
 
 from ... import _checks, _core
 from ..result import BAND, MAX_REALIZATIONS, TurbulentOverlapResult
+from . import turbulent_return
 from ._result import result
 from .batch import pairs, warn_rt
 
@@ -54,41 +55,67 @@ def fo_rows(plan, first: int, count: int):
 
 
 def run_rt(plan) -> TurbulentOverlapResult:
-    """The RT draws: one wandering beam per realisation and range, in one batched core call. A range
-    where the turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or
-    lengths) is refused naming ``ranges[i]`` and the turbulence."""
+    """The RT draws: one wandering beam per realisation and range, in one batched core call; with
+    both paths also the return path's image tilt and blur, and the same draws with independent
+    tilts (the uncorrelated paths), in the same call (:mod:`.turbulent_return`). A range where the
+    turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or lengths) is
+    refused naming ``ranges[i]`` and the turbulence."""
     check_work(plan.ranges, plan.turbulence.realizations)
-    short_term, offsets = wander(plan)
-    g, converged, error = rt_rows(plan, short_term, offsets)
-    warn_rt(plan, converged, error, np.tile(plan.ranges, plan.turbulence.realizations))
-    return statistics(plan, g)
+    spreads = radii(plan)
+    beam_radii, offsets = draws(plan, spreads)
+    g, converged, error, uncorrelated = rt_rows(plan, beam_radii, offsets)
+    warn_rt(plan, converged, error, np.tile(plan.ranges, converged.size // plan.ranges.size))
+    if uncorrelated is not None:
+        warn_return_path(plan, spreads)
+    return statistics(plan, g, uncorrelated)
 
 
-def wander(plan):
+def warn_return_path(plan, spreads=None) -> None:
+    """The RT return path's regime warning (:func:`turbulent_return.warn_outside_regime`), with the
+    long-term beam radius from ``spreads`` (:func:`radii`, computed when None)."""
+    short_term, sigma = radii(plan) if spreads is None else spreads
+    turbulent_return.warn_outside_regime(plan, np.sqrt(short_term**2 + 4.0 * sigma**2))
+
+
+def draws(plan, spreads=None):
+    """What every RT draw of ``plan`` is traced with, drawn up front: :func:`wander` for the
+    transmitted beam alone; with both paths :func:`turbulent_return.return_draws` of it (the beam
+    radius blurred by the image's spread, and the offsets of the correlated and the uncorrelated
+    return paths, realisations x ranges x 2 x 2). ``spreads``: :func:`radii` (computed when
+    None)."""
+    spreads = radii(plan) if spreads is None else spreads
+    short_term, offsets = wander(plan, spreads)
+    if plan.turbulence.paths != "both":
+        return short_term, offsets
+    blurred, both = turbulent_return.return_draws(plan, short_term, offsets, spreads[1])
+    for i, zi in enumerate(plan.ranges):
+        angle = spread(plan.system.beam, zi, blurred[i])
+        if angle > _core.MAX_ANGLE:
+            raise ValueError(
+                f"{_where(plan, i)} is invalid: the short-term beam blurred by the image's spread "
+                f"there ({blurred[i]:.4g} m) spreads at {angle:.4g} rad, beyond the paraxial "
+                f"model's {_core.MAX_ANGLE:g} rad; expected weaker turbulence (cn2) or shorter "
+                "ranges"
+            )
+    return blurred, both
+
+
+def wander(plan, spreads=None):
     """The short-term beam radius W_ST at each range (m) and the wander offsets of every draw (m,
     realisations x ranges x 2): drawn from ``numpy.random.default_rng(seed)``, range after range,
-    all realisations of a range (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2. A range
-    where the short-term beam spreads beyond the paraxial model is refused by name."""
+    all realisations of a range (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2
+    (``spreads``: :func:`radii`, computed when None). A range where the short-term beam spreads
+    beyond the paraxial model is refused by name."""
     system, z, request = plan.system, plan.ranges, plan.turbulence
-    beam, lam, turbulence = system.beam, system.beam.wavelength, request.turbulence
-    short_term, sigma = np.empty(z.size), np.empty(z.size)
+    short_term, sigma = radii(plan) if spreads is None else spreads
     for i, zi in enumerate(z):
-        st = turbulence.short_term_radius(
-            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
-        )
-        lt = turbulence.long_term_radius(
-            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
-        )
-        if spread(beam, zi, st) > _core.MAX_ANGLE:
+        if spread(system.beam, zi, short_term[i]) > _core.MAX_ANGLE:
             raise ValueError(
-                f"{_where(plan, i)} is invalid: the short-term beam there ({st:.4g} m) spreads at "
-                f"{spread(beam, zi, st):.4g} rad, beyond the paraxial model's {_core.MAX_ANGLE:g} "
-                "rad; expected weaker turbulence (cn2) or shorter ranges"
+                f"{_where(plan, i)} is invalid: the short-term beam there ({short_term[i]:.4g} m) "
+                f"spreads at {spread(system.beam, zi, short_term[i]):.4g} rad, beyond the "
+                f"paraxial model's {_core.MAX_ANGLE:g} rad; expected weaker turbulence (cn2) or "
+                "shorter ranges"
             )
-        short_term[i] = st
-        sigma[i] = 0.5 * math.sqrt(
-            max(lt**2 - st**2, 0.0)
-        )  # per axis: W_LT^2 / 4 = W_ST^2 / 4 + sigma^2
     # 0 + sigma z: numpy's normal(0, sigma) for each draw, bit for bit, in the same order of the one
     # stream
     drawn = 0.0 + sigma[:, None, None] * np.random.default_rng(request.seed).standard_normal(
@@ -97,35 +124,56 @@ def wander(plan):
     return short_term, drawn.transpose(1, 0, 2)
 
 
+def radii(plan):
+    """W_ST (m) at each range and the per-axis sd (m) of the beam's wander, sqrt(W_LT² − W_ST²) / 2
+    (per axis W_LT² / 4 = W_ST² / 4 + sd²)."""
+    beam, z, turbulence = plan.system.beam, plan.ranges, plan.turbulence.turbulence
+    lam = beam.wavelength
+    short_term, sigma = np.empty(z.size), np.empty(z.size)
+    for i, zi in enumerate(z):
+        st = turbulence.short_term_radius(
+            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
+        )
+        lt = turbulence.long_term_radius(
+            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
+        )
+        short_term[i] = st
+        sigma[i] = 0.5 * math.sqrt(max(lt**2 - st**2, 0.0))
+    return short_term, sigma
+
+
 def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
-    """G of the RT draws whose wander offsets are ``offsets`` (realisations x ranges x 2, m; a
-    slice of :func:`wander`'s), in one batched core call on ``plan.options.threads`` threads: G
-    (realisations x ranges) and the core's convergence flags and error estimates (flat). Each
-    draw's G depends on its offset alone, so the rows of a slice are those of the whole run, bit
-    for bit."""
+    """G of the RT draws whose offsets are ``offsets`` (a slice of :func:`draws`'s: realisations x
+    ranges x 2, m; with both paths realisations x ranges x 2 x 2, the correlated and the
+    uncorrelated return paths), the beam of radius ``short_term`` at each range, in one batched
+    core call on ``plan.options.threads`` threads: G (realisations x ranges), the core's convergence
+    flags and error estimates (flat), and the uncorrelated G (None for transmit only). Each draw's
+    G depends on its offset alone, so the rows of a slice are those of the whole run, bit for
+    bit."""
     system, z = plan.system, plan.ranges
     beam, telescope, detector = system.beam, system.telescope._native, system.detector._native
     count = offsets.shape[0]
+    sets = [offsets] if offsets.ndim == 3 else [offsets[:, :, 0], offsets[:, :, 1]]
     draws: List[Any] = [None] * (
-        count * z.size
+        len(sets) * count * z.size
     )  # realisation-major, so that G reshapes to (count, ranges)
-    for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
-        for r in range(count):
-            try:
-                draws[r * z.size + i] = _core.LidarSystem(
-                    beam_for(beam, zi, short_term[i], offsets[r, i])._native, telescope, detector
-                )
-            except (
-                ValueError
-            ) as exc:  # the drawn beam's offset or divergence beyond the core's scales
-                raise ValueError(
-                    f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering beam "
-                    f"there ({exc}); its axis (offset + tilt x range) and wander must stay within "
-                    "the model's lengths and angles: expected shorter ranges, a smaller tilt or "
-                    "weaker turbulence (cn2)"
-                ) from None
-    rows = pairs(plan, draws, np.tile(z, count), warn=False)
-    return rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate
+    for s, part in enumerate(sets):
+        for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
+            for r in range(count):
+                try:
+                    draws[(s * count + r) * z.size + i] = _core.LidarSystem(
+                        native_beam_for(beam, zi, short_term[i], part[r, i]), telescope, detector
+                    )
+                except ValueError as exc:  # the drawn beam's offset or divergence beyond the core
+                    raise ValueError(
+                        f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering "
+                        f"beam there ({exc}); its axis (offset + tilt x range) and wander must "
+                        "stay within the model's lengths and angles: expected shorter ranges, a "
+                        "smaller tilt or weaker turbulence (cn2)"
+                    ) from None
+    rows = pairs(plan, draws, np.tile(z, len(sets) * count), warn=False)
+    g = rows.overlap.reshape(len(sets), count, z.size)
+    return g[0], rows.converged, rows.error_estimate, (g[1] if len(sets) > 1 else None)
 
 
 def _where(plan, i: int) -> str:
@@ -192,14 +240,23 @@ def spread(beam, z: float, radius: float) -> float:
 def beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
     """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is
     ``beam``'s axis moved by ``center`` (m): the short-term beam of one draw."""
+    divergence, offset = _drawn(beam, z, radius, center)
+    return dataclasses.replace(beam, divergence=divergence, offset=offset, tilt=(0.0, 0.0))
+
+
+def native_beam_for(beam, z: float, radius: float, center=(0.0, 0.0)) -> _core.GaussianBeam:
+    """:func:`beam_for`'s beam built in the core directly (which validates it): a draw's beam needs
+    none of the model's checks of a caller's input, which would cost most of a run's time."""
+    divergence, offset = _drawn(beam, z, radius, center)
+    return _core.GaussianBeam(
+        beam.wavelength, beam.waist_radius, divergence, offset, (0.0, 0.0), beam.width_law
+    )
+
+
+def _drawn(beam, z: float, radius: float, center):
     axis = beam.center(z)
     offset = (axis[0] + float(center[0]), axis[1] + float(center[1]))
-    return dataclasses.replace(
-        beam,
-        divergence=max(spread(beam, z, radius), beam.half_angle_divergence),
-        offset=offset,
-        tilt=(0.0, 0.0),
-    )
+    return max(spread(beam, z, radius), beam.half_angle_divergence), offset
 
 
 def check_work(z: np.ndarray, realizations: int) -> None:
