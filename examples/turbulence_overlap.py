@@ -4,8 +4,9 @@ moderate and strong turbulence (constant Cn^2 = 1e-15, 1e-14, 1e-13 m^-2/3 along
 RT on both paths (the default): the short-term beam displaced by the random beam wander and seen
 through the return path's image tilt (correlated with the wander) and blur, 200 realisations per
 range; FO on the beam's path alone (the beam carried through 10 phase screens, 12 realisations on
-128^2 grids) against RT on the beam's path alone, for the moderate case of the Table 1 lidar. Shaded: the 5-95 % band of the
-realisations. Where the wander pushes the beam off the field of view the band widens. The RT wander
+128^2 grids) against RT on the beam's path alone, for the moderate case of the Table 1 lidar.
+Shaded: the 5-95 % band of the realisations. Where the wander pushes the beam off the field of view
+the band widens. The RT wander
 and spread are weak-fluctuation results: where the Rytov variance in the legend exceeds ~1 the bands
 are indicative only. Writes turbulence_overlap.png. SI units.
 """

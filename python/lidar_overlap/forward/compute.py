@@ -65,8 +65,8 @@ def overlap(
     The other keywords are shortcuts, used with a method string only (beside a method object they
     are refused): ``tolerance`` and ``max_segments`` (RT and auto), ``fo_path``, ``beam_grid``,
     ``beam_window``, ``max_spectrum_grid`` (FO), and ``turbulence``, ``realizations``, ``seed``,
-    ``screens``, ``paths`` (which make it a :class:`Turbulent` method). Options that do not apply to the
-    method's model are ignored.
+    ``screens``, ``paths`` (which make it a :class:`Turbulent` method). Options that do not apply to
+    the method's model are ignored.
 
     Warns (RuntimeWarning) when ray tracing is used outside its validity (a detector within a few
     tens of Airy radii, or ranges so short that paraxial slopes err by more than 1 %; see
