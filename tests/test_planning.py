@@ -184,7 +184,11 @@ def test_defaults_are_the_cores():
         (TABLE1, "fo", "nominal"),
         (TABLE1, lo.Auto(1e-2), "bound"),
         (FIBRE, lo.Auto(1e-4), "nominal"),
-        (TABLE1, lo.Turbulent(lo.Turbulence(1e-14), "fo", realizations=2), "standard_error"),
+        (
+            TABLE1,
+            lo.Turbulent(lo.Turbulence(1e-14), "fo", realizations=2, paths="transmit"),
+            "standard_error",
+        ),
     ],
 )
 def test_the_plan_states_the_kind_of_error_the_result_carries(system, method, kind):

@@ -396,12 +396,14 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
+    chosen: Tuple[str, ...] = ()  # auto's reasons, said before the plan's own
     if isinstance(model, Auto):
         d = (
             auto.decide_both_paths(system, z, model.tolerance, request.turbulence)
             if request.paths == "both"
             else auto.decide(system, z, model.tolerance)
         )
+        chosen = tuple(d.reasons)
         model = (
             dataclasses.replace(model.rt, tolerance=model.tolerance)
             if d.method == "rt"
@@ -429,7 +431,8 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
             backend="rt_turbulent",
             tolerance=model.tolerance,
             options=_rt_options(model, model.tolerance, threads),
-            reasons=(
+            reasons=chosen
+            + (
                 f"{request.realizations} draws of the beam wander{both}, ray traced to "
                 f"{model.tolerance:g}",
             ),
@@ -454,7 +457,8 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         backend="fo_turbulent",
         tolerance=float("nan"),
         options=options,
-        reasons=(
+        reasons=chosen
+        + (
             f"{request.realizations} draws of {request.screens} phase screens, the beam on "
             f"{options.beam_grid}^2{both}",
         ),
