@@ -189,7 +189,7 @@ class Turbulence(ByArguments):
                 )
         moments = path_tilts(
             self._native.cn2_at_range,
-            [length],
+            np.array([length]),
             wavelength=1e-6,  # enters r0 only, not returned here
             diameter=d,
             beam_radius=lambda r: np.full(np.shape(r), d / 2.0),  # the beam's moments unused
