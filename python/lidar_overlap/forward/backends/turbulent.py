@@ -63,11 +63,29 @@ def run_rt(plan) -> TurbulentOverlapResult:
     check_work(plan.ranges, plan.turbulence.realizations)
     spreads = radii(plan)
     beam_radii, offsets = draws(plan, spreads)
-    g, converged, error, uncorrelated = rt_rows(plan, beam_radii, offsets)
-    warn_rt(plan, converged, error, np.tile(plan.ranges, converged.size // plan.ranges.size))
-    if uncorrelated is not None:
-        warn_return_path(plan, spreads)
-    return statistics(plan, g, uncorrelated)
+    g, converged, error, _ = rt_rows(plan, beam_radii, offsets)
+    if plan.turbulence.paths != "both":
+        warn_rt(plan, converged, error, np.tile(plan.ranges, g.shape[0]))
+        return statistics(plan, g)
+    uncorrelated, more_converged, more_error = rt_uncorrelated_mean(plan, spreads)
+    warn_rt(
+        plan,
+        np.concatenate([converged, more_converged]),
+        np.concatenate([error, more_error]),
+        np.tile(plan.ranges, g.shape[0] + 1),
+    )
+    warn_return_path(plan, spreads)
+    return statistics(plan, g, uncorrelated_mean=uncorrelated)
+
+
+def rt_uncorrelated_mean(plan, spreads=None):
+    """The mean G over draws with uncorrelated paths at each range, exactly (one trace per range of
+    the beam :func:`turbulent_return.uncorrelated_radius` gives), and that call's convergence flags
+    and error estimates."""
+    short_term, sigma = radii(plan) if spreads is None else spreads
+    radius = turbulent_return.uncorrelated_radius(plan, short_term, sigma)
+    g, converged, error, _ = rt_rows(plan, radius, np.zeros((1, plan.ranges.size, 2)))
+    return g[0], converged, error
 
 
 def warn_return_path(plan, spreads=None) -> None:
@@ -80,9 +98,8 @@ def warn_return_path(plan, spreads=None) -> None:
 def draws(plan, spreads=None):
     """What every RT draw of ``plan`` is traced with, drawn up front: :func:`wander` for the
     transmitted beam alone; with both paths :func:`turbulent_return.return_draws` of it (the beam
-    radius blurred by the image's spread, and the offsets of the correlated and the uncorrelated
-    return paths, realisations x ranges x 2 x 2). ``spreads``: :func:`radii` (computed when
-    None)."""
+    radius blurred by the image's spread, and the offsets of the image's tilt added to the wander,
+    realisations x ranges x 2). ``spreads``: :func:`radii` (computed when None)."""
     spreads = radii(plan) if spreads is None else spreads
     short_term, offsets = wander(plan, spreads)
     if plan.turbulence.paths != "both":
@@ -144,36 +161,30 @@ def radii(plan):
 
 def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
     """G of the RT draws whose offsets are ``offsets`` (a slice of :func:`draws`'s: realisations x
-    ranges x 2, m; with both paths realisations x ranges x 2 x 2, the correlated and the
-    uncorrelated return paths), the beam of radius ``short_term`` at each range, in one batched
-    core call on ``plan.options.threads`` threads: G (realisations x ranges), the core's convergence
-    flags and error estimates (flat), and the uncorrelated G (None for transmit only). Each draw's
-    G depends on its offset alone, so the rows of a slice are those of the whole run, bit for
-    bit."""
+    ranges x 2, m), the beam of radius ``short_term`` at each range, in one batched core call on
+    ``plan.options.threads`` threads: G (realisations x ranges), the core's convergence flags and
+    error estimates (flat), and None (the place of FO's uncorrelated rows: RT computes their mean
+    exactly, :func:`rt_uncorrelated_mean`). Each draw's G depends on its offset alone, so the rows
+    of a slice are those of the whole run, bit for bit."""
     system, z = plan.system, plan.ranges
     beam, telescope, detector = system.beam, system.telescope._native, system.detector._native
     count = offsets.shape[0]
-    sets = [offsets] if offsets.ndim == 3 else [offsets[:, :, 0], offsets[:, :, 1]]
-    draws: List[Any] = [None] * (
-        len(sets) * count * z.size
-    )  # realisation-major, so that G reshapes to (count, ranges)
-    for s, part in enumerate(sets):
-        for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
-            for r in range(count):
-                try:
-                    draws[(s * count + r) * z.size + i] = _core.LidarSystem(
-                        native_beam_for(beam, zi, short_term[i], part[r, i]), telescope, detector
-                    )
-                except ValueError as exc:  # the drawn beam's offset or divergence beyond the core
-                    raise ValueError(
-                        f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering "
-                        f"beam there ({exc}); its axis (offset + tilt x range) and wander must "
-                        "stay within the model's lengths and angles: expected shorter ranges, a "
-                        "smaller tilt or weaker turbulence (cn2)"
-                    ) from None
-    rows = pairs(plan, draws, np.tile(z, len(sets) * count), warn=False)
-    g = rows.overlap.reshape(len(sets), count, z.size)
-    return g[0], rows.converged, rows.error_estimate, (g[1] if len(sets) > 1 else None)
+    draws: List[Any] = [None] * (count * z.size)  # realisation-major: G reshapes to (count, ranges)
+    for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
+        for r in range(count):
+            try:
+                draws[r * z.size + i] = _core.LidarSystem(
+                    native_beam_for(beam, zi, short_term[i], offsets[r, i]), telescope, detector
+                )
+            except ValueError as exc:  # the drawn beam's offset or divergence beyond the core's
+                raise ValueError(
+                    f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering beam "
+                    f"there ({exc}); its axis (offset + tilt x range) and wander must stay within "
+                    "the model's lengths and angles: expected shorter ranges, a smaller tilt or "
+                    "weaker turbulence (cn2)"
+                ) from None
+    rows = pairs(plan, draws, np.tile(z, count), warn=False)
+    return rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate, None
 
 
 def _where(plan, i: int) -> str:
@@ -198,10 +209,13 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
     return cast(TurbulentOverlapResult, out)
 
 
-def statistics(plan, samples: np.ndarray, uncorrelated=None) -> TurbulentOverlapResult:
+def statistics(
+    plan, samples: np.ndarray, uncorrelated=None, uncorrelated_mean=None
+) -> TurbulentOverlapResult:
     """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples``
     (C-contiguous: the reductions then sum in one order, whoever computed the rows); with both
-    paths, the amplification: the mean over the mean of the ``uncorrelated`` rows."""
+    paths, the amplification: the mean over the mean of the ``uncorrelated`` rows (FO), or over
+    ``uncorrelated_mean`` (N: RT's exact mean)."""
     samples = np.ascontiguousarray(samples)
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
@@ -214,6 +228,12 @@ def statistics(plan, samples: np.ndarray, uncorrelated=None) -> TurbulentOverlap
             samples.mean(axis=0), mean_u, out=np.full(mean_u.shape, np.nan), where=mean_u > 0
         )
         extra.update(uncorrelated=uncorrelated, amplification=ratio)
+    elif uncorrelated_mean is not None:
+        mean_u = np.asarray(uncorrelated_mean)
+        ratio = np.divide(
+            samples.mean(axis=0), mean_u, out=np.full(mean_u.shape, np.nan), where=mean_u > 0
+        )
+        extra.update(amplification=ratio)
     out = result(
         plan,
         samples.mean(axis=0),

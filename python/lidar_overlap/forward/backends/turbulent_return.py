@@ -18,8 +18,10 @@ return path that tilts and blurs the image of the scattering volume:
   tilt); 0 where the aperture is smaller than about r0 (the image is then diffraction's, which ray
   tracing leaves out). Blurring every scatterer's image by it is the same as blurring the beam:
   the draw's beam radius is sqrt(W_ST² + (z θ_ST)²).
-- uncorrelated paths: the same draw with z α = σ_i ξ (independent of c): the amplification is mean
-  G over their mean.
+- uncorrelated paths: z α independent of c. Their mean G is computed exactly, not drawn: c + z α is
+  then Gaussian, and the blurred beam averaged over it is the Gaussian beam of radius² W_b² +
+  4 (σ_c² + σ_i²) (G is linear in the irradiance), one trace per range. The amplification is mean G
+  over it.
 
 What it leaves out: the correlated bright spots of the two paths (the backscatter enhancement of
 scintillation, the FO effect that lets mean G exceed 1). :func:`missed_enhancement` estimates it
@@ -85,9 +87,9 @@ def image_blur(wavelength: float, z: np.ndarray, moments: PathTilts) -> np.ndarr
 
 
 def return_draws(plan, short_term: np.ndarray, offsets: np.ndarray, sigma: np.ndarray):
-    """The blurred beam radius at each range (m) and the offsets (m, realisations x ranges x 2 x 2:
-    the correlated and the uncorrelated return path) of every draw, from the transmit draws
-    (``short_term``, ``offsets`` and the wander's per-axis sd ``sigma``)."""
+    """The blurred beam radius at each range (m) and the offsets (m, realisations x ranges x 2) of
+    every draw through both paths, from the transmit draws (``short_term``, ``offsets`` and the
+    wander's per-axis sd ``sigma``)."""
     z, request = plan.ranges, plan.turbulence
     moments = tilts(plan.system, request.turbulence, z)
     image = np.sqrt(moments.image)
@@ -98,8 +100,18 @@ def return_draws(plan, short_term: np.ndarray, offsets: np.ndarray, sigma: np.nd
     gain = np.divide(rho * image, sigma, out=np.zeros_like(image), where=sigma > 0.0)
     lone = np.where(sigma > 0.0, np.sqrt(1.0 - rho**2), 1.0)  # no wander: nothing to correlate
     correlated = offsets * (1.0 - gain)[None, :, None] + lone[None, :, None] * xi
-    both = np.stack([correlated, offsets + xi], axis=2)
-    return np.sqrt(short_term**2 + (z * blur) ** 2), both
+    return np.sqrt(short_term**2 + (z * blur) ** 2), correlated
+
+
+def uncorrelated_radius(plan, short_term: np.ndarray, sigma: np.ndarray) -> np.ndarray:
+    """The radius (m) at each range of the beam whose G is the mean G with uncorrelated paths: the
+    blurred short-term beam moved by c + z α with c and z α independent, Gaussian, of per-axis
+    variances sigma² and ``image``; G is linear in the irradiance, and a Gaussian beam averaged over
+    Gaussian offsets is the Gaussian beam of radius² W² + 4 (sigma² + image)."""
+    z = plan.ranges
+    moments = tilts(plan.system, plan.turbulence.turbulence, z)
+    blur = image_blur(plan.system.beam.wavelength, z, moments)
+    return np.sqrt(short_term**2 + (z * blur) ** 2 + 4.0 * (sigma**2 + moments.image))
 
 
 def missed_enhancement(system, turbulence, z) -> np.ndarray:
