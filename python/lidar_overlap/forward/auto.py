@@ -21,6 +21,11 @@ tail e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves
 r_d(1 ± 1e-2) on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist
 only in ray tracing.
 
+Through turbulence on both paths (:func:`decide_both_paths`) ray tracing's return path also leaves
+out the backscatter enhancement (the bright spots the two paths share); its estimate
+(:func:`~.backends.turbulent_return.missed_enhancement`) adds to the diffraction error, and Fourier
+optics runs where the two leave the quadrature less than its share of the tolerance.
+
 :func:`decide` only chooses, from the geometry: it computes no overlap curve, and the plan it feeds
 carries its numbers, so nothing is estimated twice (:mod:`lidar_overlap.forward.planning`). The
 aberrated estimate needs two coarse RT curves, so :func:`decide_aberrated` runs when the plan runs

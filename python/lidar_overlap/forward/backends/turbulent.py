@@ -47,10 +47,17 @@ def fo_rows(plan, first: int, count: int):
     (None for transmit only)."""
     part = copy.copy(plan.options)  # the plan's own options stay as they are
     part.realizations, part.first_realization = count, first
-    raw = _core.overlap_fo_turbulent(
-        plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
-    )
     both = part.paths == "both"
+    try:
+        raw = _core.overlap_fo_turbulent(
+            plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
+        )
+    except ValueError as exc:  # what the return path needs (a finer grid, no fibre NA)
+        if both and ("beam_grid" in str(exc) or "numerical_aperture" in str(exc)):
+            raise ValueError(
+                f"{exc}; or paths = 'transmit' (the return path unperturbed)"
+            ) from None
+        raise
     return np.asarray(raw.overlap), (np.asarray(raw.uncorrelated) if both else None)
 
 
