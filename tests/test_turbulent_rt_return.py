@@ -254,6 +254,7 @@ def test_calm_air_is_the_unperturbed_overlap():
     assert np.all(np.abs(res.amplification - 1) < 1e-6)
     zero = run(system, z, "both", 5, cn2=0.0)  # no turbulence at all: every draw the plain curve
     assert np.allclose(zero.overlap, lo.overlap(system, z, lo.RT(1e-6)).overlap, atol=0, rtol=0)
+    assert zero.paths == "both" and np.all(zero.amplification == 1.0)
 
 
 def test_auto_takes_ray_tracing_where_the_missed_enhancement_fits():

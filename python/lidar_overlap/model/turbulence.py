@@ -17,7 +17,9 @@ spread (computed in :mod:`lidar_overlap.forward.backends.turbulent`).
   the long-term beam W_LT; the mean overlap is then that of the long-term beam (G is linear in the
   irradiance). With Andrews & Phillips' W_ST² = W_LT² − <r_c²> that 2-D wander variance is <r_c²>/2,
   2^(-1/3) = 0.79 times the centroid variance of the FO screens for a collimated beam: the RT band
-  is a little narrower.
+  is a little narrower. With ``paths="both"`` (the default) the return path tilts the image of the
+  scattering volume by its angle of arrival (:meth:`Turbulence.angle_of_arrival_variance`,
+  correlated with the wander on the layer model of :mod:`lidar_overlap.model.tilt`) and blurs it.
 """
 
 from __future__ import annotations

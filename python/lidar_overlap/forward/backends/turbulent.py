@@ -6,7 +6,9 @@ spread.
   per realisation of the screens (C++, in parallel).
 - Ray tracing: each draw is the short-term beam (radius W_ST) displaced by a random wander from a
   Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it,
-  the long-term beam W_LT. All K x N draws are traced in one core call (``overlap_rt_batch``).
+  the long-term beam W_LT. With both paths the return path also tilts the image (correlated with
+  the wander) and blurs it (:mod:`.turbulent_return`). All K x N draws are traced in one core call
+  (``overlap_rt_batch``).
 
 Both compute any slice of realisations bit for bit as the whole run does (``fo_rows``, ``rt_rows``
 with a slice of ``wander``'s offsets): :mod:`lidar_overlap.analysis.turbulent_study` runs them as
@@ -200,9 +202,13 @@ def _where(plan, i: int) -> str:
 
 
 def without_turbulence(plan, plain) -> TurbulentOverlapResult:
-    """A path without turbulence: every draw is the plain curve, the spread zero."""
+    """A path without turbulence: every draw is the plain curve, the spread zero; on both paths the
+    amplification 1 (NaN where no light comes back)."""
     zero = np.zeros(plan.ranges.size)
     samples = np.tile(plain.overlap, (plan.turbulence.realizations, 1))
+    extra: Dict[str, Any] = {"paths": plan.turbulence.paths}
+    if plan.turbulence.paths == "both":
+        extra["amplification"] = np.where(plain.overlap > 0, 1.0, np.nan)
     out = result(
         plan,
         plain.overlap,
@@ -212,6 +218,7 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
         std=zero.copy(),
         low=plain.overlap.copy(),
         high=plain.overlap.copy(),
+        **extra,
     )
     return cast(TurbulentOverlapResult, out)
 
