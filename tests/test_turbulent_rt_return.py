@@ -311,3 +311,35 @@ def test_ray_tracing_and_fourier_optics_agree_on_both_paths_where_both_hold():
     for i in range(z.size):
         error = np.hypot(amplification_error(fo, i), amplification_error(rt, i))
         assert abs(rt.amplification[i] - fo.amplification[i]) < SIGMAS * error + missed[i]
+
+
+def test_the_paths_decorrelate_as_their_axes_separate():
+    """The tilt correlation of the two paths falls as the beam's axis moves away from the
+    telescope's; with an outer scale it vanishes once the separation exceeds it (eddies larger than
+    L0 / 2π carry no tilt), and the amplification is then 1: the image's tilt is independent of the
+    wander. The beam is pointed so that its image sits at the same place at 500 m for every
+    separation."""
+    z, outer = 500.0, 0.5
+    rho = {}
+    for a in (0.0, 0.02, 0.05, 0.2, 1.0):
+        system = tilted_lidar(tilt=0.97e-3 - a / z, offset=a)
+        rho[a] = tilts(system, lo.Turbulence(1e-13), [z]).correlation[0]
+    values = list(rho.values())
+    assert all(x > y for x, y in zip(values, values[1:])) and values[0] > 0.8
+    coaxial = tilted_lidar(tilt=0.97e-3)
+    apart = tilted_lidar(tilt=0.97e-3 - 1.0 / z, offset=1.0)
+    t = lo.Turbulence(1e-13, outer_scale=outer)
+    assert abs(tilts(apart, t, [z]).correlation[0]) < 1e-2
+    results = {}
+    for name, system in (("coaxial", coaxial), ("1 m apart", apart)):
+        method = lo.Turbulent(t, lo.RT(1e-6), realizations=3000, seed=4)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            results[name] = lo.overlap(system, [z], method)
+    print({k: (r.amplification[0], amplification_error(r)) for k, r in results.items()})
+    assert results["coaxial"].amplification[0] - 1 > SIGMAS * amplification_error(
+        results["coaxial"]
+    )
+    assert abs(results["1 m apart"].amplification[0] - 1) < SIGMAS * amplification_error(
+        results["1 m apart"]
+    )
