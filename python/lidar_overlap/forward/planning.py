@@ -403,7 +403,8 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
             if request.paths == "both"
             else auto.decide(system, z, model.tolerance)
         )
-        chosen = tuple(d.reasons)
+        # through turbulence Fourier optics is always the 2-D path through the screens
+        chosen = tuple(r for r in d.reasons if not r.startswith("Gaussian beam: the radial FO"))
         model = (
             dataclasses.replace(model.rt, tolerance=model.tolerance)
             if d.method == "rt"
@@ -422,7 +423,7 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
     if isinstance(model, RT):
         both = (
             "; the return path's image tilted (correlated with the wander) and blurred, and the "
-            "same draws with independent tilts for the amplification"
+            "mean with independent tilts computed exactly for the amplification"
             if request.paths == "both"
             else ""
         )
