@@ -40,6 +40,7 @@ def run(realizations):
         realizations=realizations,
         seed=SEED,
         beam_grid=BEAM_GRID,
+        paths="transmit",
     )
 
 

@@ -38,7 +38,12 @@ RANGES = np.geomspace(50.0, 2000.0, 20)
 CN2 = 1e-14  # m^-2/3
 REALIZATIONS = 32
 METHOD = lo.Turbulent(
-    lo.Turbulence(CN2), lo.FO(beam_grid=256), realizations=REALIZATIONS, seed=1, screens=10
+    lo.Turbulence(CN2),
+    lo.FO(beam_grid=256),
+    realizations=REALIZATIONS,
+    seed=1,
+    screens=10,
+    paths="transmit",
 )
 REPEATS = 2
 TARGET_RATIO = 1.5

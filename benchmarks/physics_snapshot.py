@@ -102,12 +102,21 @@ def cases():
     yield "auto seidel 1e-2", lambda: curve(seidel, Z_SHORT, "auto", tolerance=1e-2)
     yield (
         "turbulent rt",
-        lambda: curve(table1, Z_SHORT, "rt", turbulence=turbulence, realizations=6, seed=3),
+        lambda: curve(
+            table1, Z_SHORT, "rt", turbulence=turbulence, realizations=6, seed=3, paths="transmit"
+        ),
     )
     yield (
         "turbulent fo",
         lambda: curve(
-            table1, Z_SHORT, "fo", turbulence=turbulence, realizations=4, seed=3, beam_grid=128
+            table1,
+            Z_SHORT,
+            "fo",
+            turbulence=turbulence,
+            realizations=4,
+            seed=3,
+            beam_grid=128,
+            paths="transmit",
         ),
     )
     yield (

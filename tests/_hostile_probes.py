@@ -259,8 +259,8 @@ def overlap_call(draw, kind: str, max_ranges: int = 6, low: float = 2.0):
             realizations=r.randint(1, 3),
             seed=r.randint(0, 2**31 - 1),
         )
-        if method == "fo":
-            options.update(screens=r.randint(1, 3), beam_grid=r.choice((32, 64)))
+        if method == "fo":  # grids this coarse hold the beam's path only
+            options.update(screens=r.randint(1, 3), beam_grid=r.choice((32, 64)), paths="transmit")
     elif kind == "aberrated":
         options.update(
             method=r.choice(("rt", "fo", "auto")),

@@ -87,7 +87,8 @@ def test_turbulent_rt_is_one_batched_core_call_equal_to_one_call_per_draw(calls)
 
     z, k, seed = np.array([300.0, 900.0]), 3, 7
     turbulence = lo.Turbulence(1e-13)
-    res = lo.overlap(TABLE1, z, lo.Turbulent(turbulence, lo.RT(1e-6), realizations=k, seed=seed))
+    method = lo.Turbulent(turbulence, lo.RT(1e-6), realizations=k, seed=seed, paths="transmit")
+    res = lo.overlap(TABLE1, z, method)
     assert len(calls["overlap_rt_batch"]) == 1 and not calls["overlap_rt"]
     rng, beam = np.random.default_rng(seed), TABLE1.beam
     options = _core.RtOptions()
@@ -183,7 +184,11 @@ def test_defaults_are_the_cores():
         (TABLE1, "fo", "nominal"),
         (TABLE1, lo.Auto(1e-2), "bound"),
         (FIBRE, lo.Auto(1e-4), "nominal"),
-        (TABLE1, lo.Turbulent(lo.Turbulence(1e-14), "fo", realizations=2), "standard_error"),
+        (
+            TABLE1,
+            lo.Turbulent(lo.Turbulence(1e-14), "fo", realizations=2, paths="transmit"),
+            "standard_error",
+        ),
     ],
 )
 def test_the_plan_states_the_kind_of_error_the_result_carries(system, method, kind):

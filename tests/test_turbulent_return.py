@@ -88,18 +88,20 @@ def small_lidar():
     )
 
 
-def test_transmit_is_the_default_and_unchanged():
+def test_both_is_the_default_and_transmit_is_the_cores_transmit_run():
     s, z, t = small_lidar(), [300.0, 800.0], lo.Turbulence(3e-14)
-    default = lo.overlap(
-        s, z, lo.Turbulent(t, lo.FO(beam_grid=128), realizations=3, seed=2, screens=3)
-    )
+    assert lo.Turbulent(t).paths == "both"
     explicit = lo.overlap(
         s,
         z,
         lo.Turbulent(t, lo.FO(beam_grid=128), realizations=3, seed=2, screens=3, paths="transmit"),
     )
-    assert lo.Turbulent(t).paths == "transmit" and default == explicit
-    assert default.amplification is None and default.paths == "transmit"
+    # the core's own transmit-only run (its options' default), bit for bit
+    opts = _core.TurbulenceOptions(realizations=3, screens=3, beam_grid=128, seed=2)
+    assert opts.paths == "transmit"
+    raw = _core.overlap_fo_turbulent(s._native, z, t._native, opts)
+    assert np.array_equal(explicit.realizations, np.asarray(raw.overlap))
+    assert explicit.amplification is None and explicit.paths == "transmit"
 
 
 def test_both_paths_report_the_amplification_and_may_exceed_one():
@@ -129,13 +131,16 @@ def test_both_paths_report_the_amplification_and_may_exceed_one():
 
 def test_paths_is_checked_by_name():
     t = lo.Turbulence(1e-14)
-    with pytest.raises(ValueError, match="paths"):
-        lo.Turbulent(t, paths="return")
+    for hostile in ("return", "Both", " both", None, 3, True, b"both"):
+        with pytest.raises(ValueError, match=r"paths = .* is invalid: expected one of"):
+            lo.Turbulent(t, paths=hostile)
     with pytest.raises(ValueError, match="receiver_fields"):
         lo.Turbulent(t, paths="both", receiver_fields=0)
-    with pytest.raises(ValueError, match="paths = 'both' is invalid with ray tracing"):
-        lo.overlap(small_lidar(), [500.0], lo.Turbulent(t, "rt", paths="both"))
-    # auto runs Fourier optics, the one model of the return path
+    # the shortcut names it as the caller did
+    with pytest.raises(ValueError, match="paths = 'Both' is invalid"):
+        lo.overlap(small_lidar(), [500.0], "rt", turbulence=t, paths="Both")
+    # a detector 3.5 Airy radii wide: ray tracing's diffraction error exceeds auto's tolerance, so
+    # auto runs Fourier optics on both paths
     plan = lo.plan(
         small_lidar(),
         [500.0],

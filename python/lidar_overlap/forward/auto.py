@@ -21,6 +21,11 @@ tail e_tail G plus the edge blur (λd/D)|∂G/∂r_d|, from two coarse RT curves
 r_d(1 ± 1e-2) on at most 16 ranges (their mean stands for G). Field-dependent Seidel terms exist
 only in ray tracing.
 
+Through turbulence on both paths (:func:`decide_both_paths`) ray tracing's return path also leaves
+out the backscatter enhancement (the bright spots the two paths share); its estimate
+(:func:`~.backends.turbulent_return.missed_enhancement`) adds to the diffraction error, and Fourier
+optics runs where the two leave the quadrature less than its share of the tolerance.
+
 :func:`decide` only chooses, from the geometry: it computes no overlap curve, and the plan it feeds
 carries its numbers, so nothing is estimated twice (:mod:`lidar_overlap.forward.planning`). The
 aberrated estimate needs two coarse RT curves, so :func:`decide_aberrated` runs when the plan runs
@@ -39,6 +44,7 @@ from .. import _core
 from ..model.field_beam import FieldBeam
 from .backends.aberrated import detector_edge_curves
 from .backends.fo import FO_2D_ACCURACY, FO_RADIAL_ACCURACY
+from .backends.turbulent_return import missed_enhancement
 from .validity import rt_diffraction_error, rt_error_bound
 
 #: Safety factor on the estimate: the measured error reached 1.14 times the unscaled estimate.
@@ -147,6 +153,34 @@ def decide(system, ranges: np.ndarray, tolerance: float) -> Decision:
             f"warning: the FO path's own accuracy ~{fo_accuracy:.0e} exceeds the tolerance"
         )
     return Decision("fo", fo_path, error, 0.0, reasons)
+
+
+def decide_both_paths(system, z: np.ndarray, tolerance: float, turbulence) -> Decision:
+    """The model ``method="auto"`` takes through ``turbulence`` on both paths: :func:`decide`'s
+    choice, and ray tracing only where its diffraction error plus what its return path leaves out
+    (the backscatter enhancement, :func:`~.backends.turbulent_return.missed_enhancement`) leave
+    its quadrature a share of the tolerance; otherwise Fourier optics through the phase screens."""
+    d = decide(system, z, tolerance)
+    if d.method != "rt" or not radial_fo_applies(system):  # the linear width law is RT's alone
+        return d
+    missed = float(np.max(missed_enhancement(system, turbulence, z)))
+    reasons = d.reasons[:1] + [
+        "turbulence on both paths: ray tracing tilts and blurs the image of the scattering volume "
+        f"but leaves out the backscatter enhancement, estimated up to {missed:.2g} of G (spherical-"
+        "wave Rytov variance x aperture averaging x the paths' tilt correlation)"
+    ]
+    quadrature = tolerance - d.rt_model_error - missed
+    if quadrature >= QUADRATURE_SHARE * tolerance:
+        reasons.append(
+            f"{d.rt_model_error:.2g} + {missed:.2g} + quadrature {quadrature:.2g} <= tolerance "
+            f"{tolerance:g}: ray tracing on both paths is enough"
+        )
+        return Decision("rt", "", d.rt_model_error + missed, quadrature, reasons)
+    reasons.append(
+        f"{d.rt_model_error:.2g} + {missed:.2g} > tolerance {tolerance:g}: Fourier optics through "
+        "the phase screens on both paths"
+    )
+    return Decision("fo", "2d", d.rt_model_error + missed, 0.0, reasons)
 
 
 def decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options=None) -> Decision:

@@ -33,6 +33,7 @@ def overlap(
     realizations: Optional[int] = None,
     seed: Optional[int] = None,
     screens: Optional[int] = None,
+    paths: Optional[str] = None,
 ) -> OverlapResult:
     """Overlap function of ``system`` at each range: ``run(plan(system, ranges, method, ...))``.
 
@@ -51,9 +52,10 @@ def overlap(
           Schell-model beam.
         - ``lo.Auto(tolerance=...)`` / ``"auto"``: the cheapest model whose error stays within the
           tolerance (:mod:`lidar_overlap.forward.auto`; :func:`explain` says what it chose and why).
-        - ``lo.Turbulent(turbulence, method, realizations=, seed=, screens=)``: through a turbulent
-          atmosphere; the result is a :class:`TurbulentOverlapResult` (mean over the draws, ``std``
-          and a 5–95 % band).
+        - ``lo.Turbulent(turbulence, method, realizations=, seed=, screens=, paths=)``: through a
+          turbulent atmosphere, on the beam's path and (``paths="both"``, the default) the return
+          path; the result is a :class:`TurbulentOverlapResult` (mean over the draws, ``std``, a
+          5–95 % band and, on both paths, the backscatter amplification).
 
         With ``system.telescope.aberrations`` set, both models include them (field-dependent Seidel
         terms need ray tracing).
@@ -63,8 +65,8 @@ def overlap(
     The other keywords are shortcuts, used with a method string only (beside a method object they
     are refused): ``tolerance`` and ``max_segments`` (RT and auto), ``fo_path``, ``beam_grid``,
     ``beam_window``, ``max_spectrum_grid`` (FO), and ``turbulence``, ``realizations``, ``seed``,
-    ``screens`` (which make it a :class:`Turbulent` method). Options that do not apply to the
-    method's model are ignored.
+    ``screens``, ``paths`` (which make it a :class:`Turbulent` method). Options that do not apply to
+    the method's model are ignored.
 
     Warns (RuntimeWarning) when ray tracing is used outside its validity (a detector within a few
     tens of Airy radii, or ranges so short that paraxial slopes err by more than 1 %; see
@@ -87,6 +89,7 @@ def overlap(
             realizations=realizations,
             seed=seed,
             screens=screens,
+            paths=paths,
         )
     )
 

@@ -27,8 +27,8 @@ from ..model.turbulence import Turbulence
 _RT, _FAN, _FO = _core.RtOptions(), _core.RtAberratedOptions(), _core.FoOptions()
 _TURBULENCE = _core.TurbulenceOptions()
 FO_PATHS = ("auto", "radial", "2d")
-#: Which paths cross the turbulence: the beam's, or the beam's and the return path's (FO;
-#: docs/turbulence.md).
+#: Which paths cross the turbulence: the beam's, or the beam's and the return path's
+#: (docs/turbulence.md).
 TURBULENT_PATHS = ("transmit", "both")
 SHORTCUTS = ("rt", "fo", "auto")
 
@@ -124,16 +124,18 @@ class Turbulent:
     """``method`` through ``turbulence``: the mean G over ``realizations`` random draws of the
     atmosphere (reproducible with ``seed``), with its spread. Fourier optics carries the beam
     through ``screens`` phase screens; ray tracing displaces the short-term beam by the random
-    wander (all draws in one core call). ``paths="both"`` (Fourier optics) also carries the return
-    path through the same screens, the detector standing as ``receiver_fields`` random-phase
-    fields; ``"transmit"`` takes the return path as unperturbed (docs/turbulence.md)."""
+    wander (all draws in one core call). ``paths="both"`` (the default) also perturbs the return
+    path: Fourier optics carries it through the same screens, the detector standing as
+    ``receiver_fields`` random-phase fields; ray tracing tilts the image of the scattering volume
+    by the return path's angle of arrival, correlated with the beam's wander, and blurs it.
+    ``"transmit"`` takes the return path as unperturbed (docs/turbulence.md)."""
 
     turbulence: Turbulence
     method: Model = Auto()
     realizations: int = _TURBULENCE.realizations
     seed: int = _TURBULENCE.seed
     screens: int = _TURBULENCE.screens
-    paths: str = _TURBULENCE.paths
+    paths: str = "both"
     receiver_fields: int = _TURBULENCE.receiver_fields
 
     def __post_init__(self) -> None:

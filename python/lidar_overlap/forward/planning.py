@@ -396,10 +396,15 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
-    if isinstance(model, Auto) and request.paths == "both":
-        model = model.fo  # the return path through the turbulence is Fourier optics only
-    elif isinstance(model, Auto):
-        d = auto.decide(system, z, model.tolerance)
+    chosen: Tuple[str, ...] = ()  # auto's reasons, said before the plan's own
+    if isinstance(model, Auto):
+        d = (
+            auto.decide_both_paths(system, z, model.tolerance, request.turbulence)
+            if request.paths == "both"
+            else auto.decide(system, z, model.tolerance)
+        )
+        # through turbulence Fourier optics is always the 2-D path through the screens
+        chosen = tuple(r for r in d.reasons if not r.startswith("Gaussian beam: the radial FO"))
         model = (
             dataclasses.replace(model.rt, tolerance=model.tolerance)
             if d.method == "rt"
@@ -416,19 +421,20 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         )
     base = _base(system, z, request)
     if isinstance(model, RT):
-        if request.paths == "both":
-            raise ValueError(
-                "paths = 'both' is invalid with ray tracing: the return path through the "
-                "turbulence is modelled in Fourier optics only; expected method FO or paths = "
-                "'transmit'"
-            )
+        both = (
+            "; the return path's image tilted (correlated with the wander) and blurred, and the "
+            "mean with independent tilts computed exactly for the amplification"
+            if request.paths == "both"
+            else ""
+        )
         return Plan(
             **base,
             backend="rt_turbulent",
             tolerance=model.tolerance,
             options=_rt_options(model, model.tolerance, threads),
-            reasons=(
-                f"{request.realizations} draws of the beam wander, ray traced to "
+            reasons=chosen
+            + (
+                f"{request.realizations} draws of the beam wander{both}, ray traced to "
                 f"{model.tolerance:g}",
             ),
         )
@@ -452,7 +458,8 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         backend="fo_turbulent",
         tolerance=float("nan"),
         options=options,
-        reasons=(
+        reasons=chosen
+        + (
             f"{request.realizations} draws of {request.screens} phase screens, the beam on "
             f"{options.beam_grid}^2{both}",
         ),

@@ -378,10 +378,11 @@ class TurbulentOverlapResult(OverlapResult):
     ``high``; ``error_estimate`` is the standard error of the mean (``error_kind``
     ``"standard_error"``).
 
-    ``paths`` says which paths crossed the turbulence. With ``"both"``: ``uncorrelated`` (K × N) is
-    each draw's beam with an independent draw's receiver and ``amplification`` (N) the backscatter
-    amplification, mean G over the mean of ``uncorrelated``; and the mean G may exceed 1 (up to
-    :data:`~lidar_overlap.model.turbulence.TWO_WAY_BOUND`, docs/turbulence.md)."""
+    ``paths`` says which paths crossed the turbulence. With ``"both"``: ``amplification`` (N), the
+    backscatter amplification, mean G over the mean G with uncorrelated paths; ``uncorrelated`` (K ×
+    N, Fourier optics) each draw's beam with an independent draw's receiver, whose mean that is
+    (ray tracing computes that mean exactly and gives no rows: None); and the mean G may exceed 1
+    (up to :data:`~lidar_overlap.model.turbulence.TWO_WAY_BOUND`, docs/turbulence.md)."""
 
     realizations: Optional[np.ndarray] = None
     std: Optional[np.ndarray] = None

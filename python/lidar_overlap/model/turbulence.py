@@ -17,7 +17,9 @@ spread (computed in :mod:`lidar_overlap.forward.backends.turbulent`).
   the long-term beam W_LT; the mean overlap is then that of the long-term beam (G is linear in the
   irradiance). With Andrews & Phillips' W_ST² = W_LT² − <r_c²> that 2-D wander variance is <r_c²>/2,
   2^(-1/3) = 0.79 times the centroid variance of the FO screens for a collimated beam: the RT band
-  is a little narrower.
+  is a little narrower. With ``paths="both"`` (the default) the return path tilts the image of the
+  scattering volume by its angle of arrival (:meth:`Turbulence.angle_of_arrival_variance`,
+  correlated with the wander on the layer model of :mod:`lidar_overlap.model.tilt`) and blurs it.
 """
 
 from __future__ import annotations
@@ -27,9 +29,12 @@ import math
 from dataclasses import dataclass
 from typing import Callable, Union
 
+import numpy as np
+
 from .. import _checks, _core
 from .._checks import choice
 from .._pickling import ByArguments
+from .tilt import path_tilts
 
 #: Largest mean G with turbulence on both paths: the backscatter amplification of a point receiver
 #: in strong turbulence tends to 2 (docs/turbulence.md); a finite aperture and the detector's field
@@ -169,6 +174,31 @@ class Turbulence(ByArguments):
             wavelength=wavelength, waist_radius=waist_radius, path_length=path_length
         )
         return self._native.short_term_radius(waist_radius=w0, wavelength=lam, path_length=length)
+
+    def angle_of_arrival_variance(self, diameter: float, path_length: float) -> float:
+        """Per-axis variance (rad²) of the angle of arrival over an aperture of ``diameter`` (m) of
+        the light a point at ``path_length`` (m) sends back to the lidar: the G-tilt of a spherical
+        wave, C D^(-1/3) ∫ Cn²(r) (1 − r/L)^(5/3) dr for Kolmogorov turbulence (C = 2.84; 0.170
+        (λ/D)² (D/r0)^(5/3)), less with an outer scale (:mod:`lidar_overlap.model.tilt`; geometric,
+        the same at every wavelength). It is what tilts the image of the scattering volume in
+        ray tracing with turbulence on both paths."""
+        d, length = _reals(diameter=diameter, path_length=path_length)
+        for name, value in (("diameter", d), ("path_length", length)):
+            if not _core.MIN_LENGTH <= value <= _core.MAX_LENGTH:
+                raise ValueError(
+                    f"{name} = {value!r} is invalid: expected a length from {_core.MIN_LENGTH:g} "
+                    f"to {_core.MAX_LENGTH:g} m"
+                )
+        moments = path_tilts(
+            self._native.cn2_at_range,
+            np.array([length]),
+            wavelength=1e-6,  # enters r0 only, not returned here
+            diameter=d,
+            beam_radius=lambda r: np.full(np.shape(r), d / 2.0),  # the beam's moments unused
+            outer_scale=self._native.outer_scale,
+            inner_scale=self._native.inner_scale,
+        )
+        return float(moments.image[0]) / length**2
 
     def __repr__(self) -> str:
         return f"Turbulence(cn2={self.cn2!r}, elevation={self._native.elevation:.4g} rad)"

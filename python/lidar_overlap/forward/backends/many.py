@@ -75,21 +75,23 @@ def turbulent_draws(plan):
     """What the realisations of a turbulent ``plan`` share, drawn up front so that any slice of them
     is computed bit for bit as the whole run computes it: for ray tracing the short-term beam radius
     per range (m) and every draw's wander offsets (m, realisations x ranges x 2); None for Fourier
-    optics (its realisation k takes the screens (seed, k)). The work is checked first (the count,
-    and the memory of the draws)."""
+    optics (its realisation k takes the screens (seed, k)); with both paths the RT radii are blurred
+    and the offsets those of the image (:func:`turbulent_backend.draws`). The work is
+    checked first (the count, and the memory of the draws)."""
     turbulent_backend.check_work(plan.ranges, plan.turbulence.realizations)
-    return turbulent_backend.wander(plan) if plan.backend == "rt_turbulent" else None
+    return turbulent_backend.draws(plan) if plan.backend == "rt_turbulent" else None
 
 
 def turbulent_rows(plan, first: int, count: int, drawn) -> tuple:
     """Realisations ``first .. first + count - 1`` of a turbulent ``plan``: (G, realisations x
-    ranges; the RT convergence flags and error estimates, flat, or None for FO; the uncorrelated G
-    of FO through both paths, or None). ``drawn``: what :func:`turbulent_draws` gave."""
+    ranges; the RT convergence flags and error estimates, flat, or None for FO; FO's uncorrelated G
+    through both paths, or None: RT's mean with uncorrelated paths is exact, made once by
+    :func:`turbulent_result`). ``drawn``: what :func:`turbulent_draws` gave."""
     if drawn is None:
         g, uncorrelated = turbulent_backend.fo_rows(plan, first, count)
         return g, None, None, uncorrelated
-    short_term, offsets = drawn
-    return (*turbulent_backend.rt_rows(plan, short_term, offsets[first : first + count]), None)
+    radii, offsets = drawn
+    return turbulent_backend.rt_rows(plan, radii, offsets[first : first + count])
 
 
 def turbulent_result(plan, parts):
@@ -97,13 +99,20 @@ def turbulent_result(plan, parts):
     :func:`turbulent_rows`): RT's convergence warning once over all draws, then the statistics
     made over all rows at once, as ``lo.overlap`` makes them."""
     g = np.concatenate([part[0] for part in parts])
-    if parts[0][1] is not None:
-        converged = np.concatenate([part[1] for part in parts])
-        error = np.concatenate([part[2] for part in parts])
-        warn_rt(plan, converged, error, np.tile(plan.ranges, g.shape[0]))
-    both = parts[0][3] is not None
-    uncorrelated = np.concatenate([part[3] for part in parts]) if both else None
-    return turbulent_backend.statistics(plan, g, uncorrelated)
+    if parts[0][1] is None:  # Fourier optics
+        both = parts[0][3] is not None
+        uncorrelated = np.concatenate([part[3] for part in parts]) if both else None
+        return turbulent_backend.statistics(plan, g, uncorrelated)
+    converged = [part[1] for part in parts]
+    error = [part[2] for part in parts]
+    mean_u, draws = None, g.shape[0]
+    if plan.turbulence.paths == "both":  # its exact mean, here once, as lo.overlap computes it
+        mean_u, more_converged, more_error = turbulent_backend.rt_uncorrelated_mean(plan)
+        converged, error, draws = converged + [more_converged], error + [more_error], draws + 1
+    warn_rt(plan, np.concatenate(converged), np.concatenate(error), np.tile(plan.ranges, draws))
+    if mean_u is not None:
+        turbulent_backend.warn_return_path(plan)
+    return turbulent_backend.statistics(plan, g, uncorrelated_mean=mean_u)
 
 
 def results(plan, variants: Sequence[LidarSystem], curves: Curves) -> list:

@@ -6,7 +6,9 @@ spread.
   per realisation of the screens (C++, in parallel).
 - Ray tracing: each draw is the short-term beam (radius W_ST) displaced by a random wander from a
   Gaussian whose per-axis variance (W_LT² − W_ST²)/4 makes the short-term beam, averaged over it,
-  the long-term beam W_LT. All K x N draws are traced in one core call (``overlap_rt_batch``).
+  the long-term beam W_LT. With both paths the return path also tilts the image (correlated with
+  the wander) and blurs it (:mod:`.turbulent_return`). All K x N draws are traced in one core call
+  (``overlap_rt_batch``).
 
 Both compute any slice of realisations bit for bit as the whole run does (``fo_rows``, ``rt_rows``
 with a slice of ``wander``'s offsets): :mod:`lidar_overlap.analysis.turbulent_study` runs them as
@@ -24,6 +26,7 @@ import numpy as np
 
 from ... import _checks, _core
 from ..result import BAND, MAX_REALIZATIONS, TurbulentOverlapResult
+from . import turbulent_return
 from ._result import result
 from .batch import pairs, warn_rt
 
@@ -46,49 +49,99 @@ def fo_rows(plan, first: int, count: int):
     (None for transmit only)."""
     part = copy.copy(plan.options)  # the plan's own options stay as they are
     part.realizations, part.first_realization = count, first
-    raw = _core.overlap_fo_turbulent(
-        plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
-    )
     both = part.paths == "both"
+    try:
+        raw = _core.overlap_fo_turbulent(
+            plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
+        )
+    except ValueError as exc:  # what the return path needs (a finer grid, no fibre NA)
+        if both and ("beam_grid" in str(exc) or "numerical_aperture" in str(exc)):
+            raise ValueError(
+                f"{exc}; or paths = 'transmit' (the return path unperturbed)"
+            ) from None
+        raise
     return np.asarray(raw.overlap), (np.asarray(raw.uncorrelated) if both else None)
 
 
 def run_rt(plan) -> TurbulentOverlapResult:
-    """The RT draws: one wandering beam per realisation and range, in one batched core call. A range
-    where the turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or
-    lengths) is refused naming ``ranges[i]`` and the turbulence."""
+    """The RT draws: one wandering beam per realisation and range, in one batched core call; with
+    both paths also the return path's image tilt and blur, and the same draws with independent
+    tilts (the uncorrelated paths), in the same call (:mod:`.turbulent_return`). A range where the
+    turbulent beam leaves the paraxial model (it spreads or wanders beyond its angles or lengths) is
+    refused naming ``ranges[i]`` and the turbulence."""
     check_work(plan.ranges, plan.turbulence.realizations)
-    short_term, offsets = wander(plan)
-    g, converged, error = rt_rows(plan, short_term, offsets)
-    warn_rt(plan, converged, error, np.tile(plan.ranges, plan.turbulence.realizations))
-    return statistics(plan, g)
+    spreads = radii(plan)
+    beam_radii, offsets = draws(plan, spreads)
+    g, converged, error, _ = rt_rows(plan, beam_radii, offsets)
+    if plan.turbulence.paths != "both":
+        warn_rt(plan, converged, error, np.tile(plan.ranges, g.shape[0]))
+        return statistics(plan, g)
+    uncorrelated, more_converged, more_error = rt_uncorrelated_mean(plan, spreads)
+    warn_rt(
+        plan,
+        np.concatenate([converged, more_converged]),
+        np.concatenate([error, more_error]),
+        np.tile(plan.ranges, g.shape[0] + 1),
+    )
+    warn_return_path(plan, spreads)
+    return statistics(plan, g, uncorrelated_mean=uncorrelated)
 
 
-def wander(plan):
+def rt_uncorrelated_mean(plan, spreads=None):
+    """The mean G over draws with uncorrelated paths at each range, exactly (one trace per range of
+    the beam :func:`turbulent_return.uncorrelated_radius` gives), and that call's convergence flags
+    and error estimates."""
+    short_term, sigma = radii(plan) if spreads is None else spreads
+    radius = turbulent_return.uncorrelated_radius(plan, short_term, sigma)
+    g, converged, error, _ = rt_rows(plan, radius, np.zeros((1, plan.ranges.size, 2)))
+    return g[0], converged, error
+
+
+def warn_return_path(plan, spreads=None) -> None:
+    """The RT return path's regime warning (:func:`turbulent_return.warn_outside_regime`), with the
+    long-term beam radius from ``spreads`` (:func:`radii`, computed when None)."""
+    short_term, sigma = radii(plan) if spreads is None else spreads
+    turbulent_return.warn_outside_regime(plan, np.sqrt(short_term**2 + 4.0 * sigma**2))
+
+
+def draws(plan, spreads=None):
+    """What every RT draw of ``plan`` is traced with, drawn up front: :func:`wander` for the
+    transmitted beam alone; with both paths :func:`turbulent_return.return_draws` of it (the beam
+    radius blurred by the image's spread, and the offsets of the image's tilt added to the wander,
+    realisations x ranges x 2). ``spreads``: :func:`radii` (computed when None)."""
+    spreads = radii(plan) if spreads is None else spreads
+    short_term, offsets = wander(plan, spreads)
+    if plan.turbulence.paths != "both":
+        return short_term, offsets
+    blurred, both = turbulent_return.return_draws(plan, short_term, offsets, spreads[1])
+    for i, zi in enumerate(plan.ranges):
+        angle = spread(plan.system.beam, zi, blurred[i])
+        if angle > _core.MAX_ANGLE:
+            raise ValueError(
+                f"{_where(plan, i)} is invalid: the short-term beam blurred by the image's spread "
+                f"there ({blurred[i]:.4g} m) spreads at {angle:.4g} rad, beyond the paraxial "
+                f"model's {_core.MAX_ANGLE:g} rad; expected weaker turbulence (cn2) or shorter "
+                "ranges"
+            )
+    return blurred, both
+
+
+def wander(plan, spreads=None):
     """The short-term beam radius W_ST at each range (m) and the wander offsets of every draw (m,
     realisations x ranges x 2): drawn from ``numpy.random.default_rng(seed)``, range after range,
-    all realisations of a range (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2. A range
-    where the short-term beam spreads beyond the paraxial model is refused by name."""
+    all realisations of a range (x, y) at a time, with per-axis sd sqrt(W_LT² − W_ST²) / 2
+    (``spreads``: :func:`radii`, computed when None). A range where the short-term beam spreads
+    beyond the paraxial model is refused by name."""
     system, z, request = plan.system, plan.ranges, plan.turbulence
-    beam, lam, turbulence = system.beam, system.beam.wavelength, request.turbulence
-    short_term, sigma = np.empty(z.size), np.empty(z.size)
+    short_term, sigma = radii(plan) if spreads is None else spreads
     for i, zi in enumerate(z):
-        st = turbulence.short_term_radius(
-            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
-        )
-        lt = turbulence.long_term_radius(
-            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
-        )
-        if spread(beam, zi, st) > _core.MAX_ANGLE:
+        if spread(system.beam, zi, short_term[i]) > _core.MAX_ANGLE:
             raise ValueError(
-                f"{_where(plan, i)} is invalid: the short-term beam there ({st:.4g} m) spreads at "
-                f"{spread(beam, zi, st):.4g} rad, beyond the paraxial model's {_core.MAX_ANGLE:g} "
-                "rad; expected weaker turbulence (cn2) or shorter ranges"
+                f"{_where(plan, i)} is invalid: the short-term beam there ({short_term[i]:.4g} m) "
+                f"spreads at {spread(system.beam, zi, short_term[i]):.4g} rad, beyond the "
+                f"paraxial model's {_core.MAX_ANGLE:g} rad; expected weaker turbulence (cn2) or "
+                "shorter ranges"
             )
-        short_term[i] = st
-        sigma[i] = 0.5 * math.sqrt(
-            max(lt**2 - st**2, 0.0)
-        )  # per axis: W_LT^2 / 4 = W_ST^2 / 4 + sigma^2
     # 0 + sigma z: numpy's normal(0, sigma) for each draw, bit for bit, in the same order of the one
     # stream
     drawn = 0.0 + sigma[:, None, None] * np.random.default_rng(request.seed).standard_normal(
@@ -97,27 +150,42 @@ def wander(plan):
     return short_term, drawn.transpose(1, 0, 2)
 
 
+def radii(plan):
+    """W_ST (m) at each range and the per-axis sd (m) of the beam's wander, sqrt(W_LT² − W_ST²) / 2
+    (per axis W_LT² / 4 = W_ST² / 4 + sd²)."""
+    beam, z, turbulence = plan.system.beam, plan.ranges, plan.turbulence.turbulence
+    lam = beam.wavelength
+    short_term, sigma = np.empty(z.size), np.empty(z.size)
+    for i, zi in enumerate(z):
+        st = turbulence.short_term_radius(
+            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
+        )
+        lt = turbulence.long_term_radius(
+            wavelength=lam, waist_radius=beam.waist_radius, path_length=zi
+        )
+        short_term[i] = st
+        sigma[i] = 0.5 * math.sqrt(max(lt**2 - st**2, 0.0))
+    return short_term, sigma
+
+
 def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
-    """G of the RT draws whose wander offsets are ``offsets`` (realisations x ranges x 2, m; a
-    slice of :func:`wander`'s), in one batched core call on ``plan.options.threads`` threads: G
-    (realisations x ranges) and the core's convergence flags and error estimates (flat). Each
-    draw's G depends on its offset alone, so the rows of a slice are those of the whole run, bit
-    for bit."""
+    """G of the RT draws whose offsets are ``offsets`` (a slice of :func:`draws`'s: realisations x
+    ranges x 2, m), the beam of radius ``short_term`` at each range, in one batched core call on
+    ``plan.options.threads`` threads: G (realisations x ranges), the core's convergence flags and
+    error estimates (flat), and None (the place of FO's uncorrelated rows: RT computes their mean
+    exactly, :func:`rt_uncorrelated_mean`). Each draw's G depends on its offset alone, so the rows
+    of a slice are those of the whole run, bit for bit."""
     system, z = plan.system, plan.ranges
     beam, telescope, detector = system.beam, system.telescope._native, system.detector._native
     count = offsets.shape[0]
-    draws: List[Any] = [None] * (
-        count * z.size
-    )  # realisation-major, so that G reshapes to (count, ranges)
+    draws: List[Any] = [None] * (count * z.size)  # realisation-major: G reshapes to (count, ranges)
     for i, zi in enumerate(z):  # range by range: an invalid draw is named by its first range
         for r in range(count):
             try:
                 draws[r * z.size + i] = _core.LidarSystem(
-                    beam_for(beam, zi, short_term[i], offsets[r, i])._native, telescope, detector
+                    native_beam_for(beam, zi, short_term[i], offsets[r, i]), telescope, detector
                 )
-            except (
-                ValueError
-            ) as exc:  # the drawn beam's offset or divergence beyond the core's scales
+            except ValueError as exc:  # the drawn beam's offset or divergence beyond the core's
                 raise ValueError(
                     f"{_where(plan, i)} is invalid: ray tracing cannot model the wandering beam "
                     f"there ({exc}); its axis (offset + tilt x range) and wander must stay within "
@@ -125,7 +193,7 @@ def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
                     "weaker turbulence (cn2)"
                 ) from None
     rows = pairs(plan, draws, np.tile(z, count), warn=False)
-    return rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate
+    return rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate, None
 
 
 def _where(plan, i: int) -> str:
@@ -134,9 +202,13 @@ def _where(plan, i: int) -> str:
 
 
 def without_turbulence(plan, plain) -> TurbulentOverlapResult:
-    """A path without turbulence: every draw is the plain curve, the spread zero."""
+    """A path without turbulence: every draw is the plain curve, the spread zero; on both paths the
+    amplification 1 (NaN where no light comes back)."""
     zero = np.zeros(plan.ranges.size)
     samples = np.tile(plain.overlap, (plan.turbulence.realizations, 1))
+    extra: Dict[str, Any] = {"paths": plan.turbulence.paths}
+    if plan.turbulence.paths == "both":
+        extra["amplification"] = np.where(plain.overlap > 0, 1.0, np.nan)
     out = result(
         plan,
         plain.overlap,
@@ -146,14 +218,18 @@ def without_turbulence(plan, plain) -> TurbulentOverlapResult:
         std=zero.copy(),
         low=plain.overlap.copy(),
         high=plain.overlap.copy(),
+        **extra,
     )
     return cast(TurbulentOverlapResult, out)
 
 
-def statistics(plan, samples: np.ndarray, uncorrelated=None) -> TurbulentOverlapResult:
+def statistics(
+    plan, samples: np.ndarray, uncorrelated=None, uncorrelated_mean=None
+) -> TurbulentOverlapResult:
     """Mean, standard error, standard deviation and the BAND percentiles of the K x N ``samples``
     (C-contiguous: the reductions then sum in one order, whoever computed the rows); with both
-    paths, the amplification: the mean over the mean of the ``uncorrelated`` rows."""
+    paths, the amplification: the mean over the mean of the ``uncorrelated`` rows (FO), or over
+    ``uncorrelated_mean`` (N: RT's exact mean)."""
     samples = np.ascontiguousarray(samples)
     low, high = np.percentile(samples, BAND, axis=0)
     k = samples.shape[0]
@@ -166,6 +242,12 @@ def statistics(plan, samples: np.ndarray, uncorrelated=None) -> TurbulentOverlap
             samples.mean(axis=0), mean_u, out=np.full(mean_u.shape, np.nan), where=mean_u > 0
         )
         extra.update(uncorrelated=uncorrelated, amplification=ratio)
+    elif uncorrelated_mean is not None:
+        mean_u = np.asarray(uncorrelated_mean)
+        ratio = np.divide(
+            samples.mean(axis=0), mean_u, out=np.full(mean_u.shape, np.nan), where=mean_u > 0
+        )
+        extra.update(amplification=ratio)
     out = result(
         plan,
         samples.mean(axis=0),
@@ -192,14 +274,23 @@ def spread(beam, z: float, radius: float) -> float:
 def beam_for(beam, z: float, radius: float, center=(0.0, 0.0)):
     """A Gaussian beam whose 1/e² radius at range z is ``radius`` and whose centre there is
     ``beam``'s axis moved by ``center`` (m): the short-term beam of one draw."""
+    divergence, offset = _drawn(beam, z, radius, center)
+    return dataclasses.replace(beam, divergence=divergence, offset=offset, tilt=(0.0, 0.0))
+
+
+def native_beam_for(beam, z: float, radius: float, center=(0.0, 0.0)) -> _core.GaussianBeam:
+    """:func:`beam_for`'s beam built in the core directly (which validates it): a draw's beam needs
+    none of the model's checks of a caller's input, which would cost most of a run's time."""
+    divergence, offset = _drawn(beam, z, radius, center)
+    return _core.GaussianBeam(
+        beam.wavelength, beam.waist_radius, divergence, offset, (0.0, 0.0), beam.width_law
+    )
+
+
+def _drawn(beam, z: float, radius: float, center):
     axis = beam.center(z)
     offset = (axis[0] + float(center[0]), axis[1] + float(center[1]))
-    return dataclasses.replace(
-        beam,
-        divergence=max(spread(beam, z, radius), beam.half_angle_divergence),
-        offset=offset,
-        tilt=(0.0, 0.0),
-    )
+    return max(spread(beam, z, radius), beam.half_angle_divergence), offset
 
 
 def check_work(z: np.ndarray, realizations: int) -> None:
