@@ -19,7 +19,7 @@ import pytest
 
 import lidar_overlap
 from lidar_overlap.cli import main
-from lidar_overlap.io.scenario import INTEGER_LIMITS, MAX_FILE_BYTES, MAX_RANGES
+from lidar_overlap.io.scenario_schema import INTEGER_LIMITS, MAX_FILE_BYTES, MAX_RANGES
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE_PARENT = str(Path(lidar_overlap.__file__).resolve().parents[1])

@@ -41,133 +41,29 @@ from ..model.field_beam import FieldBeam
 from ..model.flat_top import FlatTopBeam
 from ..model.presets import paper_table1
 from ..model.system import Detector, GaussianBeam, LidarSystem, Telescope
+from .scenario_schema import (
+    MAX_FILE_BYTES,
+    MAX_NAME_LENGTH,
+    MAX_RANGES,
+    METHODS,
+    OUTPUTS,
+    REQUIRED,
+    SCHEMA,
+    TOP_KEYS,
+    ScenarioError,
+    build,
+    checked_keys,
+    choice,
+    is_number,
+    prefixed,
+    require,
+    short,
+)
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
-
-METHODS = ("rt", "fo", "auto")
-OUTPUTS = ("csv", "netcdf", "plot", "scene")
-#: The most ranges one scenario may ask for (``count``, or the length of ``values``).
-MAX_RANGES = 100_000
-#: The largest scenario file read (bytes).
-MAX_FILE_BYTES = 10_000_000
-#: The longest ``name`` (it names the output files, whose names the file system limits to 255
-#: bytes).
-MAX_NAME_LENGTH = 100
-
-
-@dataclass(frozen=True)
-class _Int:
-    """An integer key's valid range and why it ends there."""
-
-    low: int
-    high: int
-    why: str = ""
-
-    def __str__(self) -> str:
-        return f"an integer from {self.low} to {self.high}" + (f" ({self.why})" if self.why else "")
-
-
-#: Bounds of the integer keys: each sizes work or memory (grid sides are squared, threads are
-#: started).
-INTEGER_LIMITS: Dict[str, _Int] = {
-    "ranges.count": _Int(2, MAX_RANGES, "the most ranges one scenario may ask for"),
-    "run.threads": _Int(0, 256, "0 uses all cores"),
-    "run.max_segments": _Int(1, 100_000, "adaptive subdivisions per integral"),
-    "run.beam_grid": _Int(16, 8192, "samples per side of the beam's grid"),
-    "run.max_spectrum_grid": _Int(16, 8192, "samples per side of the spectrum's grid"),
-    "flat_top.grid": _Int(64, 4096, "samples per side of the phase plate"),
-    "flat_top.max_iterations": _Int(1, 10_000, "iterations of the plate's design"),
-}
-_NUMBER, _STR, _BOOL, _PAIR = "a finite real number", "a string", "true or false", "pair"
-_SCHEMA: Dict[str, Dict[str, Any]] = {
-    "gaussian": {
-        "wavelength": _NUMBER,
-        "waist_radius": _NUMBER,
-        "divergence": _NUMBER,
-        "offset": _PAIR,
-        "tilt": _PAIR,
-        "width_law": _STR,
-        "type": _STR,
-    },
-    "flat_top": {
-        "wavelength": _NUMBER,
-        "waist_radius": _NUMBER,
-        "angular_diameter": _NUMBER,
-        "offset": _PAIR,
-        "tilt": _PAIR,
-        "grid": INTEGER_LIMITS["flat_top.grid"],
-        "samples_per_waist": _NUMBER,
-        "edge_width": _NUMBER,
-        "max_iterations": INTEGER_LIMITS["flat_top.max_iterations"],
-        "tolerance": _NUMBER,
-        "max_error": _NUMBER,
-        "power": _NUMBER,
-        "type": _STR,
-    },
-    "telescope": {
-        "diameter": _NUMBER,
-        "focal_length": _NUMBER,
-        "obstruction_radius": _NUMBER,
-        "obstruction_distance": _NUMBER,
-        "aberrations": "table",
-    },
-    "telescope.aberrations": {
-        "zernike": "table",
-        "w040": _NUMBER,
-        "w131": _NUMBER,
-        "w222": _NUMBER,
-        "w220": _NUMBER,
-        "w311": _NUMBER,
-        "field_radius": _NUMBER,
-    },
-    "detector": {
-        "fov": _NUMBER,
-        "radius": _NUMBER,
-        "defocus": _NUMBER,
-        "offset": _PAIR,
-        "numerical_aperture": _NUMBER,
-    },
-    "ranges": {
-        "start": _NUMBER,
-        "stop": _NUMBER,
-        "count": INTEGER_LIMITS["ranges.count"],
-        "spacing": _STR,
-        "values": "values",
-    },
-    "run": {
-        "method": _STR,
-        "tolerance": _NUMBER,
-        "beam_window": _NUMBER,
-        **{
-            key: INTEGER_LIMITS[f"run.{key}"]
-            for key in ("threads", "max_segments", "beam_grid", "max_spectrum_grid")
-        },
-    },
-    "output": {name: _BOOL for name in OUTPUTS},
-}
-_TOP = {
-    "name": _STR,
-    "description": _STR,
-    "beam": "table",
-    "telescope": "table",
-    "detector": "table",
-    "ranges": "table",
-    "run": "table",
-    "output": "table",
-}
-_REQUIRED = {
-    "gaussian": ("wavelength", "waist_radius"),
-    "flat_top": ("wavelength", "waist_radius", "angular_diameter"),
-    "telescope": ("diameter", "focal_length"),
-}
-
-
-class ScenarioError(ValueError):
-    """A scenario that cannot be used (or whose computation the library refused); the message names
-    the file, section and key."""
 
 
 @dataclass(eq=False)
@@ -189,7 +85,7 @@ class Scenario:
 
     def resolved_method(self, method: Optional[str] = None) -> str:
         """``method`` (default: the scenario's) for ``lo.overlap``, checked."""
-        return _choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
+        return choice(f"{self.source}: [run]", "method", method or self.method, METHODS)
 
     @property
     def threads(self) -> int:
@@ -264,7 +160,7 @@ class Scenario:
             str(exc),
         )
         section = "ranges" if message.startswith("ranges") else "run"
-        return ScenarioError(_prefixed(self.source, section, message))
+        return ScenarioError(prefixed(self.source, section, message))
 
 
 def load_scenario(path) -> Scenario:
@@ -297,22 +193,22 @@ def load_scenario(path) -> Scenario:
 def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scenario:
     """Build a :class:`Scenario` from the parsed TOML tables (same checks as
     :func:`load_scenario`)."""
-    _keys(source, None, data, _TOP)
+    checked_keys(source, None, data, TOP_KEYS)
     for section in ("beam", "telescope", "detector", "ranges"):
         if section not in data:
             raise ScenarioError(
                 f"{source}: missing section [{section}] (required: [beam], [telescope], "
                 "[detector], [ranges]; optional: [run], [output])"
             )
-    _require(f"{source}:", data, ("name",))
+    require(f"{source}:", data, ("name",))
     name = data["name"]
     if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.+-]*", name) or len(name) > MAX_NAME_LENGTH:
         raise ScenarioError(
-            f"{source}: name = {_short(name)} is invalid: expected 1 to {MAX_NAME_LENGTH} letters, "
+            f"{source}: name = {short(name)} is invalid: expected 1 to {MAX_NAME_LENGTH} letters, "
             "digits and _ . + - (it names the output files)"
         )
     telescope = _telescope(source, data["telescope"])
-    system = _build(
+    system = build(
         source,
         None,
         LidarSystem,
@@ -320,10 +216,10 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         telescope=telescope,
         detector=_detector(source, data["detector"], telescope),
     )
-    run = dict(_keys(source, "run", data.get("run", {}), _SCHEMA["run"]))
-    method = _choice(f"{source}: [run]", "method", run.pop("method", "auto"), METHODS)
+    run = dict(checked_keys(source, "run", data.get("run", {}), SCHEMA["run"]))
+    method = choice(f"{source}: [run]", "method", run.pop("method", "auto"), METHODS)
     outputs = dict.fromkeys(OUTPUTS, True)
-    outputs.update(_keys(source, "output", data.get("output", {}), _SCHEMA["output"]))
+    outputs.update(checked_keys(source, "output", data.get("output", {}), SCHEMA["output"]))
     scenario = Scenario(
         name=name,
         description=data.get("description", ""),
@@ -346,43 +242,47 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
 # sections
 def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
     kind = table.get("type", "gaussian") if isinstance(table, dict) else "gaussian"
-    _choice(f"{source}: [beam]", "type", kind, ("gaussian", "flat_top"))
-    values = dict(_keys(source, "beam", table, _SCHEMA[kind], _REQUIRED[kind]))
+    choice(f"{source}: [beam]", "type", kind, ("gaussian", "flat_top"))
+    values = dict(checked_keys(source, "beam", table, SCHEMA[kind], REQUIRED[kind]))
     values.pop("type", None)
     for key in ("offset", "tilt"):
         if key in values:
             values[key] = tuple(values[key])
     if kind == "gaussian":
-        return _build(source, "beam", GaussianBeam, **values)
-    args = [values.pop(key) for key in _REQUIRED["flat_top"]]
-    return _build(source, "beam", FlatTopBeam, *args, **values)
+        return build(source, "beam", GaussianBeam, **values)
+    args = [values.pop(key) for key in REQUIRED["flat_top"]]
+    return build(source, "beam", FlatTopBeam, *args, **values)
 
 
 def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
-    values = dict(_keys(source, "telescope", table, _SCHEMA["telescope"], _REQUIRED["telescope"]))
+    values = dict(
+        checked_keys(source, "telescope", table, SCHEMA["telescope"], REQUIRED["telescope"])
+    )
     if "aberrations" in values:
         values["aberrations"] = _aberrations(source, values["aberrations"])
-    return _build(source, "telescope", Telescope, **values)
+    return build(source, "telescope", Telescope, **values)
 
 
 def _aberrations(source: str, table: Dict[str, Any]) -> Aberrations:
     """[telescope.aberrations]: Seidel coefficients (m), field_radius (rad) and a [..zernike] table
     of "Noll index" = m RMS."""
-    values = dict(_keys(source, "telescope.aberrations", table, _SCHEMA["telescope.aberrations"]))
+    values = dict(
+        checked_keys(source, "telescope.aberrations", table, SCHEMA["telescope.aberrations"])
+    )
     terms = {}
     for key, value in values.pop("zernike", {}).items():
-        if not (key.isdigit() and len(key) <= 4 and 1 <= int(key) <= 1000) or not _is_number(value):
+        if not (key.isdigit() and len(key) <= 4 and 1 <= int(key) <= 1000) or not is_number(value):
             raise ScenarioError(
-                f"{source}: [telescope.aberrations.zernike] {_short(key, 40)[1:-1]} = "
-                f'{_short(value)} is invalid: expected "Noll index" (1-1000) = RMS wavefront in m, '
+                f"{source}: [telescope.aberrations.zernike] {short(key, 40)[1:-1]} = "
+                f'{short(value)} is invalid: expected "Noll index" (1-1000) = RMS wavefront in m, '
                 'e.g. "11" = 5e-8'
             )
         terms[int(key)] = value
-    return _build(source, "telescope.aberrations", Aberrations, zernike=terms, **values)
+    return build(source, "telescope.aberrations", Aberrations, zernike=terms, **values)
 
 
 def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detector:
-    values = dict(_keys(source, "detector", table, _SCHEMA["detector"]))
+    values = dict(checked_keys(source, "detector", table, SCHEMA["detector"]))
     if ("fov" in values) == ("radius" in values):
         which = "both" if "fov" in values else "neither"
         raise ScenarioError(
@@ -392,7 +292,7 @@ def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detec
     if "offset" in values:
         values["offset"] = tuple(values["offset"])
     if "fov" in values:
-        return _build(
+        return build(
             source,
             "detector",
             Detector.from_fov,
@@ -400,11 +300,11 @@ def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detec
             telescope.focal_length,
             **values,
         )
-    return _build(source, "detector", Detector, **values)
+    return build(source, "detector", Detector, **values)
 
 
 def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
-    t, where = _keys(source, "ranges", table, _SCHEMA["ranges"]), f"{source}: [ranges]"
+    t, where = checked_keys(source, "ranges", table, SCHEMA["ranges"]), f"{source}: [ranges]"
     if "values" in t:
         z = np.asarray(t["values"], dtype=float)
         if (
@@ -414,12 +314,12 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
             or np.any(np.diff(z) <= 0)
         ):
             raise ScenarioError(
-                f"{where} values = {_short(t['values'])} ({z.size} values) is invalid: expected a "
+                f"{where} values = {short(t['values'])} ({z.size} values) is invalid: expected a "
                 f"strictly increasing list of 1 to {MAX_RANGES:,} ranges > 0 (m), and no start, "
                 "stop, count"
             )
         return z
-    _require(where, t, ("start", "stop", "count"), " (or values = [...])")
+    require(where, t, ("start", "stop", "count"), " (or values = [...])")
     start, stop, count = t["start"], t["stop"], t["count"]
     for key, ok, rule in (
         ("start", 0 < start < math.inf, "a finite value > 0"),
@@ -428,7 +328,7 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
     ):
         if not ok:
             raise ScenarioError(f"{where} {key} = {t[key]!r} is invalid: expected {rule}")
-    spacing = _choice(where, "spacing", t.get("spacing", "linear"), ("linear", "log"))
+    spacing = choice(where, "spacing", t.get("spacing", "linear"), ("linear", "log"))
     z = (np.geomspace if spacing == "log" else np.linspace)(float(start), float(stop), count)
     if not np.all(np.diff(z) > 0):
         raise ScenarioError(
@@ -437,107 +337,6 @@ def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
             "wider span"
         )
     return z
-
-
-# ------------------------------------------------------------------------------------------------
-# helpers
-def _keys(
-    source: str, section: Optional[str], table: Any, schema: Dict[str, Any], required=()
-) -> Dict[str, Any]:
-    """Check a table against ``schema`` (key -> expected kind): unknown keys, missing keys and
-    types."""
-    where = f"{source}: [{section}]" if section else f"{source}:"
-    if not isinstance(table, dict):
-        raise ScenarioError(
-            f"{where} is {_short(table)}: expected a table of keys ({', '.join(schema)})"
-        )
-    for key, value in table.items():
-        if key not in schema:
-            raise ScenarioError(
-                f"{where} unknown key {_short(key, 40)} (valid: {', '.join(schema)})"
-            )
-        kind = schema[key]
-        if isinstance(kind, _Int):
-            ok = (
-                isinstance(value, int)
-                and not isinstance(value, bool)
-                and kind.low <= value <= kind.high
-            )
-        elif kind == _PAIR:
-            ok = isinstance(value, list) and len(value) == 2 and all(_is_number(v) for v in value)
-            kind = "an (x, y) pair of two finite numbers, e.g. [0.0, 0.0]"
-        elif kind == "values":
-            ok = isinstance(value, list) and all(_is_number(v) for v in value)
-            kind = "a list of finite numbers (m)"
-        elif kind == "table":
-            ok = isinstance(value, dict)
-            kind = f"a table [{key}]"
-        else:
-            ok = {
-                _NUMBER: _is_number,
-                _STR: lambda v: isinstance(v, str),
-                _BOOL: lambda v: isinstance(v, bool),
-            }[kind](value)
-        if not ok:
-            raise ScenarioError(f"{where} {key} = {_short(value)} is invalid: expected {kind}")
-    _require(where, table, required)
-    return table
-
-
-def _require(where: str, table: Dict[str, Any], required, alternative: str = "") -> None:
-    for key in required:
-        if key not in table:
-            raise ScenarioError(
-                f"{where} missing key {key!r} (required: {', '.join(required)}{alternative})"
-            )
-
-
-def _choice(where: str, key: str, value: Any, valid) -> Any:
-    if not isinstance(value, str) or value not in valid:
-        raise ScenarioError(
-            f"{where} {key} = {_short(value)} is invalid: expected one of "
-            f"{', '.join(map(repr, valid))}"
-        )
-    return value
-
-
-def _is_number(value: Any) -> bool:
-    """A finite int or float (TOML also has nan, inf and integers beyond any float)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return False
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False
-
-
-def _short(value: Any, limit: int = 80) -> str:
-    """repr(value), cut to ``limit`` characters so that a message stays one readable line."""
-    text = repr(value)
-    return text if len(text) <= limit else f"{text[: limit - 3]}..."
-
-
-def _prefixed(source: str, section: Optional[str], message: str) -> str:
-    """The library's message about ``beam.offset``, ``aberrations.zernike[11]``, ... as the file's
-    section and
-    key: ``[beam] offset``, ``[telescope.aberrations.zernike] 11``."""
-    for pattern, table in (
-        (r"aberrations\.zernike\[(\d+)\]", "telescope.aberrations.zernike"),
-        (r"aberrations\.(\w+)", "telescope.aberrations"),
-        (r"(?:beam|telescope|detector)\.(\w+)", None),
-    ):
-        match = re.match(pattern, message)
-        if match:
-            table = table or message.split(".", 1)[0]
-            return f"{source}: [{table}] {match.group(1)}{message[match.end() :]}"
-    return f"{source}: [{section}] {message}" if section else f"{source}: {message}"
-
-
-def _build(source: str, section: Optional[str], factory, *args, **kwargs):
-    try:
-        return factory(*args, **kwargs)
-    except ValueError as exc:
-        raise ScenarioError(_prefixed(source, section, str(exc))) from None
 
 
 # -------------------------------------------------------------------------------------------------
