@@ -328,3 +328,50 @@ def test_netcdf_with_nan_is_refused_naming_the_file(results, tmp_path):
     ds.to_netcdf(tmp_path / "g.nc", encoding={name: {"_FillValue": None} for name in ds.variables})
     with pytest.raises(ValueError, match=r"g\.nc: overlap\[3\] = nan"):
         lo.OverlapResult.from_netcdf(tmp_path / "g.nc")
+
+
+def _two_way_mean(paths="both", g=1.3):
+    """A mean through turbulence as the FO path returns it (values as in the backscatter
+    amplification of a small coaxial lidar: a two-way mean above 1)."""
+    z = np.array([250.0, 500.0, 1000.0])
+    rows = np.array([[0.9, 1.1, g - 0.2], [0.94, 1.14, g + 0.2]])
+    return lo.TurbulentOverlapResult(
+        ranges=z,
+        overlap=rows.mean(axis=0),
+        method="fo",
+        error_estimate=rows.std(axis=0, ddof=1) / np.sqrt(2.0),
+        system=lo.paper_table1(),
+        tolerance=math.nan,
+        error_kind="standard_error",
+        realizations=rows,
+        paths=paths,
+        uncorrelated=rows * 0.8 if paths == "both" else None,
+        amplification=np.full(3, 1.25) if paths == "both" else None,
+    )
+
+
+@pytest.mark.parametrize("suffix", ["csv", "nc"])
+def test_a_two_way_mean_above_one_reads_back_as_a_mean_through_turbulence(tmp_path, suffix):
+    original = _two_way_mean()
+    path = tmp_path / f"g.{suffix}"
+    (original.to_csv if suffix == "csv" else original.to_netcdf)(path)
+    read = (lo.OverlapResult.from_csv if suffix == "csv" else lo.OverlapResult.from_netcdf)(path)
+    assert isinstance(read, lo.TurbulentOverlapResult) and read.paths == "both"
+    _assert_same(read, original)
+    assert read.overlap.max() > 1.0
+
+
+def test_a_plain_file_above_one_is_still_refused(tmp_path):
+    path = tmp_path / "g.csv"
+    _two_way_mean().to_csv(path)
+    text = "".join(line for line in path.read_text().splitlines(True) if "turbulence_" not in line)
+    path.write_text(text)
+    with pytest.raises(ValueError, match="g.csv"):
+        lo.OverlapResult.from_csv(path)
+
+
+def test_turbulence_header_keys_are_the_result_s_own(tmp_path):
+    with pytest.raises(ValueError, match="turbulence_paths"):
+        lo.paper_table1() and lo.overlap(lo.paper_table1(), [300.0], "rt").to_csv(
+            tmp_path / "g.csv", {"turbulence_paths": "both"}
+        )

@@ -195,7 +195,9 @@ class OverlapResult:
         file that is not such a result (or not a regular file), whose system header is corrupt, or
         whose values break the class's checks (a NaN or out-of-range G) is a ValueError naming the
         file."""
-        return result_files.read_csv(cls, path)
+        return result_files.read_csv(
+            cls, path, TurbulentOverlapResult if cls is OverlapResult else None
+        )
 
     def to_xarray(self, attrs: Optional[Dict[str, Any]] = None):
         """An ``xarray.Dataset`` with coordinate ``range`` (m), variables ``overlap`` and
@@ -220,7 +222,9 @@ class OverlapResult:
         else ``None``. A file that is not such a result (text, truncated, not a regular file), a
         corrupt system attribute or values that break the class's checks are a ValueError naming the
         file."""
-        return result_files.read_netcdf(cls, path, engine)
+        return result_files.read_netcdf(
+            cls, path, engine, TurbulentOverlapResult if cls is OverlapResult else None
+        )
 
     def __reduce__(self):
         # Unpickled through the constructor, so a tampered pickle is checked like any new value.
@@ -234,7 +238,12 @@ def _recheck(result: "OverlapResult") -> None:
     """The construction checks again on the stored values: a result whose arrays were made writable
     and changed is not written."""
     checked = _checked(
-        result.ranges, result.overlap, result.method, result.error_estimate, result.tolerance
+        result.ranges,
+        result.overlap,
+        result.method,
+        result.error_estimate,
+        result.tolerance,
+        result._upper_bound(),
     )
     if not all(
         np.array_equal(a, b, equal_nan=True)
@@ -394,6 +403,16 @@ class TurbulentOverlapResult(OverlapResult):
 
     def _upper_bound(self) -> float:
         return TWO_WAY_BOUND if self.paths == "both" else 1.0
+
+    def attributes(self) -> Dict[str, Any]:
+        """As :meth:`OverlapResult.attributes`, and which paths crossed the turbulence and over
+        how many draws the mean was taken (a file read back is then a mean through turbulence, whose
+        two-way values may exceed 1)."""
+        attrs = super().attributes()
+        attrs["turbulence_paths"] = self.paths
+        if self.realizations is not None:
+            attrs["turbulence_realizations"] = int(self.realizations.shape[0])
+        return attrs
 
     def __post_init__(self) -> None:
         _checks.choice("paths", self.paths, ("transmit", "both"))

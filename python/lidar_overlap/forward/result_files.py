@@ -23,7 +23,16 @@ from ..model.system_attributes import SYSTEM_PREFIXES, system_from_attributes
 
 CSV_COLUMNS = ("range_m", "overlap", "error_estimate")
 #: Keys a file's header holds for the result itself; a caller's ``attrs`` may not use them.
-RESERVED = ("format", "method", "tolerance", "error_kind", "lidar_overlap_version", "system")
+RESERVED = (
+    "format",
+    "method",
+    "tolerance",
+    "error_kind",
+    "lidar_overlap_version",
+    "system",
+    "turbulence_paths",
+    "turbulence_realizations",
+)
 #: NetCDF attributes the writer sets for provenance (CF conventions); a caller's ``attrs`` may not
 #: replace them (``title`` and ``references`` it may).
 NETCDF_RESERVED = ("Conventions", "source", "history")
@@ -107,13 +116,24 @@ def csv_header(result, attrs) -> Dict[str, Any]:
     return head
 
 
-def read_csv(cls, path):
+def read_csv(cls, path, turbulent_cls=None):
+    """``cls`` from a CSV file; ``turbulent_cls`` instead when the header says the curve is a mean
+    through turbulence (``turbulence_paths``), whose two-way mean may exceed 1."""
     text = _reading.read_text(
         path, MAX_CSV_BYTES, "the result", "a file written by OverlapResult.to_csv"
     )
     attrs, rows = _csv_rows(path, text.splitlines())
     data = np.array(rows, dtype=float).reshape(-1, len(CSV_COLUMNS))
-    return from_attributes(cls, path, attrs, data[:, 0], data[:, 1], data[:, 2])
+    cls, extra = _kind(cls, turbulent_cls, attrs)
+    return from_attributes(cls, path, attrs, data[:, 0], data[:, 1], data[:, 2], **extra)
+
+
+def _kind(cls, turbulent_cls, attrs):
+    """(class, its extra fields) of a file's result: ``turbulent_cls`` with its ``paths`` when the
+    header names them (a mean through turbulence), else ``cls``."""
+    if turbulent_cls is not None and "turbulence_paths" in attrs:
+        return turbulent_cls, {"paths": attrs["turbulence_paths"]}
+    return cls, {}
 
 
 def _csv_rows(path, lines):
@@ -165,8 +185,9 @@ def _csv_rows(path, lines):
     return attrs, rows
 
 
-def from_attributes(cls, path, attrs: Dict[str, Any], ranges, overlap, error_estimate):
-    """``cls`` from what a file holds; a ValueError of the class's checks names the file."""
+def from_attributes(cls, path, attrs: Dict[str, Any], ranges, overlap, error_estimate, **extra):
+    """``cls`` from what a file holds (and ``extra`` fields); a ValueError of the class's checks
+    names the file."""
     try:
         method = attrs["method"]
         if not isinstance(method, str):
@@ -185,6 +206,7 @@ def from_attributes(cls, path, attrs: Dict[str, Any], ranges, overlap, error_est
             system=system_from_attributes(attrs),
             tolerance=float(tolerance),
             error_kind=kind,
+            **extra,
         )
     except ValueError as exc:
         raise ValueError(f"{path}: {exc}") from None
@@ -241,7 +263,7 @@ def write_netcdf(result, path, attrs, engine) -> None:
         ds.to_netcdf(temporary, engine=engine, encoding=encoding)
 
 
-def read_netcdf(cls, path, engine):
+def read_netcdf(cls, path, engine, turbulent_cls=None):
     xr = xarray()
     _regular(path)
     try:
@@ -261,7 +283,8 @@ def read_netcdf(cls, path, engine):
             "no 'range', 'overlap' or 'error_estimate')"
         )
     values = [ds[name].values for name in ("range", "overlap", "error_estimate")]
-    return from_attributes(cls, path, attrs, *values)
+    cls, extra = _kind(cls, turbulent_cls, attrs)
+    return from_attributes(cls, path, attrs, *values, **extra)
 
 
 def _regular(path) -> None:
