@@ -332,3 +332,43 @@ def test_subprocess(tmp_path):
         timeout=120,
     )
     assert bad.returncode == 1 and "Traceback" not in bad.stderr and "cannot read" in bad.stderr
+
+
+def test_a_scenario_through_turbulence_is_lo_overlap_to_the_last_digit(tmp_path, capsys):
+    path = SCENARIOS / "table1_turbulence.toml"
+    assert main(["run", str(path), "--out", str(tmp_path), "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert "amplification" in captured.out and "isoplanatic" in captured.err
+    read = lo.OverlapResult.from_csv(tmp_path / "table1_turbulence.csv")
+    scenario = load_scenario(path)
+    draws = lo.Turbulent(
+        lo.Turbulence(cn2=1e-15), lo.Auto(tolerance=1e-2), realizations=200, seed=1
+    )
+    with pytest.warns(RuntimeWarning, match="isoplanatic"):  # the command printed it too
+        expected = lo.overlap(scenario.system, scenario.ranges, draws)
+    assert isinstance(read, lo.TurbulentOverlapResult) and read.paths == "both"
+    assert np.array_equal(read.overlap, expected.overlap)
+    assert np.array_equal(read.error_estimate, expected.error_estimate)
+
+
+@pytest.mark.parametrize(
+    "line, words",
+    [
+        ('cn2 = "strong"', ["[turbulence] cn2", "hv57"]),
+        ("cn2 = -1e-14", ["[turbulence] cn2"]),
+        ('paths = "Both"', ["[turbulence] paths", "both"]),
+        ("realizations = 0", ["[turbulence] realizations", "from 1 to 100000"]),
+        ("seed = -1", ["[turbulence] seed"]),
+        ("wind = 3.0", ["[turbulence] unknown key", "cn2"]),
+    ],
+)
+def test_bad_turbulence_keys_name_the_key(tmp_path, capsys, line, words):
+    text = (SCENARIOS / "table1_turbulence.toml").read_text()
+    key = line.split(" =")[0]
+    kept = [x for x in text.splitlines() if not x.startswith(f"{key} =")]
+    text = "\n".join(kept).replace("[turbulence]", f"[turbulence]\n{line}")
+    (tmp_path / "s.toml").write_text(text)
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 1
+    err = capsys.readouterr().err
+    for word in words:
+        assert word in err, (word, err)

@@ -11,6 +11,8 @@ import time
 from pathlib import Path
 from typing import List, Optional
 
+import numpy as np
+
 from .. import _files
 from ..io.scenario import Scenario
 from ..views.scene import save_scene
@@ -84,6 +86,12 @@ def summary(scenario: Scenario, result, elapsed: float, files: List[str]) -> Non
     )
     print(f"  full overlap  {at(result.full_overlap_range(), 'G >= 0.99 max G')}")
     print(f"  first signal  {at(result.first_signal_range(), 'G >= 1e-3')}")
+    amplification = getattr(result, "amplification", None)
+    if amplification is not None and np.isfinite(amplification).any():
+        print(
+            f"  amplification {np.nanmin(amplification):.4g} to {np.nanmax(amplification):.4g} "
+            "(mean G over that of uncorrelated paths)"
+        )
     print(f"  time          {elapsed:.3g} s")
     print(f"  files         {', '.join(files) if files else 'none'}")
 

@@ -2,8 +2,12 @@
 units).
 
 A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``,
-``[telescope]``, ``[detector]``, ``[ranges]`` (required), ``[run]`` and ``[output]`` (optional); see
-``examples/scenarios/table1.toml``. Every error is a :class:`ScenarioError` (a ValueError) that
+``[telescope]``, ``[detector]``, ``[ranges]`` (required), ``[run]``, ``[output]`` and
+``[turbulence]`` (optional); see ``examples/scenarios/table1.toml`` and
+``table1_turbulence.toml``. ``[turbulence]`` holds the keys of :class:`lidar_overlap.Turbulence`
+(``cn2`` a number or ``"hv57"``, ``elevation``, ...) and the draws' of :class:`lidar_overlap.Turbulent`
+(``realizations``, ``seed``, ``screens``, ``paths``, ``receiver_fields``) around the ``[run]``
+method. Every error is a :class:`ScenarioError` (a ValueError) that
 names the file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
 :class:`lidar_overlap.Auto` at the ``[run]`` tolerance: the cheapest model whose error fits it
 (Fourier optics for a beam that is not Gaussian).
@@ -14,8 +18,8 @@ ranges, so that no file can ask for unbounded work or memory before the library'
 physics.
 
 A scenario is planned once (:meth:`Scenario.plan`, :func:`lidar_overlap.plan`) and the plan run in
-chunks of
-ranges for the progress bar: auto decides for the whole curve, and nothing is computed twice.
+chunks of ranges for the progress bar: auto decides for the whole curve, and nothing is computed
+twice. Through turbulence the plan runs whole (its draws are made range after range).
 """
 
 from __future__ import annotations
@@ -33,7 +37,7 @@ import numpy as np
 
 from .. import _reading
 from ..forward.compute import run
-from ..forward.methods import Method, from_shortcuts
+from ..forward.methods import Method, Turbulent, from_shortcuts
 from ..forward.planning import Plan, plan
 from ..forward.result import OverlapResult
 from ..model.aberrations import Aberrations
@@ -41,6 +45,7 @@ from ..model.field_beam import FieldBeam
 from ..model.flat_top import FlatTopBeam
 from ..model.presets import paper_table1
 from ..model.system import Detector, GaussianBeam, LidarSystem, Telescope
+from ..model.turbulence import Turbulence
 from .scenario_schema import (
     MAX_FILE_BYTES,
     MAX_NAME_LENGTH,
@@ -50,6 +55,7 @@ from .scenario_schema import (
     REQUIRED,
     SCHEMA,
     TOP_KEYS,
+    TURBULENCE_PROFILE_KEYS,
     ScenarioError,
     build,
     checked_keys,
@@ -80,6 +86,7 @@ class Scenario:
     ranges: np.ndarray
     method: str = "auto"
     options: Dict[str, Any] = field(default_factory=dict)
+    turbulence: Dict[str, Any] = field(default_factory=dict)
     outputs: Dict[str, bool] = field(default_factory=lambda: dict.fromkeys(OUTPUTS, True))
     source: str = "<scenario>"
 
@@ -98,9 +105,16 @@ class Scenario:
         table becomes a method; library errors become :class:`ScenarioError`."""
         options = {k: v for k, v in self.options.items() if k != "threads"}
         try:
-            return from_shortcuts(self.resolved_method(method), **options)
+            base = from_shortcuts(self.resolved_method(method), **options)
         except ValueError as exc:
             raise self._library_error(exc, 0) from None
+        if not self.turbulence:
+            return base
+        given = self.turbulence
+        profile = {k: v for k, v in given.items() if k in TURBULENCE_PROFILE_KEYS}
+        draws = {k: v for k, v in given.items() if k not in TURBULENCE_PROFILE_KEYS}
+        atmosphere = build(self.source, "turbulence", Turbulence, **profile)
+        return build(self.source, "turbulence", Turbulent, atmosphere, base, **draws)
 
     def plan(self, method: Optional[str] = None) -> Plan:
         """The :class:`lidar_overlap.Plan` of this scenario with ``method`` (default: the
@@ -129,6 +143,14 @@ class Scenario:
         :class:`ScenarioError`."""
         p = plan if plan is not None else self.plan(method)
         z = self.ranges
+        if p.turbulence is not None:  # one run: the draws are made range after range
+            try:
+                result = run(p)
+            except ValueError as exc:
+                raise self._library_error(exc, 0) from None
+            if callback is not None:
+                callback(z.size)
+            return result
         if chunk is None:
             threads = self.options.get("threads") or os.cpu_count() or 1
             chunk = (
@@ -198,7 +220,7 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         if section not in data:
             raise ScenarioError(
                 f"{source}: missing section [{section}] (required: [beam], [telescope], "
-                "[detector], [ranges]; optional: [run], [output])"
+                "[detector], [ranges]; optional: [run], [output], [turbulence])"
             )
     require(f"{source}:", data, ("name",))
     name = data["name"]
@@ -227,6 +249,9 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         ranges=_ranges(source, data["ranges"]),
         method=method,
         options=run,
+        turbulence=dict(
+            checked_keys(source, "turbulence", data.get("turbulence", {}), SCHEMA["turbulence"])
+        ),
         outputs=outputs,
         source=source,
     )

@@ -42,8 +42,13 @@ INTEGER_LIMITS: Dict[str, IntegerKey] = {
     "run.max_spectrum_grid": IntegerKey(16, 8192, "samples per side of the spectrum's grid"),
     "flat_top.grid": IntegerKey(64, 4096, "samples per side of the phase plate"),
     "flat_top.max_iterations": IntegerKey(1, 10_000, "iterations of the plate's design"),
+    "turbulence.realizations": IntegerKey(1, 100_000, "draws of the atmosphere"),
+    "turbulence.screens": IntegerKey(1, 1000, "phase screens of the Fourier-optics path"),
+    "turbulence.receiver_fields": IntegerKey(1, 1000, "random-phase fields of the detector"),
+    "turbulence.seed": IntegerKey(0, 2**63 - 1, "the draws' seed"),
 }
 NUMBER, STRING, BOOL, PAIR = "a finite real number", "a string", "true or false", "pair"
+CN2 = "a finite Cn² in m^-2/3 or 'hv57' (Hufnagel-Valley 5/7)"
 SCHEMA: Dict[str, Dict[str, Any]] = {
     "gaussian": {
         "wavelength": NUMBER,
@@ -109,7 +114,32 @@ SCHEMA: Dict[str, Dict[str, Any]] = {
         },
     },
     "output": {name: BOOL for name in OUTPUTS},
+    "turbulence": {
+        "cn2": CN2,
+        "elevation": NUMBER,
+        "altitude": NUMBER,
+        "outer_scale": NUMBER,
+        "inner_scale": NUMBER,
+        "hv_ground": NUMBER,
+        "hv_wind": NUMBER,
+        "paths": STRING,
+        **{
+            key: INTEGER_LIMITS[f"turbulence.{key}"]
+            for key in ("realizations", "screens", "receiver_fields", "seed")
+        },
+    },
 }
+#: The [turbulence] keys that describe the atmosphere (lo.Turbulence); the others are the draws'
+#: (lo.Turbulent).
+TURBULENCE_PROFILE_KEYS = (
+    "cn2",
+    "elevation",
+    "altitude",
+    "outer_scale",
+    "inner_scale",
+    "hv_ground",
+    "hv_wind",
+)
 TOP_KEYS = {
     "name": STRING,
     "description": STRING,
@@ -119,6 +149,7 @@ TOP_KEYS = {
     "ranges": "table",
     "run": "table",
     "output": "table",
+    "turbulence": "table",
 }
 REQUIRED = {
     "gaussian": ("wavelength", "waist_radius"),
@@ -165,6 +196,7 @@ def checked_keys(
             kind = f"a table [{key}]"
         else:
             ok = {
+                CN2: lambda v: is_number(v) or v == "hv57",
                 NUMBER: is_number,
                 STRING: lambda v: isinstance(v, str),
                 BOOL: lambda v: isinstance(v, bool),
