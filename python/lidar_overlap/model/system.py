@@ -13,6 +13,7 @@ beam sizes, then path length or range: ``(wavelength, waist_radius, path_length)
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Literal, Optional, Tuple
 
@@ -23,6 +24,7 @@ from .._pickling import ByArguments
 from .aberrations import Aberrations
 from .aperture_mask import ApertureMask
 from .field_beam import FieldBeam
+from .mixture_beam import GaussianMixtureBeam
 
 Pair = Tuple[float, float]
 #: The width laws of a Gaussian beam (:class:`GaussianBeam`).
@@ -72,6 +74,40 @@ class GaussianBeam(ByArguments):
                 self.width_law,
             ),
         )
+
+    @classmethod
+    def from_m_squared(
+        cls,
+        wavelength: float,
+        waist_radius: float,
+        m_squared: float,
+        offset: Pair = (0.0, 0.0),
+        tilt: Pair = (0.0, 0.0),
+    ) -> "GaussianBeam":
+        """A multimode beam of beam quality ``m_squared`` (M² >= 1) and 1/e² waist radius
+        ``waist_radius`` (m): its divergence is the embedded Gaussian's M² λ / (π w0) (rad).
+
+        Ray tracing traces its Gaussian irradiance w(z)² = w0² + (θz)²; Fourier optics takes it as
+        a Gaussian Schell-model beam, whose incoherent modes add to that same Gaussian irradiance at
+        every range (docs/beam_shapes.md). The overlap needs only the irradiance, so both are exact
+        for any beam whose irradiance stays Gaussian of that second-moment radius; a real multimode
+        beam's profile (flatter top, steeper edge) differs from it by what its mode content makes
+        (a mixture of components, :class:`GaussianMixtureBeam`, models wings)."""
+        lam = _checks.real("beam.wavelength", wavelength)
+        w0 = _checks.real("beam.waist_radius", waist_radius)
+        m2 = _checks.real("m_squared", m_squared)
+        if not (1.0 <= m2 < math.inf):
+            raise ValueError(
+                f"m_squared = {m2!r} is invalid: expected a finite beam quality M^2 >= 1"
+            )
+        if not (lam > 0 and w0 > 0 and math.isfinite(lam) and math.isfinite(w0)):
+            return cls(lam, w0, None, offset, tilt)  # the constructor names what is wrong
+        return cls(lam, w0, m2 * lam / (math.pi * w0), offset, tilt)
+
+    @property
+    def m_squared(self) -> float:
+        """Beam quality M² = θ π w0 / λ (1 for a diffraction-limited beam)."""
+        return self.half_angle_divergence * math.pi * self.waist_radius / self.wavelength
 
     @property
     def half_angle_divergence(self) -> float:
@@ -200,16 +236,16 @@ class LidarSystem(ByArguments):
     """A lidar: transmitted beam, receiving telescope and detector, validated together
     (obstruction inside the aperture, detector plane behind the lens). The beam is a
     :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier
-    optics)."""
+    optics), or a :class:`GaussianMixtureBeam` of incoherent Gaussian components (both methods)."""
 
-    beam: GaussianBeam | FieldBeam = field(default_factory=GaussianBeam)
+    beam: GaussianBeam | FieldBeam | GaussianMixtureBeam = field(default_factory=GaussianBeam)
     telescope: Telescope = field(default_factory=Telescope)
     detector: Detector = field(default_factory=Detector)
     _native: _core.LidarSystem = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name, kinds in (
-            ("beam", (GaussianBeam, FieldBeam)),
+            ("beam", (GaussianBeam, FieldBeam, GaussianMixtureBeam)),
             ("telescope", (Telescope,)),
             ("detector", (Detector,)),
         ):
@@ -222,6 +258,33 @@ class LidarSystem(ByArguments):
             self,
             "_native",
             _core.LidarSystem(self.beam._native, self.telescope._native, self.detector._native),
+        )
+
+    @property
+    def incoherent_parts(self) -> Tuple[Tuple[float, "LidarSystem"], ...]:
+        """(power share, system) of each mutually incoherent part of the beam, whose G add with
+        those shares: the components of a :class:`GaussianMixtureBeam` (each a
+        :class:`GaussianBeam` in this receiver), or ``((1.0, self),)`` for any other beam."""
+        beam = self.beam
+        if not isinstance(beam, GaussianMixtureBeam):
+            return ((1.0, self),)
+        return tuple(
+            (
+                w,
+                LidarSystem(
+                    GaussianBeam(
+                        beam.wavelength,
+                        c.waist_radius,
+                        c.divergence,
+                        beam.offset,
+                        beam.tilt,
+                        beam.width_law,
+                    ),
+                    self.telescope,
+                    self.detector,
+                ),
+            )
+            for w, c in zip(beam.weights, beam.components)
         )
 
     @property
