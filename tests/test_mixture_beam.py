@@ -17,6 +17,7 @@ from test_rt_monte_carlo import N_RAYS, accepted, allowed, aperture_points
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
+from lidar_overlap.forward.backends import many
 
 BASE = lo.paper_table1()
 ENGINE_TOL = 1e-6
@@ -128,15 +129,20 @@ def test_parameters_by_path():
         parameters.get(system, "beam.components[2].weight")
     with pytest.raises(ValueError, match="only a GaussianMixtureBeam has components"):
         parameters.get(BASE, "beam.components[0].weight")
-    with pytest.raises(ValueError, match=r"vary its components' \(beam.components\[i\].divergence"):
-        parameters.get(system, "beam.divergence")
+    # the beam's own waist and divergence are its main component's
+    assert parameters.get(system, "beam.divergence") == pytest.approx(theta)
+    main = parameters.replace(system, {"beam.divergence": 2 * theta})
+    assert main.beam.components[0].divergence == 2 * theta
+    assert main.beam.components[1] == system.beam.components[1]
     with pytest.raises(ValueError, match=r"beam.components\[1\].weight = -0.5 makes an invalid"):
         parameters.replace(system, {"beam.components[1].weight": -0.5})
 
 
-def test_value_semantics():
+def test_value_semantics(tmp_path):
     system = winged(0.1, 5.0)
     assert pickle.loads(pickle.dumps(system)) == system
+    lo.overlap(system, [100.0, 1000.0]).to_csv(tmp_path / "g.csv")
+    assert lo.OverlapResult.from_csv(tmp_path / "g.csv").system == system
     beam = system.beam
     assert sum(beam.weights) == pytest.approx(1.0)
     assert beam.dominant == 0
@@ -207,3 +213,16 @@ def test_m_squared_beam():
     rt, fo = lo.overlap(system, z, "rt").overlap, lo.overlap(system, z, "fo").overlap
     np.testing.assert_allclose(rt, fo, atol=RT_FO_FAR)
     assert np.min(rt) < 0.99  # the beam is not inside the field of view everywhere: informative
+
+
+def test_many_variants_in_one_call_are_single_runs():
+    system = winged(0.1, 5.0)
+    z = np.geomspace(50.0, 2000.0, 5)
+    p = lo.plan(system, z, "rt")
+    variants = [
+        parameters.replace(system, {"beam.components[1].weight": w, "beam.tilt[0]": t})
+        for w, t in ((0.05, 0.0), (0.3, 2e-5), (1.0, -1e-5))
+    ]
+    curves = many.systems(p, variants)
+    for s, g in zip(variants, curves.overlap):
+        np.testing.assert_array_equal(g, lo.run(p.with_system(s)).overlap)

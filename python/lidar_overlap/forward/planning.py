@@ -289,6 +289,11 @@ def _plain(system, z, model, request, threads) -> Plan:
     base = _base(system, z, request)
     if system.telescope.mask is not None:
         return _masked(base, system, z, model, threads)
+    if system.aberrated and system.detector.stop_radius is not None:
+        raise ValueError(
+            "detector.stop_radius with receiver aberrations is not modelled: set "
+            "telescope.aberrations or detector.stop_radius to None"
+        )
     if system.aberrated:
         if isinstance(system.beam, FieldBeam):
             raise ValueError(
@@ -405,6 +410,11 @@ def _masked(base, system, z, model, threads) -> Plan:
                 "is normalised to the full aperture",
             ),
         )
+    if system.detector.stop_radius is not None:
+        raise ValueError(
+            "detector.stop_radius with telescope.mask is modelled by ray tracing only: use "
+            "method='rt', or set detector.stop_radius to None"
+        )
     if model.path != "auto" or model.beam_grid is not None or model.beam_window is not None:
         raise ValueError(
             "fo_path, beam_grid and beam_window do not apply with telescope.mask: the masked "
@@ -474,6 +484,11 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         )
     if isinstance(system.beam, FieldBeam):
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
+    if system.detector.stop_radius is not None and request.paths == "both":
+        raise ValueError(
+            "detector.stop_radius with paths = 'both' is not modelled: the return path's receiver "
+            "fields fill the aperture; expected paths = 'transmit' or detector.stop_radius None"
+        )
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
     if isinstance(model, Auto) and request.paths == "both":

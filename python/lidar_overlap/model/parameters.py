@@ -6,10 +6,12 @@ A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"
 ``"beam.waist_radius"``, ``"beam.wavelength"``, ``"telescope.diameter"``,
 ``"telescope.focal_length"``, ``"telescope.obstruction_radius"``,
 ``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``,
-``"detector.offset[0]"``, ``"detector.numerical_aperture"``, ``"telescope.aberrations.zernike[11]"``
+``"detector.offset[0]"``, ``"detector.numerical_aperture"``, ``"detector.stop_radius"``,
+``"detector.stop_distance"``, ``"telescope.aberrations.zernike[11]"``
 (m RMS, Noll index), ``"telescope.aberrations.w040"`` (and the other Seidel terms) and, for a
 :class:`GaussianMixtureBeam`, ``"beam.components[i].weight"`` (relative power),
-``"beam.components[i].waist_radius"`` (m) and ``"beam.components[i].divergence"`` (rad). A pair
+``"beam.components[i].waist_radius"`` (m) and ``"beam.components[i].divergence"`` (rad), whose
+``"beam.waist_radius"`` and ``"beam.divergence"`` are those of component 0 (the main beam). A pair
 without an index (``"beam.tilt"``) stands for both of its scalars where a list of parameters is
 asked for (:func:`expand`).
 
@@ -33,7 +35,7 @@ PAIRS = {"beam": ("offset", "tilt"), "detector": ("offset",)}
 SCALARS = {
     "beam": ("wavelength", "waist_radius", "divergence"),
     "telescope": ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"),
-    "detector": ("radius", "defocus", "numerical_aperture"),
+    "detector": ("radius", "defocus", "numerical_aperture", "stop_radius", "stop_distance"),
 }
 # ASCII only and anchored at the very end (\Z, not $, which also matches before a final newline): a
 # path is one spelling of one scalar, so that duplicates can be found (see canonical()).
@@ -120,7 +122,7 @@ def plain_paths(paths, name: str, why: str) -> List[str]:
 
 def get(system: LidarSystem, path: str) -> float:
     """The value of the scalar at ``path`` in ``system`` (SI units)."""
-    kind, part, name, index = _parse(path)
+    kind, part, name, index = _main_component(system, *_parse(path))
     if kind == "zernike":
         ab = system.telescope.aberrations
         return float(ab.zernike.get(index or 0, 0.0)) if ab is not None else 0.0
@@ -156,7 +158,7 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
     aberrations: Dict[str, Any] = {}
     components: Dict[int, Dict[str, float]] = {}
     for path, value in values.items():
-        kind, part, name, index = _parse(path)
+        kind, part, name, index = _main_component(system, *_parse(path))
         value = _checks.real(path, value)
         if kind == "component":
             _mixture(system, path, index)
@@ -218,6 +220,18 @@ def _parse(path) -> Tuple[str, str, str, Optional[int]]:
     )
 
 
+def _main_component(system, kind: str, part: str, name: str, index):
+    """A mixture's ``beam.waist_radius`` and ``beam.divergence`` as its component 0's."""
+    if (
+        kind == "plain"
+        and part == "beam"
+        and name in ("waist_radius", "divergence")
+        and isinstance(system.beam, GaussianMixtureBeam)
+    ):
+        return "component", part, name, 0
+    return kind, part, name, index
+
+
 def _mixture(system, path: str, index) -> GaussianMixtureBeam:
     """``system``'s beam when it has a component ``index``; refused naming ``path`` otherwise."""
     beam = system.beam
@@ -235,11 +249,6 @@ def _mixture(system, path: str, index) -> GaussianMixtureBeam:
 
 
 def _check_owner(owner, part: str, name: str, path: str) -> None:
-    if isinstance(owner, GaussianMixtureBeam) and name in ("waist_radius", "divergence"):
-        raise ValueError(
-            f"{path} is invalid for a GaussianMixtureBeam: vary its components' "
-            f"(beam.components[i].{name})"
-        )
     if isinstance(owner, FieldBeam) and name not in ("offset", "tilt"):
         raise ValueError(
             f"{path} is invalid for a {type(owner).__name__}: only its offset and tilt can vary "

@@ -182,12 +182,20 @@ class Detector(ByArguments):
     offset : (x, y) in m, detector centre in its plane.
     numerical_aperture : accepted sin(angle) of a fibre; rays steeper than it are rejected. ``None``
         accepts every ray.
+    stop_radius : m, radius of a second, centred stop behind the lens (a relay's or field lens's
+        aperture, a vignetting mount) that every ray must pass; ``None``: no such stop.
+    stop_distance : m, its distance behind the lens, 0 < s < f + defocus (0 without a stop). In ray
+        tracing a ray crosses its plane at A (1 + s/z - s/f) - P s/z, a circle in the pupil moving
+        with the scatterer, exact as the detector's; Fourier optics keeps the circle's radius and
+        neglects its motion, as for the NA cone (docs/receiver_stop.md).
     """
 
     radius: float = 0.45e-3
     defocus: float = 0.0
     offset: Pair = (0.0, 0.0)
     numerical_aperture: Optional[float] = None
+    stop_radius: Optional[float] = None
+    stop_distance: float = 0.0
     _native: _core.Detector = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -200,10 +208,19 @@ class Detector(ByArguments):
             "numerical_aperture",
             _checks.optional_real("detector.numerical_aperture", self.numerical_aperture),
         )
+        set_(self, "stop_radius", _checks.optional_real("detector.stop_radius", self.stop_radius))
+        set_(self, "stop_distance", _checks.real("detector.stop_distance", self.stop_distance))
         set_(
             self,
             "_native",
-            _core.Detector(self.radius, self.defocus, self.offset, self.numerical_aperture),
+            _core.Detector(
+                self.radius,
+                self.defocus,
+                self.offset,
+                self.numerical_aperture,
+                self.stop_radius,
+                self.stop_distance,
+            ),
         )
 
     @classmethod
