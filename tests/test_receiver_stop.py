@@ -6,6 +6,7 @@ range's closed form, Fourier optics where diffraction is small, and hostile valu
 """
 
 import dataclasses
+import warnings
 
 import numpy as np
 import pytest
@@ -97,6 +98,18 @@ def test_rt_and_fo_agree_where_diffraction_is_small():
         fo = lo.overlap(system, z, "fo").overlap
         np.testing.assert_allclose(fo, rt, atol=RT_FO_FAR, err_msg=case)
         assert np.min(rt) < 0.9  # the stop cuts on these ranges
+
+
+def test_fo_says_where_it_neglects_the_stop_motion():
+    relay, _ = CASES["relay"]
+    offset = dataclasses.replace(relay, beam=dataclasses.replace(relay.beam, offset=(0.1, 0.0)))
+    with pytest.warns(RuntimeWarning, match="second stop's pupil disc moves by 0.33 of its radius"):
+        lo.overlap(offset, [50.0, 1000.0], "fo")
+    # (|c| + 2 w) s / (z r_s) = (0.1 + 0.0115) 0.9 / (50 x 0.006) = 0.33 there; coaxial and far
+    # it is 2 w s / (z r_s) = 0.034, below the limit
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        lo.overlap(relay, [1000.0], "fo")
 
 
 def test_parameters_and_files(tmp_path):

@@ -97,6 +97,17 @@ class Plan:
         """True when the model is chosen when the plan runs (:func:`resolve`)."""
         return backend(self.backend).run is None
 
+    def component_plans(self) -> Tuple["Plan", ...]:
+        """The plans of the beam's components on this plan's ranges and for its system's
+        components (a plan re-ranged or re-targeted with :func:`dataclasses.replace` leaves its
+        ``parts`` as they were: their decisions hold, their ranges and systems follow)."""
+        out = []
+        for part, (_, system) in zip(self.parts, self.system.incoherent_parts):
+            if not np.array_equal(part.ranges, self.ranges):
+                part = dataclasses.replace(part, ranges=self.ranges)
+            out.append(dataclasses.replace(part, system=system))
+        return tuple(out)
+
     def subset(self, index) -> "Plan":
         """The same plan (same decisions, same estimates) on ``ranges[index]`` (a slice): to run a
         long curve in parts."""

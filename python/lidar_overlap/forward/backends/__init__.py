@@ -134,4 +134,4 @@ def run(plan) -> OverlapResult:
 
 def _run_mixture(plan) -> OverlapResult:
     """A mixture plan: each component's plan run (its own warnings said), then combined."""
-    return mixture.combine(plan, [run(part) for part in plan.parts])
+    return mixture.combine(plan, [run(part) for part in plan.component_plans()])

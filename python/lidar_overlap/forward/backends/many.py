@@ -87,7 +87,8 @@ def _mixture_systems(plan, variants: Sequence[LidarSystem], warn: bool) -> Curve
     :func:`.mixture.combine` sums them, so that G is bit for bit a single run's)."""
     split = [plan.with_system(s).system.incoherent_parts for s in variants]
     n = len(plan.parts)
-    flat = systems(plan.parts[0], [part for parts in split for _, part in parts], warn)
+    first = plan.component_plans()[0]
+    flat = systems(first, [part for parts in split for _, part in parts], warn)
     shape = (len(variants), n, plan.ranges.size)
     g, e = flat.overlap.reshape(shape), flat.error_estimate.reshape(shape)
     overlap = np.empty((len(variants), plan.ranges.size))
