@@ -233,3 +233,17 @@ def test_many_variants_in_one_call_are_single_runs():
     curves = many.systems(p, variants)
     for s, g in zip(variants, curves.overlap):
         np.testing.assert_array_equal(g, lo.run(p.with_system(s)).overlap)
+
+
+def test_relative_global_fit_recovers_the_wing():
+    # relative data (normalised far away), the global search: the paths a real curve's fit takes
+    pytest.importorskip("scipy")
+    truth = winged(0.2, 5.0)
+    z = np.geomspace(30.0, 3000.0, 14)
+    g = lo.overlap(truth, z, "rt", tolerance=1e-8).overlap
+    y = g / np.mean(g[-4:])
+    f = lo.fit(
+        winged(0.05, 5.0), z, y, sigma=1e-3, free=["beam.components[1].weight"], method="rt",
+        tolerance=1e-7, normalize=(float(z[-4]), float(z[-1])), search="global", seed=1,
+    )  # fmt: skip
+    assert f.parameters["beam.components[1].weight"] == pytest.approx(0.2, rel=1e-3)
