@@ -17,6 +17,7 @@ from test_rt_monte_carlo import N_RAYS, accepted, allowed, aperture_points
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
+from lidar_overlap.analysis.sensitivity import unit
 from lidar_overlap.forward.backends import many
 
 BASE = lo.paper_table1()
@@ -132,6 +133,11 @@ def test_parameters_by_path():
     assert moved.beam.components[1].divergence == 1e-3
     assert moved.beam.components[0].waist_radius == 2e-3
     assert parameters.canonical("beam.components[01].weight") == "beam.components[1].weight"
+    assert [unit(f"beam.components[1].{n}") for n in ("weight", "waist_radius", "divergence")] == [
+        "1",
+        "m",
+        "rad",
+    ]
     with pytest.raises(ValueError, match=r"beam.components\[2\].weight is invalid: the beam has 2"):
         parameters.get(system, "beam.components[2].weight")
     with pytest.raises(ValueError, match="only a GaussianMixtureBeam has components"):
@@ -167,7 +173,11 @@ def test_value_semantics(tmp_path):
         (lambda: lo.BeamComponent(0.0), r"component.weight = 0.0 is invalid"),
         (lambda: lo.BeamComponent(float("inf")), r"component.weight = inf is invalid"),
         (lambda: lo.BeamComponent(True), r"component.weight = True is invalid"),
-        (lambda: lo.GaussianMixtureBeam(()), r"beam.components = \(\) is invalid"),
+        (lambda: lo.GaussianMixtureBeam(()), r"beam.components has 0 components: expected 1 to"),
+        (
+            lambda: lo.GaussianMixtureBeam((lo.BeamComponent(),) * 65),
+            r"beam.components has 65 components: expected 1 to 64",
+        ),
         (lambda: lo.GaussianMixtureBeam(None), r"beam.components = None is invalid"),
         (lambda: lo.GaussianMixtureBeam((1.0,)), r"beam.components\[0\] = 1.0 is invalid"),
         (

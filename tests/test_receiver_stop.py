@@ -14,6 +14,7 @@ from test_rt_monte_carlo import CHUNK, N_RAYS, accepted, allowed, aperture_point
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
+from lidar_overlap.io.scenario import scenario_from_dict
 
 BASE = lo.paper_table1()
 ENGINE_TOL = 1e-6
@@ -162,3 +163,16 @@ def test_unmodelled_combinations_are_refused():
     )
     with pytest.raises(ValueError, match="detector.stop_radius with telescope.mask"):
         lo.plan(masked, z, "fo")
+
+
+def test_scenario_tables_carry_the_stop():
+    scenario = scenario_from_dict(
+        {
+            "name": "stop",
+            "beam": {"wavelength": 355e-9, "waist_radius": 1e-3},
+            "telescope": {"diameter": 0.15, "focal_length": 1.0},
+            "detector": {"fov": 0.9e-3, "stop_radius": 0.03, "stop_distance": 0.5},
+            "ranges": {"start": 100.0, "stop": 1000.0, "count": 3},
+        }
+    )
+    assert scenario.system.detector == CASES["vignetting"][0].detector

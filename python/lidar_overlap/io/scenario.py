@@ -129,6 +129,8 @@ _SCHEMA: Dict[str, Dict[str, Any]] = {
         "defocus": _NUMBER,
         "offset": _PAIR,
         "numerical_aperture": _NUMBER,
+        "stop_radius": _NUMBER,
+        "stop_distance": _NUMBER,
     },
     "ranges": {
         "start": _NUMBER,

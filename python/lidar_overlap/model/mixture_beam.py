@@ -24,6 +24,8 @@ from .. import _checks, _core
 from .._pickling import ByArguments
 
 Pair = Tuple[float, float]
+#: Most components of a beam: each is planned and run on its own (a beam and its wings need a few).
+MAX_COMPONENTS = 64
 
 
 @dataclass(frozen=True)
@@ -88,8 +90,11 @@ class GaussianMixtureBeam(ByArguments):
                 f"beam.components = {_checks.shown(parts)} is invalid: expected a sequence of "
                 "BeamComponent"
             )
-        if len(parts) == 0:
-            raise ValueError("beam.components = () is invalid: expected at least one BeamComponent")
+        if not 1 <= len(parts) <= MAX_COMPONENTS:
+            raise ValueError(
+                f"beam.components has {len(parts)} components: expected 1 to {MAX_COMPONENTS} "
+                "BeamComponent"
+            )
         for i, c in enumerate(parts):
             if not isinstance(c, BeamComponent):
                 raise ValueError(

@@ -231,6 +231,8 @@ class Detector(ByArguments):
         defocus: float = 0.0,
         offset: Pair = (0.0, 0.0),
         numerical_aperture: Optional[float] = None,
+        stop_radius: Optional[float] = None,
+        stop_distance: float = 0.0,
     ) -> "Detector":
         """The detector that gives a full field of view ``fov`` (rad, full angle, as in the paper's
         Table 1) behind a lens of ``focal_length`` (m): radius = fov · f / 2."""
@@ -241,7 +243,7 @@ class Detector(ByArguments):
             _checks.pair("offset", offset),
             _checks.optional_real("numerical_aperture", numerical_aperture),
         )
-        return cls(native.radius, defocus, offset, numerical_aperture)
+        return cls(native.radius, defocus, offset, numerical_aperture, stop_radius, stop_distance)
 
     def fov(self, focal_length: float) -> float:
         """Full field of view (rad) behind a lens of ``focal_length`` (m)."""
