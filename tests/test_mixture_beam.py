@@ -163,6 +163,12 @@ def test_value_semantics(tmp_path):
     z = 800.0
     w = [math.hypot(c.waist_radius, d * z) for c, d in zip(beam.components, beam.divergences)]
     assert beam.radius(z) == pytest.approx(math.sqrt(np.dot(beam.weights, np.square(w))))
+    assert beam.rms_divergence == pytest.approx(
+        math.sqrt(np.dot(beam.weights, np.square(beam.divergences)))
+    )
+    # the beam's own waist and divergence are its main component's, as their paths read them
+    assert beam.waist_radius == beam.components[0].waist_radius
+    assert beam.divergence is None and beam.half_angle_divergence == beam.divergences[0]
 
 
 @pytest.mark.parametrize(

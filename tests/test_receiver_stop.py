@@ -15,6 +15,7 @@ from test_rt_monte_carlo import CHUNK, N_RAYS, accepted, allowed, aperture_point
 import lidar_overlap as lo
 from lidar_overlap import parameters
 from lidar_overlap.io.scenario import scenario_from_dict
+from lidar_overlap.views.twin import scenario_toml
 
 BASE = lo.paper_table1()
 ENGINE_TOL = 1e-6
@@ -176,3 +177,11 @@ def test_scenario_tables_carry_the_stop():
         }
     )
     assert scenario.system.detector == CASES["vignetting"][0].detector
+
+
+def test_the_view_saves_the_stop():
+    system, z = CASES["relay"]
+    text = scenario_toml(system, np.asarray(z), "relay", 1e-4)
+    assert "stop_radius = 0.006" in text and "stop_distance = 0.9" in text
+    plain = scenario_toml(BASE, np.asarray(z), "plain", 1e-4)
+    assert "stop_" not in plain

@@ -154,16 +154,25 @@ class GaussianMixtureBeam(ByArguments):
 
     @property
     def waist_radius(self) -> float:
-        """m, the power-weighted RMS 1/e² radius at z = 0: sqrt(Σ w_i w0_i²)."""
-        return math.sqrt(sum(w * c.waist_radius**2 for w, c in zip(self.weights, self.components)))
+        """m, the main beam's (component 0's) 1/e² waist radius, as the path
+        ``"beam.waist_radius"`` reads it."""
+        return self.components[0].waist_radius
+
+    @property
+    def divergence(self) -> Optional[float]:
+        """rad, the main beam's (component 0's) divergence as given (None: diffraction-limited)."""
+        return self.components[0].divergence
 
     @property
     def half_angle_divergence(self) -> float:
-        """rad, the power-weighted RMS far-field half-angle: sqrt(Σ w_i θ_i²) (that of the
-        irradiance's second moment)."""
-        return math.sqrt(
-            sum(w * n.half_angle_divergence() ** 2 for w, n in zip(self.weights, self._natives))
-        )
+        """rad, the main beam's (component 0's) far-field 1/e² half-angle."""
+        return self._natives[0].half_angle_divergence()
+
+    @property
+    def rms_divergence(self) -> float:
+        """rad, the power-weighted RMS far-field half-angle sqrt(Σ w_i θ_i²): that of the
+        irradiance's second moment."""
+        return math.sqrt(sum(w * d**2 for w, d in zip(self.weights, self.divergences)))
 
     def radius(self, z):
         """The power-weighted RMS 1/e² radius (m) at range(s) z (m): the irradiance's second-moment
