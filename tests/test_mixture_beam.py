@@ -263,3 +263,22 @@ def test_relative_global_fit_recovers_the_wing():
         tolerance=1e-7, normalize=(float(z[-4]), float(z[-1])), search="global", seed=1,
     )  # fmt: skip
     assert f.parameters["beam.components[1].weight"] == pytest.approx(0.2, rel=1e-3)
+
+
+@pytest.mark.parametrize("receiver", ["aberrated", "masked"])
+def test_receivers_with_aberrations_or_a_mask_sum_their_components(receiver):
+    system = winged(0.1, 4.0)
+    tel = system.telescope
+    if receiver == "aberrated":  # auto decides for each component when the plan runs
+        tel = dataclasses.replace(tel, aberrations=lo.Aberrations(w040=2e-7))
+    else:
+        tel = dataclasses.replace(tel, mask=lo.ApertureMask.quadrants().split()[0])
+    system = dataclasses.replace(system, telescope=tel)
+    z = np.geomspace(50.0, 2000.0, 4)
+    for method in ("rt", "auto"):
+        r = lo.overlap(system, z, method, tolerance=1e-3)
+        parts = [
+            lo.overlap(s, z, r.method, tolerance=1e-3).overlap for _, s in system.incoherent_parts
+        ]
+        w = system.beam.weights
+        np.testing.assert_allclose(r.overlap, w[0] * parts[0] + w[1] * parts[1], rtol=0, atol=1e-15)

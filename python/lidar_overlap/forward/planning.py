@@ -70,7 +70,9 @@ class Plan:
 
     @property
     def fo_path(self) -> str:
-        """``"radial"``, ``"2d"``, ``"aberrated"``, ``"masked"``, or ``""`` for ray tracing."""
+        """``"radial"``, ``"2d"``, ``"aberrated"``, ``"masked"``, ``"mixture"`` (each component of a
+        :class:`GaussianMixtureBeam` on its own path: see :meth:`component_plans`), or ``""`` for
+        ray tracing."""
         return backend(self.backend).fo_path
 
     @property
