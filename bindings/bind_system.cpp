@@ -50,12 +50,14 @@ void bind_system(py::module_& m) {
 
   py::class_<Detector>(m, "Detector")
       .def(py::init([](double radius, double defocus, std::array<double, 2> offset,
-                       std::optional<double> numerical_aperture) {
-             Detector d{radius, defocus, vec2(offset), numerical_aperture};
+                       std::optional<double> numerical_aperture, std::optional<double> stop_radius,
+                       double stop_distance) {
+             Detector d{radius, defocus, vec2(offset), numerical_aperture, stop_radius, stop_distance};
              d.validate();
              return d;
            }),
-           py::arg("radius"), py::arg("defocus"), py::arg("offset"), py::arg("numerical_aperture"))
+           py::arg("radius"), py::arg("defocus"), py::arg("offset"), py::arg("numerical_aperture"),
+           py::arg("stop_radius") = std::nullopt, py::arg("stop_distance") = 0.0)
       .def_static(
           "from_fov",
           [](double fov, double focal_length, double defocus, std::array<double, 2> offset,

@@ -44,6 +44,7 @@ from .model.atmosphere import Atmosphere
 from .model.field import Field
 from .model.field_beam import FieldBeam
 from .model.flat_top import FlatTopBeam
+from .model.mixture_beam import BeamComponent, GaussianMixtureBeam
 from .model.presets import paper_table1
 from .model.system import Detector, GaussianBeam, LidarSystem, Telescope
 from .model.turbulence import Turbulence
@@ -61,6 +62,7 @@ __all__ = [
     "Aberrations",
     "ApertureMask",
     "Atmosphere",
+    "BeamComponent",
     "CorrectedSignal",
     "LidarSignal",
     "Auto",
@@ -106,6 +108,7 @@ __all__ = [
     "FieldBeam",
     "FlatTopBeam",
     "GaussianBeam",
+    "GaussianMixtureBeam",
     "LidarSystem",
     "OverlapResult",
     "SamplingWarning",

@@ -65,7 +65,13 @@ class Telescope(metaclass=_pybind11_type):
 
 class Detector(metaclass=_pybind11_type):
     def __init__(
-        self, radius: _Float, defocus: _Float, offset: _Pair, numerical_aperture: _Float | None
+        self,
+        radius: _Float,
+        defocus: _Float,
+        offset: _Pair,
+        numerical_aperture: _Float | None,
+        stop_radius: _Float | None = None,
+        stop_distance: _Float = 0.0,
     ) -> None: ...
     @staticmethod
     def from_fov(

@@ -29,6 +29,12 @@ FoReceiver::FoReceiver(const LidarSystem& system, double z, const std::string& p
     const double k = 1.0 / z - 1.0 / t.focal_length;
     if (k != 0.0) pupil_.outer = std::min(radius, det.max_ray_slope() / std::abs(k));
   }
+  if (det.stop_radius) {
+    // The second stop as a pupil disc of radius r_s / |1 + s/z - s/f|, like the NA cone: its centre, P s / (z m_s)
+    // for a scatterer at P, is neglected (exact on the axis; docs/receiver_stop.md).
+    const double s = det.stop_distance, ms = 1.0 + s / z - s / t.focal_length;
+    if (ms != 0.0) pupil_.outer = std::min(pupil_.outer, *det.stop_radius / std::abs(ms));
+  }
   if (t.obstruction_radius > 0.0)
     pupil_.inner = t.obstruction_radius * z / (z - t.obstruction_distance);
   if (pupil_.inner >= pupil_.outer) pupil_.outer = pupil_.inner = 0.0;  // nothing passes

@@ -1,5 +1,5 @@
 // The receiver of the Fourier-optics paths at one range: the pupil seen by a point scatterer (aperture, the
-// obstruction's shadow, the NA cone, the defocus phase) and the OTF, blur and alias scales derived from it
+// obstruction's shadow, the NA cone, a second stop, the defocus phase) and the OTF, blur and alias scales derived from it
 // (paper Appendix C; fourier/otf.hpp). Shared by the 2-D, radial, aberrated and turbulent FO paths.
 // Internal header, not installed.
 #pragma once

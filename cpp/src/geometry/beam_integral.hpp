@@ -17,9 +17,9 @@
 
 namespace lidar_overlap::beam_integral {
 
-// Room for a term's kink circles: 4 moving discs give 12 tangency circles; a masked term adds its discs'
+// Room for a term's kink circles: 5 moving discs give 20 tangency circles; a masked term adds its discs'
 // tangencies with the sectors' arcs and passages through their corners (pupil/aperture_mask.cpp).
-inline constexpr std::size_t kMaxKinks = 40;
+inline constexpr std::size_t kMaxKinks = 64;
 
 struct RangeResult {
   double value = 0.0, error = 0.0;

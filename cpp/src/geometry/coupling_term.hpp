@@ -30,7 +30,8 @@ struct Gate {
 };
 
 struct CouplingTerm {
-  static constexpr std::size_t kMaxMoving = 4, kMaxGates = 2;
+  // aperture, detector, NA cone, second stop, obstruction shadow, aperture mask
+  static constexpr std::size_t kMaxMoving = 6, kMaxGates = 3;
   std::array<MovingDisc, kMaxMoving> discs{};
   std::size_t n_discs = 0;
   std::array<Gate, kMaxGates> gates{};

@@ -50,6 +50,16 @@ Receiver::Receiver(const LidarSystem& system, double z) : z_(z) {
       passing_.add(Gate{-1.0 / z, {}, max_slope});
   }
 
+  // Second stop, s behind the lens: the ray crosses its plane at A (1 + s/z - s/f) - P s/z (the detector's
+  // form at distance s), within r_s of the axis.
+  if (det.stop_radius) {
+    const double s = det.stop_distance, ms = 1.0 + s / z - s / t.focal_length;
+    if (ms != 0.0)
+      passing_.add(MovingDisc{s / z / ms, {}, *det.stop_radius / std::abs(ms)});
+    else
+      passing_.add(Gate{-s / z, {}, *det.stop_radius});
+  }
+
   // Obstruction shadow on the aperture: A (1 - z_obs/z) + P z_obs/z inside r_obs.
   if (t.obstruction_radius > 0.0) {
     const double gap = z - t.obstruction_distance;

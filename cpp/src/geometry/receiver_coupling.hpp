@@ -4,6 +4,7 @@
 //   aperture  |A| <= R
 //   detector  |m A - P d/z - o_d| <= r_d        (m = 1 + d/z - d/f, d = f + defocus; B14-B20)
 //   fibre NA  |A (1/z - 1/f) - P/z| <= tan(asin NA)
+//   stop      |A (1 + s/z - s/f) - P s/z| <= r_s   (second stop s behind the lens)
 //   shadow    |A (1 - z_obs/z) + P z_obs/z| < r_obs  (blocked by the central obstruction)
 // The coupling of P is the area of (aperture ∩ detector ∩ NA) minus its part inside the shadow,
 // over the aperture area: the exact form of the paper's circles of confusion and their intersection
@@ -39,7 +40,7 @@ class Receiver {
  private:
   double z_;
   double aperture_radius_;
-  CouplingTerm passing_;        // aperture ∩ detector ∩ NA
+  CouplingTerm passing_;        // aperture ∩ detector ∩ NA ∩ second stop
   CouplingTerm blocked_;        // the same ∩ shadow, negative weight
   bool has_shadow_ = false;
   MovingDisc shadow_{};

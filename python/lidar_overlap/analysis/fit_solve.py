@@ -25,8 +25,10 @@ degeneracy warnings and convergence error are the same.
 
 Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar
 whose beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
-``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; any
-other (positive) scalar from a tenth to ten times its start.
+``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; a
+divergence (a Gaussian width law's) from a tenth of its start, but not below ``DIFFRACTION_MARGIN``
+times the diffraction limit (nor above the start), to ten times its start; any other (positive)
+scalar from a tenth to ten times its start.
 """
 
 from __future__ import annotations
@@ -293,8 +295,18 @@ def _cosines(j: np.ndarray) -> np.ndarray:
     return np.clip(cos, -1.0, 1.0)
 
 
+#: A divergence's default lower bound stays this factor above the diffraction limit λ/(π w0) (width
+#: law "gaussian"): below the limit there is no such beam, and the Jacobian's central differences
+#: step ~3 % either side of a value.
+DIFFRACTION_MARGIN = 1.05
+
+
 def default_bounds(system, path: str, start: float):
     """(low, high) of ``path`` when none is given (module docstring), in SI units."""
+    if path.endswith("divergence") and getattr(system.beam, "width_law", "") == "gaussian":
+        waist = _parameters.get(system, path[: -len("divergence")] + "waist_radius")
+        limit = DIFFRACTION_MARGIN * system.beam.wavelength / (math.pi * waist)
+        return min(start, max(start / 10, limit)), start * 10
     if path.startswith("beam.tilt["):
         return -1e-2, 1e-2
     if path.startswith("beam.offset["):

@@ -22,15 +22,18 @@ model the ladder does not have.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Any, Optional, Tuple
+from typing import Any, Callable, Dict, Optional, Tuple
 
 import numpy as np
 
 from .. import _checks
 from ..model import parameters as _parameters
+from ..model.mixture_beam import GaussianMixtureBeam
+from ..model.system import GaussianBeam
 from .fit_result import DegeneracyWarning
 from .fit_solve import fit_local
 from .fit_verdict import FitQualityWarning
@@ -50,11 +53,93 @@ MIN_FAR_OVERLAP = 0.5
 
 @dataclass(frozen=True)
 class Family:
-    """A model family: its ``name``, the ``paths`` it frees and the physical ``explanation``."""
+    """A model family: its ``name``, the ``paths`` it frees and the physical ``explanation``;
+    ``extend`` makes the family's model from a system (adds a beam's wing, a second stop; None:
+    the system as it is; applied to systems that lack it only), ``start_from`` names the family
+    whose best it starts from (None: the one before), ``bounds`` are its default bounds (m, rad)
+    as functions of the system, where the fit's defaults would leave the model's range."""
 
     name: str
     paths: Tuple[str, ...]
     explanation: str
+    extend: Optional[Callable[[Any], Any]] = None
+    start_from: Optional[str] = None
+    bounds: Optional[Callable[[Any], Dict[str, Tuple[float, float]]]] = None
+
+    def model(self, system):
+        """``system`` as this family models it (:attr:`extend` applied)."""
+        return system if self.extend is None else self.extend(system)
+
+
+#: A beam's wing when the ladder adds one: this share of the main beam's power ...
+WING_WEIGHT = 0.05
+#: ... spreading this many times faster than the main beam.
+WING_DIVERGENCE = 4.0
+#: A second stop when the ladder adds one: at this fraction of the lens-detector distance, cutting
+#: the far-range pupil to this fraction of its radius.
+STOP_AT, STOP_CUT = 0.5, 0.95
+#: The farthest a fitted second stop may lie, as a fraction of the lens-detector distance: the
+#: Jacobian's steps (~3 %) and a fitted defocus must leave it before the detector plane.
+STOP_FARTHEST = 0.85
+
+
+def with_wing(system):
+    """``system`` with a weak, more divergent wing added to its Gaussian beam (WING_WEIGHT of the
+    power, WING_DIVERGENCE times the divergence, the same waist); other systems as they are."""
+    beam = system.beam
+    if not isinstance(beam, GaussianBeam):
+        return system
+    wing = GaussianMixtureBeam.with_wings(
+        beam, WING_WEIGHT, WING_DIVERGENCE * beam.half_angle_divergence
+    )
+    return dataclasses.replace(system, beam=wing)
+
+
+def with_stop(system):
+    """``system`` with a second, centred stop STOP_AT of the way from the lens to the detector
+    plane, of a radius that leaves STOP_CUT of the far-range pupil's radius (it vignettes the
+    steepest rays); a system that has one as it is."""
+    det = system.detector
+    if det.stop_radius is not None:
+        return system
+    s = STOP_AT * system.image_distance
+    radius = (
+        STOP_CUT * 0.5 * system.telescope.diameter * abs(1.0 - s / system.telescope.focal_length)
+    )
+    radius = radius if radius > 0 else 0.5 * system.telescope.diameter
+    return dataclasses.replace(
+        system, detector=dataclasses.replace(det, stop_radius=radius, stop_distance=s)
+    )
+
+
+def wing_bounds(system) -> Dict[str, Tuple[float, float]]:
+    """Default bounds of the wing (a system with one): share 1e-3 to 1 of the main beam's power,
+    1.2 to 30 times its divergence."""
+    theta = _parameters.get(system, "beam.components[0].divergence")
+    return {
+        "beam.components[1].weight": (1e-3, 1.0),
+        "beam.components[1].divergence": (1.2 * theta, 30.0 * theta),
+    }
+
+
+def stop_bounds(system) -> Dict[str, Tuple[float, float]]:
+    """Default bounds of a second stop: 2 % to STOP_FARTHEST of the way to the detector plane, a
+    radius up to the aperture's."""
+    d, radius = system.image_distance, 0.5 * system.telescope.diameter
+    return {
+        "detector.stop_distance": (0.02 * d, STOP_FARTHEST * d),
+        "detector.stop_radius": (1e-3 * radius, radius),
+    }
+
+
+_FOCUS = (
+    "beam.offset[0]",
+    "beam.tilt[0]",
+    "beam.divergence",
+    "detector.radius",
+    "detector.defocus",
+)
+_ACCEPTANCE = "alignment + beam + focus + acceptance"
 
 
 #: The default ladder for a biaxial lidar, simplest first (each adds to the one before).
@@ -93,7 +178,32 @@ LADDER = (
         ),
         "the relay's (or fibre's) acceptance cutting the steep rays of near scatterers",
     ),
+    Family(
+        "alignment + beam + focus + wings",
+        _FOCUS + ("beam.components[1].weight", "beam.components[1].divergence"),
+        "a beam with wings: a weak, more divergent part of the laser's light (higher-order modes, "
+        "light scattered in the beam expander) entering the field of view before the main beam",
+        extend=with_wing,
+        start_from=_ACCEPTANCE,
+        bounds=wing_bounds,
+    ),
+    Family(
+        "alignment + beam + focus + second stop",
+        _FOCUS + ("detector.stop_radius", "detector.stop_distance"),
+        "a second stop behind the lens (a relay's or field lens's aperture, a vignetting mount) "
+        "cutting rays the field stop alone would pass",
+        extend=with_stop,
+        start_from=_ACCEPTANCE,
+        bounds=stop_bounds,
+    ),
 )
+
+
+@dataclass(frozen=True)
+class FailedFit:
+    """A family the ladder added whose fit left the model's range: the ``reason``."""
+
+    reason: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -205,16 +315,24 @@ def fit_ladder(
             normalize,
             seed,
         )
-    scores = [_score(system, family, f) for family, f in zip(families, fits)]
+    failed = [(fam, f) for fam, f in zip(families, fits) if isinstance(f, FailedFit)]
+    scores = [
+        _score(fam.model(system), fam, f)
+        for fam, f in zip(families, fits)
+        if not isinstance(f, FailedFit)
+    ]
     eligible = [s for s in scores if s.supported] or scores
     best = min(eligible, key=lambda s: s.bic)
     chosen = next(s for s in eligible if s.bic <= best.bic + BIC_TIE)
-    note = None
+    note: Optional[str] = None
     if not any(s.reaches_noise for s in scores):
         note = (
             "no family reaches the noise (chi2/dof or the runs test): the curve needs a model the "
-            "ladder does not have (a beam with wings, a second stop), or sigma is too small"
+            "ladder does not have, or sigma is too small"
         )
+    if failed:
+        dropped = "; ".join(f"'{fam.name}' could not be fitted ({f.reason})" for fam, f in failed)
+        note = f"{note}; {dropped}" if note else dropped
     if not chosen.fit.converged and not allow_unconverged:
         raise RuntimeError(
             f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; raise "
@@ -250,12 +368,19 @@ def _fit_families(
 ) -> list:
     """Each family fitted in turn by the global search, each starting from the one before, then
     refitted from a larger family's better solution."""
-    fits, start = [], system
-    for family in families:
-        paths = [p for p in family.paths if _freeable(system, p)]
-        given = {p: v for p, v in (bounds or {}).items() if p in paths}
-        fits.append(
-            fit_global(
+    fits: list = []
+    best: Dict[str, Any] = {}
+    for i, family in enumerate(families):
+        if i == 0:
+            start = system
+        else:
+            before = families[i - 1].name if family.start_from is None else family.start_from
+            start = best.get(before, best[families[i - 1].name])
+        start = family.model(start)
+        paths = [p for p in family.paths if _freeable(start, p)]
+        given = _family_bounds(family, start, paths, bounds)
+        try:
+            fit = fit_global(
                 start,
                 ranges,
                 measured,
@@ -271,8 +396,15 @@ def _fit_families(
                 normalize,
                 seed,
             )
-        )
-        start = _parameters.replace(system, fits[-1].parameters)
+        except ValueError as exc:
+            if family.extend is None:  # the user's own model: its errors are the user's to see
+                raise
+            # a model the ladder added (a wing, a stop) left its range on the way (a Jacobian step
+            # beyond the detector plane): the family drops out, said in the report
+            fits.append(FailedFit(str(exc)))
+            continue
+        fits.append(fit)
+        best[family.name] = _parameters.replace(start, fit.parameters)
     local = (ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads)
     return _from_larger_families(system, families, fits, normalize, local)
 
@@ -297,12 +429,17 @@ def _from_larger_families(system, families, fits, normalize, local) -> list:
     ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads = local
     out = list(fits)
     for i in range(len(families) - 2, -1, -1):
-        paths = [p for p in families[i].paths if _freeable(system, p)]
-        given = {p: v for p, v in (bounds or {}).items() if p in paths}
+        if isinstance(out[i], FailedFit):
+            continue
+        model = families[i].model(system)
+        paths = [p for p in families[i].paths if _freeable(model, p)]
+        given = _family_bounds(families[i], model, paths, bounds)
         for j in range(i + 1, len(families)):
-            if not out[j].chi_square < out[i].chi_square:
+            if isinstance(out[j], FailedFit) or not out[j].chi_square < out[i].chi_square:
                 continue
-            start = _parameters.replace(system, {p: out[j].parameters[p] for p in paths})
+            if not set(paths) <= set(out[j].parameters):  # not a larger model of family i's
+                continue
+            start = _parameters.replace(model, {p: out[j].parameters[p] for p in paths})
             common = (start, ranges, measured, sigma, paths, given, method, tolerance, loss)
             try:
                 if normalize is None:
@@ -313,6 +450,14 @@ def _from_larger_families(system, families, fits, normalize, local) -> list:
                 continue
             if g.chi_square < out[i].chi_square:
                 out[i] = with_search(g, out[i].search, out[i].evaluations + g.evaluations)
+    return out
+
+
+def _family_bounds(family: Family, system, paths, bounds) -> Dict[str, Tuple[float, float]]:
+    """The bounds given for ``paths``, else the family's own defaults (where it has them)."""
+    own = family.bounds(system) if family.bounds is not None else {}
+    out = {p: v for p, v in own.items() if p in paths}
+    out.update({p: v for p, v in (bounds or {}).items() if p in paths})
     return out
 
 

@@ -56,6 +56,8 @@ def step_scale(system, path: str) -> float:
 
 def unit(path: str) -> str:
     """The SI unit of the scalar at ``path``."""
+    if path.startswith("beam.components["):  # a component's weight, waist_radius, divergence
+        return "rad" if path.endswith("divergence") else "1" if path.endswith("weight") else "m"
     return "rad" if path in _ANGLES else "1" if path in _DIMENSIONLESS else "m"
 
 

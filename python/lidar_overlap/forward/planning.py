@@ -21,6 +21,7 @@ import numpy as np
 
 from .. import _checks, _core
 from ..model.field_beam import FieldBeam
+from ..model.mixture_beam import GaussianMixtureBeam
 from ..model.system import GaussianBeam, LidarSystem
 from . import auto
 from .backends import BACKENDS, backend
@@ -43,7 +44,9 @@ class Plan:
         cannot model the beam). rt_diffraction_warning : whether ray tracing warns about diffraction
         (not where auto bounded it). reasons : why, one line each. warnings : said when the plan
         runs. planned_on : the system the decisions were made for; a plan whose ``system`` is of
-        another kind is refused when it runs (re-target plans with :meth:`with_system`).
+        another kind is refused when it runs (re-target plans with :meth:`with_system`). parts :
+        for a :class:`GaussianMixtureBeam`, the plan of each component (the system of
+        ``system.incoherent_parts``), whose G the mixture backends add; () otherwise.
     """
 
     system: LidarSystem
@@ -57,6 +60,7 @@ class Plan:
     reasons: Tuple[str, ...] = ()
     warnings: Tuple[str, ...] = ()
     planned_on: Optional[LidarSystem] = None
+    parts: Tuple["Plan", ...] = ()
 
     @property
     def method(self) -> str:
@@ -66,7 +70,9 @@ class Plan:
 
     @property
     def fo_path(self) -> str:
-        """``"radial"``, ``"2d"``, ``"aberrated"``, ``"masked"``, or ``""`` for ray tracing."""
+        """``"radial"``, ``"2d"``, ``"aberrated"``, ``"masked"``, ``"mixture"`` (each component of a
+        :class:`GaussianMixtureBeam` on its own path: see :meth:`component_plans`), or ``""`` for
+        ray tracing."""
         return backend(self.backend).fo_path
 
     @property
@@ -93,10 +99,25 @@ class Plan:
         """True when the model is chosen when the plan runs (:func:`resolve`)."""
         return backend(self.backend).run is None
 
+    def component_plans(self) -> Tuple["Plan", ...]:
+        """The plans of the beam's components on this plan's ranges and for its system's
+        components (a plan re-ranged or re-targeted with :func:`dataclasses.replace` leaves its
+        ``parts`` as they were: their decisions hold, their ranges and systems follow)."""
+        out = []
+        for part, (_, system) in zip(self.parts, self.system.incoherent_parts):
+            if not np.array_equal(part.ranges, self.ranges):
+                part = dataclasses.replace(part, ranges=self.ranges)
+            out.append(dataclasses.replace(part, system=system))
+        return tuple(out)
+
     def subset(self, index) -> "Plan":
         """The same plan (same decisions, same estimates) on ``ranges[index]`` (a slice): to run a
         long curve in parts."""
-        return dataclasses.replace(self, ranges=self.ranges[index])
+        return dataclasses.replace(
+            self,
+            ranges=self.ranges[index],
+            parts=tuple(p.subset(index) for p in self.parts),
+        )
 
     def at(self, ranges) -> "Plan":
         """The same decisions at other ``ranges`` (m, checked as :func:`plan` checks them). Where
@@ -107,6 +128,10 @@ class Plan:
         error = self.rt_model_error
         if error > 0.0 and self.backend in ("rt", "rt_masked"):
             error = auto.rt_model_error(self.system, z)
+        if self.parts:
+            parts = tuple(p.at(z) for p in self.parts)
+            error = _weighted(self.system, [p.rt_model_error for p in parts])
+            return dataclasses.replace(self, ranges=z, rt_model_error=error, parts=parts)
         return dataclasses.replace(self, ranges=z, rt_model_error=error)
 
     def with_system(self, system) -> "Plan":
@@ -124,6 +149,11 @@ class Plan:
                 "method)"
             )
         system._native.validate_ranges(self.ranges)
+        if self.parts:
+            parts = tuple(
+                p.with_system(s) for p, (_, s) in zip(self.parts, system.incoherent_parts)
+            )
+            return dataclasses.replace(self, system=system, parts=parts)
         return dataclasses.replace(self, system=system)
 
     def __str__(self) -> str:
@@ -145,6 +175,12 @@ def plan(system: LidarSystem, ranges, method="rt", *, threads: int = 0, **shortc
     z = _checks.ranges("ranges", ranges)
     system._native.validate_ranges(z)  # before any path derives quantities from them
     threads = _checks.threads(threads)
+    if isinstance(system.beam, GaussianMixtureBeam):
+        if isinstance(request, Turbulent):
+            raise ValueError(
+                "turbulence with a GaussianMixtureBeam is not modelled: expected a GaussianBeam"
+            )
+        return _mixture(system, z, request, threads)
     if isinstance(request, Turbulent):
         return _turbulent(system, z, request, threads)
     return _plain(system, z, request, request, threads)
@@ -165,6 +201,9 @@ def resolve(p: Plan) -> Plan:
     other plan is returned as it is."""
     if not p.deferred:
         return p
+    if p.parts:
+        parts = tuple(resolve(part) for part in p.parts)
+        return _mixture_of(p.system, p.ranges, p.request, parts, p.options.threads)
     model = p.request
     assert isinstance(
         model, Auto
@@ -183,6 +222,60 @@ def resolve(p: Plan) -> Plan:
         )
     fo = _aberrated(_base(p.system, p.ranges, p.request), p.system, model.fo, p.options.threads)
     return dataclasses.replace(fo, **common)
+
+
+def _mixture(system, z, request, threads) -> Plan:
+    """A :class:`GaussianMixtureBeam`: each component planned as a :class:`GaussianBeam` in this
+    receiver (its own backend, auto's choice and error estimate), G their power-weighted sum."""
+    parts = tuple(_plain(s, z, request, request, threads) for _, s in system.incoherent_parts)
+    return _mixture_of(system, z, request, parts, threads)
+
+
+def _mixture_of(system, z, request, parts, threads) -> Plan:
+    """The mixture plan of the components' ``parts``. Auto may choose ray tracing for one component
+    and Fourier optics for another; then every component runs Fourier optics at auto's tolerance, so
+    that the curve is of one model."""
+    n = len(parts)
+    head = f"{n} incoherent Gaussian component{'s' if n > 1 else ''}, G = Σ w_i G_i"
+    if any(p.deferred for p in parts):
+        return Plan(
+            **_base(system, z, request),
+            backend="auto_mixture",
+            tolerance=parts[0].tolerance,
+            options=parts[0].options,
+            reasons=(head + "; auto decides for each component when the plan runs",),
+            parts=parts,
+        )
+    if len({p.method for p in parts}) > 1 and isinstance(request, Auto):
+        parts = tuple(
+            dataclasses.replace(
+                _plain(p.system, z, request.fo, request, threads),
+                tolerance=request.tolerance,
+                reasons=("auto: Fourier optics, as for another component of the beam",),
+            )
+            for p in parts
+        )
+    key = "rt_mixture" if parts[0].method == "rt" else "fo_mixture"
+    shares = [w for w, _ in system.incoherent_parts]
+    return Plan(
+        **_base(system, z, request),
+        backend=key,
+        tolerance=parts[0].tolerance,
+        options=parts[0].options,
+        rt_model_error=_weighted(system, [p.rt_model_error for p in parts]),
+        rt_diffraction_warning=all(p.rt_diffraction_warning for p in parts),
+        reasons=(head,)
+        + tuple(
+            f"component {i} (power share {w:.3g}): {p.reasons[0] if p.reasons else p.backend}"
+            for i, (w, p) in enumerate(zip(shares, parts))
+        ),
+        parts=parts,
+    )
+
+
+def _weighted(system, values) -> float:
+    """Σ w_i v_i over the power shares of ``system``'s incoherent parts."""
+    return float(sum(w * v for (w, _), v in zip(system.incoherent_parts, values)))
 
 
 def _base(system, z, request) -> dict:
@@ -209,6 +302,11 @@ def _plain(system, z, model, request, threads) -> Plan:
     base = _base(system, z, request)
     if system.telescope.mask is not None:
         return _masked(base, system, z, model, threads)
+    if system.aberrated and system.detector.stop_radius is not None:
+        raise ValueError(
+            "detector.stop_radius with receiver aberrations is not modelled: set "
+            "telescope.aberrations or detector.stop_radius to None"
+        )
     if system.aberrated:
         if isinstance(system.beam, FieldBeam):
             raise ValueError(
@@ -325,6 +423,11 @@ def _masked(base, system, z, model, threads) -> Plan:
                 "is normalised to the full aperture",
             ),
         )
+    if system.detector.stop_radius is not None:
+        raise ValueError(
+            "detector.stop_radius with telescope.mask is modelled by ray tracing only: use "
+            "method='rt', or set detector.stop_radius to None"
+        )
     if model.path != "auto" or model.beam_grid is not None or model.beam_window is not None:
         raise ValueError(
             "fo_path, beam_grid and beam_window do not apply with telescope.mask: the masked "
@@ -394,6 +497,11 @@ def _turbulent(system, z, request: Turbulent, threads) -> Plan:
         )
     if isinstance(system.beam, FieldBeam):
         raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
+    if system.detector.stop_radius is not None and request.paths == "both":
+        raise ValueError(
+            "detector.stop_radius with paths = 'both' is not modelled: the return path's receiver "
+            "fields fill the aperture; expected paths = 'transmit' or detector.stop_radius None"
+        )
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
     chosen: Tuple[str, ...] = ()  # auto's reasons, said before the plan's own
@@ -506,7 +614,14 @@ def _kind_change(old: LidarSystem, new: LidarSystem) -> str:
     """What makes ``new`` a system of another kind than ``old`` for a plan, or '' if nothing."""
     if type(new.beam) is not type(old.beam):
         return f"the beam is a {type(new.beam).__name__}, the plan's a {type(old.beam).__name__}"
-    if isinstance(old.beam, GaussianBeam) and isinstance(new.beam, GaussianBeam):
+    if isinstance(old.beam, GaussianMixtureBeam) and isinstance(new.beam, GaussianMixtureBeam):
+        if len(new.beam.components) != len(old.beam.components):
+            return (
+                f"the beam has {len(new.beam.components)} components, the plan's "
+                f"{len(old.beam.components)}"
+            )
+    gaussian = (GaussianBeam, GaussianMixtureBeam)
+    if isinstance(old.beam, gaussian) and isinstance(new.beam, gaussian):
         if new.beam.width_law != old.beam.width_law:
             return f"beam.width_law is {new.beam.width_law!r}, the plan's {old.beam.width_law!r}"
     if new.telescope.mask != old.telescope.mask:

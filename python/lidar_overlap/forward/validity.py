@@ -189,3 +189,36 @@ def warn_if_rt_invalid(system, ranges: np.ndarray, diffraction: bool = True) -> 
             f"seen under slopes whose paraxial error is about {paraxial:.2%}; start the ranges "
             "farther away."
         )
+
+
+#: Fourier optics warns where a second stop's pupil disc moves by more than this fraction of its
+#: radius across the beam (docs/receiver_stop.md).
+FO_STOP_MOTION_LIMIT = 0.05
+
+
+def fo_stop_motion(system, ranges: np.ndarray) -> np.ndarray:
+    """How far a second stop's pupil disc moves across the beam at each range (m), as a fraction of
+    its radius: (|c| + 2 w) s / (z r_s), c the beam centre and w its 1/e² radius; 0 where the stop
+    cuts no ray of an on-axis point (its pupil disc r_s / |1 + s/z - s/f| holds the aperture). The
+    Fourier-optics paths neglect this motion."""
+    det, beam = system.detector, system.beam
+    z = np.asarray(ranges, dtype=float)
+    if det.stop_radius is None:
+        return np.zeros_like(z)
+    s, f = det.stop_distance, system.telescope.focal_length
+    cuts = det.stop_radius < 0.5 * system.telescope.diameter * np.abs(1.0 + s / z - s / f)
+    centre = np.hypot(beam.offset[0] + beam.tilt[0] * z, beam.offset[1] + beam.tilt[1] * z)
+    motion = (centre + 2.0 * np.asarray(beam.radius(z))) * s / (z * det.stop_radius)
+    return np.where(cuts, motion, 0.0)
+
+
+def warn_if_fo_stop_moves(system, ranges: np.ndarray) -> None:
+    """RuntimeWarning where :func:`fo_stop_motion` exceeds FO_STOP_MOTION_LIMIT."""
+    motion = fo_stop_motion(system, ranges)
+    if motion.size and motion.max() > FO_STOP_MOTION_LIMIT:
+        i = int(np.argmax(motion))
+        warn(
+            f"overlap(fo): the second stop's pupil disc moves by {motion[i]:.2g} of its radius "
+            f"across the beam at {ranges[i]:.4g} m, which Fourier optics neglects (exact on the "
+            "axis); method='rt' traces it exactly"
+        )

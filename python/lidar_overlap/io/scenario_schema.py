@@ -96,6 +96,8 @@ SCHEMA: Dict[str, Dict[str, Any]] = {
         "defocus": NUMBER,
         "offset": PAIR,
         "numerical_aperture": NUMBER,
+        "stop_radius": NUMBER,
+        "stop_distance": NUMBER,
     },
     "ranges": {
         "start": NUMBER,

@@ -6,8 +6,12 @@ A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"
 ``"beam.waist_radius"``, ``"beam.wavelength"``, ``"telescope.diameter"``,
 ``"telescope.focal_length"``, ``"telescope.obstruction_radius"``,
 ``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``,
-``"detector.offset[0]"``, ``"detector.numerical_aperture"``, ``"telescope.aberrations.zernike[11]"``
-(m RMS, Noll index) and ``"telescope.aberrations.w040"`` (and the other Seidel terms). A pair
+``"detector.offset[0]"``, ``"detector.numerical_aperture"``, ``"detector.stop_radius"``,
+``"detector.stop_distance"``, ``"telescope.aberrations.zernike[11]"``
+(m RMS, Noll index), ``"telescope.aberrations.w040"`` (and the other Seidel terms) and, for a
+:class:`GaussianMixtureBeam`, ``"beam.components[i].weight"`` (relative power),
+``"beam.components[i].waist_radius"`` (m) and ``"beam.components[i].divergence"`` (rad), whose
+``"beam.waist_radius"`` and ``"beam.divergence"`` are those of component 0 (the main beam). A pair
 without an index (``"beam.tilt"``) stands for both of its scalars where a list of parameters is
 asked for (:func:`expand`).
 
@@ -24,17 +28,20 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple
 from .. import _checks
 from .aberrations import SEIDEL_TERMS, Aberrations
 from .field_beam import FieldBeam
+from .mixture_beam import GaussianMixtureBeam
 from .system import LidarSystem
 
 PAIRS = {"beam": ("offset", "tilt"), "detector": ("offset",)}
 SCALARS = {
     "beam": ("wavelength", "waist_radius", "divergence"),
     "telescope": ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"),
-    "detector": ("radius", "defocus", "numerical_aperture"),
+    "detector": ("radius", "defocus", "numerical_aperture", "stop_radius", "stop_distance"),
 }
 # ASCII only and anchored at the very end (\Z, not $, which also matches before a final newline): a
 # path is one spelling of one scalar, so that duplicates can be found (see canonical()).
 _PATH = re.compile(r"(beam|telescope|detector)\.([A-Za-z_0-9]+)(?:\[([0-9]+)\])?\Z")
+_COMPONENT = re.compile(r"beam\.components\[([0-9]{1,4})\]\.(weight|waist_radius|divergence)\Z")
+COMPONENT_SCALARS = ("weight", "waist_radius", "divergence")
 _ABERRATION = re.compile(r"telescope\.aberrations\.(?:zernike\[([0-9]+)\]|([A-Za-z_0-9]+))\Z")
 
 
@@ -47,6 +54,7 @@ def valid_paths() -> List[str]:
     ]
     return (
         paths
+        + [f"beam.components[i].{name}" for name in COMPONENT_SCALARS]
         + ["telescope.aberrations.zernike[j]"]
         + [f"telescope.aberrations.{t}" for t in SEIDEL_TERMS]
     )
@@ -87,6 +95,8 @@ def canonical(path) -> str:
         return f"telescope.aberrations.zernike[{index}]"
     if kind == "seidel":
         return f"telescope.aberrations.{name}"
+    if kind == "component":
+        return f"beam.components[{index}].{name}"
     return f"{part}.{name}" + ("" if index is None else f"[{index}]")
 
 
@@ -112,15 +122,25 @@ def plain_paths(paths, name: str, why: str) -> List[str]:
 
 def get(system: LidarSystem, path: str) -> float:
     """The value of the scalar at ``path`` in ``system`` (SI units)."""
-    kind, part, name, index = _parse(path)
+    kind, part, name, index = _main_component(system, *_parse(path))
     if kind == "zernike":
         ab = system.telescope.aberrations
         return float(ab.zernike.get(index or 0, 0.0)) if ab is not None else 0.0
     if kind == "seidel":
         ab = system.telescope.aberrations
         return float(getattr(ab, name)) if ab is not None else 0.0
+    if kind == "component":
+        beam = _mixture(system, path, index)
+        i = index or 0
+        if name == "divergence":
+            return float(beam.divergences[i])
+        return float(getattr(beam.components[i], name))
     owner = getattr(system, part)
-    if part == "beam" and name == "divergence" and not isinstance(owner, FieldBeam):
+    if (
+        part == "beam"
+        and name == "divergence"
+        and not isinstance(owner, (FieldBeam, GaussianMixtureBeam))
+    ):
         return float(owner.half_angle_divergence)
     _check_owner(owner, part, name, path)
     value = getattr(owner, name)
@@ -136,10 +156,14 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
     path when a value is not a real number or the system it makes is invalid."""
     changes: Dict[str, Dict[str, Any]] = {"beam": {}, "telescope": {}, "detector": {}}
     aberrations: Dict[str, Any] = {}
+    components: Dict[int, Dict[str, float]] = {}
     for path, value in values.items():
-        kind, part, name, index = _parse(path)
+        kind, part, name, index = _main_component(system, *_parse(path))
         value = _checks.real(path, value)
-        if kind == "zernike":
+        if kind == "component":
+            _mixture(system, path, index)
+            components.setdefault(index or 0, {})[name] = value
+        elif kind == "zernike":
             current = aberrations.get("zernike", dict(_aberrations(system).zernike))
             aberrations["zernike"] = {**current, index: value}
         elif kind == "seidel":
@@ -157,6 +181,8 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
                 _aberrations(system), **aberrations
             )
         parts = {part: _replaced(getattr(system, part), part, c) for part, c in changes.items()}
+        for i, c in components.items():
+            parts["beam"] = parts["beam"].with_component(i, **c)
         return LidarSystem(**parts)
     except ValueError as exc:
         raise ValueError(
@@ -167,6 +193,9 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
 def _parse(path) -> Tuple[str, str, str, Optional[int]]:
     """(kind, part, name, index) of a path: kind ``"plain"``, ``"zernike"`` or ``"seidel"``."""
     if isinstance(path, str):
+        m = _COMPONENT.match(path)
+        if m:
+            return "component", "beam", m.group(2), int(m.group(1))
         m = _ABERRATION.match(path)
         if m and m.group(1) is not None and len(m.group(1)) <= 4:
             j = int(m.group(1))
@@ -189,6 +218,34 @@ def _parse(path) -> Tuple[str, str, str, Optional[int]]:
     raise ValueError(
         f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}"
     )
+
+
+def _main_component(system, kind: str, part: str, name: str, index):
+    """A mixture's ``beam.waist_radius`` and ``beam.divergence`` as its component 0's."""
+    if (
+        kind == "plain"
+        and part == "beam"
+        and name in ("waist_radius", "divergence")
+        and isinstance(system.beam, GaussianMixtureBeam)
+    ):
+        return "component", part, name, 0
+    return kind, part, name, index
+
+
+def _mixture(system, path: str, index) -> GaussianMixtureBeam:
+    """``system``'s beam when it has a component ``index``; refused naming ``path`` otherwise."""
+    beam = system.beam
+    if not isinstance(beam, GaussianMixtureBeam):
+        raise ValueError(
+            f"{path} is invalid for a {type(beam).__name__}: only a GaussianMixtureBeam has "
+            "components"
+        )
+    if not 0 <= index < len(beam.components):
+        raise ValueError(
+            f"{path} is invalid: the beam has {len(beam.components)} components (index 0 to "
+            f"{len(beam.components) - 1})"
+        )
+    return beam
 
 
 def _check_owner(owner, part: str, name: str, path: str) -> None:

@@ -13,6 +13,7 @@ beam sizes, then path length or range: ``(wavelength, waist_radius, path_length)
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Literal, Optional, Tuple
 
@@ -23,6 +24,7 @@ from .._pickling import ByArguments
 from .aberrations import Aberrations
 from .aperture_mask import ApertureMask
 from .field_beam import FieldBeam
+from .mixture_beam import GaussianMixtureBeam
 
 Pair = Tuple[float, float]
 #: The width laws of a Gaussian beam (:class:`GaussianBeam`).
@@ -72,6 +74,40 @@ class GaussianBeam(ByArguments):
                 self.width_law,
             ),
         )
+
+    @classmethod
+    def from_m_squared(
+        cls,
+        wavelength: float,
+        waist_radius: float,
+        m_squared: float,
+        offset: Pair = (0.0, 0.0),
+        tilt: Pair = (0.0, 0.0),
+    ) -> "GaussianBeam":
+        """A multimode beam of beam quality ``m_squared`` (M² >= 1) and 1/e² waist radius
+        ``waist_radius`` (m): its divergence is the embedded Gaussian's M² λ / (π w0) (rad).
+
+        Ray tracing traces its Gaussian irradiance w(z)² = w0² + (θz)²; Fourier optics takes it as
+        a Gaussian Schell-model beam, whose incoherent modes add to that same Gaussian irradiance at
+        every range (docs/beam_shapes.md). The overlap needs only the irradiance, so both are exact
+        for any beam whose irradiance stays Gaussian of that second-moment radius; a real multimode
+        beam's profile (flatter top, steeper edge) differs from it by what its mode content makes
+        (a mixture of components, :class:`GaussianMixtureBeam`, models wings)."""
+        lam = _checks.real("beam.wavelength", wavelength)
+        w0 = _checks.real("beam.waist_radius", waist_radius)
+        m2 = _checks.real("m_squared", m_squared)
+        if not (1.0 <= m2 < math.inf):
+            raise ValueError(
+                f"m_squared = {m2!r} is invalid: expected a finite beam quality M^2 >= 1"
+            )
+        if not (lam > 0 and w0 > 0 and math.isfinite(lam) and math.isfinite(w0)):
+            return cls(lam, w0, None, offset, tilt)  # the constructor names what is wrong
+        return cls(lam, w0, m2 * lam / (math.pi * w0), offset, tilt)
+
+    @property
+    def m_squared(self) -> float:
+        """Beam quality M² = θ π w0 / λ (1 for a diffraction-limited beam)."""
+        return self.half_angle_divergence * math.pi * self.waist_radius / self.wavelength
 
     @property
     def half_angle_divergence(self) -> float:
@@ -146,12 +182,20 @@ class Detector(ByArguments):
     offset : (x, y) in m, detector centre in its plane.
     numerical_aperture : accepted sin(angle) of a fibre; rays steeper than it are rejected. ``None``
         accepts every ray.
+    stop_radius : m, radius of a second, centred stop behind the lens (a relay's or field lens's
+        aperture, a vignetting mount) that every ray must pass; ``None``: no such stop.
+    stop_distance : m, its distance behind the lens, 0 < s < f + defocus (0 without a stop). In ray
+        tracing a ray crosses its plane at A (1 + s/z - s/f) - P s/z, a circle in the pupil moving
+        with the scatterer, exact as the detector's; Fourier optics keeps the circle's radius and
+        neglects its motion, as for the NA cone (docs/receiver_stop.md).
     """
 
     radius: float = 0.45e-3
     defocus: float = 0.0
     offset: Pair = (0.0, 0.0)
     numerical_aperture: Optional[float] = None
+    stop_radius: Optional[float] = None
+    stop_distance: float = 0.0
     _native: _core.Detector = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -164,10 +208,19 @@ class Detector(ByArguments):
             "numerical_aperture",
             _checks.optional_real("detector.numerical_aperture", self.numerical_aperture),
         )
+        set_(self, "stop_radius", _checks.optional_real("detector.stop_radius", self.stop_radius))
+        set_(self, "stop_distance", _checks.real("detector.stop_distance", self.stop_distance))
         set_(
             self,
             "_native",
-            _core.Detector(self.radius, self.defocus, self.offset, self.numerical_aperture),
+            _core.Detector(
+                self.radius,
+                self.defocus,
+                self.offset,
+                self.numerical_aperture,
+                self.stop_radius,
+                self.stop_distance,
+            ),
         )
 
     @classmethod
@@ -178,6 +231,8 @@ class Detector(ByArguments):
         defocus: float = 0.0,
         offset: Pair = (0.0, 0.0),
         numerical_aperture: Optional[float] = None,
+        stop_radius: Optional[float] = None,
+        stop_distance: float = 0.0,
     ) -> "Detector":
         """The detector that gives a full field of view ``fov`` (rad, full angle, as in the paper's
         Table 1) behind a lens of ``focal_length`` (m): radius = fov · f / 2."""
@@ -188,7 +243,7 @@ class Detector(ByArguments):
             _checks.pair("offset", offset),
             _checks.optional_real("numerical_aperture", numerical_aperture),
         )
-        return cls(native.radius, defocus, offset, numerical_aperture)
+        return cls(native.radius, defocus, offset, numerical_aperture, stop_radius, stop_distance)
 
     def fov(self, focal_length: float) -> float:
         """Full field of view (rad) behind a lens of ``focal_length`` (m)."""
@@ -200,16 +255,16 @@ class LidarSystem(ByArguments):
     """A lidar: transmitted beam, receiving telescope and detector, validated together
     (obstruction inside the aperture, detector plane behind the lens). The beam is a
     :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier
-    optics)."""
+    optics), or a :class:`GaussianMixtureBeam` of incoherent Gaussian components (both methods)."""
 
-    beam: GaussianBeam | FieldBeam = field(default_factory=GaussianBeam)
+    beam: GaussianBeam | FieldBeam | GaussianMixtureBeam = field(default_factory=GaussianBeam)
     telescope: Telescope = field(default_factory=Telescope)
     detector: Detector = field(default_factory=Detector)
     _native: _core.LidarSystem = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for name, kinds in (
-            ("beam", (GaussianBeam, FieldBeam)),
+            ("beam", (GaussianBeam, FieldBeam, GaussianMixtureBeam)),
             ("telescope", (Telescope,)),
             ("detector", (Detector,)),
         ):
@@ -222,6 +277,33 @@ class LidarSystem(ByArguments):
             self,
             "_native",
             _core.LidarSystem(self.beam._native, self.telescope._native, self.detector._native),
+        )
+
+    @property
+    def incoherent_parts(self) -> Tuple[Tuple[float, "LidarSystem"], ...]:
+        """(power share, system) of each mutually incoherent part of the beam, whose G add with
+        those shares: the components of a :class:`GaussianMixtureBeam` (each a
+        :class:`GaussianBeam` in this receiver), or ``((1.0, self),)`` for any other beam."""
+        beam = self.beam
+        if not isinstance(beam, GaussianMixtureBeam):
+            return ((1.0, self),)
+        return tuple(
+            (
+                w,
+                LidarSystem(
+                    GaussianBeam(
+                        beam.wavelength,
+                        c.waist_radius,
+                        c.divergence,
+                        beam.offset,
+                        beam.tilt,
+                        beam.width_law,
+                    ),
+                    self.telescope,
+                    self.detector,
+                ),
+            )
+            for w, c in zip(beam.weights, beam.components)
         )
 
     @property

@@ -11,6 +11,7 @@ from .aberrations import SEIDEL_TERMS, Aberrations
 from .aperture_mask import ApertureMask, Sector
 from .field_beam import FieldBeam
 from .flat_top import FlatTopBeam
+from .mixture_beam import BeamComponent, GaussianMixtureBeam
 from .system import Detector, GaussianBeam, LidarSystem, Telescope, WidthLaw
 
 
@@ -32,6 +33,18 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
             a["beam_divergence_rad"] = beam.divergence
         a["beam_half_angle_divergence_rad"] = float(beam.half_angle_divergence)
         a["beam_width_law"] = beam.width_law
+    elif isinstance(beam, GaussianMixtureBeam):
+        a.update(
+            beam_type="gaussian_mixture",
+            beam_wavelength_m=beam.wavelength,
+            beam_width_law=beam.width_law,
+            beam_component_count=len(beam.components),
+        )
+        for i, c in enumerate(beam.components):
+            a[f"beam_component_{i}_weight"] = c.weight
+            a[f"beam_component_{i}_waist_radius_m"] = c.waist_radius
+            if c.divergence is not None:
+                a[f"beam_component_{i}_divergence_rad"] = c.divergence
     elif isinstance(beam, FieldBeam):
         a.update(
             beam_type="flat_top" if isinstance(beam, FlatTopBeam) else "field",
@@ -63,6 +76,9 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
     a.update(_pair_attributes("detector_offset", det.offset, "m"))
     if det.numerical_aperture is not None:
         a["detector_numerical_aperture"] = det.numerical_aperture
+    if det.stop_radius is not None:
+        a["detector_stop_radius_m"] = det.stop_radius
+        a["detector_stop_distance_m"] = det.stop_distance
     a["detector_fov_rad"] = float(system.fov)
     if tel.aberrations is not None:
         a.update({f"aberration_zernike_{j}_m": c for j, c in tel.aberrations.zernike.items()})
@@ -143,9 +159,10 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
         return None
     if kind in UNSTORED_BEAMS:
         return None
-    if kind != "gaussian":
+    if kind not in ("gaussian", "gaussian_mixture"):
         raise ValueError(
-            f"beam_type = {kind!r} is invalid: expected 'gaussian', 'flat_top' or 'field'"
+            f"beam_type = {kind!r} is invalid: expected 'gaussian', 'gaussian_mixture', 'flat_top' "
+            "or 'field'"
         )
 
     def get(key: str, default=_REQUIRED):
@@ -164,14 +181,37 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
         return (get(f"{prefix}_x_{unit}"), get(f"{prefix}_y_{unit}"))
 
     try:
-        beam = GaussianBeam(
-            wavelength=get("beam_wavelength_m"),
-            waist_radius=get("beam_waist_radius_m"),
-            divergence=get("beam_divergence_rad", None),
-            offset=pair("beam_offset", "m"),
-            tilt=pair("beam_tilt", "rad"),
-            width_law=cast(WidthLaw, str(get("beam_width_law", "gaussian"))),
-        )
+        beam: GaussianBeam | GaussianMixtureBeam
+        if kind == "gaussian_mixture":
+            count = get("beam_component_count")
+            if not (count == int(count) and 1 <= count <= 10_000):
+                raise ValueError(
+                    f"system attribute beam_component_count = {count!r} is invalid: expected a "
+                    "whole number from 1 to 10000"
+                )
+            beam = GaussianMixtureBeam(
+                tuple(
+                    BeamComponent(
+                        get(f"beam_component_{i}_weight"),
+                        get(f"beam_component_{i}_waist_radius_m"),
+                        get(f"beam_component_{i}_divergence_rad", None),
+                    )
+                    for i in range(int(count))
+                ),
+                wavelength=get("beam_wavelength_m"),
+                offset=pair("beam_offset", "m"),
+                tilt=pair("beam_tilt", "rad"),
+                width_law=cast(WidthLaw, str(get("beam_width_law", "gaussian"))),
+            )
+        else:
+            beam = GaussianBeam(
+                wavelength=get("beam_wavelength_m"),
+                waist_radius=get("beam_waist_radius_m"),
+                divergence=get("beam_divergence_rad", None),
+                offset=pair("beam_offset", "m"),
+                tilt=pair("beam_tilt", "rad"),
+                width_law=cast(WidthLaw, str(get("beam_width_law", "gaussian"))),
+            )
         telescope = Telescope(
             diameter=get("telescope_diameter_m"),
             focal_length=get("telescope_focal_length_m"),
@@ -185,6 +225,8 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
             defocus=get("detector_defocus_m"),
             offset=pair("detector_offset", "m"),
             numerical_aperture=get("detector_numerical_aperture", None),
+            stop_radius=get("detector_stop_radius_m", None),
+            stop_distance=get("detector_stop_distance_m", 0.0),
         )
         return LidarSystem(beam=beam, telescope=telescope, detector=detector)
     except (KeyError, TypeError) as exc:

@@ -325,6 +325,8 @@ def scenario_toml(system, ranges, name: str, tolerance: float) -> str:
             "defocus": det.defocus,
             "offset": det.offset,
             "numerical_aperture": det.numerical_aperture,
+            "stop_radius": det.stop_radius,
+            "stop_distance": det.stop_distance if det.stop_radius is not None else None,
         },
         "ranges": {"values": [float(z) for z in ranges]},
         "run": {"method": "rt", "tolerance": tolerance},

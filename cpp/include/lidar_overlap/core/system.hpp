@@ -24,6 +24,11 @@ struct Detector {
   double defocus = 0.0;                      // m, displacement behind the focal plane (> -f)
   Vec2 offset;                               // m, detector centre in its plane
   std::optional<double> numerical_aperture;  // accepted sin(angle); empty: accepts every ray
+  // A second stop behind the lens (a relay's or field lens's aperture, a vignetting mount): a centred
+  // disc of radius stop_radius (m) in the plane stop_distance (m) behind the lens, before the detector
+  // plane. Empty: no such stop (stop_distance must then be 0).
+  std::optional<double> stop_radius;
+  double stop_distance = 0.0;
 
   void validate() const;
   // tan(asin NA): the steepest ray slope behind the lens that the detector accepts (rad, paraxial);

@@ -14,7 +14,7 @@ from typing import Callable, Optional
 
 from ... import _checks
 from ..result import OverlapResult
-from . import aberrated, fo, masked, rt, turbulent
+from . import aberrated, fo, masked, mixture, rt, turbulent
 
 
 @dataclass(frozen=True)
@@ -65,6 +65,31 @@ BACKENDS = {
         False,
         None,
     ),
+    "rt_mixture": Backend(
+        "ray tracing of each incoherent beam component, G their power-weighted sum",
+        "rt",
+        "",
+        "bound",
+        False,
+        lambda plan: _run_mixture(plan),
+    ),
+    "fo_mixture": Backend(
+        "Fourier optics of each incoherent beam component, G their power-weighted sum",
+        "fo",
+        "mixture",
+        "nominal",
+        False,
+        lambda plan: _run_mixture(plan),
+    ),
+    "auto_mixture": Backend(
+        "auto for each incoherent beam component (with aberrations: decided when run), G their "
+        "power-weighted sum",
+        "auto",
+        "",
+        "bound",
+        False,
+        None,
+    ),
     "rt_turbulent": Backend(
         "ray tracing of the wandering short-term beam (all draws in one core call)",
         "rt",
@@ -105,3 +130,8 @@ def run(plan) -> OverlapResult:
     if plan.turbulence is not None and not entry.turbulent:
         return turbulent.without_turbulence(plan, result)
     return result
+
+
+def _run_mixture(plan) -> OverlapResult:
+    """A mixture plan: each component's plan run (its own warnings said), then combined."""
+    return mixture.combine(plan, [run(part) for part in plan.component_plans()])

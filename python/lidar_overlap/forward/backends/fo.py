@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from ... import _checks, _core
 from ...optics.propagation import EDGE_POWER_LIMIT, SamplingWarning
+from ..validity import warn_if_fo_stop_moves
 from ._result import result
 
 #: Nominal accuracy of the radial path, stated as its error estimate: it agrees to 2e-10 with 8x its
@@ -17,6 +18,7 @@ FO_2D_ACCURACY = 1e-6
 def run_radial(plan):
     """One Gauss–Legendre integral per range (Gaussian beams of any pointing)."""
     raw = _core.overlap_fo_radial(plan.system._native, plan.ranges, plan.options)
+    warn_if_fo_stop_moves(plan.system, plan.ranges)
     return result(plan, raw.overlap, FO_RADIAL_ACCURACY)
 
 
@@ -24,6 +26,7 @@ def run_2d(plan):
     """The sampled TEM00 (or Gaussian Schell-model) beam propagated to each range with FFTW."""
     raw = _core.overlap_fo(plan.system._native, plan.ranges, plan.options)
     _warn_if_clipped(plan, raw, "enlarge beam_window or beam_grid")
+    warn_if_fo_stop_moves(plan.system, plan.ranges)
     return result(plan, raw.overlap, FO_2D_ACCURACY)
 
 
@@ -34,6 +37,7 @@ def run_field(plan):
         plan.system._native, plan.ranges, f.values, f.spacing, f.wavelength, plan.options
     )
     _warn_if_clipped(plan, raw, "enlarge the field's grid (zero-pad it)")
+    warn_if_fo_stop_moves(plan.system, plan.ranges)
     return result(plan, raw.overlap, FO_2D_ACCURACY)
 
 

@@ -2,8 +2,9 @@
 Jacobian, an optimisation's candidates or a study's draws, each G bit for bit what a single run of
 the plan re-targeted at that system gives (:meth:`lidar_overlap.Plan.with_system`).
 
-Ray tracing runs every variant in one parallel core call (:mod:`.batch`); other backends run the
-re-targeted plan for each variant in turn.
+Ray tracing runs every variant in one parallel core call (:mod:`.batch`), a beam of incoherent
+components too (every component of every variant in the call); other backends run the re-targeted
+plan for each variant in turn.
 """
 
 from __future__ import annotations
@@ -43,6 +44,8 @@ def systems(plan, variants: Sequence[LidarSystem], warn: bool = True) -> Curves:
     ray tracing's validity and convergence warnings back (a search's candidates, many of them far
     from the answer, whose own warnings are said)."""
     z = plan.ranges
+    if _batched_mixture(plan):
+        return _mixture_systems(plan, variants, warn)
     if plan.backend not in BATCHED:
         runs = [run_plan(plan.with_system(s)) for s in variants]
         shape = (len(runs), z.size)
@@ -63,6 +66,37 @@ def systems(plan, variants: Sequence[LidarSystem], warn: bool = True) -> Curves:
         flat.error_estimate.reshape(shape),
         flat.converged.reshape(shape),
     )
+
+
+def _batched_mixture(plan) -> bool:
+    """A mixture plan whose components all run plain ray tracing on the same options."""
+    if plan.backend != "rt_mixture" or not plan.parts:
+        return False
+    first = plan.parts[0].options
+    return all(
+        p.backend in BATCHED
+        and (p.options.tolerance, p.options.max_segments, p.options.threads)
+        == (first.tolerance, first.max_segments, first.threads)
+        for p in plan.parts
+    )
+
+
+def _mixture_systems(plan, variants: Sequence[LidarSystem], warn: bool) -> Curves:
+    """:func:`systems` of a mixture plan: every component of every variant in one batched call,
+    then each variant's components summed with its power shares (in the order
+    :func:`.mixture.combine` sums them, so that G is bit for bit a single run's)."""
+    split = [plan.with_system(s).system.incoherent_parts for s in variants]
+    n = len(plan.parts)
+    first = plan.component_plans()[0]
+    flat = systems(first, [part for parts in split for _, part in parts], warn)
+    shape = (len(variants), n, plan.ranges.size)
+    g, e = flat.overlap.reshape(shape), flat.error_estimate.reshape(shape)
+    overlap = np.empty((len(variants), plan.ranges.size))
+    error = np.empty_like(overlap)
+    for v, parts in enumerate(split):
+        overlap[v] = sum(w * g[v, i] for i, (w, _) in enumerate(parts))
+        error[v] = sum(w * e[v, i] for i, (w, _) in enumerate(parts))
+    return Curves(overlap, error, np.asarray(flat.converged.reshape(shape).all(axis=1)))
 
 
 def turbulent(plan) -> bool:
