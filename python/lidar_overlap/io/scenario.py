@@ -3,9 +3,9 @@ units).
 
 A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``,
 ``[telescope]``, ``[detector]``, ``[ranges]`` (required), ``[run]``, ``[output]`` and
-``[turbulence]`` (optional); see ``examples/scenarios/table1.toml`` and
-``table1_turbulence.toml``. ``[turbulence]`` holds the keys of :class:`lidar_overlap.Turbulence`
-(``cn2`` a number or ``"hv57"``, ``elevation``, ...) and the draws' of :class:`lidar_overlap.Turbulent`
+``[turbulence]`` (optional); see ``examples/scenarios/table1.toml`` and ``table1_turbulence.toml``.
+``[turbulence]`` holds the keys of :class:`lidar_overlap.Turbulence` (``cn2`` a number or
+``"hv57"``, ``elevation``, ...) and the draws' of :class:`lidar_overlap.Turbulent`
 (``realizations``, ``seed``, ``screens``, ``paths``, ``receiver_fields``) around the ``[run]``
 method. Every error is a :class:`ScenarioError` (a ValueError) that
 names the file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
