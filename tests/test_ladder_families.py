@@ -16,15 +16,15 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.model_ladder import (
+from lidar_overlap.analysis.model_families import (
     LADDER,
     Family,
-    fit_ladder,
     stop_bounds,
     wing_bounds,
     with_stop,
     with_wing,
 )
+from lidar_overlap.analysis.model_ladder import fit_ladder
 
 pytest.importorskip("scipy")
 # a stop's radius and distance trade against each other, and so do a wing's share and divergence:

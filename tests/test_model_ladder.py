@@ -7,7 +7,8 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.model_ladder import Family, fit_ladder, runs_p_value
+from lidar_overlap.analysis.model_families import Family
+from lidar_overlap.analysis.model_ladder import fit_ladder, runs_p_value
 
 pytest.importorskip("scipy")
 
