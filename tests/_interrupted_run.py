@@ -48,6 +48,10 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
+def _default_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def interrupted_run(call: str, setup: str = "", warm_cpu: float = WARM_CPU) -> Interrupted:
     """Run ``setup`` then ``call`` in a fresh interpreter (``np`` and ``lo`` imported), SIGINT it
     once it has spent ``warm_cpu`` CPU seconds in ``call``, and return what it did from the signal
@@ -67,6 +71,9 @@ def interrupted_run(call: str, setup: str = "", warm_cpu: float = WARM_CPU) -> I
         stderr=subprocess.PIPE,
         text=True,
         env={**os.environ, "PYTHONWARNINGS": "ignore"},
+        # A job started in the background of a shell ignores SIGINT, and so would the child, whose
+        # interpreter then installs no handler: give it the default disposition.
+        preexec_fn=_default_sigint,
     )
     try:
         started = proc.stdout.readline().strip()

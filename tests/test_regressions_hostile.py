@@ -291,6 +291,15 @@ def test_absurd_turbulence_does_not_blame_the_beam(runner, method):
     assert "beam.offset" not in outcome.get("message", ""), outcome["message"]
 
 
+@pytest.mark.parametrize(
+    "target", [1e300, 2**32, 2**64, 1e-300], ids=["1e300", "2_32", "2_64", "1e-300"]
+)
+def test_a_realignment_target_beyond_the_ranges_is_blamed_on_the_target(runner, target):
+    # G is also computed at 100 x the target (its far limit): a target of 2**32 m named "ranges[1]"
+    outcome = refused(runner, call("realign", TABLE1, target), "target")
+    assert "ranges" not in outcome["message"], outcome["message"]
+
+
 def test_a_subnormal_diameter_is_blamed_on_the_diameter(runner):
     outcome = refused(runner, call("Telescope", diameter=5e-324), "diameter")
     assert "obstruction_radius =" not in outcome["message"], outcome["message"]
