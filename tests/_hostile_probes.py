@@ -1,7 +1,7 @@
 """Every public entry point's hypothesis strategy for the hostile-input probes, and how many
 examples each gets (PROBES). The strategies live by concept: tests/_hostile_probes_turbulence.py,
-_hostile_probes_fields.py, _hostile_probes_overlap.py, _hostile_probes_queries.py and
-_hostile_probes_analysis.py.
+_hostile_probes_fields.py, _hostile_probes_overlap.py, _hostile_probes_queries.py,
+_hostile_probes_arrays.py and _hostile_probes_analysis.py.
 
 Each strategy draws a :class:`Call` tree: a sane call near the paper's Table 1 with (usually) one or
 two hostile values in the system, the ranges or the options. Valid work is kept small (at most 6
@@ -12,6 +12,7 @@ milliseconds; the expensive valid Fourier-optics paths get fewer examples.
 from __future__ import annotations
 
 import _hostile_probes_analysis as analysis
+from _hostile_probes_arrays import noll_index, phase_screen, zernike
 from _hostile_probes_fields import (
     field_beam,
     field_from_values,
@@ -39,7 +40,7 @@ from _hostile_values import (
     telescope,
 )
 
-#: Every entry point's probe strategy, and its examples in a run of the test suite (2,560 in all; a
+#: Every entry point's probe strategy, and its examples in a run of the test suite (2,660 in all; a
 #: campaign shares its probes in the same proportions). Paths that draw valid Fourier-optics work
 #: get fewer.
 PROBES = {
@@ -73,6 +74,9 @@ PROBES = {
     "detector_image": (detector_image(), 60),
     "Turbulence_methods": (turbulence_method(), 80),
     "optimal_focus_range": (optimal_focus(), 60),
+    "phase_screen": (phase_screen(), 40),
+    "zernike": (zernike(), 40),
+    "noll_index": (noll_index(), 20),
     "alignment_map": (analysis.alignment_map(), 60),
     "telecover": (analysis.telecover(), 60),
     "sensitivity": (analysis.sensitivity(), 40),

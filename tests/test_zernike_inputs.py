@@ -38,3 +38,14 @@ def test_pupil_points_must_be_finite_real_numbers(bad, axis):
         lo.zernike(5, points["x"], points["y"])
     with pytest.raises(ValueError, match=rf"^{axis} = "):
         lo.Aberrations(w040=1e-7).wavefront(points["x"], points["y"])
+
+
+@pytest.mark.parametrize("x, y", [(0.0, 1e300), (1e300, 0.0), (1e200, -1e200)])
+def test_points_where_the_polynomial_overflows_are_refused_naming_x_and_y(x, y):
+    # Z4 = sqrt(3) (2 rho^2 - 1) is infinite in double precision at |rho| = 1e300: it was returned
+    with pytest.raises(ValueError, match=r"^x, y = .* Z_4 overflows"):
+        lo.zernike(4, [0.5, x], [0.5, y])
+    with pytest.raises(ValueError, match=r"^x, y = .* wavefront overflows"):
+        lo.Aberrations(w040=1e-7).wavefront([0.5, x], [0.5, y])
+    # outside the pupil but finite: the polynomial's value, as before
+    assert lo.zernike(4, 2.0, 0.0) == pytest.approx(np.sqrt(3) * 7.0, rel=1e-14)

@@ -109,7 +109,8 @@ class Aberrations(ByArguments):
         """W (m) at normalised pupil points (x, y) (arrays of one shape) for a scatterer at
         ``field_angle`` (rad, x and y)."""
         x, y = _pupil_points(x, y)
-        return self._native.wavefront(x, y, _checks.pair("field_angle", field_angle))
+        w = self._native.wavefront(x, y, _checks.pair("field_angle", field_angle))
+        return _finite_values("wavefront", w, x, y)
 
     @property
     def rms(self) -> float:
@@ -129,7 +130,8 @@ def zernike(j: int, x, y) -> np.ndarray:
     """Zernike polynomial Z_j (Noll, unit RMS over the unit disc; j an integer from 1 to 1000) at
     normalised pupil points (x, y): finite real arrays of one shape."""
     x, y = _pupil_points(x, y)
-    return _core.zernike(_checks.count("j", j, 1, MAX_POLYNOMIAL_INDEX), x, y)
+    z = _core.zernike(_checks.count("j", j, 1, MAX_POLYNOMIAL_INDEX), x, y)
+    return _finite_values(f"Z_{j}", z, x, y)
 
 
 def _pupil_points(x, y) -> Tuple[np.ndarray, np.ndarray]:
@@ -145,6 +147,20 @@ def _pupil_points(x, y) -> Tuple[np.ndarray, np.ndarray]:
             )
         points.append(v)
     return points[0], points[1]
+
+
+def _finite_values(what: str, values, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """``values`` when all are finite; else ValueError naming x and y: a point so far outside the
+    unit pupil that the polynomial overflows double precision (|rho| ~ 1e300)."""
+    bad = ~np.isfinite(np.asarray(values))
+    if np.any(bad):
+        k = np.flatnonzero(bad)[0]
+        px, py = (float(np.broadcast_to(v, bad.shape).flat[k]) for v in (x, y))
+        raise ValueError(
+            f"x, y = ({px!r}, {py!r}) is invalid: {what} overflows there; expected normalised "
+            "pupil coordinates (|rho| <= 1 on the pupil)"
+        )
+    return values
 
 
 def seidel_to_zernike(aberrations: Aberrations, field_angle: Tuple[float, float]) -> Aberrations:
