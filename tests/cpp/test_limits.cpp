@@ -1,6 +1,7 @@
 // Limits and cancellation: an error inside the parallel range loop reaches the caller (no std::terminate),
-// a CancelScope stops a long call (a single iteration on another thread, a transform pass), thread counts, the memory budget and physical scales are enforced
-// before any work, and G leaving an engine is finite and within [0, 1].
+// a CancelScope stops a long call (a single iteration on another thread, a transform pass), thread counts,
+// the memory budget and physical scales are enforced before any work, and G leaving an engine is finite
+// and within [0, 1].
 #include <atomic>
 #include <chrono>
 #include <cmath>
