@@ -1,7 +1,8 @@
 // Loops over ranges (or realisations) on OpenMP threads, safely: an exception thrown by one iteration
 // stops the others at their next cancellation point and is rethrown on the calling thread once the
 // region has ended (an exception escaping an OpenMP region would terminate the process), and the
-// caller's CancelScope is asked between iterations. Internal header, not installed.
+// caller's CancelScope is asked between iterations (and, once the calling thread has none left, while the
+// other threads finish theirs). Internal header, not installed.
 #pragma once
 
 #include <omp.h>
