@@ -58,7 +58,12 @@ void bind_field(py::module_& m) {
       [](double wavelength, double waist_radius, std::size_t n, double spacing, std::array<double, 2> center,
          double power) {
         checks::grid("n", n, sizeof(Complex), 2);  // the core's field and the NumPy copy returned
-        return array_from_field(Field::gaussian(wavelength, waist_radius, n, spacing, {center[0], center[1]}, power));
+        Field f;
+        {
+          Interruptible release;  // n^2 exponentials: seconds for the largest grids
+          f = Field::gaussian(wavelength, waist_radius, n, spacing, {center[0], center[1]}, power);
+        }
+        return array_from_field(f);
       },
       py::arg("wavelength"), py::arg("waist_radius"), py::arg("n"), py::arg("spacing"), py::arg("center"),
       py::arg("power"));

@@ -32,7 +32,8 @@ RUNTIMES="$(g++ -print-file-name=libasan.so):$(g++ -print-file-name=libubsan.so)
 export LIDAR_OVERLAP_PROBE_MEMORY=-1          # ASan reserves terabytes of address space: no rlimit
 export LIDAR_OVERLAP_PROBE_TIME_LIMIT=60      # the sanitized core runs ~3-5x slower
 for file in test_bad_input test_limits test_overlap_fo test_aberrations test_turbulence \
-            test_regressions_hostile test_hostile_inputs; do
+            test_hostile_sizes test_hostile_slow_inputs test_hostile_extreme_values \
+            test_hostile_error_names test_hostile_results test_hostile_inputs; do
   echo "sanitize: pytest tests/$file.py"
   LD_PRELOAD="$RUNTIMES" PYTHONPATH="$PKG" "$VENV/bin/python" -m pytest -q -p no:cacheprovider -x "tests/$file.py"
 done

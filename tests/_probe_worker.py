@@ -267,6 +267,12 @@ def judge_result(result, node, built) -> tuple:
         _finite_number("half_angle_divergence", result.half_angle_divergence, problems, 0.0)
     elif isinstance(result, lo.Detector):
         _finite_number("detector.radius", result.radius, problems, 0.0)
+    elif isinstance(result, np.ndarray):  # a phase screen, a Zernike polynomial's values
+        _finite_array(entry, result, problems)
+        summary["shape"] = list(result.shape)
+    elif isinstance(result, tuple) and entry == "noll_index":
+        if not all(isinstance(v, int) for v in result) or len(result) != 2 or result[0] < 0:
+            problems.append(f"noll_index = {result!r} is not a pair (n >= 0, m) of integers")
     elif isinstance(result, (bool, np.bool_)) or result is None:
         problems.append(f"returned {result!r}, not a number or an object of the library")
     elif isinstance(result, (int, float, np.integer, np.floating)):

@@ -137,6 +137,16 @@ def test_other_bad_input_is_refused():
         lo.alignment_map(lo.paper_table1(), [300.0], tilt_z=[0.0])
 
 
+def test_an_unreachable_tolerance_warns_counting_the_map_values_not_its_ranges():
+    # 1e-300 is below what double precision resolves: every tilted point's integral stops at
+    # max_segments. The warning once said "9 of 2 ranges".
+    tilted = lo.LidarSystem(beam=lo.GaussianBeam(tilt=(1e-4, 0.0)))
+    with pytest.warns(RuntimeWarning, match=r"not reached at \d+ of 10 values \(grid points"):
+        lo.alignment_map(
+            tilted, [500.0, 1000.0], tilt_x=np.linspace(-1e-3, 1e-3, 5), tolerance=1e-300
+        )
+
+
 def test_without_xarray_the_error_says_how_to_install_it(monkeypatch):
     monkeypatch.setitem(sys.modules, "xarray", None)
     with pytest.raises(ImportError, match=r"pip install 'lidar-overlap\[io\]'"):

@@ -22,6 +22,15 @@ JOIN_LIMIT = 120.0
 pytestmark = pytest.mark.skipif(not hasattr(signal, "SIGINT"), reason="needs SIGINT")
 
 
+@pytest.fixture(autouse=True)
+def default_sigint():
+    """Python's own SIGINT handler, as in an interactive session: a job started in a shell's
+    background (a CI runner) inherits SIGINT ignored, and the interpreter then installs none."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
 def test_an_interrupt_swallowed_in_a_weakref_callback_is_raised_when_the_block_ends():
     class Thing:
         pass

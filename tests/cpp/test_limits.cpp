@@ -1,15 +1,20 @@
 // Limits and cancellation: an error inside the parallel range loop reaches the caller (no std::terminate),
-// a CancelScope stops a long call, thread counts, the memory budget and physical scales are enforced
-// before any work, and G leaving an engine is finite and within [0, 1].
+// a CancelScope stops a long call (a single iteration on another thread, a transform pass), thread counts,
+// the memory budget and physical scales are enforced before any work, and G leaving an engine is finite
+// and within [0, 1].
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "check.hpp"
 #include "lidar_overlap/lidar_overlap.hpp"
 #include "core/checks.hpp"     // internal: the shared argument checks
 #include "core/constants.hpp"
+#include "core/parallel.hpp"      // internal: parallel_for, cancellation_point
+#include "fourier/fft_passes.hpp"  // internal: the passes of a 2-D transform
 
 using namespace lidar_overlap;
 
@@ -58,6 +63,64 @@ void cancel_scope_stops_a_call() {
   // Without a scope, and after one has ended, the same call runs to the end.
   const RtOverlap plain = overlap_rt(s, ranges(8, 5.0, 3000.0));
   test::that("no scope: a full curve", plain.overlap.size() == 8);
+}
+
+// One iteration on two threads: it may go to the other thread, which has no CancelScope; the calling
+// thread, out of iterations, keeps asking its scope. Before it did, such a call ran to its end.
+void a_lone_iteration_on_another_thread_is_cancelled() {
+  using Clock = std::chrono::steady_clock;
+  for (int round = 0; round < 8; ++round) {
+    std::atomic<int> asked{0};
+    bool cancelled = false, ran_out = false;
+    try {
+      CancelScope scope([&] { return ++asked >= 3; }, std::chrono::milliseconds(0));
+      detail::parallel_for(1, 2, [&](std::size_t) {
+        const auto end = Clock::now() + std::chrono::seconds(60);  // a hang, not a latency bound
+        while (Clock::now() < end) {
+          detail::cancellation_point();
+          std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        ran_out = true;
+      });
+    } catch (const Cancelled&) {
+      cancelled = true;
+    }
+    test::that("a lone iteration is cancelled, round " + std::to_string(round), cancelled && !ran_out);
+  }
+}
+
+// A pass over the blocks of one large grid (a plain OpenMP region) asks the scope between blocks and
+// raises after the region: Cancelled, or the exception of should_stop.
+void a_transform_pass_is_cancelled_between_blocks() {
+  const std::size_t n = 512;
+  ComplexBuffer data(n * n, Complex{1.0, 0.0});
+  std::atomic<int> asked{0};
+  bool cancelled = false;
+  try {
+    CancelScope scope([&] { return ++asked >= 3; }, std::chrono::milliseconds(0));
+    // 1 ms per row, half a second per pass: the calling thread takes blocks even on a loaded machine
+    auto slow = [](std::size_t, Complex*) { std::this_thread::sleep_for(std::chrono::milliseconds(1)); };
+    detail::row_pass(data.data(), n, n, FftDirection::forward, 2, slow, [](std::size_t, Complex*) {});
+  } catch (const Cancelled&) {
+    cancelled = true;
+  }
+  test::that("a row pass stops once should_stop says so", cancelled && asked.load() >= 3);
+  // Rows after the request are skipped: a transformed row of ones is (n, 0, 0, ...), an untouched one is not.
+  std::size_t untouched = 0;
+  for (std::size_t r = 0; r < n; ++r) untouched += data[r * n] == Complex{1.0, 0.0};
+  test::that("the rows after the request are left alone", untouched > 0);
+
+  struct Stop {};
+  bool rethrown = false;
+  try {
+    CancelScope scope([]() -> bool { throw Stop{}; }, std::chrono::milliseconds(0));
+    detail::column_pass(data.data(), n, n, 2, [](std::size_t, std::size_t, Complex*) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(8));
+    });
+  } catch (const Stop&) {
+    rethrown = true;
+  }
+  test::that("an exception of should_stop leaves a column pass after its region", rethrown);
 }
 
 void threads_are_bounded() {
@@ -126,6 +189,8 @@ void overlap_values_are_checked() {
 int main() {
   error_inside_the_loop_reaches_the_caller();
   cancel_scope_stops_a_call();
+  a_lone_iteration_on_another_thread_is_cancelled();
+  a_transform_pass_is_cancelled_between_blocks();
   threads_are_bounded();
   memory_budget();
   physical_scales();

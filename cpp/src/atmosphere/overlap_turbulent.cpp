@@ -64,6 +64,7 @@ class CouplingMap {
     std::vector<double> t_row(half + 1);
     ComplexBuffer block(chunk * np), columns(n * np, Complex{});
     for (std::size_t r0 = 0; r0 < rows.size(); r0 += chunk) {
+      detail::cancellation_point();  // T at chunk x np frequencies
       std::fill(block.begin(), block.end(), Complex{});
       for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r) {
         const std::size_t ky = rows[r];
@@ -180,6 +181,7 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
         for (std::size_t i = 0; i < n * n; ++i) e += std::norm(beams[c].values[i]);
         double sum = 0.0, sum2 = 0.0, unc = 0.0;
         for (std::size_t m = 0; m < fields; ++m) {
+          detail::cancellation_point();  // up to 1000 receiver fields of n^2 samples
           double es = 0.0, eu = 0.0;
           for (std::size_t i = 0; i < n * n; ++i) {
             const double v = std::norm(beams[c].values[i]);

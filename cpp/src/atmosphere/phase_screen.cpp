@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lidar_overlap/core/limits.hpp"
+#include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/quadrature.hpp"
@@ -135,9 +136,11 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
   amplitude_.resize((h + 1) * (h + 1));
   // f = 0 is skipped: the piston is not a phase aberration (and Phi(0) is infinite without an outer scale);
   // the subharmonics stand for that cell.
-  for (std::size_t ky = 0; ky <= h; ++ky)
+  for (std::size_t ky = 0; ky <= h; ++ky) {
+    detail::cancellation_point();  // (n/2)^2 powers: seconds for the largest grids on a busy core
     for (std::size_t kx = 0; kx <= h; ++kx)
       amplitude_[ky * (h + 1) + kx] = kx + ky == 0 ? 0.0 : std::sqrt(psd(df * std::hypot(double(kx), double(ky)))) * df;
+  }
   const bool tilt = weights == SubharmonicWeights::tilt_matched;
   if (tilt) {  // the FFT grid's own 3 x 3 block around f = 0 (|kx|, |ky| <= 1)
     amplitude_[1] = std::sqrt(cell_variance(*this, df, 0.0, df));
@@ -188,6 +191,7 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
   // High frequencies, in FFT order: frequency index i is i or i - n, so |k| = min(i, n - i).
   ComplexBuffer spectrum(n * n);
   for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();  // n^2 normal deviates
     const double* row = &amplitude_[std::min(iy, n - iy) * (h + 1)];
     for (std::size_t ix = 0; ix < n; ++ix) spectrum[iy * n + ix] = complex_normal(rng) * row[std::min(ix, n - ix)];
   }
@@ -208,6 +212,7 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
   }
   std::array<std::vector<double>, 2> out{std::vector<double>(n * n), std::vector<double>(n * n)};
   for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();
     Complex g0 = -mean, s[kLevels], d[kLevels];
     for (int p = 0; p < kLevels; ++p) {
       const Complex ey(sub_cos_[p][iy], sub_sin_[p][iy]);
@@ -241,7 +246,10 @@ void apply_phase_screen(Field& field, const std::vector<double>& screen) {
   field.validate();
   if (screen.size() != field.n * field.n)
     checks::fail("screen", static_cast<double>(screen.size()), "n * n = " + std::to_string(field.n * field.n) + " values");
-  for (std::size_t i = 0; i < screen.size(); ++i) field.values[i] *= Complex(std::cos(screen[i]), std::sin(screen[i]));
+  for (std::size_t i = 0; i < screen.size(); ++i) {
+    detail::cancellation_point_every(i);  // a sine and a cosine per sample
+    field.values[i] *= Complex(std::cos(screen[i]), std::sin(screen[i]));
+  }
 }
 
 }  // namespace lidar_overlap

@@ -5,6 +5,7 @@
 
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "core/parallel.hpp"
 
 namespace lidar_overlap::detail {
 
@@ -104,7 +105,8 @@ Field ReturnPath::pupil_field(std::uint64_t seed, std::size_t k, std::size_t m) 
   const double outer = 0.5 * t.diameter, inner = t.obstruction_radius, scale = step_ / (lambda_ * d_);
   const Vec2 offset = system_.beam.offset, tilt = system_.beam.tilt;
   Field f{ComplexBuffer(n * n, Complex{}), n, spacing_, lambda_};
-  for (std::size_t iy = 0; iy < n; ++iy)
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();  // n^2 sums over the detector's rows, for each of up to 1000 fields
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double gx = (static_cast<double>(ix) - static_cast<double>(h)) * spacing_,
                    gy = (static_cast<double>(iy) - static_cast<double>(h)) * spacing_;
@@ -116,6 +118,7 @@ Field ReturnPath::pupil_field(std::uint64_t seed, std::size_t k, std::size_t m) 
       // opposite tilt.
       f.values[iy * n + ix] = v * std::polar(scale, curvature * r2 - k_wave * (tilt.x * gx + tilt.y * gy));
     }
+  }
   return f;
 }
 

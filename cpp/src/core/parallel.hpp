@@ -1,11 +1,15 @@
 // Loops over ranges (or realisations) on OpenMP threads, safely: an exception thrown by one iteration
 // stops the others at their next cancellation point and is rethrown on the calling thread once the
 // region has ended (an exception escaping an OpenMP region would terminate the process), and the
-// caller's CancelScope is asked between iterations. Internal header, not installed.
+// caller's CancelScope is asked between iterations (and, once the calling thread has none left, while the
+// other threads finish theirs). Internal header, not installed.
 #pragma once
+
+#include <omp.h>
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
 #include <exception>
 #include <mutex>
@@ -56,6 +60,10 @@ class TeamClock {
   std::atomic<long long> latest_{0};
 };
 
+// How often the calling thread asks its CancelScope while other threads finish the last iterations of a
+// parallel_for (the scope itself asks Python at most every 0.1 s).
+inline constexpr std::chrono::milliseconds kFinishPoll{20};
+
 // body(i) for i in [0, count) on `threads` threads (from thread_count), dynamic schedule.
 template <class Body>
 void parallel_for(std::size_t count, int threads, Body&& body) {
@@ -65,6 +73,15 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  auto fail = [&] {
+    std::lock_guard<std::mutex> lock(failure_mutex);
+    if (!failure) failure = std::current_exception();
+    stop.store(true);
+  };
+  // Iterations ended (run, skipped or failed), and the calling thread's wait for the last of them.
+  std::atomic<std::size_t> ended{0};
+  std::mutex ended_mutex;
+  std::condition_variable all_ended;
   TeamClock clock;
 #pragma omp parallel num_threads(threads)
   {
@@ -72,16 +89,35 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
     std::atomic<bool>*& flag = current_stop_flag();
     std::atomic<bool>* const enclosing = flag;
     flag = &stop;
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
     for (long i = 0; i < static_cast<long>(count); ++i) {
-      if (stop.load(std::memory_order_relaxed)) continue;
-      try {
-        cancellation_point();
-        body(static_cast<std::size_t>(i));
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        stop.store(true);
+      if (!stop.load(std::memory_order_relaxed)) {
+        try {
+          cancellation_point();
+          body(static_cast<std::size_t>(i));
+        } catch (...) {
+          fail();
+        }
+      }
+      if (ended.fetch_add(1) + 1 == count) {
+        std::lock_guard<std::mutex> lock(ended_mutex);
+        all_ended.notify_all();
+      }
+    }
+    // Only the calling thread (thread 0) has a CancelScope. Once it has no iteration left it keeps asking
+    // it while the others finish theirs, so that Ctrl-C also stops a long last iteration (or the only one)
+    // that another thread runs; the request reaches that iteration through the stop flag.
+    if (omp_get_thread_num() == 0 && omp_get_num_threads() > 1) {
+      std::unique_lock<std::mutex> lock(ended_mutex);
+      while (!all_ended.wait_for(lock, kFinishPoll, [&] { return ended.load() == count; })) {
+        if (stop.load(std::memory_order_relaxed)) continue;
+        lock.unlock();
+        try {
+          cancellation_point();
+        } catch (...) {
+          fail();
+        }
+        lock.lock();
       }
     }
     flag = enclosing;

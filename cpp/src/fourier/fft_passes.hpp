@@ -1,7 +1,9 @@
 // The two passes a 2-D transform is made of, with hooks that run on each row or column block while it is
 // in cache, so that the multiplications and sums of a propagation cost no pass of their own (fused).
 // Blocks are fixed by the shape and handed out dynamically: a thread that the machine's load delays holds
-// up one block, not a share of the pass. Hooks must not throw. Internal header, not installed.
+// up one block, not a share of the pass. Hooks must not throw. A pass asks the caller's CancelScope before
+// each block (a pass over a 16384^2 grid takes seconds) and throws Cancelled after the region, never from
+// inside it. Internal header, not installed.
 #pragma once
 
 #include <omp.h>
@@ -10,6 +12,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "core/cancel_every.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
 
@@ -22,11 +25,13 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
   const RowTransform transform(length, direction);
   const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
+  RegionStop stop;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     clock.started();
 #pragma omp for schedule(dynamic, 1)
     for (long b = 0; b < blocks; ++b) {
+      if (stop.stopped()) continue;
       const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
       Complex* block = data + r0 * length;
       for (std::size_t r = 0; r < count; ++r) before(r0 + r, block + r * length);
@@ -35,6 +40,7 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
     }
   }
   clock.report(threads);
+  stop.rethrow();
 }
 
 inline void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads) {
@@ -68,6 +74,7 @@ template <class Work>
 void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {
   const long blocks = static_cast<long>((cols + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
+  RegionStop stop;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     clock.started();
@@ -75,6 +82,7 @@ void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads,
     ComplexBuffer scratch(kFftBlock * stride);
 #pragma omp for schedule(dynamic, 1)
     for (long b = 0; b < blocks; ++b) {
+      if (stop.stopped()) continue;
       const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, cols - c0);
       Complex* s = scratch.data();
       if (count == kFftBlock) {  // the common case, unrolled by the compiler
@@ -91,6 +99,7 @@ void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads,
     }
   }
   clock.report(threads);
+  stop.rethrow();
 }
 
 }  // namespace lidar_overlap::detail

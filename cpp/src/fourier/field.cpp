@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lidar_overlap/core/limits.hpp"
+#include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 
@@ -18,32 +19,39 @@ void Field::validate() const {
 
 double Field::power() const {
   double sum = 0.0;
-  for (const Complex& v : values) sum += std::norm(v);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    detail::cancellation_point_every(i);  // a 16384^2 field has 2.7e8 samples
+    sum += std::norm(values[i]);
+  }
   return sum * spacing * spacing;
 }
 
 Vec2 Field::centroid() const {
   double sum = 0.0, sx = 0.0, sy = 0.0;
-  for (std::size_t iy = 0; iy < n; ++iy)
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();  // once per row: a 16384^2 field takes seconds on a busy core
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double e = std::norm(values[iy * n + ix]);
       sum += e;
       sx += e * coordinate(ix);
       sy += e * coordinate(iy);
     }
+  }
   return sum > 0.0 ? Vec2{sx / sum, sy / sum} : Vec2{};
 }
 
 double Field::beam_radius() const {
   const Vec2 c = centroid();
   double sum = 0.0, s2 = 0.0;
-  for (std::size_t iy = 0; iy < n; ++iy)
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double e = std::norm(values[iy * n + ix]);
       const double dx = coordinate(ix) - c.x, dy = coordinate(iy) - c.y;
       sum += e;
       s2 += e * (dx * dx + dy * dy);
     }
+  }
   return sum > 0.0 ? std::sqrt(2.0 * s2 / sum) : 0.0;
 }
 
@@ -59,11 +67,13 @@ Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, dou
   Field f{ComplexBuffer(n * n), n, spacing, wavelength};
   f.validate();
   const double amplitude = std::sqrt(2.0 * power / (kPi * waist_radius * waist_radius));
-  for (std::size_t iy = 0; iy < n; ++iy)
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();  // n^2 exponentials
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double dx = f.coordinate(ix) - center.x, dy = f.coordinate(iy) - center.y;
       f.values[iy * n + ix] = amplitude * std::exp(-(dx * dx + dy * dy) / (waist_radius * waist_radius));
     }
+  }
   return f;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lidar_overlap/core/limits.hpp"
+#include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "fourier/fft.hpp"
 
@@ -29,6 +30,7 @@ double power_radius(const ComplexBuffer& u, std::size_t n, bool fft_order) {
     return static_cast<double>(k);
   };
   for (std::size_t iy = 0; iy < n; ++iy) {
+    detail::cancellation_point();  // once per row of a grid of up to 16384^2
     const double y = offset(iy);
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double x = offset(ix), p = std::norm(u[iy * n + ix]);

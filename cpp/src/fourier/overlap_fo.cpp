@@ -51,12 +51,14 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   // Frequencies where the beam spectrum exceeds 1e-13 of its peak bound the table of OTF x disc^
   // (a 1e-10 cut already moves G by 1e-6 at 1000 m); |f| is the same at -f.
   double f2_max = 0.0;
-  for (std::size_t kx = 0; kx < half; ++kx)
+  for (std::size_t kx = 0; kx < half; ++kx) {
+    detail::cancellation_point();  // np^2 / 2 samples: seconds for the largest grids on a busy core
     for (std::size_t ky = 0; ky < np; ++ky)
       if (std::norm(spectrum[kx * np + ky]) > 1e-26 * e0 * e0) {
         const double fx = signed_index(kx), fy = signed_index(ky);
         f2_max = std::max(f2_max, fx * fx + fy * fy);
       }
+  }
   const double q_max = std::min(df * std::sqrt(f2_max) / to_image, rx.cutoff());
   const TransferTable transfer(system, rx, q_max);
 
@@ -67,6 +69,7 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   const ShiftPhases phase(np, df, c + (1.0 / to_image) * o);
   double sum = 0.0;
   for (std::size_t kx = 0; kx < half; ++kx) {
+    detail::cancellation_point();
     const double fx = df * signed_index(kx);
     if (std::abs(fx) / to_image >= q_max) continue;  // every q in this column is beyond the table
     const bool mirrored = kx != 0 && kx != np / 2;

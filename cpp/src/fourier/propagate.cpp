@@ -10,6 +10,7 @@
 
 #include "lidar_overlap/core/limits.hpp"
 #include "core/checks.hpp"
+#include "core/cancel_every.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
@@ -132,13 +133,16 @@ class ExtentSums {
 Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a, Complex scale) {
   const int threads = fft_threads(n * n);
   ExtentSums sums(n, threads, true);
+  detail::RegionStop stop;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16) if (threads > 1)
   for (long iy = 0; iy < static_cast<long>(n); ++iy) {
+    if (stop.stopped()) continue;
     const Complex row = scale * a[iy];
     Complex* line = u.data() + iy * n;
     for (std::size_t ix = 0; ix < n; ++ix) line[ix] = times(line[ix], times(row, a[ix]));
     sums.add(static_cast<std::size_t>(iy), line);
   }
+  stop.rethrow();
   return sums.result();
 }
 
@@ -184,8 +188,10 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
     const Complex carrier = unit_phasor(k * z) / static_cast<double>(n * n);
     transfer_.assign(n * n, Complex{});
     const int threads = fft_threads(n * n);
+    detail::RegionStop stop;  // n^2 phasors: seconds for a 16384^2 grid on a busy core
 #pragma omp parallel for num_threads(threads) if (threads > 1)
     for (long iy = 0; iy < static_cast<long>(n); ++iy) {
+      if (stop.stopped()) continue;
       const double fy = frequency(iy, n, spacing);
       for (std::size_t ix = 0; ix < n; ++ix) {
         const double fx = frequency(ix, n, spacing);
@@ -195,6 +201,7 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
         transfer_[iy * n + ix] = carrier * unit_phasor(-k * z * s / (1.0 + std::sqrt(1.0 - s)));
       }
     }
+    stop.rethrow();
     return;
   }
 

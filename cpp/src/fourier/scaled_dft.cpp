@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/cancel_every.hpp"
 #include "core/constants.hpp"
 
 namespace lidar_overlap {
@@ -31,11 +32,17 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
     kernel[t] = chirp(alpha, static_cast<double>(t) - (n - 1.0) + half_n - half_m);
   fft_rows(kernel, 1, len, FftDirection::forward);
 
+  // The chirps cost a sine and a cosine per sample: the rows ask for cancellation (detail::RegionStop);
+  // the transforms ask for it themselves.
   ComplexBuffer work(rows * len, Complex{});
+  detail::RegionStop in_stop, out_stop;
 #pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
-  for (long r = 0; r < static_cast<long>(rows); ++r)
+  for (long r = 0; r < static_cast<long>(rows); ++r) {
+    if (in_stop.stopped()) continue;
     for (std::size_t i = 0; i < n; ++i)
       work[r * len + i] = in[r * n + i] * std::conj(chirp(alpha, static_cast<double>(i) - half_n));
+  }
+  in_stop.rethrow();
   fft_rows(work, rows, len, FftDirection::forward);
 #pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r)
@@ -45,9 +52,12 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
   ComplexBuffer out(rows * m);
   const double scale = 1.0 / static_cast<double>(len);
 #pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
-  for (long r = 0; r < static_cast<long>(rows); ++r)
+  for (long r = 0; r < static_cast<long>(rows); ++r) {
+    if (out_stop.stopped()) continue;
     for (std::size_t j = 0; j < m; ++j)
       out[r * m + j] = scale * work[r * len + j + n - 1] * std::conj(chirp(alpha, static_cast<double>(j) - half_m));
+  }
+  out_stop.rethrow();
   return out;
 }
 

@@ -15,7 +15,7 @@ from typing import Dict, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks
+from .. import _checks, _core
 from ..forward.planning import plan
 from ..model import parameters as _parameters
 from .batch_curves import curves, variants
@@ -54,7 +54,13 @@ def realign(
     diameter. ValueError naming the path when no value within its bounds reaches the target."""
     from scipy import optimize
 
-    target = _checks.positive("target", target)
+    target = _checks.length("target", target)
+    if FAR_FACTOR * target > _core.MAX_LENGTH:  # the far limit is a range of its own
+        raise ValueError(
+            f"target = {target!r} is invalid: expected a range up to "
+            f"{_core.MAX_LENGTH / FAR_FACTOR:g} m (G is also computed at {FAR_FACTOR:g} x the "
+            "target, for its far limit)"
+        )
     threshold = _checks.unit_interval("threshold", threshold)
     z = np.array([target, FAR_FACTOR * target])
     p = plan(system, z, "rt", tolerance=tolerance, threads=threads)

@@ -165,9 +165,17 @@ def warn_if_rt_unconverged(raw, ranges: np.ndarray, tolerance: float, fix: str) 
     converged = np.asarray(raw.converged, dtype=bool)
     if not converged.all():
         worst = float(np.max(np.asarray(raw.error_estimate)[~converged]))
+        missed = int((~converged).sum())
+        # A map or a batch holds several values per range: count them, not the ranges.
+        where = (
+            f"{missed} of {ranges.size} ranges"
+            if converged.size == ranges.size
+            else f"{missed} of {converged.size} values (grid points or systems x {ranges.size} "
+            "ranges)"
+        )
         warn(
-            f"overlap: tolerance {tolerance:g} not reached at {int((~converged).sum())} of "
-            f"{ranges.size} ranges (largest error estimate {worst:.3g}); {fix}"
+            f"overlap: tolerance {tolerance:g} not reached at {where} (largest error estimate "
+            f"{worst:.3g}); {fix}"
         )
 
 

@@ -35,6 +35,9 @@ SEIDEL_TERMS = ("w040", "w131", "w222", "w220", "w311")
 
 #: Highest Noll index (radial order 20); the Fourier-optics path takes up to 153 (radial order 16).
 MAX_NOLL_INDEX = 231
+#: Highest Noll index :func:`noll_index` and :func:`zernike` evaluate (the core's polynomials,
+#: cpp/include/lidar_overlap/pupil/zernike.hpp).
+MAX_POLYNOMIAL_INDEX = 1000
 
 
 @dataclass(frozen=True)
@@ -105,9 +108,9 @@ class Aberrations(ByArguments):
     def wavefront(self, x, y, field_angle: Tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
         """W (m) at normalised pupil points (x, y) (arrays of one shape) for a scatterer at
         ``field_angle`` (rad, x and y)."""
-        return self._native.wavefront(
-            np.asarray(x, float), np.asarray(y, float), _checks.pair("field_angle", field_angle)
-        )
+        x, y = _pupil_points(x, y)
+        w = self._native.wavefront(x, y, _checks.pair("field_angle", field_angle))
+        return _finite_values("wavefront", w, x, y)
 
     @property
     def rms(self) -> float:
@@ -117,15 +120,47 @@ class Aberrations(ByArguments):
 
 
 def noll_index(j: int) -> Tuple[int, int]:
-    """(n, m) of Noll's Zernike index j: radial order n, signed azimuthal order m (m < 0: sin)."""
-    n, m = _core.noll_index(int(j))
+    """(n, m) of Noll's Zernike index j (an integer from 1 to 1000): radial order n, signed
+    azimuthal order m (m < 0: sin)."""
+    n, m = _core.noll_index(_checks.count("j", j, 1, MAX_POLYNOMIAL_INDEX))
     return n, m
 
 
 def zernike(j: int, x, y) -> np.ndarray:
-    """Zernike polynomial Z_j (Noll, unit RMS over the unit disc) at normalised pupil points (x,
-    y)."""
-    return _core.zernike(int(j), np.asarray(x, float), np.asarray(y, float))
+    """Zernike polynomial Z_j (Noll, unit RMS over the unit disc; j an integer from 1 to 1000) at
+    normalised pupil points (x, y): finite real arrays of one shape."""
+    x, y = _pupil_points(x, y)
+    z = _core.zernike(_checks.count("j", j, 1, MAX_POLYNOMIAL_INDEX), x, y)
+    return _finite_values(f"Z_{j}", z, x, y)
+
+
+def _pupil_points(x, y) -> Tuple[np.ndarray, np.ndarray]:
+    """x and y as float arrays of finite real numbers; ValueError naming the one that is not (a
+    NaN or infinite coordinate would give a NaN wavefront without a word)."""
+    points = []
+    for name, value in (("x", x), ("y", y)):
+        v = _checks.real_array(name, value)
+        if not np.all(np.isfinite(v)):
+            raise ValueError(
+                f"{name} = {_checks.shown(value)} is invalid: expected finite normalised pupil "
+                "coordinates"
+            )
+        points.append(v)
+    return points[0], points[1]
+
+
+def _finite_values(what: str, values, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """``values`` when all are finite; else ValueError naming x and y: a point so far outside the
+    unit pupil that the polynomial overflows double precision (|rho| ~ 1e300)."""
+    bad = ~np.isfinite(np.asarray(values))
+    if np.any(bad):
+        k = np.flatnonzero(bad)[0]
+        px, py = (float(np.broadcast_to(v, bad.shape).flat[k]) for v in (x, y))
+        raise ValueError(
+            f"x, y = ({px!r}, {py!r}) is invalid: {what} overflows there; expected normalised "
+            "pupil coordinates (|rho| <= 1 on the pupil)"
+        )
+    return values
 
 
 def seidel_to_zernike(aberrations: Aberrations, field_angle: Tuple[float, float]) -> Aberrations:
