@@ -79,13 +79,15 @@ class CouplingMap {
         for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase.x[kx] * py);
       }
       fft_rows(block, chunk, np, FftDirection::backward);
-      for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r)
-        for (std::size_t ix = 0; ix < n; ++ix) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
+      // Transposed column by column: the chunk's rows hold each column's few values in cache together.
+      const std::size_t r1 = std::min(r0 + chunk, rows.size());
+      for (std::size_t ix = 0; ix < n; ++ix)
+        for (std::size_t r = r0; r < r1; ++r) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
     }
     fft_rows(columns, n, np, FftDirection::backward);
     const double scale = df * df / (to_image * to_image * rx.aperture_area());
-    for (std::size_t iy = 0; iy < n; ++iy)
-      for (std::size_t ix = 0; ix < n; ++ix) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
+    for (std::size_t ix = 0; ix < n; ++ix)  // each column read in order
+      for (std::size_t iy = 0; iy < n; ++iy) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
   }
 
   double overlap(const Field& u) const {

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "core/constants.hpp"
+#include "core/parallel.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/fft_passes.hpp"
 #include "lidar_overlap/fourier/field.hpp"
 
 namespace lidar_overlap::detail {
@@ -34,11 +36,32 @@ class ScaledStep {
     }
     scale_out_ = 1.0 / (static_cast<double>(n) * n);
   }
+  // One pass per axis and direction, the multiplications fused into them while the rows or columns are in
+  // cache: Q1 before the forward row transforms; Q2 between the forward and backward transforms of each
+  // column block (the backward 2-D transform runs columns first); then the backward row transforms.
   void execute(Field& u) const {
-    multiply(u, in_y_, in_x_);
-    fft2d(u.values, n_, FftDirection::forward);
-    multiply(u, q2_, q2_);
-    fft2d(u.values, n_, FftDirection::backward);
+    cancellation_point();
+    const int threads = fft_threads(n_ * n_);
+    const std::size_t n = n_;
+    Complex* data = u.values.data();
+    auto q1 = [&](std::size_t iy, Complex* row) {
+      const Complex a = in_y_[iy];
+      for (std::size_t ix = 0; ix < n; ++ix) row[ix] *= a * in_x_[ix];
+    };
+    auto none = [](std::size_t, Complex*) {};
+    row_pass(data, n, n, FftDirection::forward, threads, q1, none);
+    const RowTransform forward(n, FftDirection::forward), backward(n, FftDirection::backward);
+    const std::size_t stride = column_stride(n);
+    column_pass(data, n, n, threads, [&](std::size_t c0, std::size_t count, Complex* block) {
+      forward.columns(block, count, stride);
+      for (std::size_t c = 0; c < count; ++c) {
+        Complex* column = block + c * stride;
+        const Complex fx = q2_[c0 + c];
+        for (std::size_t iy = 0; iy < n; ++iy) column[iy] *= q2_[iy] * fx;
+      }
+      backward.columns(block, count, stride);
+    });
+    row_pass(data, n, n, FftDirection::backward, threads);
     u.spacing = d2_;
   }
   void finish(Field& u) const {
