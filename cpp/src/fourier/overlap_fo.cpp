@@ -81,7 +81,10 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
     const double mirrored = (kx != 0 && kx != np / 2) ? 2.0 : 1.0;
     const Complex px = phase.x[kx];
     const Complex* column = spectrum.data() + kx * np;
-    auto term = [&](std::size_t ky) { return (px * phase.y[ky] * std::conj(column[ky])).real(); };
+    auto term = [&](std::size_t ky) {  // Re[px py conj(S)], as std::complex computes it
+      const Complex p = detail::product(px, phase.y[ky]), s = column[ky];
+      return p.real() * s.real() - p.imag() * -s.imag();
+    };
     for (std::size_t ky = 0; ky <= np / 2; ++ky) {
       const double fy = df * static_cast<double>(ky);
       const double q = std::sqrt(fx * fx + fy * fy) / to_image;
