@@ -80,15 +80,18 @@ class CouplingMap {
         for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase.x[kx] * py);
       }
       fft_rows(block, chunk, np, FftDirection::backward);
-      // Transposed column by column: the chunk's rows hold each column's few values in cache together.
+      // Transposed in tiles of 8 columns (two cache lines of each row): rows a power of two apart share
+      // cache sets, so a whole column read or written at once would evict itself.
       const std::size_t r1 = std::min(r0 + chunk, rows.size());
-      for (std::size_t ix = 0; ix < n; ++ix)
-        for (std::size_t r = r0; r < r1; ++r) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
+      for (std::size_t i0 = 0; i0 < n; i0 += 8)
+        for (std::size_t r = r0; r < r1; ++r)
+          for (std::size_t ix = i0; ix < std::min(i0 + 8, n); ++ix) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
     }
     fft_rows(columns, n, np, FftDirection::backward);
     const double scale = df * df / (to_image * to_image * rx.aperture_area());
-    for (std::size_t ix = 0; ix < n; ++ix)  // each column read in order
-      for (std::size_t iy = 0; iy < n; ++iy) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
+    for (std::size_t i0 = 0; i0 < n; i0 += 8)
+      for (std::size_t ix = 0; ix < n; ++ix)
+        for (std::size_t iy = i0; iy < std::min(i0 + 8, n); ++iy) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
   }
 
   double overlap(const Field& u) const {
