@@ -141,7 +141,7 @@ void bind_propagate(py::module_& m) {
   m.def(
       "_fft_pair_seconds",
       [](std::size_t n, int repeats, bool library) {
-        if (n < 2 || n > 8192) throw std::invalid_argument("n = " + std::to_string(n) + " is invalid: expected 2 to 8192");
+        if (n < 2 || n > 4096) throw std::invalid_argument("n = " + std::to_string(n) + " is invalid: expected 2 to 4096");
         if (repeats < 1 || repeats > 100000)
           throw std::invalid_argument("repeats = " + std::to_string(repeats) + " is invalid: expected 1 to 100000");
         ComplexBuffer data(n * n, Complex(1.0, 0.5));
