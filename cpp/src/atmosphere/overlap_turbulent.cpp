@@ -106,10 +106,7 @@ class CouplingMap {
   // The same from the per-row sums a split step leaves (ScaledStep::execute), added in row order.
   double overlap(const std::vector<double>& row_sums) const {
     double e = 0.0, em = 0.0;
-    for (std::size_t iy = 0; iy < n_; ++iy) {
-      e += row_sums[2 * iy];
-      em += row_sums[2 * iy + 1];
-    }
+    for (std::size_t iy = 0; iy < n_; ++iy) e += row_sums[2 * iy], em += row_sums[2 * iy + 1];
     return em / e;
   }
   const double* values() const { return map_.data(); }
@@ -381,18 +378,16 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
       const CouplingMap* map = p.range >= 0 ? maps[p.range].get() : nullptr;
       for (std::size_t c = 0; c < count; ++c) {
         const std::vector<double>& screen = screen_pair[(k0 + c) % 2];
-        if (steps[s]) {
+        if (steps[s])
           steps[s]->execute(fields[c], pending ? screen.data() : nullptr, map ? map->values() : nullptr, row_sums.data());
-        } else if (pending) {
+        else if (pending)
           apply_phase_screen(fields[c], screen);
-        }
         if (map) out.overlap[k0 - first + c][p.range] = steps[s] ? map->overlap(row_sums) : map->overlap(fields[c]);
       }
-      pending = false;
-      if (p.screen >= 0) {
+      pending = p.screen >= 0;
+      if (pending) {
         const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
         screen_pair = generators[p.screen]->generate_pair(stream, k0 / 2);
-        pending = true;
       }
     }
     for (std::size_t c = 0; c < count; ++c) {
