@@ -1,6 +1,7 @@
 #include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -80,13 +81,18 @@ class CouplingMap {
         for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase.x[kx] * py);
       }
       fft_rows(block, chunk, np, FftDirection::backward);
-      for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r)
-        for (std::size_t ix = 0; ix < n; ++ix) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
+      // Transposed in tiles of 8 columns (two cache lines of each row): rows a power of two apart share
+      // cache sets, so a whole column read or written at once would evict itself.
+      const std::size_t r1 = std::min(r0 + chunk, rows.size());
+      for (std::size_t i0 = 0; i0 < n; i0 += 8)
+        for (std::size_t r = r0; r < r1; ++r)
+          for (std::size_t ix = i0; ix < std::min(i0 + 8, n); ++ix) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
     }
     fft_rows(columns, n, np, FftDirection::backward);
     const double scale = df * df / (to_image * to_image * rx.aperture_area());
-    for (std::size_t iy = 0; iy < n; ++iy)
-      for (std::size_t ix = 0; ix < n; ++ix) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
+    for (std::size_t i0 = 0; i0 < n; i0 += 8)
+      for (std::size_t ix = 0; ix < n; ++ix)
+        for (std::size_t iy = i0; iy < std::min(i0 + 8, n); ++iy) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
   }
 
   double overlap(const Field& u) const {
@@ -98,6 +104,13 @@ class CouplingMap {
     }
     return em / e;
   }
+  // The same from the per-row sums a split step leaves (ScaledStep::execute), added in row order.
+  double overlap(const std::vector<double>& row_sums) const {
+    double e = 0.0, em = 0.0;
+    for (std::size_t iy = 0; iy < n_; ++iy) e += row_sums[2 * iy], em += row_sums[2 * iy + 1];
+    return em / e;
+  }
+  const double* values() const { return map_.data(); }
 
  private:
   std::size_t n_;
@@ -356,17 +369,28 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     const std::size_t k0 = by_pairs ? std::max(first, 2 * (first / 2 + t)) : first + t;
     const std::size_t count = by_pairs ? std::min(end, 2 * (first / 2 + t) + 2) - k0 : 1;
     std::vector<Field> fields(count, Field::gaussian(lambda, w0, n, spacing_at(0.0)));
+    // A screen is applied in the pass of the next step's Q1, and a range's sums taken in the pass that ends
+    // its step: no pass of their own. Phases do not change the irradiance the outputs read, so a screen
+    // with no step after it is left unapplied.
+    std::array<std::vector<double>, 2> screen_pair;
+    bool pending = false;
+    std::vector<double> row_sums(2 * n);
     for (std::size_t s = 0; s < planes.size(); ++s) {
       const Plane& p = planes[s];
-      if (steps[s])
-        for (Field& u : fields) steps[s]->execute(u);
-      if (p.screen >= 0) {
-        const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
-        const auto pair = generators[p.screen]->generate_pair(stream, k0 / 2);
-        for (std::size_t c = 0; c < count; ++c) apply_phase_screen(fields[c], pair[(k0 + c) % 2]);
+      const CouplingMap* map = p.range >= 0 ? maps[p.range].get() : nullptr;
+      for (std::size_t c = 0; c < count; ++c) {
+        const std::vector<double>& screen = screen_pair[(k0 + c) % 2];
+        if (steps[s])
+          steps[s]->execute(fields[c], pending ? screen.data() : nullptr, map ? map->values() : nullptr, row_sums.data());
+        else if (pending)
+          apply_phase_screen(fields[c], screen);
+        if (map) out.overlap[k0 - first + c][p.range] = steps[s] ? map->overlap(row_sums) : map->overlap(fields[c]);
       }
-      if (p.range >= 0)
-        for (std::size_t c = 0; c < count; ++c) out.overlap[k0 - first + c][p.range] = maps[p.range]->overlap(fields[c]);
+      pending = p.screen >= 0;
+      if (pending) {
+        const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
+        screen_pair = generators[p.screen]->generate_pair(stream, k0 / 2);
+      }
     }
     for (std::size_t c = 0; c < count; ++c) {
       if (last_step) last_step->finish(fields[c]);

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "core/constants.hpp"
+#include "core/parallel.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/fft_passes.hpp"
 #include "lidar_overlap/fourier/field.hpp"
 
 namespace lidar_overlap::detail {
@@ -34,11 +36,51 @@ class ScaledStep {
     }
     scale_out_ = 1.0 / (static_cast<double>(n) * n);
   }
-  void execute(Field& u) const {
-    multiply(u, in_y_, in_x_);
-    fft2d(u.values, n_, FftDirection::forward);
-    multiply(u, q2_, q2_);
-    fft2d(u.values, n_, FftDirection::backward);
+  // One pass per axis and direction, the multiplications fused into them while the rows or columns are in
+  // cache: Q1 before the forward row transforms; Q2 between the forward and backward transforms of each
+  // column block (the backward 2-D transform runs columns first); then the backward row transforms.
+  // `screen` (n x n phases in rad, or null): a phase screen at the plane the step leaves, applied in the
+  // pass of Q1 (exp(i screen) first, as apply_phase_screen would). `map` (n x n, or null): on return,
+  // row_sums[2 iy] and row_sums[2 iy + 1] hold sum |u|^2 and sum |u|^2 map over row iy of the field reached.
+  void execute(Field& u, const double* screen = nullptr, const double* map = nullptr, double* row_sums = nullptr) const {
+    cancellation_point();
+    const int threads = fft_threads(n_ * n_);
+    const std::size_t n = n_;
+    Complex* data = u.values.data();
+    auto q1 = [&](std::size_t iy, Complex* row) {
+      if (screen) {
+        const double* phase = screen + iy * n;
+        for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], Complex(std::cos(phase[ix]), std::sin(phase[ix])));
+      }
+      const Complex a = in_y_[iy];
+      for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], product(a, in_x_[ix]));
+    };
+    auto none = [](std::size_t, Complex*) {};
+    row_pass(data, n, n, FftDirection::forward, threads, q1, none);
+    const RowTransform forward(n, FftDirection::forward), backward(n, FftDirection::backward);
+    const std::size_t stride = column_stride(n);
+    column_pass(data, n, n, threads, [&](std::size_t c0, std::size_t count, Complex* block) {
+      forward.columns(block, count, stride);
+      for (std::size_t c = 0; c < count; ++c) {
+        Complex* column = block + c * stride;
+        const Complex fx = q2_[c0 + c];
+        for (std::size_t iy = 0; iy < n; ++iy) column[iy] = product(column[iy], product(q2_[iy], fx));
+      }
+      backward.columns(block, count, stride);
+    });
+    auto sums = [&](std::size_t iy, Complex* row) {
+      if (!map) return;
+      const double* m = map + iy * n;
+      double e = 0.0, em = 0.0;
+      for (std::size_t ix = 0; ix < n; ++ix) {
+        const double v = std::norm(row[ix]);
+        e += v;
+        em += v * m[ix];
+      }
+      row_sums[2 * iy] = e;
+      row_sums[2 * iy + 1] = em;
+    };
+    row_pass(data, n, n, FftDirection::backward, threads, none, sums);
     u.spacing = d2_;
   }
   void finish(Field& u) const {

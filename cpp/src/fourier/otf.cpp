@@ -61,13 +61,17 @@ double arc_part(double r, double beta_c, const std::vector<double>& j, double ph
   const std::complex<double> step_hi = std::polar(1.0, phi_hi), step_lo = std::polar(1.0, phi_lo);
   const std::complex<double> step2_hi = step_hi * step_hi, step2_lo = step_lo * step_lo;
   std::complex<double> e_hi = step_hi, e_lo = step_lo, f_hi = step2_hi, f_lo = step2_lo;  // odd and even m
+  // Products written out: the same bits as std::complex's, without its branch for NaN results.
+  auto times = [](std::complex<double> a, std::complex<double> b) {
+    return std::complex<double>(a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real());
+  };
   for (std::size_t m = 1; m + 1 < c.size(); m += 2) {
     c[m] = (e_hi.imag() - e_lo.imag()) * inverse[m];
     c[m + 1] = (f_hi.imag() - f_lo.imag()) * inverse[m + 1];
-    e_hi *= step2_hi;
-    e_lo *= step2_lo;
-    f_hi *= step2_hi;
-    f_lo *= step2_lo;
+    e_hi = times(e_hi, step2_hi);
+    e_lo = times(e_lo, step2_lo);
+    f_hi = times(f_hi, step2_hi);
+    f_lo = times(f_lo, step2_lo);
   }
   if (c.size() % 2 == 0) c.back() = (e_hi.imag() - e_lo.imag()) * inverse[c.size() - 1];
   // S_n = int sin^2(phi) cos(n phi) = C_n / 2 - (C_{n+2} + C_{|n-2|}) / 4, weighted by eps_n i^n J_n.

@@ -50,14 +50,20 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
 
   // Frequencies where the beam spectrum exceeds 1e-13 of its peak bound the table of OTF x disc^
   // (a 1e-10 cut already moves G by 1e-6 at 1000 m); |f| is the same at -f.
+  // Each column is searched from its highest |fy| down, and only while it can still raise the maximum.
   double f2_max = 0.0;
   for (std::size_t kx = 0; kx < half; ++kx) {
-    detail::cancellation_point();  // np^2 / 2 samples: seconds for the largest grids on a busy core
-    for (std::size_t ky = 0; ky < np; ++ky)
-      if (std::norm(spectrum[kx * np + ky]) > 1e-26 * e0 * e0) {
-        const double fx = signed_index(kx), fy = signed_index(ky);
-        f2_max = std::max(f2_max, fx * fx + fy * fy);
+    detail::cancellation_point();  // np^2 / 2 samples at most: seconds for the largest grids on a busy core
+    const double fx = signed_index(kx);
+    const Complex* column = spectrum.data() + kx * np;
+    for (std::size_t a = np / 2 + 1; a-- > 0;) {  // |fy| = a, rows a and np - a
+      const double f2 = fx * fx + double(a) * double(a);
+      if (f2 <= f2_max) break;
+      if (std::norm(column[a]) > 1e-26 * e0 * e0 || (a > 0 && a < np / 2 && std::norm(column[np - a]) > 1e-26 * e0 * e0)) {
+        f2_max = f2;
+        break;
       }
+    }
   }
   const double q_max = std::min(df * std::sqrt(f2_max) / to_image, rx.cutoff());
   const TransferTable transfer(system, rx, q_max);
@@ -72,21 +78,21 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
     detail::cancellation_point();
     const double fx = df * signed_index(kx);
     if (std::abs(fx) / to_image >= q_max) continue;  // every q in this column is beyond the table
-    const bool mirrored = kx != 0 && kx != np / 2;
-    const Complex px = phase.x[kx], px_mirror = phase.x[(np - kx) % np];
+    // The mirror column's term at row np - ky is the conjugate product (its phases are the conjugates of
+    // this column's at row ky, its spectrum conj(S)): the same real part, so each term counts twice.
+    const double mirrored = (kx != 0 && kx != np / 2) ? 2.0 : 1.0;
+    const Complex px = phase.x[kx];
     const Complex* column = spectrum.data() + kx * np;
-    // The terms of rows ky of this column and of its mirror (row np - ky there).
-    auto terms = [&](std::size_t ky) {
-      const Complex s = column[ky];
-      const double t = (px * phase.y[ky] * std::conj(s)).real();
-      return mirrored ? t + (px_mirror * phase.y[(np - ky) % np] * s).real() : t;
+    auto term = [&](std::size_t ky) {  // Re[px py conj(S)], as std::complex computes it
+      const Complex p = detail::product(px, phase.y[ky]), s = column[ky];
+      return p.real() * s.real() - p.imag() * -s.imag();
     };
     for (std::size_t ky = 0; ky <= np / 2; ++ky) {
       const double fy = df * static_cast<double>(ky);
       const double q = std::sqrt(fx * fx + fy * fy) / to_image;
       if (q >= q_max) break;  // q grows with ky
       const bool paired = ky != 0 && ky != np / 2;
-      sum += transfer(q) * (paired ? terms(ky) + terms(np - ky) : terms(ky));
+      sum += transfer(q) * (mirrored * (paired ? term(ky) + term(np - ky) : term(ky)));
     }
   }
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
