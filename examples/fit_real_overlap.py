@@ -1,8 +1,8 @@
 """Fit published overlap curves of real PollyXT lidars (examples/data/, relative: about 1 in the far
 range) from the PollyXT far-range preset: the model ladder (free="auto": alignment, beam, focus,
-acceptance, beam-wing and second-stop families, each by a global search, chosen by BIC) with model and data normalised over
-the far interval, then the near range below where the curve starts, extrapolated with its 1-sigma
-band. Each curve's noise is its far-range scatter
+acceptance, beam-wing and second-stop families, each by a global search, chosen by BIC) with model
+and data normalised over the far interval, then the near range below where the curve starts,
+extrapolated with its 1-sigma band. Each curve's noise is its far-range scatter
 (lidar_overlap.io.overlap_curves.far_range_noise). Prints one table row per curve and writes
 fit_real_overlap_<name>.png. SI units.
 """
