@@ -6,6 +6,7 @@
 #include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
 
@@ -64,7 +65,7 @@ Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, dou
   checks::coordinate("center", center);
   if (n < 8 || n % 2 != 0) checks::fail("n", static_cast<double>(n), "an even grid size >= 8");
   checks::grid("n", n, sizeof(Complex));
-  Field f{ComplexBuffer(n * n), n, spacing, wavelength};
+  Field f{detail::zeroed_buffer(n * n), n, spacing, wavelength};
   f.validate();
   const double amplitude = std::sqrt(2.0 * power / (kPi * waist_radius * waist_radius));
   for (std::size_t iy = 0; iy < n; ++iy) {

@@ -9,6 +9,7 @@
 #include "core/cancel_every.hpp"
 #include "core/checks.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
 
@@ -93,7 +94,7 @@ Field zero_pad(const Field& in, std::size_t n) {
   in.validate();
   if (n < in.n || n % 2) checks::fail("grid_size", static_cast<double>(n), "an even size >= the field's " + std::to_string(in.n));
   checks::grid("grid_size", n, sizeof(Complex), 3);  // the padded field, the plan's transfer function, a copy
-  Field out{ComplexBuffer(n * n, Complex{}), n, in.spacing, in.wavelength};
+  Field out{detail::zeroed_buffer(n * n), n, in.spacing, in.wavelength};
   const std::size_t off = n / 2 - in.n / 2;  // keeps index n/2 at x = 0
   for (std::size_t iy = 0; iy < in.n; ++iy)
     std::copy(in.values.begin() + iy * in.n, in.values.begin() + (iy + 1) * in.n, out.values.begin() + (iy + off) * n + off);

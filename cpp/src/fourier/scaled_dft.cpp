@@ -5,6 +5,7 @@
 
 #include "core/cancel_every.hpp"
 #include "core/constants.hpp"
+#include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
 
@@ -34,7 +35,7 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
 
   // The chirps cost a sine and a cosine per sample: the rows ask for cancellation (detail::RegionStop);
   // the transforms ask for it themselves.
-  ComplexBuffer work(rows * len, Complex{});
+  ComplexBuffer work = detail::zeroed_buffer(rows * len);
   detail::RegionStop in_stop, out_stop;
 #pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r) {
@@ -49,7 +50,7 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
     for (std::size_t i = 0; i < len; ++i) work[r * len + i] *= kernel[i];
   fft_rows(work, rows, len, FftDirection::backward);
 
-  ComplexBuffer out(rows * m);
+  ComplexBuffer out = detail::zeroed_buffer(rows * m);
   const double scale = 1.0 / static_cast<double>(len);
 #pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r) {
@@ -62,7 +63,7 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
 }
 
 ComplexBuffer transpose(const ComplexBuffer& a, std::size_t rows, std::size_t cols) {
-  ComplexBuffer t(rows * cols);
+  ComplexBuffer t = detail::zeroed_buffer(rows * cols);
 #pragma omp parallel for num_threads(threads_for(rows * cols)) if (rows * cols >= kParallelPoints)
   for (long c = 0; c < static_cast<long>(cols); ++c)
     for (std::size_t r = 0; r < rows; ++r) t[c * rows + r] = a[r * cols + c];
