@@ -137,14 +137,24 @@ def test_other_bad_input_is_refused():
         lo.alignment_map(lo.paper_table1(), [300.0], tilt_z=[0.0])
 
 
-def test_an_unreachable_tolerance_warns_counting_the_map_values_not_its_ranges():
-    # 1e-300 is below what double precision resolves: every tilted point's integral stops at
-    # max_segments. The warning once said "9 of 2 ranges".
+def test_an_unreached_tolerance_warns_counting_the_map_values_not_its_ranges():
+    # one segment per integral: every tilted point's integral stops short. The warning once said
+    # "9 of 2 ranges".
     tilted = lo.LidarSystem(beam=lo.GaussianBeam(tilt=(1e-4, 0.0)))
     with pytest.warns(RuntimeWarning, match=r"not reached at \d+ of 10 values \(grid points"):
         lo.alignment_map(
-            tilted, [500.0, 1000.0], tilt_x=np.linspace(-1e-3, 1e-3, 5), tolerance=1e-300
+            tilted,
+            [500.0, 1000.0],
+            tilt_x=np.linspace(-1e-3, 1e-3, 5),
+            method=lo.RT(tolerance=1e-9, max_segments=1),
         )
+
+
+@pytest.mark.parametrize("tolerance", [1e-300, 1e-15, 0.0, -1e-3, 1.0, float("nan")])
+def test_a_tolerance_double_precision_cannot_meet_is_refused_by_name(tolerance):
+    # 1e-300 once ran every integral of lo.align to its segment limit: 20 CPU s, then a warning
+    with pytest.raises(ValueError, match=r"tolerance = .* expected a value in \[1e-14, 1\)"):
+        lo.alignment_map(lo.paper_table1(), [300.0], tilt_x=[0.0], tolerance=tolerance)
 
 
 def test_without_xarray_the_error_says_how_to_install_it(monkeypatch):

@@ -140,6 +140,23 @@ def threads(value: Any) -> int:
     return count("threads", value, 0, _core.max_threads())
 
 
+#: The smallest tolerance on G a method accepts: G sums thousands of O(1) terms in double precision,
+#: whose round-off (~1e-16 each) no integral resolves below this; a smaller one only runs every
+#: integral to its segment limit.
+MIN_TOLERANCE = 1e-14
+
+
+def tolerance(name: str, value: Any) -> float:
+    """An absolute tolerance on G, in [MIN_TOLERANCE, 1)."""
+    v = real(name, value)
+    if not MIN_TOLERANCE <= v < 1.0:
+        raise ValueError(
+            f"{name} = {v!r} is invalid: expected a value in [{MIN_TOLERANCE:g}, 1) (an absolute "
+            "error on G; double precision resolves none smaller)"
+        )
+    return v
+
+
 def unit_interval(name: str, value: Any, include_one: bool = False) -> float:
     """A value in (0, 1), or (0, 1] with include_one."""
     v = real(name, value)

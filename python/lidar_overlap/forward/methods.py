@@ -37,7 +37,7 @@ SHORTCUTS = ("rt", "fo", "auto")
 class RT:
     """Ray tracing.
 
-    tolerance : absolute error allowed on G at each range, in (0, 1); the adaptive beam integral
+    tolerance : absolute error allowed on G at each range, in [1e-14, 1); the adaptive beam integral
         stops below it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).
     rings, ring_rays : the ray fan each scatterer sends through an aberrated receiver (rings equally
@@ -50,7 +50,7 @@ class RT:
     ring_rays: int = _FAN.ring_rays
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "tolerance", _checks.unit_interval("tolerance", self.tolerance))
+        object.__setattr__(self, "tolerance", _checks.tolerance("tolerance", self.tolerance))
         object.__setattr__(
             self, "max_segments", _checks.count("max_segments", self.max_segments, 1)
         )
@@ -96,7 +96,7 @@ class FO:
 
 @dataclass(frozen=True)
 class Auto:
-    """The cheapest model whose error on G stays within ``tolerance`` (absolute, in (0, 1)): ray
+    """The cheapest model whose error on G stays within ``tolerance`` (absolute, in [1e-14, 1)): ray
     tracing when its estimated diffraction error leaves room for its quadrature, else Fourier
     optics. ``rt`` and ``fo`` set the models it may run (RT's tolerance is the share the model error
     leaves; FO's path is auto's choice, and its beam_grid and beam_window apply where that is the
@@ -107,7 +107,7 @@ class Auto:
     fo: FO = FO()
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "tolerance", _checks.unit_interval("tolerance", self.tolerance))
+        object.__setattr__(self, "tolerance", _checks.tolerance("tolerance", self.tolerance))
         for name, kind in (("rt", RT), ("fo", FO)):
             if not isinstance(getattr(self, name), kind):
                 raise ValueError(
