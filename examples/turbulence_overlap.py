@@ -12,6 +12,7 @@ are indicative only. Writes turbulence_overlap.png. SI units.
 """
 
 import time
+import warnings
 
 import matplotlib
 
@@ -42,7 +43,9 @@ for ax, (title, (system, z)) in zip(axes, systems.items()):
     for (name, cn2), color in zip(LEVELS.items(), ("tab:green", "tab:orange", "tab:red")):
         t = lo.Turbulence(cn2)
         t0 = time.perf_counter()
-        res = lo.overlap(system, z, "rt", turbulence=t, realizations=200, seed=1)
+        with warnings.catch_warnings(record=True) as caught:  # RT's regime, said once below
+            warnings.simplefilter("always", RuntimeWarning)
+            res = lo.overlap(system, z, "rt", turbulence=t, realizations=200, seed=1)
         dt = time.perf_counter() - t0
         ax.plot(
             z,
@@ -58,6 +61,9 @@ for ax, (title, (system, z)) in zip(axes, systems.items()):
             f"{calm.full_overlap_range():.0f} m), rms wander at {z[-1]:g} m {w * 1e3:.1f} mm, "
             f"widest band {np.max(res.high - res.low):.3f}, RT {dt:.1f} s"
         )
+        for w in caught:  # the weak-fluctuation model's limits, in one line each
+            reason = str(w.message).split("outside its regime: ", 1)[-1].split(". Fourier")[0]
+            print(f"  outside RT's regime: {reason.split(';')[0]}")
     if system is systems["Table 1 lidar (355 nm, FFOV 0.9 mrad)"][0]:
         zf = np.geomspace(50, 2000, 12)
         t0 = time.perf_counter()
