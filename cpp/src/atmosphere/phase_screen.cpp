@@ -12,6 +12,7 @@
 #include "core/constants.hpp"
 #include "core/quadrature.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
 
@@ -189,7 +190,7 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
   std::mt19937_64 rng(mix(mix(seed) ^ static_cast<std::uint64_t>(pair)));
 
   // High frequencies, in FFT order: frequency index i is i or i - n, so |k| = min(i, n - i).
-  ComplexBuffer spectrum(n * n);
+  ComplexBuffer spectrum = detail::zeroed_buffer(n * n);
   for (std::size_t iy = 0; iy < n; ++iy) {
     detail::cancellation_point();  // n^2 normal deviates
     const double* row = &amplitude_[std::min(iy, n - iy) * (h + 1)];
@@ -210,7 +211,8 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
     for (int b = 0; b < 3; ++b)
       for (int a = 0; a < 3; ++a) mean += sub[9 * p + 3 * b + a] * m[a] * m[b];
   }
-  std::array<std::vector<double>, 2> out{std::vector<double>(n * n), std::vector<double>(n * n)};
+  std::array<std::vector<double>, 2> out{detail::zeroed_buffer<std::vector<double>>(n * n),
+                                         detail::zeroed_buffer<std::vector<double>>(n * n)};
   for (std::size_t iy = 0; iy < n; ++iy) {
     detail::cancellation_point();
     Complex g0 = -mean, s[kLevels], d[kLevels];
