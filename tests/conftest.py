@@ -3,6 +3,7 @@
 import os
 
 import pytest
+from _probe_runner import ProbeRunner
 
 import lidar_overlap as lo
 
@@ -29,3 +30,11 @@ def client():
             os.environ.pop("PYTHONPATH")
         else:
             os.environ["PYTHONPATH"] = old
+
+
+@pytest.fixture(scope="module")
+def runner():
+    """A worker process for hostile probes (tests/_probe_runner.py), one per test module: a probe
+    that crashes or hangs fails its test, not the session."""
+    with ProbeRunner() as r:
+        yield r

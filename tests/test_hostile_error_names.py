@@ -15,14 +15,7 @@ from _hostile_regressions import (
     refused,
     small_field,
 )
-from _probe_runner import ProbeRunner
 from _probe_worker import CLEAN_ERROR, call, names_a_parameter
-
-
-@pytest.fixture(scope="module")
-def runner():
-    with ProbeRunner() as r:
-        yield r
 
 
 @pytest.mark.parametrize(

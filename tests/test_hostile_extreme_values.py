@@ -14,14 +14,8 @@ from _hostile_regressions import (
     lidar,
     small_field,
 )
-from _probe_runner import ProbeRunner, describe
+from _probe_runner import describe
 from _probe_worker import FINITE, call
-
-
-@pytest.fixture(scope="module")
-def runner():
-    with ProbeRunner() as r:
-        yield r
 
 
 @pytest.mark.parametrize(

@@ -9,14 +9,8 @@ LIDAR_OVERLAP_PROBE_TIME_LIMIT (s, default 20) sets when a probe counts as a han
 
 import pytest
 from _hostile_probes import PROBES
-from _probe_runner import Campaign, ProbeRunner
+from _probe_runner import Campaign
 from hypothesis import HealthCheck, Phase, given, settings
-
-
-@pytest.fixture(scope="module")
-def runner():
-    with ProbeRunner() as r:
-        yield r
 
 
 @pytest.mark.parametrize("entry", list(PROBES))

@@ -6,16 +6,9 @@ the same bits for any thread count and in another process.
 import math
 
 import numpy as np
-import pytest
 from _hostile_regressions import TABLE1, kept, lidar
 from _probe_runner import ProbeRunner, describe
 from _probe_worker import FINITE, Attr, call
-
-
-@pytest.fixture(scope="module")
-def runner():
-    with ProbeRunner() as r:
-        yield r
 
 
 def _full_overlap(runner, ranges):

@@ -5,14 +5,7 @@ crashed the process).
 
 import pytest
 from _hostile_regressions import MAX_FLOAT, RANGES, TABLE1, kept, lidar, refused, small_field
-from _probe_runner import ProbeRunner
 from _probe_worker import call
-
-
-@pytest.fixture(scope="module")
-def runner():
-    with ProbeRunner() as r:
-        yield r
 
 
 @pytest.mark.parametrize(

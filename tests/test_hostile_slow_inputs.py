@@ -4,14 +4,7 @@ refusal or a finite result.
 
 import pytest
 from _hostile_regressions import RANGES, TABLE1, kept, lidar
-from _probe_runner import ProbeRunner
 from _probe_worker import call
-
-
-@pytest.fixture(scope="module")
-def runner():
-    with ProbeRunner() as r:
-        yield r
 
 
 @pytest.mark.parametrize(
