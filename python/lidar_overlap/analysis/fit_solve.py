@@ -359,7 +359,7 @@ def fit_plan(system, ranges, method, tolerance, threads):
 def model_tolerance(tolerance) -> float:
     """The fit's ``tolerance`` (absolute, on G), checked; None: :class:`lidar_overlap.RT`'s
     default."""
-    return RT().tolerance if tolerance is None else _checks.positive("tolerance", tolerance)
+    return RT().tolerance if tolerance is None else _checks.tolerance("tolerance", tolerance)
 
 
 def measured_values(measured, z):

@@ -153,7 +153,7 @@ def optimize(
     lower, upper = _bounds(paths, bounds)
     start = _start(system, paths, x0, lower, upper)
     if tolerance is not None:
-        _checks.positive("tolerance", tolerance)
+        _checks.tolerance("tolerance", tolerance)
     model = ray_tracing(
         requested(method, tolerance),
         "for optimize: its candidates are ray traced in parallel batches; use method='rt'",
