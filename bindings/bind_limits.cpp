@@ -22,6 +22,7 @@ void bind_limits(py::module_& m) {
   m.attr("MAX_LENGTH") = kMaxLength;
   m.attr("MAX_ANGLE") = kMaxAngle;
   m.attr("MAX_GRID_SIDE") = kMaxGridSide;
+  m.attr("MIN_TOLERANCE") = kMinTolerance;
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

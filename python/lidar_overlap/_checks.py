@@ -140,10 +140,8 @@ def threads(value: Any) -> int:
     return count("threads", value, 0, _core.max_threads())
 
 
-#: The smallest tolerance on G a method accepts: G sums thousands of O(1) terms in double precision,
-#: whose round-off (~1e-16 each) no integral resolves below this; a smaller one only runs every
-#: integral to its segment limit.
-MIN_TOLERANCE = 1e-14
+#: The smallest tolerance on G a method accepts (the core's limit, checked here before any plan).
+MIN_TOLERANCE = _core.MIN_TOLERANCE
 
 
 def tolerance(name: str, value: Any) -> float:

@@ -31,6 +31,7 @@ __version__: str
 
 # Limits (bind_limits.cpp)
 MIN_LENGTH: float
+MIN_TOLERANCE: float
 MAX_LENGTH: float
 MAX_ANGLE: float
 MAX_GRID_SIDE: int

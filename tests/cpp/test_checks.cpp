@@ -34,6 +34,7 @@ int main() {
   });
   test::throws("range inside obstruction distance", [&] { overlap_rt(obs, {0.5}); }, "obstruction distance");
   test::throws("tolerance 0", [&] { overlap_rt(s, {10.0}, {0.0, 0, 10}); }, "tolerance");
+  test::throws("tolerance below double precision", [&] { overlap_rt(s, {10.0}, {1e-300, 0, 10}); }, "tolerance");
   test::throws("negative threads", [&] { overlap_rt(s, {10.0}, {1e-4, -1, 10}); }, "threads");
   test::throws("fov <= 0", [] { Detector::from_fov(0.0, 1.0); }, "fov");
   test::throws("negative defocus in Eq. 5", [] { optimal_focus_range(1.0, -1e-3); }, "defocus");

@@ -37,6 +37,11 @@ void in_open_unit(const std::string& parameter, double value) {
   if (!(value > 0.0 && value < 1.0)) fail(parameter, value, "a value in (0, 1)");
 }
 
+void tolerance(const std::string& parameter, double value) {
+  if (!(value >= kMinTolerance && value < 1.0))
+    fail(parameter, value, "a value in [" + number(kMinTolerance) + ", 1) (an absolute error on G; double precision resolves none smaller)");
+}
+
 std::string number(double v) {
   std::ostringstream s;
   s.precision(6);

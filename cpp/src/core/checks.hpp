@@ -21,6 +21,7 @@ void finite(const std::string& parameter, Vec2 value);
 void positive(const std::string& parameter, double value);        // 0 < value < inf
 void non_negative(const std::string& parameter, double value);    // 0 <= value < inf
 void in_open_unit(const std::string& parameter, double value);    // 0 < value < 1
+void tolerance(const std::string& parameter, double value);       // kMinTolerance <= value < 1 (on G)
 
 // Physical scales (lidar_overlap/core/limits.hpp): a length in [kMinLength, kMaxLength] m, a coordinate
 // (offset, defocus) within +-kMaxLength m, an angle within +-kMaxAngle rad.

@@ -21,7 +21,7 @@ namespace lidar_overlap {
 namespace detail {
 
 void check_rt_options(const RtOptions& options) {
-  checks::in_open_unit("tolerance", options.tolerance);
+  checks::tolerance("tolerance", options.tolerance);
   if (options.max_segments < 1) checks::fail("max_segments", 0, "a count >= 1");
 }
 

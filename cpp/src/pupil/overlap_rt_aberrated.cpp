@@ -97,7 +97,7 @@ void validate(const LidarSystem& system, const Aberrations& aberrations, const R
   if (o.rings < 4) checks::fail("rings", static_cast<double>(o.rings), "at least 4");
   if (o.ring_rays < 8) checks::fail("ring_rays", static_cast<double>(o.ring_rays), "at least 8");
   if (o.directions < 4) checks::fail("directions", static_cast<double>(o.directions), "at least 4");
-  checks::in_open_unit("tolerance", o.tolerance);
+  checks::tolerance("tolerance", o.tolerance);
   detail::thread_count(o.threads);
   if (o.max_segments < 1) checks::fail("max_segments", 0.0, "at least 1");
 }

@@ -14,6 +14,10 @@ inline constexpr double kMinLength = 1e-10;
 inline constexpr double kMaxLength = 1e10;
 inline constexpr double kMaxAngle = 1.0;
 
+// The smallest absolute tolerance on G: G sums thousands of O(1) terms in double precision, whose round-off
+// (~1e-16 each) no integral resolves below it; a smaller one only runs every integral to its segment limit.
+inline constexpr double kMinTolerance = 1e-14;
+
 // Power of a field (W): (0, kMaxPower], so that irradiances stay far inside double precision.
 inline constexpr double kMaxPower = 1e30;
 
