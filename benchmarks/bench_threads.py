@@ -7,11 +7,12 @@ threads=0 within 1.2x of threads=1 at any load; below 1 on an idle machine with 
   (~2 ms on one core: the case where a late team used to cost many times the work);
 - ``fo_radial``: the same ranges on the radial FO path;
 - ``fo_2d``: Table 1 with its beam tilted by 50 urad, 50 ranges 30-1000 m on the 2-D FO path.
-The 1-minute load average is recorded before and after. ``--load N`` adds N busy processes
-(pure-Python loops, started here and ended by their process ids when the run is done) on top of the
-machine's own load.
+The cases run once per entry of ``--load`` (default 0 and 6): that many busy processes (pure-Python
+loops, started here and ended by their process ids when the run is done) on top of the machine's own
+load, 6 giving load ~8 on 2 cores. The 1-minute load average is recorded before and after each run.
 
-Run:  python benchmarks/bench_threads.py [--load N]   (writes benchmarks/results/bench_threads.json)
+Run:  python benchmarks/bench_threads.py [--load N [N ...]]
+(writes benchmarks/results/bench_threads.json)
 """
 
 from __future__ import annotations
@@ -34,6 +35,8 @@ import lidar_overlap as lo
 
 TARGET_RATIO = 1.2
 ROUNDS = {"rt": 60, "fo_radial": 30, "fo_2d": 6}
+#: Busy processes added, one run each: none (the machine as it is) and six (load ~8 on 2 cores).
+LOADS = (0, 6)
 
 
 def cases():
@@ -61,18 +64,14 @@ def alternate(fn, rounds):
     return times
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--load", type=int, default=0, help="busy processes to add during the run")
-    args = parser.parse_args()
-    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(args.load)]
+def measure(added: int) -> dict:
+    """Every case in alternating rounds with ``added`` busy processes running (pure-Python loops,
+    started here and ended by their process ids)."""
+    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(added)]
     try:
         time.sleep(2.0 if busy else 0.0)
         load_start = load_average()
-        print(
-            f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | load {load_start:.2f} "
-            f"({args.load} busy processes added) | commit {source_commit()}"
-        )
+        print(f"-- {added} busy processes added | load {load_start:.2f}")
         rows = {}
         for name, (fn, tolerance) in cases().items():
             times = alternate(fn, ROUNDS[name])
@@ -101,6 +100,26 @@ def main():
         for p in busy:
             p.kill()
             p.wait()
+    return {
+        "added_busy_processes": added,
+        "load_average_1min": load_start,
+        "load_average_1min_end": load_average(),
+        "cases": rows,
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--load",
+        type=int,
+        nargs="+",
+        default=list(LOADS),
+        help="busy processes to add, one run per value (default: %(default)s)",
+    )
+    args = parser.parse_args()
+    print(f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | commit {source_commit()}")
+    runs = [measure(added) for added in args.load]
     out = Path(__file__).resolve().parent / "results" / "bench_threads.json"
     out.write_text(
         json.dumps(
@@ -111,13 +130,10 @@ def main():
                     "commit": source_commit(),
                     "machine": platform.machine(),
                     "cores": os.cpu_count(),
-                    "added_busy_processes": args.load,
-                    "load_average_1min": load_start,
-                    "load_average_1min_end": load_average(),
                     "timing": "threads=0 and threads=1 in alternating rounds after one "
                     "untimed call each; best and median",
                 },
-                "cases": rows,
+                "runs": runs,
             },
             indent=2,
         )
