@@ -34,7 +34,7 @@ int max_threads() { return std::max(256, 4 * omp_get_num_procs()); }
 namespace detail {
 
 namespace {
-// Until when (steady clock, ns) `threads = 0` means one thread: set when a team's threads started late.
+// Until when (steady clock, ns) `threads = 0` means one thread: set when a team's threads waited for a core.
 std::atomic<long long> g_busy_until_ns{0};
 
 long long steady_ns() {
@@ -42,17 +42,17 @@ long long steady_ns() {
       .count();
 }
 
-// A team whose last thread started this late (and this share of the region) waited for the machine: on an
-// idle one threads start within tens of microseconds.
-constexpr long long kLateStartNs = 1'000'000;
-constexpr double kLateShare = 0.25;
-// How long a late start holds all-core calls to one thread before a team is tried again: long against the
+// A team one of whose threads waited this long for a core (and this share of the region) waited for the
+// machine: on an idle one threads start within tens of microseconds and run undisturbed.
+constexpr long long kLongWaitNs = 1'000'000;
+constexpr double kLongWaitShare = 0.25;
+// How long such a wait holds all-core calls to one thread before a team is tried again: long against the
 // cost of one late team (a few scheduler time slices), short against a change of load.
 constexpr long long kHoldOffNs = 1'000'000'000;
 }  // namespace
 
-void note_team_start(int threads, long long latest_start_ns, long long region_ns) {
-  if (threads < 2 || latest_start_ns < kLateStartNs || latest_start_ns < kLateShare * region_ns) return;
+void note_team_wait(int threads, long long waited_ns, long long region_ns) {
+  if (threads < 2 || waited_ns < kLongWaitNs || waited_ns < kLongWaitShare * region_ns) return;
   g_busy_until_ns.store(steady_ns() + kHoldOffNs, std::memory_order_relaxed);
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <omp.h>
+#include <time.h>
 
 #include <atomic>
 #include <chrono>
@@ -29,35 +30,53 @@ void cancellation_point();
 // or one above max_threads() throws std::invalid_argument naming the option.
 int thread_count(int requested);
 
-// Thread policy for `threads = 0` on a busy machine. A team cannot end before its last thread has started,
-// and on a loaded machine a thread may wait several scheduler time slices to start: a call of a few
-// milliseconds then takes many times its one-thread time. Every team reports when its last thread started;
-// one that started late (> 1 ms and > 1/4 of the region) makes all_cores() answer 1 for the next second,
-// after which a full team is tried again. Explicit counts are always honoured. Results do not depend on it.
+// Thread policy for `threads = 0` on a busy machine. A team cannot end before its last thread has started and
+// finished, and on a loaded machine a thread may wait several scheduler time slices to start, or be
+// descheduled in the middle of its work: a call of a few milliseconds then takes many times its one-thread
+// time. Every team reports how long its threads waited for a core (a late start, or wall time in the region
+// beyond the thread's CPU time); a team that waited long (> 1 ms and > 1/4 of the region) makes all_cores()
+// answer 1 for the next second, after which a full team is tried again. Explicit counts are always honoured.
+// Results do not depend on it.
 int all_cores();
-void note_team_start(int threads, long long latest_start_ns, long long region_ns);
+void note_team_wait(int threads, long long waited_ns, long long region_ns);
 
-// Measures when the threads of one team start (TeamClock clock; in the region: clock.started(); after
-// it: clock.report(threads)).
+// Measures how long the threads of one team waited for a core (TeamClock clock; in the region:
+// `const auto mark = clock.started();` first and `clock.finished(mark);` once the thread's share of the
+// work is done, before any wait for the others; after the region: clock.report(threads)).
 class TeamClock {
  public:
-  TeamClock() : start_(now_ns()) {}
-  void started() {
-    const long long late = now_ns() - start_;
-    long long seen = latest_.load(std::memory_order_relaxed);
-    while (late > seen && !latest_.compare_exchange_weak(seen, late, std::memory_order_relaxed)) {
-    }
+  struct Mark {
+    long long wall_ns, cpu_ns;
+  };
+  TeamClock() : start_(wall_ns()) {}
+  Mark started() {
+    const Mark mark{wall_ns(), cpu_ns()};
+    note(mark.wall_ns - start_);
+    return mark;
   }
-  void report(int threads) const { note_team_start(threads, latest_.load(), now_ns() - start_); }
+  // Wall time the thread spent in its work beyond its CPU time: time descheduled (page faults and system
+  // calls count as CPU time; the work blocks on nothing else).
+  void finished(const Mark& mark) { note((wall_ns() - mark.wall_ns) - (cpu_ns() - mark.cpu_ns)); }
+  void report(int threads) const { note_team_wait(threads, waited_.load(), wall_ns() - start_); }
 
  private:
-  static long long now_ns() {
+  static long long wall_ns() {
     return std::chrono::duration_cast<std::chrono::nanoseconds>(
                std::chrono::steady_clock::now().time_since_epoch())
         .count();
   }
+  static long long cpu_ns() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<long long>(t.tv_sec) * 1'000'000'000LL + t.tv_nsec;
+  }
+  void note(long long waited) {
+    long long seen = waited_.load(std::memory_order_relaxed);
+    while (waited > seen && !waited_.compare_exchange_weak(seen, waited, std::memory_order_relaxed)) {
+    }
+  }
   long long start_;
-  std::atomic<long long> latest_{0};
+  std::atomic<long long> waited_{0};
 };
 
 // How often the calling thread asks its CancelScope while other threads finish the last iterations of a
@@ -85,7 +104,7 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
   TeamClock clock;
 #pragma omp parallel num_threads(threads)
   {
-    clock.started();
+    const TeamClock::Mark mark = clock.started();
     std::atomic<bool>*& flag = current_stop_flag();
     std::atomic<bool>* const enclosing = flag;
     flag = &stop;
@@ -104,6 +123,7 @@ void parallel_for(std::size_t count, int threads, Body&& body) {
         all_ended.notify_all();
       }
     }
+    clock.finished(mark);
     // Only the calling thread (thread 0) has a CancelScope. Once it has no iteration left it keeps asking
     // it while the others finish theirs, so that Ctrl-C also stops a long last iteration (or the only one)
     // that another thread runs; the request reaches that iteration through the stop flag.

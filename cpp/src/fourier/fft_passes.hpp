@@ -34,8 +34,8 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
   RegionStop stop;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
-    clock.started();
-#pragma omp for schedule(dynamic, 1)
+    const TeamClock::Mark mark = clock.started();
+#pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
       const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
@@ -44,6 +44,7 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
       transform(block, count);
       for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
     }
+    clock.finished(mark);
   }
   clock.report(threads);
   stop.rethrow();
@@ -83,10 +84,10 @@ void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads,
   RegionStop stop;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
-    clock.started();
+    const TeamClock::Mark mark = clock.started();
     const std::size_t stride = column_stride(rows);
     ComplexBuffer scratch(kFftBlock * stride);
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
       const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, cols - c0);
@@ -103,6 +104,7 @@ void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads,
           for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, data + r * cols + c0 + c);
       }
     }
+    clock.finished(mark);
   }
   clock.report(threads);
   stop.rethrow();
