@@ -16,12 +16,9 @@ from ..model.system import LidarSystem
 from ..model.system_attributes import system_attributes
 from ..model.turbulence import TWO_WAY_BOUND
 from . import result_files
+from .result_checks import ROUND_OFF, checked_curve, frozen
 from .result_files import CSV_COLUMNS  # noqa: F401  (re-exported)
 
-#: The one allowance for G outside [0, 1]: the round-off of a sum of up to ~10^6 order-one terms. It
-#: is fixed, not the stated error or tolerance (a result stating an error of 1e300 would otherwise
-#: pass any G); the engines clip their own accuracy before building a result.
-ROUND_OFF = 1e-9
 #: full_overlap_range warns when G still rises at the end of the ranges by more than this fraction
 #: of its maximum per decade of range.
 FAR_SLOPE = 0.01
@@ -72,7 +69,7 @@ class OverlapResult:
     def __post_init__(self) -> None:
         for name, value in zip(
             ("ranges", "overlap", "error_estimate", "tolerance"),
-            _checked(
+            checked_curve(
                 self.ranges,
                 self.overlap,
                 self.method,
@@ -237,7 +234,7 @@ class OverlapResult:
 def _recheck(result: "OverlapResult") -> None:
     """The construction checks again on the stored values: a result whose arrays were made writable
     and changed is not written."""
-    checked = _checked(
+    checked = checked_curve(
         result.ranges,
         result.overlap,
         result.method,
@@ -263,83 +260,6 @@ def _same(a: Any, b: Any) -> bool:
     if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         return True
     return bool(a == b)
-
-
-def _checked(ranges, overlap, method, error_estimate, tolerance, upper=1.0):
-    """The class's invariants (see :class:`OverlapResult`): the arrays as float arrays, G clipped
-    within its slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
-    if not isinstance(method, str) or not method:
-        raise ValueError(
-            f"method = {method!r} is invalid: expected the name of the model, such as 'rt' or 'fo'"
-        )
-    z, g, e = (
-        _curve_array(name, value)
-        for name, value in (
-            ("ranges", ranges),
-            ("overlap", overlap),
-            ("error_estimate", error_estimate),
-        )
-    )
-    if z.size == 0:
-        raise ValueError("ranges is empty: expected at least one range (m)")
-    for name, values in (("overlap", g), ("error_estimate", e)):
-        if values.size != z.size:
-            raise ValueError(
-                f"{name} has {values.size} values for {z.size} ranges: expected one per range"
-            )
-    _first_bad("ranges", z, ~(np.isfinite(z) & (z > 0)), "expected a finite range > 0 (m)")
-    if z.size > 1 and not np.all(np.diff(z) > 0):
-        i = int(np.argmax(~(np.diff(z) > 0))) + 1
-        raise ValueError(
-            f"ranges must be strictly increasing: ranges[{i}] = {float(z[i])!r} follows "
-            f"{float(z[i - 1])!r}"
-        )
-    tolerance = _checks.real("tolerance", tolerance)
-    if not (math.isnan(tolerance) or (math.isfinite(tolerance) and tolerance >= 0.0)):
-        raise ValueError(
-            f"tolerance = {tolerance!r} is invalid: expected a finite value >= 0, or NaN for none"
-        )
-    _first_bad(
-        "error_estimate",
-        e,
-        ~(np.isnan(e) | (np.isfinite(e) & (e >= 0.0))),
-        "expected a finite value >= 0, or NaN where the method gives none",
-    )
-    outside = ~((g >= -ROUND_OFF) & (g <= upper + ROUND_OFF))  # NaN is outside too
-    if outside.any():
-        i = int(np.argmax(outside))
-        raise ValueError(
-            f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is "
-            f"invalid: G must be finite and within [0, {upper:g}] (up to round-off, "
-            f"{ROUND_OFF:g}); the computation failed at this range"
-        )
-    if g.min() < 0.0 or g.max() > upper:
-        g = np.clip(g, 0.0, upper)
-    return z, g, e, tolerance
-
-
-def _curve_array(name: str, value) -> np.ndarray:
-    """A read-only float copy of a 1-D array of real numbers; complex values, bools, strings and
-    objects are refused (not cut to their real part or parsed)."""
-    try:
-        return frozen(_checks.real_array(name, value, ndim=1))
-    except ValueError as exc:
-        raise ValueError(
-            f"{name} is invalid: expected a 1-D array of real numbers ({exc})"
-        ) from None
-
-
-def frozen(values: np.ndarray) -> np.ndarray:
-    """``values`` as a read-only array of its own (a caller's array is copied, never frozen)."""
-    values = np.array(values, dtype=float, copy=True)
-    values.setflags(write=False)
-    return values
-
-
-def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, expected: str) -> None:
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"{name}[{i}] = {float(values[i])!r} is invalid: {expected}")
 
 
 def _short(value, limit: int = 80) -> str:
