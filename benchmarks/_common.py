@@ -1,9 +1,19 @@
-"""Helpers shared by the benchmark scripts: warm best-of timings and run metadata."""
+"""Helpers shared by the benchmark scripts: warm best-of timings, run metadata and result files."""
 
+import json
 import os
+import platform
 import subprocess
+import sys
 import time
 from pathlib import Path
+
+import numpy as np
+
+import lidar_overlap as lo
+
+#: Where every benchmark writes its ``<name>.json``.
+RESULTS = Path(__file__).resolve().parent / "results"
 
 
 def best_time(fn, repeats, setup=None):
@@ -65,3 +75,32 @@ def source_commit():
 def load_average():
     """1-minute load average (NaN where the platform has none)."""
     return os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+
+
+def run_meta(load_start, **fields):
+    """The record each result file starts with: when it was measured, from which commit and
+    versions, on what machine, under what load (the 1-minute load average when the run started,
+    ``load_start``, and now, at its end); then the benchmark's own ``fields``."""
+    return {
+        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+        "commit": source_commit(),
+        "versions": {
+            "lidar_overlap": lo.__version__,
+            "numpy": np.__version__,
+            "python": sys.version.split()[0],
+        },
+        "machine": platform.machine(),
+        "cores": os.cpu_count(),
+        "load_average_1min": load_start,
+        "load_average_1min_end": load_average(),
+        **fields,
+    }
+
+
+def write_result(name, record):
+    """``record`` as indented JSON in results/<name>.json; returns the path."""
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    out = RESULTS / f"{name}.json"
+    out.write_text(json.dumps(record, indent=2) + "\n")
+    print(f"wrote {out}")
+    return out

@@ -21,15 +21,12 @@ Writes results/bench_aberrations.json.
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
-import os
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import with_aberrations
@@ -356,12 +353,12 @@ def seidel_section():
 
 def main():
     load0 = load_average()
-    versions = {"lidar_overlap": lo.__version__, "numpy": np.__version__}
+    peers = {}
     for mod in ("poppy", "hcipy", "LightPipes", "astropy"):
         try:
-            versions[mod] = __import__(mod).__version__
+            peers[mod] = __import__(mod).__version__
         except ImportError:
-            versions[mod] = None
+            peers[mod] = None
     print(f"lidar_overlap {lo.__version__} | load {load0:.2f} | commit {source_commit()}")
     t0 = time.perf_counter()
     psf = point_image_section()
@@ -417,14 +414,9 @@ def main():
         print(f"  {label:8s} {kind:14s} {r['s']:.2f} s, {r['s_per_range']:.3f} s per range")
     run_s, load1 = time.perf_counter() - t0, load_average()
     print(f"\nrun {run_s:.0f} s, load {load0:.2f} -> {load1:.2f}")
-    out = Path(__file__).resolve().parent / "results" / "bench_aberrations.json"
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "commit": source_commit(),
-        "versions": versions,
-        "cores": os.cpu_count(),
-        "load_average_1min_start": load0,
-        "load_average_1min_end": load1,
+        **run_meta(load0),
+        "peer_versions": peers,
         "run_s": run_s,
         "wavelength_m": WAVELENGTH,
         "n": N,
@@ -435,10 +427,9 @@ def main():
         "seidel": SEIDEL,
         "refined_fan": REFINED_FAN,
     }
-    out.write_text(
-        json.dumps({"meta": meta, "point_image": psf, "curve": curve, "seidel": seidel}, indent=2)
+    write_result(
+        "bench_aberrations", {"meta": meta, "point_image": psf, "curve": curve, "seidel": seidel}
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -13,15 +13,11 @@ Target: the map under 0.5 s on 2 cores. Writes results/bench_alignment.json.
 
 from __future__ import annotations
 
-import json
 import os
-import platform
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
 from lidar_overlap.analysis.alignment import misaligned
@@ -88,17 +84,8 @@ def main():
     )
     print(f"target: map < {TARGET_S} s: {'met' if t_map < TARGET_S else 'NOT met'}")
 
-    out = Path(__file__).resolve().parent / "results" / "bench_alignment.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "lidar_overlap": lo.__version__,
-        "numpy": np.__version__,
-        "python": sys.version.split()[0],
-        "source_commit": source_commit(),
-        "machine": platform.machine(),
-        "cores": os.cpu_count(),
-        "load_average_1min": load,
+        **run_meta(load),
         "tilts_rad": {"start": float(TILTS[0]), "stop": float(TILTS[-1]), "count": int(TILTS.size)},
         "ranges_m": {
             "start": float(RANGES[0]),
@@ -117,8 +104,7 @@ def main():
         "target_s": TARGET_S,
         "target_met": t_map < TARGET_S,
     }
-    out.write_text(json.dumps({"meta": meta, "results": rows}, indent=2) + "\n")
-    print(f"wrote {out}")
+    write_result("bench_alignment", {"meta": meta, "results": rows})
 
 
 if __name__ == "__main__":

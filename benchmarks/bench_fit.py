@@ -10,15 +10,10 @@ results/bench_fit.json.
 
 from __future__ import annotations
 
-import json
 import os
-import platform
-import sys
-import time
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
@@ -85,17 +80,8 @@ def main():
     best = min(r["time_s"] for r in rows.values())
     print(f"target: fit < {TARGET_S} s: {'met' if best < TARGET_S else 'NOT met'}")
 
-    out = Path(__file__).resolve().parent / "results" / "bench_fit.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "lidar_overlap": lo.__version__,
-        "numpy": np.__version__,
-        "python": sys.version.split()[0],
-        "source_commit": source_commit(),
-        "machine": platform.machine(),
-        "cores": os.cpu_count(),
-        "load_average_1min": load,
+        **run_meta(load),
         "ranges_m": {
             "start": float(RANGES[0]),
             "stop": float(RANGES[-1]),
@@ -117,8 +103,7 @@ def main():
         "target_s": TARGET_S,
         "target_met": best < TARGET_S,
     }
-    out.write_text(json.dumps({"meta": meta, "results": results}, indent=2) + "\n")
-    print(f"wrote {out}")
+    write_result("bench_fit", {"meta": meta, "results": results})
 
 
 if __name__ == "__main__":

@@ -24,15 +24,11 @@ units.
 
 from __future__ import annotations
 
-import json
 import os
-import platform
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -166,7 +162,6 @@ def main():
         "ratio_numpy_to_lo": t_np / t_lo,
         "max_abs_history_difference": float(np.max(np.abs(np_history - d.history))),
     }
-    load_end = load_average()
 
     ms = lambda t: f"{t * 1e3:8.1f}"  # noqa: E731
     print(f"\ndefault design (N = {GRID}, edge 1.5 theta_d)")
@@ -212,21 +207,9 @@ def main():
         f"{peer['max_abs_history_difference']:.1e}"
     )
 
-    out = Path(__file__).resolve().parent / "results" / "bench_flat_top.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "versions": {
-            "lidar_overlap": lo.__version__,
-            "numpy": np.__version__,
-            "python": sys.version.split()[0],
-        },
-        "source_commit": source_commit(),
-        "machine": platform.machine(),
-        "cores": os.cpu_count(),
+        **run_meta(load_start),
         "omp_num_threads": os.environ.get("OMP_NUM_THREADS"),
-        "load_average_1min": load_start,
-        "load_average_1min_end": load_end,
         "design": {
             "wavelength_m": WAVELENGTH,
             "waist_radius_m": WAIST,
@@ -246,20 +229,16 @@ def main():
         "numpy_peer": "error-reduction GS with numpy.fft (single-threaded), same start, grid, "
         "target and iteration count as lo; time includes its set-up and final plate",
     }
-    out.write_text(
-        json.dumps(
-            {
-                "meta": meta,
-                "default": default,
-                "edge_sweep": edges,
-                "grid_sweep": grids,
-                "numpy_peer": peer,
-            },
-            indent=2,
-        )
-        + "\n"
+    write_result(
+        "bench_flat_top",
+        {
+            "meta": meta,
+            "default": default,
+            "edge_sweep": edges,
+            "grid_sweep": grids,
+            "numpy_peer": peer,
+        },
     )
-    print(f"\nwrote {out}")
 
 
 if __name__ == "__main__":

@@ -13,15 +13,11 @@ Times: best of 3 warm runs. Writes results/bench_optimize.json.
 
 from __future__ import annotations
 
-import json
 import os
-import platform
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
 
@@ -98,21 +94,11 @@ def main():
             "each"
         )
 
-    out = Path(__file__).resolve().parent / "results" / "bench_optimize.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "lidar_overlap": lo.__version__,
-        "numpy": np.__version__,
-        "python": sys.version.split()[0],
-        "source_commit": source_commit(),
-        "machine": platform.machine(),
-        "cores": os.cpu_count(),
-        "load_average_1min": load,
+        **run_meta(load),
         "tolerance": 1e-4,
     }
-    out.write_text(json.dumps({"meta": meta, "results": rows}, indent=2) + "\n")
-    print(f"wrote {out}")
+    write_result("bench_optimize", {"meta": meta, "results": rows})
 
 
 if __name__ == "__main__":

@@ -10,12 +10,8 @@ NumPy. Timing: best of 7 after one untimed call. Writes results/bench_phase_scre
 
 from __future__ import annotations
 
-import json
-import time
-from pathlib import Path
-
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -32,7 +28,8 @@ def structure_function(screens):
 
 
 def main():
-    print(f"lidar_overlap {lo.__version__} | load {load_average():.2f} | commit {source_commit()}")
+    load = load_average()
+    print(f"lidar_overlap {lo.__version__} | load {load:.2f} | commit {source_commit()}")
 
     def lo_screen(i=0):
         return lo._core.phase_screen(N, SPACING, R0, L0, L0_INNER, 1, i)
@@ -70,27 +67,21 @@ def main():
         if f"{name}_D_over_kolmogorov" in row:
             ratios = " ".join(f"{r:.3f}" for r in row[f"{name}_D_over_kolmogorov"])
             print(f"  {name}: D(r) / 6.88 (r/r0)^(5/3) at {SEPARATIONS} samples: {ratios}")
-    out = Path(__file__).resolve().parent / "results" / "bench_phase_screen.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min": load_average(),
-                    "n": N,
-                    "spacing_m": SPACING,
-                    "r0_m": R0,
-                    "outer_scale_m": L0,
-                    "separations": SEPARATIONS,
-                    "screens_for_structure_function": SCREENS_FOR_D,
-                },
-                "result": row,
+    write_result(
+        "bench_phase_screen",
+        {
+            "meta": {
+                **run_meta(load),
+                "n": N,
+                "spacing_m": SPACING,
+                "r0_m": R0,
+                "outer_scale_m": L0,
+                "separations": SEPARATIONS,
+                "screens_for_structure_function": SCREENS_FOR_D,
             },
-            indent=2,
-        )
+            "result": row,
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -21,15 +21,10 @@ throughout.
 from __future__ import annotations
 
 import dataclasses
-import json
 import os
-import platform
-import sys
-import time
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
 
@@ -255,17 +250,8 @@ def main():
             + (f"; beam axis crosses the telescope axis at {crossing:.0f} m" if crossing else "")
         )
 
-    out = Path(__file__).resolve().parent / "results" / "bench_rt.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "lidar_overlap": lo.__version__,
-        "numpy": np.__version__,
-        "python": sys.version.split()[0],
-        "source_commit": source_commit(),
-        "machine": platform.machine(),
-        "cores": os.cpu_count(),
-        "load_average_1min": load,
+        **run_meta(load),
         "ranges_m": {
             "start": float(RANGES[0]),
             "stop": float(RANGES[-1]),
@@ -276,8 +262,7 @@ def main():
         "reference_tolerance": REFERENCE_TOLERANCE,
         "repeats": {"baseline": REPEATS_BASELINE, "lo": REPEATS_LO},
     }
-    out.write_text(json.dumps({"meta": meta, "cases": rows}, indent=2) + "\n")
-    print(f"\nwrote {out}")
+    write_result("bench_rt", {"meta": meta, "cases": rows})
 
 
 if __name__ == "__main__":

@@ -19,14 +19,12 @@ too).
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import alternated_best, best_time, load_average, source_commit
+from _common import alternated_best, best_time, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -86,40 +84,32 @@ def main():
         f"cluster start {t_start:.1f} s (not timed above); cluster / local = {ratio:.2f} (target "
         f"<= {TARGET_RATIO}); results equal bit for bit: {same}"
     )
-    out = Path(__file__).resolve().parent / "results" / "bench_studies.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min": load,
-                    "load_average_1min_end": load_average(),
-                    "cores": os.cpu_count(),
-                    "members": MEMBERS,
-                    "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
-                    "method": repr(METHOD),
-                    "repeats": REPEATS,
-                    "cluster": "LocalCluster(n_workers=2, threads_per_worker=1, processes=True)",
-                },
-                "result": {
-                    **{f"{name}_s": t for name, (t, _) in rows.items()},
-                    **{f"{name}_members_per_s": MEMBERS / t for name, (t, _) in rows.items()},
-                    **{
-                        f"{name}_members_per_task": int(r.attrs["members_per_task"])
-                        for name, (_, r) in rows.items()
-                    },
-                    "cluster_start_s": t_start,
-                    "cluster_over_local": ratio,
-                    "target_ratio": TARGET_RATIO,
-                    "target_met": ratio <= TARGET_RATIO,
-                    "bit_identical": same,
-                },
+    write_result(
+        "bench_studies",
+        {
+            "meta": {
+                **run_meta(load),
+                "members": MEMBERS,
+                "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
+                "method": repr(METHOD),
+                "repeats": REPEATS,
+                "cluster": "LocalCluster(n_workers=2, threads_per_worker=1, processes=True)",
             },
-            indent=2,
-        )
+            "result": {
+                **{f"{name}_s": t for name, (t, _) in rows.items()},
+                **{f"{name}_members_per_s": MEMBERS / t for name, (t, _) in rows.items()},
+                **{
+                    f"{name}_members_per_task": int(r.attrs["members_per_task"])
+                    for name, (_, r) in rows.items()
+                },
+                "cluster_start_s": t_start,
+                "cluster_over_local": ratio,
+                "target_ratio": TARGET_RATIO,
+                "target_met": ratio <= TARGET_RATIO,
+                "bit_identical": same,
+            },
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":  # the cluster's worker processes import this file: start it only once

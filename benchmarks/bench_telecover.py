@@ -21,13 +21,9 @@ units.
 from __future__ import annotations
 
 import dataclasses
-import json
-import os
-import platform
-from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -85,13 +81,7 @@ def main():
         "max_north_south_deviation": float(
             np.nanmax(np.abs(tele.deviation[0] - tele.deviation[2]))
         ),
-        "meta": {
-            "commit": source_commit(),
-            "python": platform.python_version(),
-            "cores": os.cpu_count(),
-            "load_start": load_start,
-            "load_end": load_average(),
-        },
+        "meta": run_meta(load_start),
     }
     print(
         f"public API: full curve {t_full * 1e3:.1f} ms, four quadrants one call each "
@@ -105,9 +95,7 @@ def main():
         f"{core_quad[0].evaluations / len(RANGES):.0f}"
     )
     print(f"quadrant sum error {sum_error:.1e}; together vs one at a time {separate_error:.1e}")
-    path = Path(__file__).resolve().parent / "results" / "bench_telecover.json"
-    path.write_text(json.dumps(out, indent=2) + "\n")
-    print(f"wrote {path}")
+    write_result("bench_telecover", out)
 
 
 if __name__ == "__main__":

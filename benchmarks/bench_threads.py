@@ -19,17 +19,14 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import os
-import platform
 import statistics
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import load_average, source_commit
+from _common import load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -120,26 +117,12 @@ def main():
     args = parser.parse_args()
     print(f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | commit {source_commit()}")
     runs = [measure(added) for added in args.load]
-    out = Path(__file__).resolve().parent / "results" / "bench_threads.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "lidar_overlap": lo.__version__,
-                    "commit": source_commit(),
-                    "machine": platform.machine(),
-                    "cores": os.cpu_count(),
-                    "timing": "threads=0 and threads=1 in alternating rounds after one "
-                    "untimed call each; best and median",
-                },
-                "runs": runs,
-            },
-            indent=2,
-        )
-        + "\n"
+    meta = run_meta(
+        runs[0]["load_average_1min"],
+        timing="threads=0 and threads=1 in alternating rounds after one untimed call each; best "
+        "and median",
     )
-    print(f"wrote {out}")
+    write_result("bench_threads", {"meta": meta, "runs": runs})
 
 
 if __name__ == "__main__":

@@ -13,14 +13,12 @@ results/bench_turbulent_rt_both.json. Run: python benchmarks/bench_turbulent_rt_
 
 from __future__ import annotations
 
-import json
 import os
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
-from _common import load_average, source_commit
+from _common import load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap.forward.backends import turbulent_return
@@ -78,40 +76,32 @@ def main():
         f"G at {RANGES[-1]:g} m: transmit {last['transmit'].overlap[-1]:.4f}, both "
         f"{both.overlap[-1]:.4f}, amplification {both.amplification[-1]:.4f}"
     )
-    out = Path(__file__).resolve().parent / "results" / "bench_turbulent_rt_both.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min_before": load,
-                    "load_average_1min_after": load_average(),
-                    "cores": os.cpu_count(),
-                    "threads": 1,
-                    "cn2": CN2,
-                    "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
-                    "realizations": REALIZATIONS,
-                    "repeats": REPEATS,
-                    "target_ratio": TARGET_RATIO,
-                },
-                "result": {
-                    "seconds_transmit": best["transmit"],
-                    "seconds_both": best["both"],
-                    "cpu_seconds_transmit": best_cpu["transmit"],
-                    "cpu_seconds_both": best_cpu["both"],
-                    "ratio": ratio,
-                    "ratio_cpu": ratio_cpu,
-                    "within_target": bool(ratio_cpu <= TARGET_RATIO),
-                    "overlap_last_transmit": float(last["transmit"].overlap[-1]),
-                    "overlap_last_both": float(both.overlap[-1]),
-                    "amplification": [float(a) for a in both.amplification],
-                },
+    write_result(
+        "bench_turbulent_rt_both",
+        {
+            "meta": {
+                **run_meta(load),
+                "threads": 1,
+                "cn2": CN2,
+                "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
+                "realizations": REALIZATIONS,
+                "repeats": REPEATS,
+                "target_ratio": TARGET_RATIO,
             },
-            indent=2,
-        )
+            "result": {
+                "seconds_transmit": best["transmit"],
+                "seconds_both": best["both"],
+                "cpu_seconds_transmit": best_cpu["transmit"],
+                "cpu_seconds_both": best_cpu["both"],
+                "ratio": ratio,
+                "ratio_cpu": ratio_cpu,
+                "within_target": bool(ratio_cpu <= TARGET_RATIO),
+                "overlap_last_transmit": float(last["transmit"].overlap[-1]),
+                "overlap_last_both": float(both.overlap[-1]),
+                "amplification": [float(a) for a in both.amplification],
+            },
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -24,13 +24,11 @@ must be importable by the worker processes too).
 
 from __future__ import annotations
 
-import json
 import os
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import alternated_best, load_average, source_commit
+from _common import alternated_best, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -103,43 +101,35 @@ def main():
         f"cluster start {t_start:.1f} s (not timed above); cluster / overlap = {ratio:.2f} (target "
         f"<= {TARGET_RATIO}); results equal bit for bit: {same}"
     )
-    out = Path(__file__).resolve().parent / "results" / "bench_turbulent_study.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min": load,
-                    "load_average_1min_end": load_average(),
-                    "cores": os.cpu_count(),
-                    "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
-                    "method": repr(METHOD),
-                    "beam_grid": 256,
-                    "screens": 10,
-                    "realizations": REALIZATIONS,
-                    "repeats": REPEATS,
-                    "cluster": "LocalCluster(n_workers=2, threads_per_worker=1, processes=True)",
-                },
-                "result": {
-                    **{f"{name}_s": t for name, t in best.items()},
-                    **{f"{name}_realizations_per_task": n for name, n in tasks.items()},
-                    "cluster_start_s": t_start,
-                    "cluster_over_overlap": ratio,
-                    "threads_over_overlap": best["threads"] / best["overlap"],
-                    **{
-                        f"{name}_over_overlap": best[name] / best["overlap"]
-                        for name in ("cluster_chunk16", "cluster_chunk4")
-                    },
-                    "target_ratio": TARGET_RATIO,
-                    "target_met": ratio <= TARGET_RATIO,
-                    "bit_identical": same,
-                },
+    write_result(
+        "bench_turbulent_study",
+        {
+            "meta": {
+                **run_meta(load),
+                "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
+                "method": repr(METHOD),
+                "beam_grid": 256,
+                "screens": 10,
+                "realizations": REALIZATIONS,
+                "repeats": REPEATS,
+                "cluster": "LocalCluster(n_workers=2, threads_per_worker=1, processes=True)",
             },
-            indent=2,
-        )
+            "result": {
+                **{f"{name}_s": t for name, t in best.items()},
+                **{f"{name}_realizations_per_task": n for name, n in tasks.items()},
+                "cluster_start_s": t_start,
+                "cluster_over_overlap": ratio,
+                "threads_over_overlap": best["threads"] / best["overlap"],
+                **{
+                    f"{name}_over_overlap": best[name] / best["overlap"]
+                    for name in ("cluster_chunk16", "cluster_chunk4")
+                },
+                "target_ratio": TARGET_RATIO,
+                "target_met": ratio <= TARGET_RATIO,
+                "bit_identical": same,
+            },
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":  # the cluster's worker processes import this file: start it only once
