@@ -30,7 +30,7 @@ def least_grid(system, z, turbulence, **options):
     return _core.turbulent_grid(system._native, z, turbulence._native, o).min_beam_grid
 
 
-def test_table1_at_1e3_takes_ray_tracing_and_says_why():
+def test_table1_at_1e3_takes_ray_tracing_and_says_why(capsys):
     """Table 1 (0.9 mrad, 15 cm at 355 nm) at 1e-3: RT's diffraction error (0.0077) exceeds the
     tolerance, but FO on both paths would need a grid of thousands: RT, with the reason and a
     warning, and the run gives a curve instead of a refusal."""
@@ -43,6 +43,8 @@ def test_table1_at_1e3_takes_ray_tracing_and_says_why():
     assert p.backend == "rt_turbulent"
     assert f"beam grid of {needed}" in text and "AUTO_MAX_TURBULENT_GRID" in text
     assert len(p.warnings) == 1 and "exceeds tolerance 0.001" in p.warnings[0]
+    assert lo.explain(system, TABLE1_RANGES, request).backend == "rt_turbulent"
+    assert f"beam grid of {needed}" in capsys.readouterr().out
     with pytest.warns(RuntimeWarning, match="Fourier optics on both paths cannot run here"):
         res = lo.overlap(system, TABLE1_RANGES[::8], request)
     assert res.paths == "both" and np.all(np.isfinite(res.overlap))
