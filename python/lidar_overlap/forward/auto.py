@@ -203,7 +203,7 @@ def turbulent_fo_grid(system, z: np.ndarray, turbulence, options, fo_grid, threa
             f"Fourier optics on both paths needs a beam grid of {grid} here (every plane must "
             "sample the receiver's field of view and λ/r0), above the "
             f"{AUTO_MAX_TURBULENT_GRID} auto allows (AUTO_MAX_TURBULENT_GRID): "
-            f"{(grid / DEFAULT_TURBULENT_GRID) ** 2:.0f} times the default grid's cost per field "
+            f"{(grid / DEFAULT_TURBULENT_GRID) ** 2:.3g} times the default grid's cost per field "
             "and plane"
         )
     elif size > _core.max_memory():
