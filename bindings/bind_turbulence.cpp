@@ -12,6 +12,7 @@
 #include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
 #include "lidar_overlap/atmosphere/phase_screen.hpp"
 #include "lidar_overlap/atmosphere/turbulence.hpp"
+#include "lidar_overlap/atmosphere/turbulent_grid.hpp"
 
 namespace py = pybind11;
 using namespace lidar_overlap;
@@ -104,6 +105,9 @@ void bind_turbulence(py::module_& m) {
                              "paths = both: G of each draw's beam with an independent draw's receiver (empty for transmit).")
       .def_property_readonly("receiver_error", [](const TurbulentOverlap& r) { return to_array(r.receiver_error); },
                              "paths = both: standard error of each draw's G from its random-phase receiver fields.")
+      .def_property_readonly("receiver_x", [](const TurbulentOverlap& r) { return to_array(r.receiver_x); },
+                             "paths = both: m, centroid of the receiver's sensitivity at the last range, per realisation.")
+      .def_property_readonly("receiver_y", [](const TurbulentOverlap& r) { return to_array(r.receiver_y); })
       .def_property_readonly("screen_range", [](const TurbulentOverlap& r) { return to_array(r.screen_range); }, "m")
       .def_property_readonly("screen_spacing", [](const TurbulentOverlap& r) { return to_array(r.screen_spacing); }, "m")
       .def_property_readonly("screen_r0", [](const TurbulentOverlap& r) { return to_array(r.screen_r0); }, "m");
@@ -116,4 +120,18 @@ void bind_turbulence(py::module_& m) {
         return overlap_fo_turbulent(system, ranges, atmosphere, options);
       },
       py::arg("system"), py::arg("ranges"), py::arg("atmosphere"), py::arg("options") = TurbulenceOptions{});
+
+  // The grids overlap_fo_turbulent would use (atmosphere/turbulent_grid.hpp): cheap, and the GIL is kept for
+  // a custom profile's callable.
+  py::class_<TurbulentGrid>(m, "TurbulentGrid", "The grids of overlap_fo_turbulent for a scene.")
+      .def_property_readonly("plane_range", [](const TurbulentGrid& g) { return to_array(g.plane_range); },
+                             "m, the planes in propagation order (screens and ranges).")
+      .def_property_readonly("window", [](const TurbulentGrid& g) { return to_array(g.window); },
+                             "m, each plane's grid side (spacing x beam_grid).")
+      .def_readonly("pupil_window", &TurbulentGrid::pupil_window, "m, the transmitter plane's grid side.")
+      .def_readonly("min_beam_grid", &TurbulentGrid::min_beam_grid, "The least beam_grid the call accepts.");
+  m.def("turbulent_grid", &turbulent_grid, py::arg("system"), py::arg("ranges"), py::arg("atmosphere"),
+        py::arg("options") = TurbulenceOptions{});
+  m.def("turbulent_both_bytes", &turbulent_both_bytes, py::arg("beam_grid"), py::arg("screens"),
+        py::arg("receiver_fields"), py::arg("threads"));
 }

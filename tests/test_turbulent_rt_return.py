@@ -258,19 +258,31 @@ def test_calm_air_is_the_unperturbed_overlap():
 
 
 def test_auto_takes_ray_tracing_where_the_missed_enhancement_fits():
-    """Weak turbulence and a wide field of view: RT on both paths; strong turbulence over a long
-    path: Fourier optics (the backscatter enhancement ray tracing leaves out exceeds the
-    tolerance)."""
+    """Weak turbulence: RT on both paths; stronger turbulence: Fourier optics (the backscatter
+    enhancement ray tracing leaves out, 0.016 of G, with its diffraction error 0.036 exceeds the
+    tolerance 0.05) on the grid the scene needs (670). Strong turbulence over a long path through a
+    wide field of view: FO would need a grid of ~24000, so ray tracing, with a warning
+    (tests/test_turbulent_auto.py)."""
+    lidar = lo.LidarSystem(
+        beam=lo.GaussianBeam(532e-9, 5e-3),
+        telescope=lo.Telescope(0.1, 1.0),
+        detector=lo.Detector.from_fov(0.5e-3, 1.0),
+    )
+    z = np.geomspace(100.0, 500.0, 6)
+    weak = lo.plan(lidar, z, lo.Turbulent(lo.Turbulence(1e-17), lo.Auto(5e-2)))
+    strong = lo.plan(lidar, z, lo.Turbulent(lo.Turbulence(1e-13), lo.Auto(5e-2)))
+    assert weak.backend == "rt_turbulent" and strong.backend == "fo_turbulent"
+    assert "backscatter enhancement" in " ".join(strong.reasons + weak.reasons)
+    assert strong.options.beam_grid > 256 and not strong.warnings
     wide = lo.LidarSystem(
         beam=lo.GaussianBeam(532e-9, 5e-3),
         telescope=lo.Telescope(0.2, 1.0),
         detector=lo.Detector.from_fov(2e-3, 1.0),
     )
-    z = np.geomspace(200.0, 2000.0, 6)
-    weak = lo.plan(wide, z, lo.Turbulent(lo.Turbulence(1e-17), lo.Auto(1e-2)))
-    strong = lo.plan(wide, z, lo.Turbulent(lo.Turbulence(1e-13), lo.Auto(1e-2)))
-    assert weak.backend == "rt_turbulent" and strong.backend == "fo_turbulent"
-    assert "backscatter enhancement" in " ".join(strong.reasons + weak.reasons)
+    far = lo.plan(
+        wide, np.geomspace(200.0, 2000.0, 6), lo.Turbulent(lo.Turbulence(1e-13), lo.Auto(1e-2))
+    )
+    assert far.backend == "rt_turbulent" and "cannot run" in far.warnings[0]
 
 
 def test_outside_its_regime_ray_tracing_says_so():

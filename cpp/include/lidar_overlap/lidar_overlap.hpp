@@ -41,6 +41,7 @@
 #include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
 #include "lidar_overlap/atmosphere/phase_screen.hpp"
 #include "lidar_overlap/atmosphere/turbulence.hpp"
+#include "lidar_overlap/atmosphere/turbulent_grid.hpp"
 
 #include "lidar_overlap/pupil/aberrations.hpp"
 #include "lidar_overlap/pupil/aperture_mask.hpp"

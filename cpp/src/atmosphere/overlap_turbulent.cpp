@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lidar_overlap/atmosphere/phase_screen.hpp"
+#include "lidar_overlap/atmosphere/turbulent_grid.hpp"
 #include "lidar_overlap/core/limits.hpp"
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "atmosphere/return_path.hpp"
@@ -125,26 +126,12 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
                             int threads, const std::vector<Plane>& planes,
                             const std::vector<std::unique_ptr<ScaledStep>>& steps,
                             const std::vector<std::unique_ptr<PhaseScreenGenerator>>& generators,
-                            const std::vector<double>& range_spacing, double dx0,
-                            const std::function<double(double)>& seeing, const ScaledStep* last_step) {
+                            double dx0, const ScaledStep* last_step) {
   const std::size_t n = o.beam_grid, fields = o.receiver_fields;
   const double lambda = system.beam.wavelength, w0 = system.beam.waist_radius;
   const detail::ReturnPath rx(system, n, dx0, fields);
-  // The receiver's light leaves the pupil at up to max_angle and the eddies add ~lambda / r0: every plane's
-  // spacing must sample it (lambda / (2 spacing)), or it aliases.
-  double worst = 0.0;  // the largest spacing / allowed spacing over the planes
-  for (const Plane& p : planes) {
-    const double dx = p.range >= 0 ? range_spacing[p.range] : generators[p.screen]->spacing();
-    worst = std::max(worst, dx * 2.0 * (rx.max_angle() + seeing(p.z)) / lambda);
-  }
-  if (worst > 1.0)
-    checks::fail("beam_grid", static_cast<double>(n),
-                 "an even size >= " + std::to_string(2 * static_cast<std::size_t>(std::ceil(0.5 * n * worst))) +
-                     " for paths = both: every plane's grid must sample the receiver's field of view and the eddies' "
-                     "spread (lambda / r0)");
   const double n2 = double(n) * double(n);
-  checks::memory("beam_grid", static_cast<double>(n),
-                 16.0 * n2 * double(o.screens) + 16.0 * double(threads) * n2 * (2.0 * double(fields) + 5.0),
+  checks::memory("beam_grid", static_cast<double>(n), turbulent_both_bytes(n, o.screens, fields, threads),
                  "lower beam_grid, receiver_fields or screens");
 
   TurbulentOverlap out;
@@ -154,6 +141,8 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
   out.wander_x.assign(o.realizations, 0.0);
   out.wander_y.assign(o.realizations, 0.0);
   out.radius_last.assign(o.realizations, 0.0);
+  out.receiver_x.assign(o.realizations, 0.0);
+  out.receiver_y.assign(o.realizations, 0.0);
   const std::size_t first = o.first_realization, end = first + o.realizations, p0 = first / 2;
   // The split steps leave each field n^2 times its physical value (their 1 / n^2 waits for the next step).
   const double n4 = n2 * n2, area = rx.aperture_area();
@@ -221,6 +210,15 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
       out.wander_x[k - first] = centre.x;
       out.wander_y[k - first] = centre.y;
       out.radius_last[k - first] = beams[c].beam_radius();
+      // The receiver's sensitivity (its fields' summed irradiance; the last step's phase leaves it as it is).
+      double power = 0.0, sx = 0.0, sy = 0.0;
+      for (const Field& v : back[c]) {
+        const double pv = v.power();
+        const Vec2 cv = v.centroid();
+        power += pv, sx += pv * cv.x, sy += pv * cv.y;
+      }
+      out.receiver_x[k - first] = power > 0.0 ? sx / power : 0.0;
+      out.receiver_y[k - first] = power > 0.0 ? sy / power : 0.0;
     }
   });
   for (const auto& rows : {&out.overlap, &out.uncorrelated})
@@ -269,27 +267,17 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   const double z_max = *std::max_element(ranges.begin(), ranges.end());
   const std::size_t n = o.beam_grid;
 
-  // Each plane's grid spans beam_window long-term radii plus 8 rms wander: the beam of any realisation
-  // stays inside it (all but ~1e-9 of its power at 8 W_LT); the transmitter plane samples the waist alike.
-  auto beam_spacing_at = [&](double z) {
-    if (z == 0.0) return o.beam_window * w0 / n;
-    const double wander = std::sqrt(atmosphere.beam_wander_variance(w0, lambda, z));
-    return (o.beam_window * atmosphere.long_term_radius(w0, lambda, z) + 8.0 * wander) / n;
-  };
-  // Both paths share each plane's grid (and so its screen): it also holds the receiver's light, 1.25 times its
-  // geometric footprint plus the spread by eddies of r0 (2 lambda z / r0), about the receiver's axis.
-  auto seeing = [&](double z) {
-    const double r0 = z > 0.0 ? atmosphere.fried_parameter_plane(lambda, z) : 0.0;
-    return std::isfinite(r0) && r0 > 0.0 ? lambda / r0 : 0.0;
-  };
-  auto rx_window = [&](double z) {
-    const double foot = 0.5 * system.telescope.diameter * std::abs(1.0 - z * (1.0 / system.telescope.focal_length -
-                            1.0 / (system.telescope.focal_length + system.detector.defocus))) +
-                        (system.detector.radius + norm(system.detector.offset)) * z /
-                            (system.telescope.focal_length + system.detector.defocus);
-    return 2.0 * (norm(beam.center(z)) + 1.25 * foot + 2.0 * z * seeing(z));
-  };
-  auto spacing_at = [&](double z) { return both ? std::max(beam_spacing_at(z), rx_window(z) / n) : beam_spacing_at(z); };
+  // Each plane's grid (atmosphere/turbulent_grid.hpp): the beam's window and, on both paths, the receiver's
+  // light; on both paths every plane's spacing must sample the receiver's light, or it aliases.
+  auto spacing_at = [&](double z) { return turbulent_window(system, atmosphere, o.beam_window, o.paths, z) / n; };
+  if (both) {
+    const std::size_t need = turbulent_grid(system, ranges, atmosphere, o).min_beam_grid;
+    if (n < need)
+      checks::fail("beam_grid", static_cast<double>(n),
+                   "an even size >= " + std::to_string(need) +
+                       " for paths = both: every plane's grid must sample the receiver's field of view and the eddies' "
+                       "spread (lambda / r0)");
+  }
   const std::vector<ScreenPlacement> placements = atmosphere.place_screens(lambda, z_max, o.screens);
   std::vector<Plane> planes;
   for (std::size_t j = 0; j < placements.size(); ++j) planes.push_back({placements[j].range, static_cast<int>(j), -1});
@@ -329,8 +317,8 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     }
     return out;
   };
-  if (both) return described(both_paths(system, ranges, o, threads, planes, steps, generators, range_spacing,
-                                        spacing_at(0.0), seeing, last_step));
+  if (both) return described(both_paths(system, ranges, o, threads, planes, steps, generators, spacing_at(0.0),
+                                        last_step));
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     receivers.emplace_back(system, ranges[i], detail::range_name(i));
     const double radius = 2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "lidar_overlap/atmosphere/turbulent_grid.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
@@ -65,11 +66,7 @@ ReturnPath::ReturnPath(const LidarSystem& system, std::size_t n, double spacing,
   }
 }
 
-double ReturnPath::max_angle() const {
-  const Telescope& t = system_.telescope;
-  return (system_.detector.radius + norm(system_.detector.offset)) / d_ +
-         0.5 * t.diameter * std::abs(1.0 / t.focal_length - 1.0 / d_) + norm(system_.beam.tilt);
-}
+double ReturnPath::max_angle() const { return receiver_max_angle(system_); }
 
 double ReturnPath::footprint(double z) const {
   const Telescope& t = system_.telescope;

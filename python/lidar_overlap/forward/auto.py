@@ -23,8 +23,14 @@ only in ray tracing.
 
 Through turbulence on both paths (:func:`decide_both_paths`) ray tracing's return path also leaves
 out the backscatter enhancement (the bright spots the two paths share); its estimate
-(:func:`~.backends.turbulent_return.missed_enhancement`) adds to the diffraction error, and Fourier
-optics runs where the two leave the quadrature less than its share of the tolerance.
+(:func:`~.backends.turbulent_return.missed_enhancement`) adds to the diffraction error, and
+Fourier optics runs where the two leave the quadrature less than its share of the tolerance, and
+where it can run: its grid must sample the receiver's field of view at every plane (the core's rule,
+``_core.turbulent_grid``), which for a wide field of view or a long path asks for more samples
+than the memory budget holds or than the accuracy gained pays for
+(:data:`AUTO_MAX_TURBULENT_GRID`). Then auto takes ray tracing on both paths, says why and warns
+that its estimated error exceeds the tolerance: it never chooses a method that would refuse the
+scene.
 
 :func:`decide` only chooses, from the geometry: it computes no overlap curve, and the plan it feeds
 carries its numbers, so nothing is estimated twice (:mod:`lidar_overlap.forward.planning`). The
@@ -35,6 +41,7 @@ aberrated estimate needs two coarse RT curves, so :func:`decide_aberrated` runs 
 from __future__ import annotations
 
 import functools
+import os
 from dataclasses import dataclass, field
 from typing import List
 
@@ -61,6 +68,15 @@ EDGE_SAMPLES = 16
 #: segments at a fifth of the time (a field-dependent scene at 20 km where each curve stops ~2e-4
 #: short of convergence).
 EDGE_MAX_SEGMENTS = 8
+#: Largest beam grid auto gives Fourier optics on both paths. Each draw carries 1 + receiver_fields
+#: fields of grid² through every plane; 1024² is 16 times the default grid's cost (benchmarks/
+#: bench_turbulent_both.py: 8 s a draw at 432² with 8 fields and 20 ranges, so ~50 s at 1024²),
+#: and its mean still carries the draws' statistical error (a few % of G for 20 draws): a finer
+#: grid does not buy what ray tracing's missed diffraction and enhancement cost.
+#: ``lo.FO(beam_grid=...)`` insists.
+AUTO_MAX_TURBULENT_GRID = 1024
+#: The turbulent FO path's default grid (the core's), which auto raises to what the scene needs.
+DEFAULT_TURBULENT_GRID = _core.TurbulenceOptions().beam_grid
 
 
 @dataclass(frozen=True)
@@ -155,12 +171,64 @@ def decide(system, ranges: np.ndarray, tolerance: float) -> Decision:
     return Decision("fo", fo_path, error, 0.0, reasons)
 
 
-def decide_both_paths(system, z: np.ndarray, tolerance: float, turbulence) -> Decision:
+@dataclass(frozen=True)
+class TurbulentFoGrid:
+    """The grid Fourier optics on both paths would run on, and whether auto may take it."""
+
+    grid: int  # samples per side auto would use (the FO model's, or the least the scene needs)
+    needed: int  # the least the core accepts (_core.turbulent_grid)
+    bytes: float  # memory the call would allocate
+    refusal: str = ""  # why auto may not take it ("" when it may)
+
+
+def turbulent_fo_grid(system, z: np.ndarray, turbulence, options, fo_grid, threads: int):
+    """The grid of Fourier optics on both paths for ``options`` (a ``_core.TurbulenceOptions``:
+    screens, window, receiver fields) and the FO model's ``fo_grid`` (None: the default raised to
+    what the scene needs), and why auto may not take it: a given grid below the core's least, a
+    grid above :data:`AUTO_MAX_TURBULENT_GRID`, or memory above ``_core.max_memory()``."""
+    options = options.__copy__()
+    options.paths = "both"
+    needed = int(_core.turbulent_grid(system._native, z, turbulence._native, options).min_beam_grid)
+    grid = int(fo_grid) if fo_grid is not None else max(DEFAULT_TURBULENT_GRID, needed)
+    team = threads if threads > 0 else (os.cpu_count() or 1)
+    size = _core.turbulent_both_bytes(grid, options.screens, options.receiver_fields, team)
+    refusal = ""
+    if grid < needed:
+        refusal = (
+            f"the FO model's beam_grid {grid} is below the {needed} the core needs here (every "
+            "plane must sample the receiver's field of view and λ/r0)"
+        )
+    elif grid > AUTO_MAX_TURBULENT_GRID:
+        refusal = (
+            f"Fourier optics on both paths needs a beam grid of {grid} here (every plane must "
+            "sample the receiver's field of view and λ/r0), above the "
+            f"{AUTO_MAX_TURBULENT_GRID} auto allows (AUTO_MAX_TURBULENT_GRID): "
+            f"{(grid / DEFAULT_TURBULENT_GRID) ** 2:.3g} times the default grid's cost per field "
+            "and plane"
+        )
+    elif size > _core.max_memory():
+        refusal = (
+            f"Fourier optics on both paths on {grid}² would allocate {size / 2**30:.1f} GiB, above "
+            f"the memory budget {_core.max_memory() / 2**30:.1f} GiB (max_memory)"
+        )
+    return TurbulentFoGrid(grid, needed, size, refusal)
+
+
+def decide_both_paths(
+    system, z: np.ndarray, tolerance: float, turbulence, fo_grid: TurbulentFoGrid | None = None
+) -> Decision:
     """The model ``method="auto"`` takes through ``turbulence`` on both paths: :func:`decide`'s
     choice, and ray tracing only where its diffraction error plus what its return path leaves out
     (the backscatter enhancement, :func:`~.backends.turbulent_return.missed_enhancement`) leave
-    its quadrature a share of the tolerance; otherwise Fourier optics through the phase screens."""
+    its quadrature a share of the tolerance; otherwise Fourier optics through the phase screens,
+    unless ``fo_grid`` (:func:`turbulent_fo_grid`) refuses it: then ray tracing, with a warning."""
     d = decide(system, z, tolerance)
+    if d.method == "fo" and fo_grid is not None and radial_fo_applies(system):
+        if fo_grid.refusal:
+            return _rt_instead(
+                system, z, tolerance, turbulence, d.rt_model_error, fo_grid, d.reasons[:1]
+            )
+        return Decision("fo", "2d", d.rt_model_error, 0.0, d.reasons[:2] + [_on_grid(fo_grid)])
     if d.method != "rt" or not radial_fo_applies(system):  # the linear width law is RT's alone
         return d
     missed = float(np.max(missed_enhancement(system, turbulence, z)))
@@ -176,11 +244,40 @@ def decide_both_paths(system, z: np.ndarray, tolerance: float, turbulence) -> De
             f"{tolerance:g}: ray tracing on both paths is enough"
         )
         return Decision("rt", "", d.rt_model_error + missed, quadrature, reasons)
+    if fo_grid is not None and fo_grid.refusal:
+        return _rt_instead(system, z, tolerance, turbulence, d.rt_model_error, fo_grid, reasons[:1])
     reasons.append(
         f"{d.rt_model_error:.2g} + {missed:.2g} > tolerance {tolerance:g}: Fourier optics through "
         "the phase screens on both paths"
     )
+    if fo_grid is not None:
+        reasons.append(_on_grid(fo_grid))
     return Decision("fo", "2d", d.rt_model_error + missed, 0.0, reasons)
+
+
+def _on_grid(fo_grid: TurbulentFoGrid) -> str:
+    return (
+        f"Fourier optics on both paths on a beam grid of {fo_grid.grid} (the least the core "
+        f"accepts here: {fo_grid.needed}; {fo_grid.bytes / 2**30:.2g} GiB)"
+    )
+
+
+def _rt_instead(system, z, tolerance, turbulence, error, fo_grid, reasons) -> Decision:
+    """Ray tracing on both paths where Fourier optics would be needed but cannot run
+    (``fo_grid.refusal``): its estimated error exceeds ``tolerance``, which the plan warns about."""
+    missed = float(np.max(missed_enhancement(system, turbulence, z)))
+    total = error + missed
+    reasons = list(reasons) + [
+        f"turbulence on both paths: ray tracing misses up to {error:.2g} (diffraction) + "
+        f"{missed:.2g} (backscatter enhancement) of G, above tolerance {tolerance:g}",
+        f"but {fo_grid.refusal}: ray tracing on both paths, whose model error may exceed the "
+        "tolerance (pass method=lo.FO(beam_grid=...) to insist on Fourier optics)",
+    ]
+    warning = (
+        f"Fourier optics on both paths cannot run here ({fo_grid.refusal}); ray tracing's "
+        f"estimated error {total:.2g} exceeds tolerance {tolerance:g}"
+    )
+    return Decision("rt", "", total, QUADRATURE_SHARE * tolerance, reasons, warning=warning)
 
 
 def decide_aberrated(system, z: np.ndarray, tolerance: float, rt_options=None) -> Decision:

@@ -277,21 +277,33 @@ def turbulent(system, z, request: Turbulent, threads) -> Plan:
     model = request.method
     tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
     chosen: Tuple[str, ...] = ()  # auto's reasons, said before the plan's own
+    warned: Tuple[str, ...] = ()
+    wavelength = system.beam.wavelength
+    calm = request.turbulence.rytov_variance(wavelength, float(z[-1])) == 0.0
     if isinstance(model, Auto):
-        d = (
-            auto.decide_both_paths(system, z, model.tolerance, request.turbulence)
-            if request.paths == "both"
-            else auto.decide(system, z, model.tolerance)
-        )
+        if request.paths == "both" and not calm:
+            # FO only on a grid the core accepts and auto allows (auto.turbulent_fo_grid)
+            grid = auto.turbulent_fo_grid(
+                system,
+                z,
+                request.turbulence,
+                fo_options(request, model.fo, threads),
+                model.fo.beam_grid,
+                threads,
+            )
+            d = auto.decide_both_paths(system, z, model.tolerance, request.turbulence, grid)
+        else:
+            d = auto.decide(system, z, model.tolerance)
         # through turbulence Fourier optics is always the 2-D path through the screens
         chosen = tuple(r for r in d.reasons if not r.startswith("Gaussian beam: the radial FO"))
-        model = (
-            dataclasses.replace(model.rt, tolerance=model.tolerance)
-            if d.method == "rt"
-            else model.fo
-        )
-    wavelength = system.beam.wavelength
-    if request.turbulence.rytov_variance(wavelength, float(z[-1])) == 0.0:  # no turbulence at all
+        warned = (f"overlap(auto): {d.warning}",) if d.warning else ()
+        if d.method == "rt":
+            model = dataclasses.replace(model.rt, tolerance=model.tolerance)
+        elif request.paths == "both" and not calm:
+            model = dataclasses.replace(model.fo, beam_grid=grid.grid)
+        else:
+            model = model.fo
+    if calm:  # no turbulence at all
         p = plain(system, z, model, request, threads)
         return dataclasses.replace(
             p,
@@ -312,21 +324,14 @@ def turbulent(system, z, request: Turbulent, threads) -> Plan:
             backend="rt_turbulent",
             tolerance=model.tolerance,
             options=rt_options(model, model.tolerance, threads),
+            warnings=warned,
             reasons=chosen
             + (
                 f"{request.realizations} draws of the beam wander{both}, ray traced to "
                 f"{model.tolerance:g}",
             ),
         )
-    options = _core.TurbulenceOptions()
-    options.realizations, options.screens = request.realizations, request.screens
-    options.seed = request.seed
-    if model.beam_grid is not None:
-        options.beam_grid = _checks.count("beam_grid", model.beam_grid, MIN_TURBULENT_GRID)
-    if model.beam_window is not None:
-        options.beam_window = model.beam_window
-    options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
-    options.paths, options.receiver_fields = request.paths, request.receiver_fields
+    options = fo_options(request, model, threads)
     both = (
         f"; the return path through the same screens ({request.receiver_fields} random-phase "
         "receiver fields)"
@@ -344,6 +349,20 @@ def turbulent(system, z, request: Turbulent, threads) -> Plan:
             f"{options.beam_grid}^2{both}",
         ),
     )
+
+
+def fo_options(request: Turbulent, model: FO, threads: int):
+    """The core's options of the turbulent FO path for ``request`` and the FO ``model``."""
+    options = _core.TurbulenceOptions()
+    options.realizations, options.screens = request.realizations, request.screens
+    options.seed = request.seed
+    if model.beam_grid is not None:
+        options.beam_grid = _checks.count("beam_grid", model.beam_grid, MIN_TURBULENT_GRID)
+    if model.beam_window is not None:
+        options.beam_window = model.beam_window
+    options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
+    options.paths, options.receiver_fields = request.paths, request.receiver_fields
+    return options
 
 
 def auto_rt(common: dict, key: str, options, d) -> Plan:

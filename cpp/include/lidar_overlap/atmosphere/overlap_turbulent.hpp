@@ -57,6 +57,10 @@ struct TurbulentOverlap {
   // paths = both: standard error of each draw's G from its receiver_fields random-phase fields (their spread over
   // sqrt(receiver_fields)); empty for transmit.
   std::vector<std::vector<double>> receiver_error;
+  // paths = both: m, centroid of the receiver's sensitivity (its fields' summed irradiance) at the last range,
+  // per realisation, on the beam's grid (centred on the beam's axis); its motion is the image's seen from the
+  // sky (z times the angle of arrival for a receiver focused there). Empty for transmit.
+  std::vector<double> receiver_x, receiver_y;
   // The run's screens: range (m), grid spacing (m) and Fried parameter (m) of screen j, whose draw for
   // realisation k is PhaseScreenGenerator(beam_grid, spacing, r0, outer, inner).generate(seed ^ (j + 1) *
   // 0x9E3779B97F4A7C15, k) on the grid centred on the beam's axis at that range: enough to replay them.
