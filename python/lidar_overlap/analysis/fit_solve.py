@@ -21,7 +21,8 @@ form with every point counted (outliers included): an approximation, on the larg
 
 Driver. :func:`solve` is shared by the fits (:func:`fit` here, :func:`.fit_telecover`): each gives a
 :class:`Model` (its vector and Jacobian as functions of a trial system); the optimiser, covariance,
-degeneracy warnings and convergence error are the same.
+degeneracy warnings and convergence error are the same. The optimiser stops when a step lowers the
+cost by less than ``COST_TOLERANCE`` of it: gains below that are noise for any verdict on the fit.
 
 Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar
 whose beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
