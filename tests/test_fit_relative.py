@@ -10,6 +10,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
+from lidar_overlap.analysis.relative import normalization
 from lidar_overlap.cli import main
 
 pytest.importorskip("scipy")
@@ -127,3 +128,28 @@ def test_command_line_normalize(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert "relative data" in printed and "1000-3000 m" in printed
     assert "# normalize" in (tmp_path / "out" / "table1_fit.csv").read_text()
+
+
+def test_interval_whitening_is_the_pseudo_inverse_square_root_and_is_reused_read_only():
+    rng = np.random.default_rng(3)
+    z = np.linspace(100.0, 1000.0, 30)
+    y = 0.9 + 0.1 * rng.random(z.size)
+    w = 0.01 + 0.01 * rng.random(z.size)
+    first = normalization((500.0, 1000.0), z, y, w)
+    # W^T W = C^+, C the covariance of the data divided by their own mean (relative.py docstring)
+    inside = first.inside
+    a = (np.eye(z.size) - np.outer(first.data, inside / inside.sum())) / first.data_scale
+    cov = (a * w**2) @ a.T
+    white = first.whitening
+    assert white.shape == (z.size - 1, z.size)
+    np.testing.assert_allclose(
+        white.T @ white, np.linalg.pinv(cov, rcond=1e-10, hermitian=True), rtol=1e-8, atol=1e-6
+    )
+    # the same data again reuse it (the ladder sets up one curve's fit many times); it cannot be
+    # changed through one fit's normalisation, and other errors give another
+    assert normalization((500.0, 1000.0), z, y.copy(), w.copy()).whitening is white
+    with pytest.raises(ValueError):
+        white[0, 0] = 1.0
+    other = w.copy()
+    other[0] *= 2.0
+    assert normalization((500.0, 1000.0), z, y, other).whitening is not white

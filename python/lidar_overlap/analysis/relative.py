@@ -19,6 +19,7 @@ the normalised problem (:mod:`lidar_overlap.analysis.fit`).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -150,14 +151,27 @@ def normalization(normalize, ranges, measured, sigma) -> Normalization:
             "0 (choose an interval where the signal is in the field of view)"
         )
     data = y / mean
-    a = (np.eye(z.size) - np.outer(data, inside / inside.sum())) / mean
-    cov = (a * w**2) @ a.T
-    values, vectors = np.linalg.eigh(cov)
-    keep = values > RANK_TOLERANCE * values[-1]
-    whitening = (vectors[:, keep] / np.sqrt(values[keep])).T
+    whitening = _whitening(data.tobytes(), inside.tobytes(), w.tobytes(), mean)
     return Normalization(
         "interval", (z_low, z_high), z, np.empty(0), inside, data, w / mean, mean, whitening
     )
+
+
+@functools.lru_cache(maxsize=8)
+def _whitening(data: bytes, inside: bytes, sigma: bytes, mean: float) -> np.ndarray:
+    """W of the interval normalisation (module docstring), read-only. Cached: the model ladder and
+    the global search fit the same data many times (each family, each polished minimum), and the
+    eigendecomposition of the n x n covariance is the costliest step of setting up a fit."""
+    y = np.frombuffer(data)
+    e = np.frombuffer(inside, dtype=bool)
+    w = np.frombuffer(sigma)
+    a = (np.eye(y.size) - np.outer(y, e / e.sum())) / mean
+    cov = (a * w**2) @ a.T
+    values, vectors = np.linalg.eigh(cov)
+    keep = values > RANK_TOLERANCE * values[-1]
+    out = (vectors[:, keep] / np.sqrt(values[keep])).T
+    out.setflags(write=False)
+    return out
 
 
 def fit_relative(
