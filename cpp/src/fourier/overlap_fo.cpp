@@ -28,20 +28,32 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
   const Vec2 c = system.beam.center(z), o = system.detector.offset;
 
-  // The irradiance zero-padded to np x np, transformed: only its nb rows hold values, so only they are
-  // transformed along x; the spectrum of a real irradiance is Hermitian (S(-f) = conj S(f)), so only the
-  // columns kx = 0 ... np/2 are transformed along y. About a third of the full 2-D transform.
+  // The irradiance zero-padded to np x np, transformed: only the rows that hold its power are transformed
+  // along x (a far beam fills a few dozen of the nb: rows below 1e-20 of the total power, together at most
+  // nb 1e-20 of G, are left out); the spectrum of a real irradiance is Hermitian (S(-f) = conj S(f)), so
+  // only the columns kx = 0 ... np/2 are transformed along y. At most a third of the full 2-D transform.
   const std::size_t off = np / 2 - nb / 2, half = np / 2 + 1;
-  ComplexBuffer rows(nb * np, Complex{});
-  for (std::size_t iy = 0; iy < nb; ++iy)
-    for (std::size_t ix = 0; ix < nb; ++ix) rows[iy * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
+  std::vector<double> row_power(nb, 0.0);
+  double total = 0.0;
+  for (std::size_t iy = 0; iy < nb; ++iy) {
+    for (std::size_t ix = 0; ix < nb; ++ix) row_power[iy] += std::norm(at_z.values[iy * nb + ix]);
+    total += row_power[iy];
+  }
+  std::size_t first = 0, last = nb;  // rows [first, last) are transformed
+  while (first < last && row_power[first] <= 1e-20 * total) ++first;
+  while (last > first && row_power[last - 1] <= 1e-20 * total) --last;
+  const std::size_t used = last - first;
+  ComplexBuffer rows(used * np, Complex{});
+  for (std::size_t iy = first; iy < last; ++iy)
+    for (std::size_t ix = 0; ix < nb; ++ix)
+      rows[(iy - first) * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
   const int threads = fft_threads(np * np);
-  detail::row_pass(rows.data(), nb, np, FftDirection::forward, threads);
+  detail::row_pass(rows.data(), used, np, FftDirection::forward, threads);
   ComplexBuffer spectrum(half * np, Complex{});  // column kx at spectrum[kx * np + ky]
   for (std::size_t k0 = 0; k0 < half; k0 += kFftBlock) {  // gathered in blocks of columns (cache lines)
     const std::size_t count = std::min(kFftBlock, half - k0);
-    for (std::size_t iy = 0; iy < nb; ++iy)
-      for (std::size_t k = 0; k < count; ++k) spectrum[(k0 + k) * np + iy + off] = rows[iy * np + k0 + k];
+    for (std::size_t iy = 0; iy < used; ++iy)
+      for (std::size_t k = 0; k < count; ++k) spectrum[(k0 + k) * np + iy + first + off] = rows[iy * np + k0 + k];
   }
   detail::row_pass(spectrum.data(), half, np, FftDirection::forward, threads);
   const double e0 = spectrum[0].real();
@@ -98,6 +110,12 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
 }
 
+std::size_t even_fast_fft_size(std::size_t n) {
+  std::size_t m = fast_fft_size(n);
+  while (m % 2) m = fast_fft_size(m + 1);
+  return m;
+}
+
 ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
   for (std::size_t k = 0; k < np; ++k) {
     const double sign = (k % 2) ? -1.0 : 1.0, f = df * (k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np);
@@ -108,7 +126,7 @@ ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
 
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
                           double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
-                          double tail_error) {
+                          double tail_error, bool any_fast_size) {
   // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
   // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
   // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
@@ -120,8 +138,8 @@ std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, doubl
   // The aliases also sit in the far diffraction tails of each other's point images: their period must
   // keep those below tail_error of G (1e-6: 4e-7 measured against a direct quadrature).
   const double period = 1.1 * reach + rx.tail_period(tail_error);
-  const std::size_t np =
-      next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image)))));
+  const std::size_t least = std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image))));
+  const std::size_t np = any_fast_size && least <= max_grid ? even_fast_fft_size(least) : next_power_of_two(least);
   if (np > max_grid)
     checks::fail(detail::range_name(range_index), z,
                  "a range needing a beam spectrum grid of at most max_spectrum_grid = " + std::to_string(max_grid) +
@@ -161,7 +179,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
     receivers.emplace_back(system, z, detail::range_name(i));
     const FoReceiver& rx = receivers.back();
     const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
-                                                 options.max_spectrum_grid, i);
+                                                 options.max_spectrum_grid, i, 5e-7, true);
     out.spectrum_grid.push_back(np);
     // Each thread holds the beam field and its padded spectrum.
     checks::memory("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
