@@ -23,31 +23,24 @@ namespace lidar_overlap {
 
 namespace detail {
 
-double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
-  if (np == 0 || !rx.passes_light()) return 0.0;
-  const std::size_t nb = at_z.n;
-  const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
-  const Vec2 c = system.beam.center(z), o = system.detector.offset;
+namespace {
 
+// The Parseval sum of overlap_from_irradiance over the irradiance sample(iy, ix) (nb x nb samples of
+// spacing dx, centred on index nb/2), of which rows [first, last) hold the power.
+template <class Sample>
+double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, std::size_t np, std::size_t nb,
+                    double dx, std::size_t first, std::size_t last, Sample&& sample) {
+  const double d = rx.detector_distance(), to_image = d / z;
+  const Vec2 c = system.beam.center(z), o = system.detector.offset;
   // The irradiance zero-padded to np x np, transformed: only the rows that hold its power are transformed
-  // along x (a far beam fills a few dozen of the nb: rows below 1e-20 of the total power, together at most
-  // nb 1e-20 of G, are left out); the spectrum of a real irradiance is Hermitian (S(-f) = conj S(f)), so
-  // only the columns kx = 0 ... np/2 are transformed along y. At most a third of the full 2-D transform.
+  // along x (a far beam fills a few dozen of the nb); the spectrum of a real irradiance is Hermitian
+  // (S(-f) = conj S(f)), so only the columns kx = 0 ... np/2 are transformed along y. At most a third of
+  // the full 2-D transform.
   const std::size_t off = np / 2 - nb / 2, half = np / 2 + 1;
-  std::vector<double> row_power(nb, 0.0);
-  double total = 0.0;
-  for (std::size_t iy = 0; iy < nb; ++iy) {
-    for (std::size_t ix = 0; ix < nb; ++ix) row_power[iy] += std::norm(at_z.values[iy * nb + ix]);
-    total += row_power[iy];
-  }
-  std::size_t first = 0, last = nb;  // rows [first, last) are transformed
-  while (first < last && row_power[first] <= 1e-20 * total) ++first;
-  while (last > first && row_power[last - 1] <= 1e-20 * total) --last;
   const std::size_t used = last - first;
   ComplexBuffer rows(used * np, Complex{});
   for (std::size_t iy = first; iy < last; ++iy)
-    for (std::size_t ix = 0; ix < nb; ++ix)
-      rows[(iy - first) * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
+    for (std::size_t ix = 0; ix < nb; ++ix) rows[(iy - first) * np + ix + off] = sample(iy, ix);
   const int threads = fft_threads(np * np);
   detail::row_pass(rows.data(), used, np, FftDirection::forward, threads);
   ComplexBuffer spectrum(half * np, Complex{});  // column kx at spectrum[kx * np + ky]
@@ -123,6 +116,25 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
 }
 
+}  // namespace
+
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
+  if (np == 0 || !rx.passes_light()) return 0.0;
+  const std::size_t nb = at_z.n;
+  // Rows below 1e-20 of the total power (together at most nb 1e-20 of G) are left out of the transform.
+  std::vector<double> row_power(nb, 0.0);
+  double total = 0.0;
+  for (std::size_t iy = 0; iy < nb; ++iy) {
+    for (std::size_t ix = 0; ix < nb; ++ix) row_power[iy] += std::norm(at_z.values[iy * nb + ix]);
+    total += row_power[iy];
+  }
+  std::size_t first = 0, last = nb;
+  while (first < last && row_power[first] <= 1e-20 * total) ++first;
+  while (last > first && row_power[last - 1] <= 1e-20 * total) --last;
+  return parseval_sum(system, rx, z, np, nb, at_z.spacing, first, last,
+                      [&](std::size_t iy, std::size_t ix) { return std::norm(at_z.values[iy * nb + ix]); });
+}
+
 std::size_t even_fast_fft_size(std::size_t n) {
   std::size_t m = fast_fft_size(n);
   while (m % 2) m = fast_fft_size(m + 1);
@@ -175,6 +187,9 @@ struct BeamAtRanges {
   std::size_t n = 0;
   std::vector<double> spacing, radius_bound;
   std::function<Propagated(std::size_t)> at;
+  // Or, for a beam known in closed form: G at range i for its receiver and spectrum size, and its report.
+  std::function<double(std::size_t, const FoReceiver&, std::size_t)> overlap;
+  std::vector<PropagationReport> reports;
 };
 
 FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
@@ -207,6 +222,11 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
   // Ranges in parallel; the work inside each runs on one thread (nested regions stay inactive).
   detail::parallel_for(n_ranges, threads, [&](std::size_t i) {
     if (out.spectrum_grid[i] == 0) return;  // no light reaches the detector plane: G = 0
+    if (beam_at.overlap) {
+      out.overlap[i] = beam_at.overlap(i, receivers[i], out.spectrum_grid[i]);
+      out.beam_reports[i] = beam_at.reports[i];
+      return;
+    }
     Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
     out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;
@@ -249,7 +269,6 @@ std::optional<FoOverlap> tem00_in_closed_form(const LidarSystem& system, const s
   const GridChoice extent = choose_grid(waist, 0.0, PropagationMethod::automatic);
   BeamAtRanges b;
   b.n = nb;
-  std::vector<PropagationReport> reports;
   for (double z : ranges) {
     const bool as = z <= critical;
     const double spacing = as ? dx0 : beam.wavelength * z / (nb * dx0), w = beam.radius(z);
@@ -261,19 +280,24 @@ std::optional<FoOverlap> tem00_in_closed_form(const LidarSystem& system, const s
     r.critical_distance = critical;
     r.input_edge_power = outside_square((half - border) * dx0, beam.waist_radius);
     r.output_edge_power = outside_square((half - border) * spacing, w);
-    reports.push_back(r);
+    b.reports.push_back(r);
   }
-  b.at = [&](std::size_t i) {
-    const double w = beam.radius(ranges[i]);
+  b.overlap = [&](std::size_t i, const FoReceiver& rx, std::size_t np) {
+    if (!rx.passes_light()) return 0.0;
+    // exp(-2 x^2 / w^2) per axis; samples below 1e-40 of the peak are zero (rows of them are not transformed).
+    const double w = beam.radius(ranges[i]), dx = b.spacing[i];
     std::vector<double> g(nb);
-    Field f{ComplexBuffer(nb * nb), nb, b.spacing[i], beam.wavelength};
+    double sum_g = 0.0;
     for (std::size_t k = 0; k < nb; ++k) {
-      const double x = f.coordinate(k);
-      g[k] = std::exp(-x * x / (w * w));
+      const double x = (static_cast<double>(k) - 0.5 * static_cast<double>(nb)) * dx, v = std::exp(-2.0 * x * x / (w * w));
+      g[k] = v < 1e-40 ? 0.0 : v;
+      sum_g += g[k];
     }
-    for (std::size_t iy = 0; iy < nb; ++iy)
-      for (std::size_t ix = 0; ix < nb; ++ix) f.values[iy * nb + ix] = g[iy] * g[ix];
-    return Propagated{std::move(f), reports[i]};
+    std::size_t first = 0, last = nb;  // rows below 1e-20 of the power are left out, as for a sampled field
+    while (first < last && g[first] <= 1e-20 * sum_g) ++first;
+    while (last > first && g[last - 1] <= 1e-20 * sum_g) --last;
+    return detail::parseval_sum(system, rx, ranges[i], np, nb, dx, first, last,
+                        [&](std::size_t iy, std::size_t ix) { return g[iy] * g[ix]; });
   };
   return overlap_over_ranges(system, ranges, b, options);
 }
