@@ -9,10 +9,10 @@ mrad):
   4x the nodes. Wall and CPU time (all threads: the machine is shared) are each the least of the
   rounds, with the load average before and after.
 - floor (2-D path): the FFTs it cannot avoid, timed in the same run with FFTW's measured 2-D plans
-  (`_core._fft_pair_seconds`, one thread, no copies): per range one n^2 transform of the beam (half
-  a pair; the propagation's least) and the padded irradiance spectrum (about np 1-D transforms of
-  np points, a quarter of an np^2 pair), summed over the ranges' own np; the 2-D path's CPU time on
-  one thread is given as a multiple of it.
+  (`_core._fft_pair_seconds`, one thread, no copies): per range the padded irradiance spectrum
+  (about np 1-D transforms of np points, a quarter of an np^2 pair), summed over the ranges' own np;
+  the TEM00 beam at each range is in closed form (no transform of the beam grid). The 2-D path's
+  CPU time on one thread is given as a multiple of it.
 - direct: Appendix C one emitter at a time (C3-C6) at a few ranges: for each of 7 x 7 Gauss-Hermite
   scatterers of the Gaussian beam, the aperture field exp(i psi |A|^2) exp(-i k A.P/z) (spherical
   wave, lens C4 and the propagation phase to the detector plane combined into psi; sampled at 4
@@ -105,8 +105,8 @@ def fft_floor(system, z):
     """The FFTs of the 2-D path over ranges z (s; see the module docstring)."""
     options = _core.FoOptions()
     grids = _core.overlap_fo(system._native, z, options).spectrum_grid
-    pair = {n: _core._fft_pair_seconds(int(n), 20, False) for n in {options.beam_grid, *grids}}
-    return sum(0.5 * pair[options.beam_grid] + 0.25 * pair[n] for n in grids if n > 0)
+    pair = {n: _core._fft_pair_seconds(int(n), 20, False) for n in set(grids) if n > 0}
+    return sum(0.25 * pair[n] for n in grids if n > 0)
 
 
 def main():

@@ -131,14 +131,23 @@ LONG_CALLS = {
     ),
     "fo_2d_many_ranges": (
         "",
-        "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 400), 'fo', fo_path='2d')",
+        "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 4000), 'fo', fo_path='2d')",
         (WARM_CPU,),
     ),
-    # few ranges, each long: the beam's transforms and the spectrum's sums of a 2048^2 grid
+    # ranges each long: the spectrum's transforms and sums of a 2048^2 grid (the TEM00 beam at each
+    # range in closed form)
     "fo_2d_large_grid": (
         "",
-        "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 16), 'fo', fo_path='2d', "
+        "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 200), 'fo', fo_path='2d', "
         "beam_grid=2048)",
+        (WARM_CPU, 2.0),
+    ),
+    # the same with the beam's own transforms: a window that cuts 1e-19 of the waist's power, too
+    # much for the closed form, so the sampled field is propagated
+    "fo_2d_large_grid_propagated": (
+        "",
+        "lo.overlap(lo.paper_table1(), np.geomspace(50, 3000, 16), 'fo', fo_path='2d', "
+        "beam_grid=2048, beam_window=9.0)",
         (WARM_CPU, 2.0),
     ),
     # a given field: its power and extent (serial sums over the grid), then its propagations

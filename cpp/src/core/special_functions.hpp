@@ -78,4 +78,10 @@ inline double scaled_bessel_i1(double x) {
   return detail::chebyshev(detail::kI1eFar, 16.0 / x - 1.0) / std::sqrt(x);
 }
 
+// J0(x) and J1(x): the C library's (POSIX j0, j1), ~0.1 us a call and within ~1e-15 of the value, where
+// std::cyl_bessel_j costs ~7 us at the arguments of the Fourier-optics integrals (x up to ~1e3) and strays
+// by up to 3e-14 there.
+inline double bessel_j0(double x) { return ::j0(x); }
+inline double bessel_j1(double x) { return ::j1(x); }
+
 }  // namespace lidar_overlap

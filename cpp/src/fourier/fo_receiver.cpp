@@ -7,6 +7,7 @@
 
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "core/special_functions.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
 
@@ -75,7 +76,7 @@ double FoReceiver::point_coupling(double offset) const {
   for (std::size_t i = 0; i <= pieces; ++i) points[i] = qc * static_cast<double>(i) / pieces;
   auto integrand = [&](double q) {
     detail::cancellation_point();
-    return otf(q) * disc_transform(r_d_, q) * std::cyl_bessel_j(0.0, 2.0 * kPi * q * offset) * 2.0 * kPi * q;
+    return otf(q) * disc_transform(r_d_, q) * bessel_j0(2.0 * kPi * q * offset) * 2.0 * kPi * q;
   };
   return integrate(integrand, points.data(), points.size(), 1e-10 * area_, 100000).value / area_;
 }

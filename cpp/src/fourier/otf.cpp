@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/constants.hpp"
+#include "core/special_functions.hpp"
 
 namespace lidar_overlap {
 
@@ -129,7 +130,7 @@ double annular_otf(const AnnularPupil& p, double v) {
 
 double disc_transform(double r, double q) {
   if (q == 0.0) return kPi * r * r;
-  return r * std::cyl_bessel_j(1.0, 2.0 * kPi * q * r) / q;
+  return r * bessel_j1(2.0 * kPi * q * r) / q;
 }
 
 }  // namespace lidar_overlap

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -22,26 +23,31 @@ namespace lidar_overlap {
 
 namespace detail {
 
-double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
-  if (np == 0 || !rx.passes_light()) return 0.0;
-  const std::size_t nb = at_z.n;
-  const double d = rx.detector_distance(), to_image = d / z, dx = at_z.spacing;
-  const Vec2 c = system.beam.center(z), o = system.detector.offset;
+namespace {
 
-  // The irradiance zero-padded to np x np, transformed: only its nb rows hold values, so only they are
-  // transformed along x; the spectrum of a real irradiance is Hermitian (S(-f) = conj S(f)), so only the
-  // columns kx = 0 ... np/2 are transformed along y. About a third of the full 2-D transform.
+// The Parseval sum of overlap_from_irradiance over the irradiance sample(iy, ix) (nb x nb samples of
+// spacing dx, centred on index nb/2), of which rows [first, last) hold the power.
+template <class Sample>
+double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, std::size_t np, std::size_t nb,
+                    double dx, std::size_t first, std::size_t last, Sample&& sample) {
+  const double d = rx.detector_distance(), to_image = d / z;
+  const Vec2 c = system.beam.center(z), o = system.detector.offset;
+  // The irradiance zero-padded to np x np, transformed: only the rows that hold its power are transformed
+  // along x (a far beam fills a few dozen of the nb); the spectrum of a real irradiance is Hermitian
+  // (S(-f) = conj S(f)), so only the columns kx = 0 ... np/2 are transformed along y. At most a third of
+  // the full 2-D transform.
   const std::size_t off = np / 2 - nb / 2, half = np / 2 + 1;
-  ComplexBuffer rows(nb * np, Complex{});
-  for (std::size_t iy = 0; iy < nb; ++iy)
-    for (std::size_t ix = 0; ix < nb; ++ix) rows[iy * np + ix + off] = std::norm(at_z.values[iy * nb + ix]);
+  const std::size_t used = last - first;
+  ComplexBuffer rows(used * np, Complex{});
+  for (std::size_t iy = first; iy < last; ++iy)
+    for (std::size_t ix = 0; ix < nb; ++ix) rows[(iy - first) * np + ix + off] = sample(iy, ix);
   const int threads = fft_threads(np * np);
-  detail::row_pass(rows.data(), nb, np, FftDirection::forward, threads);
+  detail::row_pass(rows.data(), used, np, FftDirection::forward, threads);
   ComplexBuffer spectrum(half * np, Complex{});  // column kx at spectrum[kx * np + ky]
   for (std::size_t k0 = 0; k0 < half; k0 += kFftBlock) {  // gathered in blocks of columns (cache lines)
     const std::size_t count = std::min(kFftBlock, half - k0);
-    for (std::size_t iy = 0; iy < nb; ++iy)
-      for (std::size_t k = 0; k < count; ++k) spectrum[(k0 + k) * np + iy + off] = rows[iy * np + k0 + k];
+    for (std::size_t iy = 0; iy < used; ++iy)
+      for (std::size_t k = 0; k < count; ++k) spectrum[(k0 + k) * np + iy + first + off] = rows[iy * np + k0 + k];
   }
   detail::row_pass(spectrum.data(), half, np, FftDirection::forward, threads);
   const double e0 = spectrum[0].real();
@@ -73,29 +79,66 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   // (+-fx, +-fy): column kx in (0, np/2) also stands for its mirror np - kx, whose spectrum is conj(S) at
   // the opposite fy (Hermitian), and rows ky and np - ky share |fy|.
   const ShiftPhases phase(np, df, c + (1.0 / to_image) * o);
+  // Per column: the rows' q (|f| z / d) and their transfer values first (a gather from the table), then the
+  // terms in a loop the compiler vectorises.
+  const std::size_t rows_half = np / 2 + 1;
+  std::vector<double> fy2(rows_half), t(rows_half);
+  for (std::size_t ky = 0; ky < rows_half; ++ky) fy2[ky] = (df * static_cast<double>(ky)) * (df * static_cast<double>(ky));
+  const double inverse_to_image = 1.0 / to_image;
   double sum = 0.0;
   for (std::size_t kx = 0; kx < half; ++kx) {
     detail::cancellation_point();
-    const double fx = df * signed_index(kx);
-    if (std::abs(fx) / to_image >= q_max) continue;  // every q in this column is beyond the table
+    const double fx = df * signed_index(kx), fx2 = fx * fx;
+    if (std::abs(fx) * inverse_to_image >= q_max) continue;  // every q in this column is beyond the table
+    std::size_t rows_in = 0;  // rows ky < rows_in have q < q_max (q grows with ky)
+    for (; rows_in < rows_half; ++rows_in) {
+      const double q = std::sqrt(fx2 + fy2[rows_in]) * inverse_to_image;
+      if (q >= q_max) break;
+      t[rows_in] = transfer(q);
+    }
+    if (rows_in == 0) continue;
     // The mirror column's term at row np - ky is the conjugate product (its phases are the conjugates of
     // this column's at row ky, its spectrum conj(S)): the same real part, so each term counts twice.
     const double mirrored = (kx != 0 && kx != np / 2) ? 2.0 : 1.0;
     const Complex px = phase.x[kx];
     const Complex* column = spectrum.data() + kx * np;
-    auto term = [&](std::size_t ky) {  // Re[px py conj(S)], as std::complex computes it
+    auto term = [&](std::size_t ky) {  // Re[px py conj(S)]
       const Complex p = detail::product(px, phase.y[ky]), s = column[ky];
-      return p.real() * s.real() - p.imag() * -s.imag();
+      return p.real() * s.real() + p.imag() * s.imag();
     };
-    for (std::size_t ky = 0; ky <= np / 2; ++ky) {
-      const double fy = df * static_cast<double>(ky);
-      const double q = std::sqrt(fx * fx + fy * fy) / to_image;
-      if (q >= q_max) break;  // q grows with ky
-      const bool paired = ky != 0 && ky != np / 2;
-      sum += transfer(q) * (mirrored * (paired ? term(ky) + term(np - ky) : term(ky)));
-    }
+    // Rows ky and np - ky share |fy|: rows 0 and np/2 stand alone.
+    double in_column = t[0] * term(0);
+    const std::size_t paired_end = std::min(rows_in, np / 2);
+    for (std::size_t ky = 1; ky < paired_end; ++ky) in_column += t[ky] * (term(ky) + term(np - ky));
+    if (rows_in == rows_half) in_column += t[np / 2] * term(np / 2);
+    sum += mirrored * in_column;
   }
   return sum * df * df / (to_image * to_image) / (rx.aperture_area() * e0);
+}
+
+}  // namespace
+
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
+  if (np == 0 || !rx.passes_light()) return 0.0;
+  const std::size_t nb = at_z.n;
+  // Rows below 1e-20 of the total power (together at most nb 1e-20 of G) are left out of the transform.
+  std::vector<double> row_power(nb, 0.0);
+  double total = 0.0;
+  for (std::size_t iy = 0; iy < nb; ++iy) {
+    for (std::size_t ix = 0; ix < nb; ++ix) row_power[iy] += std::norm(at_z.values[iy * nb + ix]);
+    total += row_power[iy];
+  }
+  std::size_t first = 0, last = nb;
+  while (first < last && row_power[first] <= 1e-20 * total) ++first;
+  while (last > first && row_power[last - 1] <= 1e-20 * total) --last;
+  return parseval_sum(system, rx, z, np, nb, at_z.spacing, first, last,
+                      [&](std::size_t iy, std::size_t ix) { return std::norm(at_z.values[iy * nb + ix]); });
+}
+
+std::size_t even_fast_fft_size(std::size_t n) {
+  std::size_t m = fast_fft_size(n);
+  while (m % 2) m = fast_fft_size(m + 1);
+  return m;
 }
 
 ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
@@ -108,7 +151,7 @@ ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
 
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
                           double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
-                          double tail_error) {
+                          double tail_error, bool any_fast_size) {
   // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
   // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
   // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
@@ -120,8 +163,8 @@ std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, doubl
   // The aliases also sit in the far diffraction tails of each other's point images: their period must
   // keep those below tail_error of G (1e-6: 4e-7 measured against a direct quadrature).
   const double period = 1.1 * reach + rx.tail_period(tail_error);
-  const std::size_t np =
-      next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image)))));
+  const std::size_t least = std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image))));
+  const std::size_t np = any_fast_size && least <= max_grid ? even_fast_fft_size(least) : next_power_of_two(least);
   if (np > max_grid)
     checks::fail(detail::range_name(range_index), z,
                  "a range needing a beam spectrum grid of at most max_spectrum_grid = " + std::to_string(max_grid) +
@@ -144,6 +187,9 @@ struct BeamAtRanges {
   std::size_t n = 0;
   std::vector<double> spacing, radius_bound;
   std::function<Propagated(std::size_t)> at;
+  // Or, for a beam known in closed form: G at range i for its receiver and spectrum size, and its report.
+  std::function<double(std::size_t, const FoReceiver&, std::size_t)> overlap;
+  std::vector<PropagationReport> reports;
 };
 
 FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
@@ -161,7 +207,7 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
     receivers.emplace_back(system, z, detail::range_name(i));
     const FoReceiver& rx = receivers.back();
     const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
-                                                 options.max_spectrum_grid, i);
+                                                 options.max_spectrum_grid, i, 5e-7, true);
     out.spectrum_grid.push_back(np);
     // Each thread holds the beam field and its padded spectrum.
     checks::memory("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
@@ -176,6 +222,11 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
   // Ranges in parallel; the work inside each runs on one thread (nested regions stay inactive).
   detail::parallel_for(n_ranges, threads, [&](std::size_t i) {
     if (out.spectrum_grid[i] == 0) return;  // no light reaches the detector plane: G = 0
+    if (beam_at.overlap) {
+      out.overlap[i] = beam_at.overlap(i, receivers[i], out.spectrum_grid[i]);
+      out.beam_reports[i] = beam_at.reports[i];
+      return;
+    }
     Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
     out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;
@@ -188,6 +239,67 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
                        : std::string();
   });
   return out;
+}
+
+// Power of a Gaussian irradiance of radius w (m) outside the centred square of half-width a (m).
+double outside_square(double a, double w) {
+  const double e = std::erfc(std::sqrt(2.0) * a / w);
+  return e * (2.0 - e);
+}
+
+// Power the sampled TEM00 path may lose to its window (cut at the waist, wrapped at a range) for the field
+// it propagates to equal the Gaussian of radius w(z) sampled in closed form: the cut field's difference
+// carries at most this power, so the irradiance moves by at most 2 sqrt(1e-20) = 2e-10 of its peak
+// (measured: G within 1e-13 of the propagated field's at the default window).
+constexpr double kNegligibleCut = 1e-20;
+
+// The 2-D path of a TEM00 beam with the propagation (C1-C2) in closed form: the field at z is the Gaussian of
+// radius w(z) on the grid that PropagationPlan would give it (the waist's spacing up to the critical distance
+// nb dx0^2 / lambda, the Fresnel spacing lambda z / (nb dx0) beyond), its irradiance all the sum needs (its
+// phase is left out), the reports' edge powers in closed form. The sampled field `waist` sets the radius
+// bound as in the general path. Empty where the window cuts or wraps more than kNegligibleCut of the power:
+// there the field is propagated, and its loss is reported.
+std::optional<FoOverlap> tem00_in_closed_form(const LidarSystem& system, const std::vector<double>& ranges,
+                                              const Field& waist, const FoOptions& options) {
+  const GaussianBeam& beam = system.beam;
+  const std::size_t nb = waist.n;
+  const double dx0 = waist.spacing, critical = nb * dx0 * dx0 / beam.wavelength;
+  const double border = static_cast<double>(std::max<std::size_t>(1, nb / 16)), half = 0.5 * static_cast<double>(nb);
+  if (outside_square(half * dx0, beam.waist_radius) > kNegligibleCut) return std::nullopt;
+  const GridChoice extent = choose_grid(waist, 0.0, PropagationMethod::automatic);
+  BeamAtRanges b;
+  b.n = nb;
+  for (double z : ranges) {
+    const bool as = z <= critical;
+    const double spacing = as ? dx0 : beam.wavelength * z / (nb * dx0), w = beam.radius(z);
+    if (outside_square(half * spacing, w) > kNegligibleCut) return std::nullopt;
+    b.spacing.push_back(spacing);
+    b.radius_bound.push_back(extent.input_radius + z * extent.angular_radius);
+    PropagationReport r;
+    r.method = as ? PropagationMethod::angular_spectrum : PropagationMethod::fresnel;
+    r.critical_distance = critical;
+    r.input_edge_power = outside_square((half - border) * dx0, beam.waist_radius);
+    r.output_edge_power = outside_square((half - border) * spacing, w);
+    b.reports.push_back(r);
+  }
+  b.overlap = [&](std::size_t i, const FoReceiver& rx, std::size_t np) {
+    if (!rx.passes_light()) return 0.0;
+    // exp(-2 x^2 / w^2) per axis; samples below 1e-40 of the peak are zero (rows of them are not transformed).
+    const double w = beam.radius(ranges[i]), dx = b.spacing[i];
+    std::vector<double> g(nb);
+    double sum_g = 0.0;
+    for (std::size_t k = 0; k < nb; ++k) {
+      const double x = (static_cast<double>(k) - 0.5 * static_cast<double>(nb)) * dx, v = std::exp(-2.0 * x * x / (w * w));
+      g[k] = v < 1e-40 ? 0.0 : v;
+      sum_g += g[k];
+    }
+    std::size_t first = 0, last = nb;  // rows below 1e-20 of the power are left out, as for a sampled field
+    while (first < last && g[first] <= 1e-20 * sum_g) ++first;
+    while (last > first && g[last - 1] <= 1e-20 * sum_g) --last;
+    return detail::parseval_sum(system, rx, ranges[i], np, nb, dx, first, last,
+                        [&](std::size_t iy, std::size_t ix) { return g[iy] * g[ix]; });
+  };
+  return overlap_over_ranges(system, ranges, b, options);
 }
 
 }  // namespace
@@ -207,10 +319,12 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   detail::checked_threads_and_ranges(system, ranges, options.threads);
   const std::size_t nb = options.beam_grid;
   const double theta_d = beam.wavelength / (kPi * beam.waist_radius);
-  if (!beam.divergence || std::abs(*beam.divergence / theta_d - 1.0) <= 1e-9)
-    return overlap_fo(system, ranges,
-                      Field::gaussian(beam.wavelength, beam.waist_radius, nb, options.beam_window * beam.waist_radius / nb),
-                      options);
+  if (!beam.divergence || std::abs(*beam.divergence / theta_d - 1.0) <= 1e-9) {
+    const double dx0 = options.beam_window * beam.waist_radius / nb;
+    const Field waist = Field::gaussian(beam.wavelength, beam.waist_radius, nb, dx0);
+    if (std::optional<FoOverlap> closed = tem00_in_closed_form(system, ranges, waist, options)) return *closed;
+    return overlap_fo(system, ranges, waist, options);
+  }
   // M^2 > 1: a Gaussian Schell-model beam. Its coherent modes add incoherently to a Gaussian irradiance of
   // radius w(z)^2 = w0^2 + (theta z)^2 at every range, and the overlap needs only the irradiance.
   // Sampled like the TEM00 path's field: the waist's spacing while the beam is near its waist, then the

@@ -30,9 +30,14 @@ struct ShiftPhases {
 
 // The padded spectrum size for a beam of grid `spacing` (m) and n samples whose power (all but 1e-7) lies
 // within `radius_bound` (m), the aliases' diffraction tails kept below `tail_error` of G; throws naming
-// ranges[range_index] above max_grid; 0 when no light reaches the detector plane (G = 0).
+// ranges[range_index] above max_grid; 0 when no light reaches the detector plane (G = 0). The size is a
+// power of two, or with `any_fast_size` the least even 2^a 3^b 5^c 7^d that holds the alias period (up to
+// half the work per axis: the period only has to be reached, and FFTW transforms these sizes as fast).
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
                           double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
-                          double tail_error = 1e-6);
+                          double tail_error = 1e-6, bool any_fast_size = false);
+
+// Least even m >= n of the form 2^a 3^b 5^c 7^d.
+std::size_t even_fast_fft_size(std::size_t n);
 
 }  // namespace lidar_overlap::detail

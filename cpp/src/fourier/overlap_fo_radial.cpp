@@ -8,6 +8,7 @@
 #include "lidar_overlap/fourier/overlap_fo.hpp"
 #include "core/checks.hpp"
 #include "core/constants.hpp"
+#include "core/special_functions.hpp"
 #include "core/entry_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/quadrature.hpp"
@@ -56,7 +57,7 @@ double gaussian_image_overlap(const LidarSystem& system, double z, double period
     double panel = 0.0;
     for (std::size_t i = 0; i < rule.x.size(); ++i) {
       const double q = mid + half * rule.x[i];
-      const double shift = offset > 0.0 ? std::cyl_bessel_j(0.0, 2.0 * kPi * q * offset) : 1.0;
+      const double shift = offset > 0.0 ? bessel_j0(2.0 * kPi * q * offset) : 1.0;
       panel += rule.w[i] * rx.otf(q) * disc_transform(r_d, q) * std::exp(-g2 * q * q) * shift * q;
     }
     sum += half * panel;
