@@ -226,7 +226,7 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
                      "spread (lambda / r0)");
   const double n2 = double(n) * double(n);
   checks::memory("beam_grid", static_cast<double>(n),
-                 16.0 * n2 * double(o.screens) + 16.0 * double(threads) * n2 * (2.0 * double(fields) + 5.0),
+                 16.0 * n2 * double(o.screens) + 16.0 * double(threads) * n2 * (2.0 * double(fields) + 7.0),
                  "lower beam_grid, receiver_fields or screens");
 
   TurbulentOverlap out;
@@ -246,48 +246,66 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
     std::vector<std::vector<Field>> back(2);
     for (std::size_t c = 0; c < 2; ++c)
       for (std::size_t m = 0; m < fields; ++m) back[c].push_back(rx.pupil_field(rx_seed, 2 * pair + c, m));
-    ComplexBuffer phasor(n * n), spectrum;
+    // A screen's exp(i phase) per draw, shared by its beam and receiver fields, applied in the next step's Q1
+    // pass (directly if no step follows at once).
+    std::array<ComplexBuffer, 2> phasor{ComplexBuffer(n * n), ComplexBuffer(n * n)};
+    ComplexBuffer spectrum;
     std::array<std::vector<double>, 2> screens;
+    std::vector<double> irradiance(2 * n * n), es(2 * fields), eu(2 * fields);
+    bool pending = false;
     for (std::size_t s = 0; s < planes.size(); ++s) {
       const Plane& p = planes[s];
       for (std::size_t c = 0; c < 2; ++c) {
-        if (steps[s]) {
-          steps[s]->execute(beams[c]);
-          for (Field& v : back[c]) steps[s]->execute(v);
-        }
+        const Complex* shared = pending ? phasor[c].data() : nullptr;
+        auto advance = [&](Field& u) {
+          if (steps[s])
+            steps[s]->execute(u, nullptr, nullptr, nullptr, shared);
+          else if (shared)
+            for (std::size_t i = 0; i < n * n; ++i) u.values[i] *= shared[i];
+        };
+        advance(beams[c]);
+        for (Field& v : back[c]) advance(v);
       }
-      if (p.screen >= 0) {
+      pending = p.screen >= 0;
+      if (pending) {
         const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
         generators[p.screen]->generate_pair(stream, pair, screens, spectrum);
-        for (std::size_t c = 0; c < 2; ++c) {
-          for (std::size_t i = 0; i < n * n; ++i) phasor[i] = detail::phasor(screens[c][i]);
-          auto shared = [&](Field& u) { for (std::size_t i = 0; i < n * n; ++i) u.values[i] *= phasor[i]; };
-          shared(beams[c]);
-          for (Field& v : back[c]) shared(v);
-        }
+        for (std::size_t c = 0; c < 2; ++c)
+          for (std::size_t i = 0; i < n * n; ++i) phasor[c][i] = detail::phasor(screens[c][i]);
       }
       if (p.range < 0) continue;
       // G of each receiver field alone (their mean is the draw's G; their spread over sqrt(M) its random-phase
-      // standard error), with this draw's beam and with the other draw's.
+      // standard error), with this draw's beam and with the other draw's: each beam's irradiance once, then one
+      // pass per field index over both draws' fields.
       const double lz = lambda * p.z, factor = lz * lz / (area * n4);
+      double e[2] = {0.0, 0.0};
+      for (std::size_t c = 0; c < 2; ++c)
+        for (std::size_t i = 0; i < n * n; ++i) e[c] += irradiance[c * n * n + i] = std::norm(beams[c].values[i]);
+      for (std::size_t m = 0; m < fields; ++m) {
+        detail::cancellation_point();  // up to 1000 receiver fields of n^2 samples
+        const double* v0 = irradiance.data();
+        const double* v1 = v0 + n * n;
+        const Complex* b0 = back[0][m].values.data();
+        const Complex* b1 = back[1][m].values.data();
+        double s0 = 0.0, s1 = 0.0, u0 = 0.0, u1 = 0.0;
+        for (std::size_t i = 0; i < n * n; ++i) {
+          const double w0 = std::norm(b0[i]), w1 = std::norm(b1[i]);
+          s0 += v0[i] * w0;
+          u0 += v0[i] * w1;
+          s1 += v1[i] * w1;
+          u1 += v1[i] * w0;
+        }
+        es[m] = s0, eu[m] = u0, es[fields + m] = s1, eu[fields + m] = u1;
+      }
       for (std::size_t c = 0; c < 2; ++c) {
         const std::size_t k = 2 * pair + c;
         if (k < first || k >= end) continue;
-        double e = 0.0;
-        for (std::size_t i = 0; i < n * n; ++i) e += std::norm(beams[c].values[i]);
         double sum = 0.0, sum2 = 0.0, unc = 0.0;
         for (std::size_t m = 0; m < fields; ++m) {
-          detail::cancellation_point();  // up to 1000 receiver fields of n^2 samples
-          double es = 0.0, eu = 0.0;
-          for (std::size_t i = 0; i < n * n; ++i) {
-            const double v = std::norm(beams[c].values[i]);
-            es += v * std::norm(back[c][m].values[i]);
-            eu += v * std::norm(back[1 - c][m].values[i]);
-          }
-          const double g = es * factor / e;
+          const double g = es[c * fields + m] * factor / e[c];
           sum += g;
           sum2 += g * g;
-          unc += eu * factor / e;
+          unc += eu[c * fields + m] * factor / e[c];
         }
         const double mean = sum / double(fields);
         out.overlap[k - first][p.range] = mean;

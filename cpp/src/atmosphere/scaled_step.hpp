@@ -43,7 +43,9 @@ class ScaledStep {
   // `screen` (n x n phases in rad, or null): a phase screen at the plane the step leaves, applied in the
   // pass of Q1 (exp(i screen) first, as apply_phase_screen would, by detail::phasor). `map` (n x n, or null): on return,
   // row_sums[2 iy] and row_sums[2 iy + 1] hold sum |u|^2 and sum |u|^2 map over row iy of the field reached.
-  void execute(Field& u, const double* screen = nullptr, const double* map = nullptr, double* row_sums = nullptr) const {
+  // `phasor` (n x n, or null; with no screen): exp(i screen) made beforehand, for fields that share a screen.
+  void execute(Field& u, const double* screen = nullptr, const double* map = nullptr, double* row_sums = nullptr,
+               const Complex* phasor_table = nullptr) const {
     cancellation_point();
     const int threads = fft_threads(n_ * n_);
     const std::size_t n = n_;
@@ -52,6 +54,9 @@ class ScaledStep {
       if (screen) {
         const double* phase = screen + iy * n;
         for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], phasor(phase[ix]));
+      } else if (phasor_table) {
+        const Complex* p = phasor_table + iy * n;
+        for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], p[ix]);
       }
       const Complex a = in_y_[iy];
       for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], product(a, in_x_[ix]));
