@@ -2,12 +2,12 @@
 error of the mean G at the last ranges against CPU time, for M = 1, 2, 4, 8 at (about) equal CPU.
 
 Each draw of the atmosphere costs one beam and M receiver propagations, so at a fixed budget M = 1
-affords about (1 + 8) / (1 + 1) = 4.5 times the draws of M = 8. The receiver's sensitivity is unbiased
-for every M; its random-phase noise is independent between draws and averages over them like the
-atmosphere's own spread: Var(G of a draw) = s_atm^2 + s_rx^2 / M, so the standard error at a budget B
-is sqrt((s_atm^2 + s_rx^2 / M) c(M) / B), c(M) the CPU time of a draw. The runs below measure it
-directly: the figure of merit is SE x sqrt(CPU s), the standard error one CPU second would give
-(lower is better; each SE is itself uncertain by ~1 / sqrt(2 draws)).
+affords about (1 + 8) / (1 + 1) = 4.5 times the draws of M = 8. The receiver's sensitivity is
+unbiased for every M; its random-phase noise is independent between draws and averages over them
+like the atmosphere's own spread: Var(G of a draw) = s_atm^2 + s_rx^2 / M, so the standard error at
+a budget B is sqrt((s_atm^2 + s_rx^2 / M) c(M) / B), c(M) the CPU time of a draw. The runs below
+measure it directly: the figure of merit is SE x sqrt(CPU s), the standard error one CPU second
+would give (lower is better; each SE is itself uncertain by ~1 / sqrt(2 draws)).
 
 The 5 cm lidar of docs/turbulence.md and bench_turbulent_both.py (1064 nm, w0 = 5 mm, f = 0.5 m,
 detector radius 70 um), Cn^2 = 1e-13 m^-2/3, 20 ranges 100-1000 m, 10 screens, 432^2, all cores.

@@ -189,7 +189,9 @@ def test_one_draw_above_two_is_kept_on_both_paths_but_not_a_mean():
         **kw,
     )
     assert r.realizations[0, 0] == 2.6 and r.high[0] == 2.48
-    with pytest.raises(ValueError, match=r"realizations holds 2.6: expected finite values within \[0, 1\]"):
+    with pytest.raises(
+        ValueError, match=r"realizations holds 2.6: expected finite values within \[0, 1\]"
+    ):
         lo.TurbulentOverlapResult(
             overlap=np.array([0.9]), error_estimate=np.array([0.1]), realizations=draws, **kw
         )
