@@ -174,6 +174,29 @@ def test_a_mean_above_one_is_refused_without_two_way_turbulence():
         )
 
 
+def test_one_draw_above_two_is_kept_on_both_paths_but_not_a_mean():
+    # A single draw's G is not bounded by the two-way limit (a bright spot, or the speckle of one
+    # receiver field): kept as it is; only the mean over draws is held to TWO_WAY_BOUND.
+    s, z = small_lidar(), np.array([500.0])
+    draws = np.array([[2.6], [0.2]])
+    kw = dict(ranges=z, method="fo", system=s, tolerance=math.nan, error_kind="standard_error")
+    r = lo.TurbulentOverlapResult(
+        overlap=draws.mean(axis=0),
+        error_estimate=np.array([1.7]),
+        realizations=draws,
+        high=np.array([2.48]),
+        paths="both",
+        **kw,
+    )
+    assert r.realizations[0, 0] == 2.6 and r.high[0] == 2.48
+    with pytest.raises(
+        ValueError, match=r"realizations holds 2.6: expected finite values within \[0, 1\]"
+    ):
+        lo.TurbulentOverlapResult(
+            overlap=np.array([0.9]), error_estimate=np.array([0.1]), realizations=draws, **kw
+        )
+
+
 def test_turbulent_realizations_through_both_paths_is_lo_overlap():
     pytest.importorskip("xarray")
     s, z = small_lidar(), [300.0, 600.0]

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "lidar_overlap/atmosphere/turbulent_grid.hpp"
 #include "lidar_overlap/core/limits.hpp"
 #include "lidar_overlap/fourier/overlap_fo.hpp"
+#include "atmosphere/phasor.hpp"
 #include "atmosphere/return_path.hpp"
 #include "atmosphere/scaled_step.hpp"
 #include "core/checks.hpp"
@@ -39,11 +41,27 @@ struct Plane {
 // G at one range as a weighted mean of the realisation's irradiance: G = sum E m / sum E. The map m is
 // the Parseval sum of overlap_from_irradiance (overlap_fo.cpp) moved to the beam plane: there G =
 // sum_f T(f) Re[P(f) conj(FFT E)(f)] df^2 / (to_image^2 A E(0)) over the np x np padded grid, and as E is
-// real, sum_f T P conj(FFT E) = sum_x E(x) BFFT[T P](x). m depends on the receiver, not on the
+// real, sum_f T P conj(FFT E) = sum_x E(x) Re BFFT[T P](x). m depends on the receiver, not on the
 // atmosphere: made once per range, it leaves each realisation one pass over its n x n irradiance, with
 // the same aliasing period (np dx) as the direct sum.
+//
+// BFFT[T P] is wanted on the beam's n x n window only, and it is real but for the Nyquist terms: T is even
+// in kx and ky, P = Px(kx) Py(ky) Hermitian per axis. Along x, for each |ky| <= k_max (T = 0 beyond),
+// R(|ky|, x) = sum_kx T Px e^(2 pi i kx x / np) over kx != np/2 is real and the same for ky and -ky: two
+// rows |ky| share one complex transform (as the real and imaginary parts of its input). Along y, m(x, y)
+// = Re sum_ky Py(ky) R(|ky|, x) e^(2 pi i ky y / np) has Hermitian coefficients but at ky = np/2, where only
+// Re Py(np/2) adds to the real part: two window columns share one transform. The Nyquist column kx = np/2
+// (nonzero when q_max reaches it) is a separable term of its own, Re[Px(np/2) (-1)^x S(y)], S the 1-D
+// transform of Py T(np/2, |ky|). A quarter of the row transforms and half of the column ones of the
+// direct 2-D transform, the same map to rounding.
 class CouplingMap {
  public:
+  static constexpr double kMapTable = 1 << 22;  // values of T tabled per map (32 MB)
+  // Bytes a thread needs to make the map of an np grid: T's table (or two rows), R, and a block of transforms.
+  static double workspace(std::size_t n, std::size_t np) {
+    const double width = 0.5 * double(np) + 1.0;
+    return 8.0 * std::min(kMapTable, width * width) + 8.0 * double(n) * width + 16.0 * double(kFftBlock) * double(np);
+  }
   CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n, std::size_t np)
       : n_(n), map_(n * n) {
     if (np == 0) return;  // no light reaches the detector plane (spectrum_grid): a zero map, G = 0
@@ -53,47 +71,112 @@ class CouplingMap {
     const detail::TransferTable transfer(system, rx, q_max);
     // P: the shift to the detector centre's image and (-1)^(kx+ky), the padded grid's origin at np/2.
     const detail::ShiftPhases phase(np, df, system.beam.center(z) + (1.0 / to_image) * system.detector.offset);
-    // BFFT[T P] on the beam's n x n window only: rows of frequencies within q_max, a chunk of rows at a
-    // time, transformed along x and cut to the window's columns; then those columns along y. Rows ky and
-    // -ky are neighbours and share T(|kx|, |ky|), evaluated once per quadrant.
-    const std::size_t off = np / 2 - n / 2, chunk = std::min<std::size_t>(64, np), half = np / 2;
+    const std::size_t off = np / 2 - n / 2, half = np / 2;
     const std::size_t k_max = std::min(half, checks::saturate(q_max * to_image / df));  // beyond: T = 0
-    std::vector<std::size_t> rows{0};
-    for (std::size_t a = 1; a <= k_max; ++a) {
-      rows.push_back(a);
-      if (a < half) rows.push_back(np - a);
-    }
-    std::vector<double> t_row(half + 1);
-    ComplexBuffer block(chunk * np), columns(n * np, Complex{});
-    for (std::size_t r0 = 0; r0 < rows.size(); r0 += chunk) {
-      detail::cancellation_point();  // T at chunk x np frequencies
-      std::fill(block.begin(), block.end(), Complex{});
-      for (std::size_t r = r0; r < std::min(r0 + chunk, rows.size()); ++r) {
-        const std::size_t ky = rows[r];
-        if (ky <= half) {
-          const double fy = df * static_cast<double>(ky);
-          for (std::size_t a = 0; a <= half; ++a) {
-            const double fx = df * static_cast<double>(a), q = std::sqrt(fx * fx + fy * fy) / to_image;
-            t_row[a] = q < q_max ? transfer(q) : 0.0;
-          }
-        }
-        Complex* row = &block[(r - r0) * np];
-        const Complex py = phase.y[ky];
-        for (std::size_t kx = 0; kx < np; ++kx) row[kx] = t_row[kx <= half ? kx : np - kx] * (phase.x[kx] * py);
+    const std::size_t rows = k_max + 1;
+    const RowTransform backward(np, FftDirection::backward);
+    ComplexBuffer block(kFftBlock * np);
+    // T(|kx|, |ky|) on the quarter grid kx = 0 .. np/2, ky < rows, row by row; q grows along a row, so a row
+    // ends at q_max. Up to kMapTable values are tabled first, each evaluated once by T(kx, ky) = T(ky, kx).
+    const std::size_t width = half + 1;
+    const bool tabled = static_cast<double>(rows) * static_cast<double>(width) <= kMapTable;
+    std::vector<double> t(tabled ? rows * width : 0, 0.0), own(tabled ? 0 : 2 * width);
+    auto evaluate = [&](std::size_t ky, std::size_t from, double* row, bool mirror) {
+      const double fy = df * static_cast<double>(ky);
+      for (std::size_t a = from; a <= half; ++a) {
+        const double fx = df * static_cast<double>(a), q = std::sqrt(fx * fx + fy * fy) / to_image;
+        if (!(q < q_max)) break;
+        row[a] = transfer(q);
+        if (mirror && a < rows) t[a * width + ky] = row[a];
       }
-      fft_rows(block, chunk, np, FftDirection::backward);
-      // Transposed in tiles of 8 columns (two cache lines of each row): rows a power of two apart share
-      // cache sets, so a whole column read or written at once would evict itself.
-      const std::size_t r1 = std::min(r0 + chunk, rows.size());
-      for (std::size_t i0 = 0; i0 < n; i0 += 8)
-        for (std::size_t r = r0; r < r1; ++r)
-          for (std::size_t ix = i0; ix < std::min(i0 + 8, n); ++ix) columns[ix * np + rows[r]] = block[(r - r0) * np + ix + off];
+    };
+    for (std::size_t ky = 0; tabled && ky < rows; ++ky) {
+      if (ky % 64 == 0) detail::cancellation_point();  // up to kMapTable / 2 evaluations of T
+      evaluate(ky, ky, &t[ky * width], true);
     }
-    fft_rows(columns, n, np, FftDirection::backward);
+    auto t_row = [&](std::size_t ky, std::size_t slot) -> const double* {
+      if (tabled) return &t[ky * width];
+      double* row = &own[slot * width];
+      std::fill(row, row + width, 0.0);
+      if (ky < rows) evaluate(ky, 0, row, false);
+      return row;
+    };
+    // Along x: r[ix * rows + ky] = R(ky, off + ix), two rows ky per transform, kFftBlock transforms a block;
+    // T(np/2, ky) kept for the Nyquist column.
+    std::vector<double> r(n * rows), nyquist(rows), zeros(width, 0.0);
+    for (std::size_t k0 = 0; k0 < rows; k0 += 2 * kFftBlock) {
+      detail::cancellation_point();  // 2 kFftBlock rows of np
+      const std::size_t count = std::min(kFftBlock, (rows - k0 + 1) / 2);
+      for (std::size_t b = 0; b < count; ++b) {
+        const std::size_t ky = k0 + 2 * b;
+        const double* t_even = t_row(ky, 0);
+        const double* t_odd = ky + 1 < rows ? t_row(ky + 1, 1) : zeros.data();
+        nyquist[ky] = t_even[half];
+        if (ky + 1 < rows) nyquist[ky + 1] = t_odd[half];
+        Complex* row = &block[b * np];
+        for (std::size_t kx = 0; kx < np; ++kx) {
+          const std::size_t a = kx <= half ? kx : np - kx;
+          row[kx] = detail::product(Complex(t_even[a], t_odd[a]), phase.x[kx]);
+        }
+        row[half] = Complex{};  // the Nyquist column: separately, below
+      }
+      backward(block.data(), count);
+      for (std::size_t b = 0; b < count; ++b) {
+        const std::size_t ky = k0 + 2 * b;
+        const Complex* row = &block[b * np + off];
+        for (std::size_t ix = 0; ix < n; ++ix) r[ix * rows + ky] = row[ix].real();
+        if (ky + 1 < rows)
+          for (std::size_t ix = 0; ix < n; ++ix) r[ix * rows + ky + 1] = row[ix].imag();
+      }
+    }
+    // Along y: two window columns per transform.
     const double scale = df * df / (to_image * to_image * rx.aperture_area());
-    for (std::size_t i0 = 0; i0 < n; i0 += 8)
-      for (std::size_t ix = 0; ix < n; ++ix)
-        for (std::size_t iy = i0; iy < std::min(i0 + 8, n); ++iy) map_[iy * n + ix] = columns[ix * np + iy + off].real() * scale;
+    const double nyquist_y = phase.y[half].real();  // Re Py(np/2): all of row np/2 that reaches Re m
+    for (std::size_t c0 = 0; c0 < n; c0 += 2 * kFftBlock) {
+      detail::cancellation_point();
+      const std::size_t count = std::min(kFftBlock, (n - c0) / 2);  // n is even
+      std::fill(block.begin(), block.begin() + count * np, Complex{});
+      for (std::size_t b = 0; b < count; ++b) {
+        const double* ra = &r[(c0 + 2 * b) * rows];
+        const double* rb = ra + rows;
+        Complex* column = &block[b * np];
+        column[0] = Complex(ra[0], rb[0]) * phase.y[0].real();  // Py(0) = 1
+        for (std::size_t ky = 1; ky < rows; ++ky) {
+          if (ky == half) {
+            column[half] = Complex(ra[ky], rb[ky]) * nyquist_y;
+            continue;
+          }
+          column[ky] = Complex(ra[ky] * phase.y[ky].real() - rb[ky] * phase.y[ky].imag(),
+                               ra[ky] * phase.y[ky].imag() + rb[ky] * phase.y[ky].real());
+          const Complex& p = phase.y[np - ky];
+          column[np - ky] = Complex(ra[ky] * p.real() - rb[ky] * p.imag(), ra[ky] * p.imag() + rb[ky] * p.real());
+        }
+      }
+      backward(block.data(), count);
+      for (std::size_t b = 0; b < count; ++b) {
+        const Complex* column = &block[b * np + off];
+        for (std::size_t iy = 0; iy < n; ++iy) {
+          map_[iy * n + c0 + 2 * b] = column[iy].real() * scale;
+          map_[iy * n + c0 + 2 * b + 1] = column[iy].imag() * scale;
+        }
+      }
+    }
+    // The Nyquist column, if T reaches it.
+    if (std::any_of(nyquist.begin(), nyquist.end(), [](double t) { return t != 0.0; })) {
+      Complex* s = block.data();
+      std::fill(s, s + np, Complex{});
+      for (std::size_t ky = 0; ky < rows; ++ky) {
+        s[ky] = nyquist[ky] * phase.y[ky];
+        if (ky > 0 && ky < half) s[np - ky] = nyquist[ky] * phase.y[np - ky];
+      }
+      backward(s, 1);
+      const Complex px = phase.x[half];
+      for (std::size_t iy = 0; iy < n; ++iy)
+        for (std::size_t ix = 0; ix < n; ++ix) {
+          const double sign = (off + ix) % 2 ? -1.0 : 1.0;
+          map_[iy * n + ix] += sign * (px * s[off + iy]).real() * scale;
+        }
+    }
   }
 
   double overlap(const Field& u) const {
@@ -153,53 +236,73 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
     std::vector<std::vector<Field>> back(2);
     for (std::size_t c = 0; c < 2; ++c)
       for (std::size_t m = 0; m < fields; ++m) back[c].push_back(rx.pupil_field(rx_seed, 2 * pair + c, m));
-    ComplexBuffer phasor(n * n);
+    // A screen's exp(i phase) per draw, shared by its beam and receiver fields, applied in the next step's Q1
+    // pass (directly if no step follows at once).
+    std::array<ComplexBuffer, 2> phasor{ComplexBuffer(n * n), ComplexBuffer(n * n)};
+    ComplexBuffer spectrum;
+    std::array<std::vector<double>, 2> screens;
+    std::vector<double> irradiance(2 * n * n), es(2 * fields), eu(2 * fields);
+    bool pending = false;
     for (std::size_t s = 0; s < planes.size(); ++s) {
       const Plane& p = planes[s];
       for (std::size_t c = 0; c < 2; ++c) {
-        if (steps[s]) {
-          steps[s]->execute(beams[c]);
-          for (Field& v : back[c]) steps[s]->execute(v);
-        }
+        const Complex* shared = pending ? phasor[c].data() : nullptr;
+        auto advance = [&](Field& u) {
+          if (steps[s])
+            steps[s]->execute(u, nullptr, nullptr, nullptr, shared);
+          else if (shared)
+            for (std::size_t i = 0; i < n * n; ++i) u.values[i] *= shared[i];
+        };
+        advance(beams[c]);
+        for (Field& v : back[c]) advance(v);
       }
-      if (p.screen >= 0) {
+      pending = p.screen >= 0;
+      if (pending) {
         const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
-        const auto screens = generators[p.screen]->generate_pair(stream, pair);
-        for (std::size_t c = 0; c < 2; ++c) {
-          for (std::size_t i = 0; i < n * n; ++i) phasor[i] = Complex(std::cos(screens[c][i]), std::sin(screens[c][i]));
-          auto shared = [&](Field& u) { for (std::size_t i = 0; i < n * n; ++i) u.values[i] *= phasor[i]; };
-          shared(beams[c]);
-          for (Field& v : back[c]) shared(v);
-        }
+        generators[p.screen]->generate_pair(stream, pair, screens, spectrum);
+        for (std::size_t c = 0; c < 2; ++c)
+          for (std::size_t i = 0; i < n * n; ++i) phasor[c][i] = detail::phasor(screens[c][i]);
       }
       if (p.range < 0) continue;
       // G of each receiver field alone (their mean is the draw's G; their spread over sqrt(M) its random-phase
-      // standard error), with this draw's beam and with the other draw's.
+      // standard error), with this draw's beam and with the other draw's: each beam's irradiance once, then one
+      // pass per field index over both draws' fields.
       const double lz = lambda * p.z, factor = lz * lz / (area * n4);
+      double e[2] = {0.0, 0.0};
+      for (std::size_t c = 0; c < 2; ++c)
+        for (std::size_t i = 0; i < n * n; ++i) e[c] += irradiance[c * n * n + i] = std::norm(beams[c].values[i]);
+      for (std::size_t m = 0; m < fields; ++m) {
+        detail::cancellation_point();  // up to 1000 receiver fields of n^2 samples
+        const double* v0 = irradiance.data();
+        const double* v1 = v0 + n * n;
+        const Complex* b0 = back[0][m].values.data();
+        const Complex* b1 = back[1][m].values.data();
+        double s0 = 0.0, s1 = 0.0, u0 = 0.0, u1 = 0.0;
+        for (std::size_t i = 0; i < n * n; ++i) {
+          const double w0 = std::norm(b0[i]), w1 = std::norm(b1[i]);
+          s0 += v0[i] * w0;
+          u0 += v0[i] * w1;
+          s1 += v1[i] * w1;
+          u1 += v1[i] * w0;
+        }
+        es[m] = s0, eu[m] = u0, es[fields + m] = s1, eu[fields + m] = u1;
+      }
       for (std::size_t c = 0; c < 2; ++c) {
         const std::size_t k = 2 * pair + c;
         if (k < first || k >= end) continue;
-        double e = 0.0;
-        for (std::size_t i = 0; i < n * n; ++i) e += std::norm(beams[c].values[i]);
         double sum = 0.0, sum2 = 0.0, unc = 0.0;
         for (std::size_t m = 0; m < fields; ++m) {
-          detail::cancellation_point();  // up to 1000 receiver fields of n^2 samples
-          double es = 0.0, eu = 0.0;
-          for (std::size_t i = 0; i < n * n; ++i) {
-            const double v = std::norm(beams[c].values[i]);
-            es += v * std::norm(back[c][m].values[i]);
-            eu += v * std::norm(back[1 - c][m].values[i]);
-          }
-          const double g = es * factor / e;
+          const double g = es[c * fields + m] * factor / e[c];
           sum += g;
           sum2 += g * g;
-          unc += eu * factor / e;
+          unc += eu[c * fields + m] * factor / e[c];
         }
         const double mean = sum / double(fields);
         out.overlap[k - first][p.range] = mean;
         out.uncorrelated[k - first][p.range] = unc / double(fields);
         out.receiver_error[k - first][p.range] =
-            fields > 1 ? std::sqrt(std::max(sum2 / double(fields) - mean * mean, 0.0) / double(fields - 1)) : 0.0;
+            fields > 1 ? std::sqrt(std::max(sum2 / double(fields) - mean * mean, 0.0) / double(fields - 1))
+                       : std::numeric_limits<double>::quiet_NaN();  // one field shows no spread
       }
     }
     for (std::size_t c = 0; c < 2; ++c) {
@@ -334,7 +437,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   const double n2 = double(n) * double(n);
   checks::memory("beam_grid", static_cast<double>(n),
                  8.0 * n2 * double(ranges.size()) + 16.0 * n2 * double(o.screens) +
-                     16.0 * double(threads) * (4.0 * n2 + 2.0 * double(n) * np_max),
+                     double(threads) * (16.0 * 4.0 * n2 + CouplingMap::workspace(n, static_cast<std::size_t>(np_max))),
                  "lower beam_grid, screens or the number of ranges");
   detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
     maps[i] = std::make_unique<CouplingMap>(system, receivers[i], ranges[i], range_spacing[i], n, grids[i]);
@@ -360,7 +463,8 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     // A screen is applied in the pass of the next step's Q1, and a range's sums taken in the pass that ends
     // its step: no pass of their own. Phases do not change the irradiance the outputs read, so a screen
     // with no step after it is left unapplied.
-    std::array<std::vector<double>, 2> screen_pair;
+    std::array<std::vector<double>, 2> screen_pair;  // the pair's screens at one plane, then the next plane's
+    ComplexBuffer spectrum;                         // their transform's workspace
     bool pending = false;
     std::vector<double> row_sums(2 * n);
     for (std::size_t s = 0; s < planes.size(); ++s) {
@@ -377,7 +481,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
       pending = p.screen >= 0;
       if (pending) {
         const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(p.screen + 1));
-        screen_pair = generators[p.screen]->generate_pair(stream, k0 / 2);
+        generators[p.screen]->generate_pair(stream, k0 / 2, screen_pair, spectrum);
       }
     }
     for (std::size_t c = 0; c < count; ++c) {

@@ -186,11 +186,22 @@ std::vector<double> PhaseScreenGenerator::generate(std::uint64_t seed, std::size
 }
 
 std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair) const {
+  std::array<std::vector<double>, 2> out;
+  ComplexBuffer spectrum;
+  generate_pair(seed, pair, out, spectrum);
+  return out;
+}
+
+void PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair, std::array<std::vector<double>, 2>& out,
+                                         ComplexBuffer& spectrum) const {
   const std::size_t n = n_, h = n / 2;
   std::mt19937_64 rng(mix(mix(seed) ^ static_cast<std::uint64_t>(pair)));
+  // Every element of the three buffers is written below: their earlier contents never matter.
+  if (spectrum.size() != n * n) spectrum = detail::zeroed_buffer(n * n);
+  for (std::vector<double>& screen : out)
+    if (screen.size() != n * n) screen = detail::zeroed_buffer<std::vector<double>>(n * n);
 
   // High frequencies, in FFT order: frequency index i is i or i - n, so |k| = min(i, n - i).
-  ComplexBuffer spectrum = detail::zeroed_buffer(n * n);
   for (std::size_t iy = 0; iy < n; ++iy) {
     detail::cancellation_point();  // n^2 normal deviates
     const double* row = &amplitude_[std::min(iy, n - iy) * (h + 1)];
@@ -211,8 +222,6 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
     for (int b = 0; b < 3; ++b)
       for (int a = 0; a < 3; ++a) mean += sub[9 * p + 3 * b + a] * m[a] * m[b];
   }
-  std::array<std::vector<double>, 2> out{detail::zeroed_buffer<std::vector<double>>(n * n),
-                                         detail::zeroed_buffer<std::vector<double>>(n * n)};
   for (std::size_t iy = 0; iy < n; ++iy) {
     detail::cancellation_point();
     Complex g0 = -mean, s[kLevels], d[kLevels];
@@ -241,7 +250,6 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
       im[ix] = i;
     }
   }
-  return out;
 }
 
 void apply_phase_screen(Field& field, const std::vector<double>& screen) {

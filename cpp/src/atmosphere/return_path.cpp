@@ -7,6 +7,7 @@
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
+#include "fourier/fft_passes.hpp"
 
 namespace lidar_overlap::detail {
 
@@ -102,18 +103,24 @@ Field ReturnPath::pupil_field(std::uint64_t seed, std::size_t k, std::size_t m) 
   const double outer = 0.5 * t.diameter, inner = t.obstruction_radius, scale = step_ / (lambda_ * d_);
   const Vec2 offset = system_.beam.offset, tilt = system_.beam.tilt;
   Field f{ComplexBuffer(n * n, Complex{}), n, spacing_, lambda_};
+  ComplexBuffer v(n);  // one pupil row's sums, accumulated a detector row at a time (contiguous, vectorised)
   for (std::size_t iy = 0; iy < n; ++iy) {
     detail::cancellation_point();  // n^2 sums over the detector's rows, for each of up to 1000 fields
+    const double gy = (static_cast<double>(iy) - static_cast<double>(h)) * spacing_, ay = gy + offset.y;
+    if (ay * ay > outer * outer) continue;  // the row misses the aperture
+    std::fill(v.begin(), v.end(), Complex{});
+    for (std::size_t jy = 0; jy < static_cast<std::size_t>(side); ++jy) {
+      const Complex k = kernel_y_[jy * n + iy];
+      const Complex* row = &rows[jy * n];
+      for (std::size_t ix = 0; ix < n; ++ix) v[ix] += detail::product(k, row[ix]);
+    }
     for (std::size_t ix = 0; ix < n; ++ix) {
-      const double gx = (static_cast<double>(ix) - static_cast<double>(h)) * spacing_,
-                   gy = (static_cast<double>(iy) - static_cast<double>(h)) * spacing_;
-      const double ax = gx + offset.x, ay = gy + offset.y, r2 = ax * ax + ay * ay;
+      const double gx = (static_cast<double>(ix) - static_cast<double>(h)) * spacing_;
+      const double ax = gx + offset.x, r2 = ax * ax + ay * ay;
       if (r2 > outer * outer || r2 < inner * inner) continue;
-      Complex v{};
-      for (std::size_t jy = 0; jy < static_cast<std::size_t>(side); ++jy) v += kernel_y_[jy * n + iy] * rows[jy * n + ix];
       // The defocus's curvature (focus at the conjugate range) and, on a tilted beam's drifting grid, the
       // opposite tilt.
-      f.values[iy * n + ix] = v * std::polar(scale, curvature * r2 - k_wave * (tilt.x * gx + tilt.y * gy));
+      f.values[iy * n + ix] = v[ix] * std::polar(scale, curvature * r2 - k_wave * (tilt.x * gx + tilt.y * gy));
     }
   }
   return f;

@@ -5,6 +5,7 @@
 #include <complex>
 #include <vector>
 
+#include "atmosphere/phasor.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
@@ -40,9 +41,11 @@ class ScaledStep {
   // cache: Q1 before the forward row transforms; Q2 between the forward and backward transforms of each
   // column block (the backward 2-D transform runs columns first); then the backward row transforms.
   // `screen` (n x n phases in rad, or null): a phase screen at the plane the step leaves, applied in the
-  // pass of Q1 (exp(i screen) first, as apply_phase_screen would). `map` (n x n, or null): on return,
+  // pass of Q1 (exp(i screen) first, as apply_phase_screen would, by detail::phasor). `map` (n x n, or null): on return,
   // row_sums[2 iy] and row_sums[2 iy + 1] hold sum |u|^2 and sum |u|^2 map over row iy of the field reached.
-  void execute(Field& u, const double* screen = nullptr, const double* map = nullptr, double* row_sums = nullptr) const {
+  // `phasor` (n x n, or null; with no screen): exp(i screen) made beforehand, for fields that share a screen.
+  void execute(Field& u, const double* screen = nullptr, const double* map = nullptr, double* row_sums = nullptr,
+               const Complex* phasor_table = nullptr) const {
     cancellation_point();
     const int threads = fft_threads(n_ * n_);
     const std::size_t n = n_;
@@ -50,7 +53,10 @@ class ScaledStep {
     auto q1 = [&](std::size_t iy, Complex* row) {
       if (screen) {
         const double* phase = screen + iy * n;
-        for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], Complex(std::cos(phase[ix]), std::sin(phase[ix])));
+        for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], phasor(phase[ix]));
+      } else if (phasor_table) {
+        const Complex* p = phasor_table + iy * n;
+        for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], p[ix]);
       }
       const Complex a = in_y_[iy];
       for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(row[ix], product(a, in_x_[ix]));

@@ -89,7 +89,7 @@ TurbulentGrid turbulent_grid(const LidarSystem& system, const std::vector<double
 
 double turbulent_both_bytes(std::size_t beam_grid, std::size_t screens, std::size_t receiver_fields, int threads) {
   const double n2 = double(beam_grid) * double(beam_grid);
-  return 16.0 * n2 * double(screens) + 16.0 * double(threads) * n2 * (2.0 * double(receiver_fields) + 5.0);
+  return 16.0 * n2 * double(screens) + 16.0 * double(threads) * n2 * (2.0 * double(receiver_fields) + 7.0);
 }
 
 }  // namespace lidar_overlap

@@ -128,7 +128,17 @@ class Turbulent:
     path: Fourier optics carries it through the same screens, the detector standing as
     ``receiver_fields`` random-phase fields; ray tracing tilts the image of the scattering volume
     by the return path's angle of arrival, correlated with the beam's wander, and blurs it.
-    ``"transmit"`` takes the return path as unperturbed (docs/turbulence.md)."""
+    ``"transmit"`` takes the return path as unperturbed (docs/turbulence.md).
+
+    ``receiver_fields`` (M, default 1): the detector's sensitivity is the mean over M random-phase
+    fields, unbiased for every M; their speckle is an independent noise per draw, which the mean
+    over ``realizations`` averages with the atmosphere's spread. A draw costs about 1 + M
+    propagations, and at equal CPU time the standard error of the mean G hardly depends on M
+    (measured at 1000 m on the 5 cm, 0.28 mrad lidar of docs/turbulence.md, a detector of few
+    coherence cells: SE x sqrt(CPU s) 0.213, 0.205, 0.187, 0.202 for M = 1, 2, 4, 8; a wide field
+    of view averages the speckle under the beam). So the default spends the time on draws; raise
+    ``realizations`` for a smaller error, or M (about 4) for a detector only a few diffraction
+    spots wide."""
 
     turbulence: Turbulence
     method: Model = Auto()

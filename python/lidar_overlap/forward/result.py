@@ -311,7 +311,9 @@ class TurbulentOverlapResult(OverlapResult):
     backscatter amplification, mean G over the mean G with uncorrelated paths; ``uncorrelated`` (K ×
     N, Fourier optics) each draw's beam with an independent draw's receiver, whose mean that is
     (ray tracing computes that mean exactly and gives no rows: None); and the mean G may exceed 1
-    (up to :data:`~lidar_overlap.model.turbulence.TWO_WAY_BOUND`, docs/turbulence.md)."""
+    (up to :data:`~lidar_overlap.model.turbulence.TWO_WAY_BOUND`, docs/turbulence.md). A single
+    draw's G (and so ``realizations``, ``low``, ``high``, ``uncorrelated``) may exceed that bound: a
+    bright spot shared by both paths, or the speckle of few receiver fields."""
 
     realizations: Optional[np.ndarray] = None
     std: Optional[np.ndarray] = None
@@ -367,6 +369,8 @@ class TurbulentOverlapResult(OverlapResult):
                     + f" for N = {n} ranges"
                 )
             upper = self._upper_bound()
+            if self.paths == "both" and name != "std":  # one draw's G, not the mean: >= 0 only
+                upper = math.inf
             bad = ~np.isfinite(values)
             if name != "std":
                 bad |= ~((values >= -ROUND_OFF) & (values <= upper + ROUND_OFF))

@@ -11,6 +11,13 @@
 // cpp/src) through the same screens, so that G of a draw is the integral of the beam's irradiance times the
 // receiver's sensitivity, both through one atmosphere: its mean may exceed 1 (backscatter amplification, at
 // most 2, docs/turbulence.md).
+// receiver_fields: the detector's sensitivity is the mean over M random-phase fields, unbiased for every M, and
+// their speckle is an independent noise that the mean over realisations averages with the atmosphere's spread:
+// Var(G of a draw) = s_atm^2 + s_rx^2 / M at a cost per draw c0 + M c1. At equal CPU time the standard error of
+// the mean G barely depends on M (benchmarks/study_receiver_fields.py: the 5 cm, 0.28 mrad lidar of
+// docs/turbulence.md, a detector of few coherence cells where s_rx is largest: SE x sqrt(CPU s) at 1000 m 0.213,
+// 0.205, 0.187, 0.202 for M = 1, 2, 4, 8), and a wide field of view averages the speckle under the beam.
+// M = 1 is the default: the cheapest draw (about twice a transmit-only one), more draws for the same time.
 // A run (seed, screens, grid) is a fixed sequence of realisations: realisation k's screens depend only on
 // (seed, k), never on the thread count or on the other realisations, so a call with first_realization = f and
 // realizations = c gives rows f .. f + c - 1 of the run, bit for bit: the run splits into parts on many machines.
@@ -44,7 +51,7 @@ struct TurbulenceOptions {
   std::size_t first_realization = 0;    // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
                                         // (last, so that braced initialisers of the fields above keep their meaning)
   TurbulencePaths paths = TurbulencePaths::transmit;  // both: the return path through the same screens
-  std::size_t receiver_fields = 8;      // both: random-phase fields standing for the incoherent detector
+  std::size_t receiver_fields = 1;      // both: random-phase fields standing for the incoherent detector (below)
 };
 
 struct TurbulentOverlap {
@@ -55,7 +62,7 @@ struct TurbulentOverlap {
   // pair (an independent atmosphere): the uncorrelated paths, whose mean the amplification divides by.
   std::vector<std::vector<double>> uncorrelated;  // [realisation - first_realization][range]; empty for transmit
   // paths = both: standard error of each draw's G from its receiver_fields random-phase fields (their spread over
-  // sqrt(receiver_fields)); empty for transmit.
+  // sqrt(receiver_fields)); NaN with one field (no spread to measure); empty for transmit.
   std::vector<std::vector<double>> receiver_error;
   // paths = both: m, centroid of the receiver's sensitivity (its fields' summed irradiance) at the last range,
   // per realisation, on the beam's grid (centred on the beam's axis); its motion is the image's seen from the

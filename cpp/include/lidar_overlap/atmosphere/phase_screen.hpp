@@ -56,6 +56,10 @@ class PhaseScreenGenerator {
 
   // Screens 2 pair and 2 pair + 1 from one FFT (half the cost of two generate calls).
   std::array<std::vector<double>, 2> generate_pair(std::uint64_t seed, std::size_t pair) const;
+  // The same pair into `out`, with `spectrum` as the transform's workspace: both keep their storage from call to
+  // call (sized to n x n on first use), so that a caller making many pairs allocates and zeroes them once.
+  void generate_pair(std::uint64_t seed, std::size_t pair, std::array<std::vector<double>, 2>& out,
+                     ComplexBuffer& spectrum) const;
 
   // Phase PSD Phi(f) (rad^2 m^2) at spatial frequency f (cycles/m).
   double psd(double f) const;
