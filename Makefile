@@ -83,6 +83,7 @@ bench: setup
 	$(PY) benchmarks/bench_turbulent_overlap.py
 	$(PY) benchmarks/bench_turbulent_rt_both.py
 	$(PY) benchmarks/bench_turbulent_both.py
+	$(PY) benchmarks/study_receiver_fields.py
 	$(PY) benchmarks/bench_aberrations.py
 	$(PY) benchmarks/bench_studies.py
 	$(PY) benchmarks/bench_turbulent_study.py

@@ -25,15 +25,12 @@ Prints a table and writes results/bench_fo_overlap.json. Run: python benchmarks/
 from __future__ import annotations
 
 import dataclasses
-import json
 import os
-import platform
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
-from _common import best_times, load_average, source_commit
+from _common import best_times, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -117,9 +114,10 @@ def main():
         detector=table1.detector,
     )
     system = table1
+    load_start = load_average()
     print(
         f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
-        f"{load_average():.2f} | commit {source_commit()}"
+        f"{load_start:.2f} | commit {source_commit()}"
     )
     rows = {}
     for name, z in CURVES.items():
@@ -195,29 +193,19 @@ def main():
             f"<= 1 s for 200 ranges; {'met' if row['threads0_s'] <= 1.0 else 'NOT met'})"
         )
 
-    out = Path(__file__).resolve().parent / "results" / "bench_fo_overlap.json"
-    out.parent.mkdir(exist_ok=True)
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "lidar_overlap": lo.__version__,
-                    "commit": source_commit(),
-                    "machine": platform.machine(),
-                    "cores": os.cpu_count(),
-                    "load_average_1min": load_average(),
-                    "tilt_rad": TILT,
-                    "tolerance": "nominal 1e-6 (2-D path) and 1e-8 (radial path); errors "
-                    "against the radial reference with 4x its nodes in max_error",
-                },
-                "curves": rows,
-                "direct": direct,
+    write_result(
+        "bench_fo_overlap",
+        {
+            "meta": {
+                **run_meta(load_start),
+                "tilt_rad": TILT,
+                "tolerance": "nominal 1e-6 (2-D path) and 1e-8 (radial path); errors "
+                "against the radial reference with 4x its nodes in max_error",
             },
-            indent=2,
-        )
+            "curves": rows,
+            "direct": direct,
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -12,16 +12,12 @@ Writes results/bench_real_fit.json.
 
 from __future__ import annotations
 
-import json
 import os
-import platform
-import sys
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
-from _common import load_average, source_commit
+from _common import load_average, run_meta, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
@@ -97,24 +93,14 @@ def main():
             f"{'met' if met else 'NOT met'}), {row['model_evaluations']} model evaluations"
         )
         row["target_met"] = met
-    out = Path(__file__).resolve().parent / "results" / "bench_real_fit.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
     meta = {
-        "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-        "lidar_overlap": lo.__version__,
-        "numpy": np.__version__,
-        "python": sys.version.split()[0],
-        "source_commit": source_commit(),
-        "machine": platform.machine(),
-        "cores": os.cpu_count(),
-        "load_average_1min": load,
+        **run_meta(load),
         "ranges_m": {"start": 150.0, "stop": 1200.0, "count": int(RANGES.size)},
         "sigma": SIGMA,
         "true": TRUE,
         "targets_s": TARGETS_S,
     }
-    out.write_text(json.dumps({"meta": meta, "results": rows}, indent=2) + "\n")
-    print(f"wrote {out}")
+    write_result("bench_real_fit", {"meta": meta, "results": rows})
 
 
 if __name__ == "__main__":

@@ -19,14 +19,12 @@ the 5 cm scene] [of the Table 1 scene]
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import load_average, source_commit
+from _common import load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -112,25 +110,18 @@ def main():
         f"commit {source_commit()}"
     )
     results = {name: measure(name, scene, realizations[name]) for name, scene in SCENES.items()}
-    out = Path(__file__).resolve().parent / "results" / "bench_turbulent_both.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min": [load_before, load_average()],
-                    "cores": os.cpu_count(),
-                    "receiver_fields": _core.TurbulenceOptions().receiver_fields,
-                    "seed": SEED,
-                    "timing": "one call each after an untimed one; CPU of all threads",
-                },
-                "result": results,
+    write_result(
+        "bench_turbulent_both",
+        {
+            "meta": {
+                **run_meta(load_before),
+                "receiver_fields": _core.TurbulenceOptions().receiver_fields,
+                "seed": SEED,
+                "timing": "one call each after an untimed one; CPU of all threads",
             },
-            indent=2,
-        )
+            "result": results,
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

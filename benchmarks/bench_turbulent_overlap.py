@@ -21,13 +21,10 @@ results/bench_turbulent_overlap.json. Run: python benchmarks/bench_turbulent_ove
 
 from __future__ import annotations
 
-import json
 import os
-import time
-from pathlib import Path
 
 import numpy as np
-from _common import best_times, load_average, source_commit
+from _common import best_times, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -88,49 +85,42 @@ def main():
         f"mean G at {RANGES[-1]:g} m: {res.overlap[-1]:.4f} +- {res.error_estimate[-1]:.4f} (5-95 "
         f"%: {res.low[-1]:.4f}-{res.high[-1]:.4f})"
     )
-    out = Path(__file__).resolve().parent / "results" / "bench_turbulent_overlap.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min": [load_before, load_after],
-                    "cores": os.cpu_count(),
-                    "cn2": CN2,
-                    "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
-                    "beam_grid": BEAM_GRID,
-                    "screens": SCREENS,
-                    "realizations": REALIZATIONS,
-                    "seed": SEED,
-                    "repeats": REPEATS,
-                    "timing": "least of REPEATS calls after an untimed one; CPU of all threads",
-                    "tolerance": "the call's own: max_spectrum_grid tails at 1e-4 of G (its spread "
-                    "between realisations is far larger); results bit-identical for any threads",
-                },
-                "result": {
-                    "wall_s": wall_full,
-                    "cpu_s": cpu_full,
-                    "cpu_s_per_additional_realization": per_realization,
-                    "cpu_s_one_realization": cpu_one,
-                    "wall_s_one_realization": wall_one,
-                    "mean_overlap_last_range": float(res.overlap[-1]),
-                    "standard_error_last_range": float(res.error_estimate[-1]),
-                },
-                "floor": {
-                    "pairs_per_realization": PAIRS_PER_REALIZATION,
-                    "fftw_measured_pair_s": pair_fftw,
-                    "library_pair_s": pair_library,
-                    "floor_s": floor,
-                    "ratio_cpu_to_floor": ratio,
-                    "target_ratio": TARGET_RATIO,
-                    "target_met": bool(ratio <= TARGET_RATIO),
-                },
+    write_result(
+        "bench_turbulent_overlap",
+        {
+            "meta": {
+                **run_meta(load_before),
+                "cn2": CN2,
+                "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
+                "beam_grid": BEAM_GRID,
+                "screens": SCREENS,
+                "realizations": REALIZATIONS,
+                "seed": SEED,
+                "repeats": REPEATS,
+                "timing": "least of REPEATS calls after an untimed one; CPU of all threads",
+                "tolerance": "the call's own: max_spectrum_grid tails at 1e-4 of G (its spread "
+                "between realisations is far larger); results bit-identical for any threads",
             },
-            indent=2,
-        )
+            "result": {
+                "wall_s": wall_full,
+                "cpu_s": cpu_full,
+                "cpu_s_per_additional_realization": per_realization,
+                "cpu_s_one_realization": cpu_one,
+                "wall_s_one_realization": wall_one,
+                "mean_overlap_last_range": float(res.overlap[-1]),
+                "standard_error_last_range": float(res.error_estimate[-1]),
+            },
+            "floor": {
+                "pairs_per_realization": PAIRS_PER_REALIZATION,
+                "fftw_measured_pair_s": pair_fftw,
+                "library_pair_s": pair_library,
+                "floor_s": floor,
+                "ratio_cpu_to_floor": ratio,
+                "target_ratio": TARGET_RATIO,
+                "target_met": bool(ratio <= TARGET_RATIO),
+            },
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

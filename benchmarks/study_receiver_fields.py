@@ -17,14 +17,11 @@ Writes results/study_receiver_fields.json. Run: python benchmarks/study_receiver
 
 from __future__ import annotations
 
-import json
-import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
-from _common import load_average, source_commit
+from _common import load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -83,30 +80,22 @@ def main():
     print("cost per draw (CPU s):", {k: round(v, 3) for k, v in cost.items()})
     best = min(FIELDS, key=lambda k: float(np.mean(rows[k]["se_times_sqrt_cpu_last"])))
     print(f"lowest SE at equal CPU (mean over the last {LAST} ranges): M = {best}")
-    load_after = load_average()
-    out = Path(__file__).resolve().parent / "results" / "study_receiver_fields.json"
-    out.write_text(
-        json.dumps(
-            {
-                "meta": {
-                    "measured": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
-                    "commit": source_commit(),
-                    "load_average_1min": [load_before, load_after],
-                    "cores": os.cpu_count(),
-                    "cn2": CN2,
-                    "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
-                    "beam_grid": BEAM_GRID,
-                    "seed": SEED,
-                    "timing": "CPU time of each call (all threads), one call per M",
-                    "figure_of_merit": "standard error of mean G x sqrt(CPU s): the SE at 1 CPU s",
-                },
-                "result": {str(k): v for k, v in rows.items()},
-                "lowest_se_at_equal_cpu": best,
+    write_result(
+        "study_receiver_fields",
+        {
+            "meta": {
+                **run_meta(load_before),
+                "cn2": CN2,
+                "ranges_m": [float(RANGES[0]), float(RANGES[-1]), int(RANGES.size)],
+                "beam_grid": BEAM_GRID,
+                "seed": SEED,
+                "timing": "CPU time of each call (all threads), one call per M",
+                "figure_of_merit": "standard error of mean G x sqrt(CPU s): the SE at 1 CPU s",
             },
-            indent=2,
-        )
+            "result": {str(k): v for k, v in rows.items()},
+            "lowest_se_at_equal_cpu": best,
+        },
     )
-    print(f"wrote {out}")
 
 
 if __name__ == "__main__":
