@@ -8,8 +8,8 @@
   AS(z2) = AS(z1 + z2);
 - on-axis irradiance behind a uniformly lit disc, I/I0 = 4 sin^2(pi a^2/(2 lambda z)); Airy focal
   plane I0 [2 J1(v)/v]^2 with I0 = P pi a^2/(lambda f)^2, encircled energy 1 - J0(v)^2 - J1(v)^2;
-- validity: no SamplingWarning inside each method's region, one naming the reason outside it; bad
-  arguments raise ValueError naming the parameter.
+- no SamplingWarning inside each method's region (its boundaries and bad arguments:
+  test_propagate_validity.py).
 """
 
 import math
@@ -17,13 +17,25 @@ import warnings
 
 import numpy as np
 import pytest
+from _propagation import (
+    D1_RTOL,
+    DX,
+    W0,
+    WAVELENGTHS,
+    N,
+    critical,
+    d1,
+    d1_errors,
+    quiet,
+    rayleigh,
+    recorded,
+)
 from scipy.integrate import quad
 from scipy.special import j0, j1
 
 import lidar_overlap as lo
 
 EPS = np.finfo(float).eps
-D1_RTOL = 1e-4  # project target for the beam radius, 0.01 % (the paper's Fig. 8 reaches 0.2 %)
 # w/z overshoots lambda/(pi w0) by (zR/z)^2 / 2 = 5e-7 at z = 1000 zR; sampling adds ~1e-12.
 DIVERGENCE_RTOL = 1e-6
 # AS and single-FFT Fresnel are unitary (Parseval) when band limit and window cut nothing (Gaussian
@@ -55,50 +67,6 @@ AIRY_PROFILE_ATOL = 3e-5
 # weights on a grid of pi/16 in v err only at second order) and at v = 20: ~3e-5 from the disc edge;
 # allowed 1e-4.
 AIRY_EE_ATOL = 1e-4
-
-W0 = 5e-3  # paper Appendix D waist
-N = 512
-DX = 10 * W0 / N  # window +-5 w0, 51 samples per w0; edge irradiance exp(-50) of the peak
-WAVELENGTHS = [355e-9, 1064e-9]
-
-
-def d1(z, w0, wavelength):
-    return w0 * math.sqrt(1.0 + (wavelength * z / (math.pi * w0**2)) ** 2)
-
-
-def rayleigh(w0, wavelength):
-    return math.pi * w0**2 / wavelength
-
-
-def critical(field):
-    return field.n * field.spacing**2 / field.wavelength
-
-
-def recorded(field, distance, **kwargs):
-    """Propagate; return the result and the messages of the SamplingWarnings issued."""
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        out = lo.propagate(field, distance, **kwargs)
-    return out, [str(w.message) for w in caught if issubclass(w.category, lo.SamplingWarning)]
-
-
-def quiet(field, distance, **kwargs):
-    """Propagate inside the method's validity: no SamplingWarning may be issued."""
-    out, messages = recorded(field, distance, **kwargs)
-    assert not messages, (
-        f"SamplingWarning inside the valid region (z = {distance:.4g} m, {kwargs}): {messages}"
-    )
-    return out
-
-
-def d1_errors(field, distances, **kwargs):
-    """Relative error (paper D2) of the propagated beam radius at each distance."""
-    return np.array(
-        [
-            abs(1.0 - d1(z, W0, field.wavelength) / quiet(field, z, **kwargs).beam_radius)
-            for z in distances
-        ]
-    )
 
 
 def gaussian_beam(x, y, z, w0, wavelength, a0):
@@ -391,83 +359,3 @@ def test_zoomed_focus_is_inside_validity(lens_aperture):
     # A chirp-z output window is the caller's choice: Airy rings outside it are not computed,
     # nothing wraps around, so no warning (A3 holds, the input chirp is sampled).
     quiet(lens_aperture, AIRY_F, method="fresnel", output_spacing=AIRY_DXO)
-
-
-# --- validity boundaries
-# ------------------------------------------------------------------------------
-
-# method: (unit z_c or zR, inside, outside, reason the warning must give, sweep), in that unit
-BOUNDARY = {
-    "angular_spectrum": (
-        "zc",
-        0.999,
-        100,
-        r"(?i)band|edge|wrap|alias|window",
-        [2, 5, 10, 20, 50, 200],
-    ),
-    "fresnel": ("zc", 1.001, 1 / 20, r"(?i)critical|undersampl|alias|chirp", [0.5, 0.2, 0.1, 0.02]),
-    "fraunhofer": (
-        "zr",
-        100,
-        1 / math.pi,
-        r"(?i)fresnel number|near[ -]?field",
-        [1000, 50, 30, 10, 1],
-    ),
-}
-
-
-@pytest.mark.parametrize("method", sorted(BOUNDARY))
-def test_validity_boundary(beam, method):
-    unit, inside, outside, reason, sweep = BOUNDARY[method]
-    unit = critical(beam) if unit == "zc" else rayleigh(W0, beam.wavelength)
-    assert d1_errors(beam, [inside * unit], method=method)[0] <= D1_RTOL  # and no SamplingWarning
-    with warnings.catch_warnings(
-        record=True
-    ):  # keeps the other reasons pytest.warns passes on quiet
-        with pytest.warns(lo.SamplingWarning, match=reason):
-            lo.propagate(beam, outside * unit, method=method)
-    for z in np.array(sweep) * unit:  # wherever D1 is missed, a warning must say so
-        g, messages = recorded(beam, z, method=method)
-        error = abs(1.0 - d1(z, W0, beam.wavelength) / g.beam_radius)
-        assert error <= D1_RTOL or messages, (
-            f"{method} at z = {z:.4g} m: error {error:.3g} and no SamplingWarning"
-        )
-
-
-def test_beam_touching_window_edge_warns():
-    assert issubclass(lo.SamplingWarning, RuntimeWarning)
-    # Window +-1.5 w0: the irradiance at the edge is exp(-4.5) = 1 % of the peak; its power wraps
-    # around.
-    wide = lo.Field.gaussian(355e-9, N * DX / 3, N, DX)
-    with pytest.warns(lo.SamplingWarning, match=r"(?i)edge|wrap|window"):
-        lo.propagate(wide, 0.1 * critical(wide), method="angular_spectrum")
-    quiet(
-        lo.Field.gaussian(355e-9, W0, N, DX), 0.1 * critical(wide), method="angular_spectrum"
-    )  # +-5 w0
-
-
-# --- bad input
-# ----------------------------------------------------------------------------------------
-
-
-@pytest.mark.parametrize(
-    "name, field, kwargs",
-    [
-        ("distance", True, dict(distance=math.nan)),
-        ("distance", True, dict(distance=math.inf)),
-        ("method", True, dict(method="fresnell")),
-        ("method", True, dict(method="")),
-        ("output_spacing", True, dict(method="fresnel", output_spacing=0.0)),
-        ("output_spacing", True, dict(method="auto", output_spacing=-1e-6)),
-        ("output_spacing", True, dict(method="fresnel", output_spacing=math.nan)),
-        ("field", None, {}),
-        ("field", 1.0, {}),
-        ("field", np.ones((64, 64), complex), {}),
-    ],
-)
-def test_bad_arguments(name, field, kwargs):
-    if field is True:
-        field = lo.Field.gaussian(355e-9, W0, 64, W0 / 8)
-    kwargs = dict(dict(distance=1e3), **kwargs)
-    with pytest.raises(ValueError, match=name):
-        lo.propagate(field, kwargs.pop("distance"), **kwargs)
