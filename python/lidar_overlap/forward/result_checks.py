@@ -16,8 +16,9 @@ ROUND_OFF = 1e-9
 
 
 def checked_curve(ranges, overlap, method, error_estimate, tolerance, upper=1.0):
-    """The invariants of :class:`~lidar_overlap.forward.result.OverlapResult`: the arrays as float arrays, G clipped
-    within its slack, the tolerance as a float; ValueError naming what is wrong otherwise."""
+    """The invariants of :class:`~lidar_overlap.forward.result.OverlapResult`: the arrays as float
+    arrays, G clipped within its slack, the tolerance as a float; ValueError naming what is wrong
+    otherwise."""
     if not isinstance(method, str) or not method:
         raise ValueError(
             f"method = {method!r} is invalid: expected the name of the model, such as 'rt' or 'fo'"
