@@ -25,7 +25,8 @@ retrieval, not the instrument. It is fitted by variable projection: for each mod
 least-squares problem in δα is solved by Gauss-Newton on the whitened residual (no extra model
 evaluations), within ±``EXTINCTION_BIAS_BOUND``; the optimiser sees the Jacobian with the δα
 direction projected out (Kaufman's form), so the covariance of the system parameters is the marginal
-one of the joint problem, and δα's variance follows from the block inverse (:func:`bias_covariance`).
+one of the joint problem, and δα's variance follows from the block inverse
+(:func:`bias_covariance`).
 """
 
 from __future__ import annotations
@@ -63,14 +64,14 @@ MIN_INTERVAL_POINTS = 2
 EXTINCTION_BIAS_BOUND = 1e-4
 #: The profile solve in δα stops when a step is below this (1/m): 1e-8 of the bound.
 BIAS_STEP_TOLERANCE = 1e-12
-#: Most Gauss-Newton steps of the profile solve (it is nearly linear: 3-5 steps reach the tolerance).
+#: Most Gauss-Newton steps of the profile solve (nearly linear: a few steps reach the tolerance).
 BIAS_MAX_STEPS = 30
 
 
 @dataclass(frozen=True)
 class WithExtinctionBias:
-    """``normalize`` (an interval) with the retrieval extinction bias fitted (module docstring): what
-    ``lo.fit(..., normalize=(z_low, z_high), extinction_bias=True)`` passes on as its
+    """``normalize`` (an interval) with the retrieval extinction bias fitted (module docstring):
+    what ``lo.fit(..., normalize=(z_low, z_high), extinction_bias=True)`` passes on as its
     normalisation."""
 
     normalize: Tuple[float, float]

@@ -29,8 +29,9 @@ class RelativeFitResult(FitResult):
 
     With ``extinction_bias=True``: extinction_bias, its 1-sigma extinction_bias_uncertainty (1/m):
     δα, the error of the extinction the retrieval of the data assumed (two-way: the data carry
-    exp(-2 δα (z - z_ref))), a property of the retrieval, not of the instrument; δα = α_true - α_assumed, positive
-    when the retrieval assumed too little extinction (see :mod:`lidar_overlap.analysis.relative`).
+    exp(-2 δα (z - z_ref))), a property of the retrieval, not of the instrument; δα = α_true -
+    α_assumed, positive when the retrieval assumed too little extinction (see
+    :mod:`lidar_overlap.analysis.relative`).
     extinction_bias_reference : z_ref (m). extinction_bias_covariance : cov(p, δα), one per
     parameter. All None without it."""
 
@@ -77,19 +78,19 @@ class RelativeFitResult(FitResult):
             if self.normalize == "far"
             else "each by its mean over {:g}-{:g} m".format(*self.normalize)
         )
-        return (
+        text = (
             FitResult.summary(self)
             + f"\n  relative data: model and data normalised {how}; the model's absolute G "
             f"there is {self.model_scale:.4g}"
-            + (
-                ""
-                if self.extinction_bias is None
-                else f"\n  retrieval extinction bias (two-way, of the data's retrieval, not the "
+        )
+        if self.extinction_bias is not None:
+            text += (
+                "\n  retrieval extinction bias (two-way; the data's retrieval, not the "
                 f"instrument): {1e3 * self.extinction_bias:.4g} +- "
-                f"{1e3 * self.extinction_bias_uncertainty:.2g} /km (z_ref "
+                f"{1e3 * float(self.extinction_bias_uncertainty or 0.0):.2g} /km (z_ref "
                 f"{self.extinction_bias_reference:.4g} m)"
             )
-        )
+        return text
 
     __str__ = summary
 
