@@ -137,8 +137,8 @@ def test_da_pulls_scatter_as_a_unit_normal_and_the_system_is_recovered():
 def test_without_a_trend_da_is_consistent_with_zero_and_rarely_chosen():
     g = _truth()
     chosen, pulls = 0, []
-    for seed in range(N_DRAWS):
-        y = g + np.random.default_rng(100 + seed).normal(0.0, SIGMA, Z.size)
+    for seed in range(N_DRAWS):  # the draws of the trended test: its pulls less the trend's effect
+        y = g + np.random.default_rng(seed).normal(0.0, SIGMA, Z.size)
         plain, with_bias = _fit(y), _fit(y, extinction_bias=True)
         pulls.append(with_bias.extinction_bias / with_bias.extinction_bias_uncertainty)
         n = plain.degrees_of_freedom + len(TRUE)  # independent points
