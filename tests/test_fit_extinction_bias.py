@@ -6,6 +6,7 @@ the fitted da is consistent with 0 and the information criterion rarely asks for
 clear error."""
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -18,6 +19,7 @@ from lidar_overlap.analysis.relative import (
     WithExtinctionBias,
     normalization,
 )
+from lidar_overlap.cli import main
 
 pytest.importorskip("scipy")
 
@@ -228,3 +230,28 @@ def test_profiled_cost_of_many_curves_is_the_least_over_a_grid_of_da():
         where.append(grid[i] + shift * step)
     assert trended.whitened_cost(curves) == pytest.approx(least, rel=GRID_AGREE)
     assert trended.bias(curves) == pytest.approx(where, abs=GRID_AGREE * EXTINCTION_BIAS_BOUND)
+
+
+@pytest.mark.filterwarnings("ignore:fit. the model's tolerance")  # noise-free data
+def test_command_line_extinction_bias(tmp_path, capsys):
+    scenario = tmp_path / "start.toml"
+    table1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
+    scenario.write_text(
+        table1.read_text()
+        .replace("tilt = [0.0, 0.0]", "tilt = [2e-4, 0.0]")
+        .replace("defocus = 0.0 ", "defocus = 1e-3 ")
+    )
+    data = tmp_path / "m.csv"
+    y = _truth() * _trend(DA)
+    data.write_text(
+        "range_m,overlap\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(Z.tolist(), y.tolist()))
+    )
+    args = ["fit", str(scenario), str(data), "--free", *TRUE, "--out", str(tmp_path / "out")]
+    assert main(args + ["--normalize", *map(str, INTERVAL), "--extinction-bias"]) == 0
+    assert "retrieval extinction bias" in capsys.readouterr().out
+    rows = (tmp_path / "out" / "table1_fit.csv").read_text().splitlines()
+    row = next(r for r in rows if r.startswith("extinction_bias,"))
+    assert abs(float(row.split(",")[1]) - DA) < SAME * EXTINCTION_BIAS_BOUND
+    assert row.split(",")[3] == "1/m"
+    assert main(args + ["--extinction-bias"]) == 1  # needs --normalize: a clear error
+    assert "needs normalize" in capsys.readouterr().err

@@ -71,6 +71,14 @@ class RelativeFitResult(FitResult):
         normalising: what the instrument's geometry implies, e.g. for :func:`lo.correct`)."""
         return FitResult.predict(self, ranges)
 
+    def table(self):
+        """:meth:`FitResult.table`, then the extinction bias (1/m; start 0) when it was fitted."""
+        rows = FitResult.table(self)
+        if self.extinction_bias is not None:
+            u = self.extinction_bias_uncertainty
+            rows.append(("extinction_bias", self.extinction_bias, u, "1/m", 0.0))
+        return rows
+
     def summary(self) -> str:
         """:meth:`FitResult.summary` with how the data were normalised."""
         how = (
