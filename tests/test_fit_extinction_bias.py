@@ -13,7 +13,8 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.model_ladder import BIC_TIE
+from lidar_overlap.analysis.model_families import Family
+from lidar_overlap.analysis.model_ladder import BIC_TIE, fit_ladder
 from lidar_overlap.analysis.relative import (
     EXTINCTION_BIAS_BOUND,
     WithExtinctionBias,
@@ -255,3 +256,22 @@ def test_command_line_extinction_bias(tmp_path, capsys):
     assert row.split(",")[3] == "1/m"
     assert main(args + ["--extinction-bias"]) == 1  # needs --normalize: a clear error
     assert "needs normalize" in capsys.readouterr().err
+
+
+def test_ladder_carries_the_bias_in_every_family_and_counts_it():
+    tilt = Family("tilt", ("beam.tilt[0]",), "pointing")
+    tilt_focus = Family("tilt + focus", tuple(TRUE), "pointing, focus")
+    y = _truth() * _trend(DA) + np.random.default_rng(5).normal(0.0, SIGMA, Z.size)
+    r = fit_ladder(
+        _start(), Z, y, SIGMA, {"beam.tilt[0]": (-1e-3, 1e-3), "detector.defocus": (-0.01, 0.02)},
+        "rt", 1e-6, "linear", 200, False, 1, WithExtinctionBias(INTERVAL), 0,
+        families=(tilt, tilt_focus),
+    )  # fmt: skip
+    assert r.chosen_family is tilt_focus
+    for s in r.scores:
+        assert s.k == len(s.family.paths) + 1
+        n = s.fit.degrees_of_freedom + s.k  # independent points: n - 1 of the normalised data
+        assert n == Z.size - 1
+        assert s.bic == pytest.approx(s.fit.chi_square + s.k * math.log(n), rel=1e-12)
+    assert abs(r.chosen.extinction_bias - DA) < 3 * r.chosen.extinction_bias_uncertainty
+    assert "not the instrument" in str(r)

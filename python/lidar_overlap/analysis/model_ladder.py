@@ -96,6 +96,11 @@ class LadderResult:
                 f"  runs p {s.runs_p:.3g}  {'reaches the noise' if s.reaches_noise else ''}"
                 f"{'' if s.supported else '  (not supported: see FamilyScore.supported)'}"
             )
+        if getattr(self.chosen, "extinction_bias", None) is not None:
+            lines.append(
+                "  every family carries the retrieval's extinction bias (counted in k): it "
+                "describes how the data were retrieved, not the instrument"
+            )
         if self.note:
             lines.append(f"  {self.note}")
         return "\n".join(lines) + "\n" + self.chosen.summary()
