@@ -2,8 +2,9 @@
 transmission error exp(-2 da (z - z_ref)) of their retrieval give back da and the system the data
 without the trend give; da's uncertainty is that of the joint least-squares problem (an independent
 finite-difference Jacobian and pseudo-inverse here) and its pulls scatter as N(0, 1); with da = 0
-the fitted da is consistent with 0 and the information criterion rarely asks for it; bad input is a
-clear error."""
+the fitted da is consistent with 0 and the information criterion rarely asks for it; the global
+search's batched profile equals a grid search over da; the ladder counts da in every family's k;
+the command line's --extinction-bias; bad input is a clear error."""
 
 import math
 from pathlib import Path
