@@ -276,3 +276,17 @@ def test_ladder_carries_the_bias_in_every_family_and_counts_it():
         assert s.bic == pytest.approx(s.fit.chi_square + s.k * math.log(n), rel=1e-12)
     assert abs(r.chosen.extinction_bias - DA) < 3 * r.chosen.extinction_bias_uncertainty
     assert "not the instrument" in str(r)
+
+
+def test_profile_of_hostile_curves():
+    """Curves the search may propose: zero or NaN over the interval cost inf (δα 0), a curve of
+    1e300 is a shape like any other, and a pure exponential trend is taken out exactly."""
+    z = np.linspace(100.0, 3000.0, 20)
+    norm = normalization(WithExtinctionBias((1000.0, 3000.0)), z, np.ones(20), np.full(20, 0.01))
+    curves = np.array([np.zeros(20), np.full(20, np.nan), np.full(20, 1e300), np.exp(1e-4 * z)])
+    with np.errstate(all="raise"):  # nothing escapes as a floating-point warning
+        bias, cost = norm.bias(curves), norm.whitened_cost(curves)
+    assert np.all(np.isfinite(bias)) and bias[:2].tolist() == [0.0, 0.0]
+    assert cost[:2].tolist() == [np.inf, np.inf]
+    assert bias[2] == pytest.approx(0.0, abs=1e-12) and cost[2] < 1e-12
+    assert bias[3] == pytest.approx(5e-5, rel=1e-9) and cost[3] < 1e-12
