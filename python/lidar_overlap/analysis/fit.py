@@ -13,7 +13,7 @@ from .fit_result import FitResult
 from .fit_solve import SEARCHES, fit_local
 from .global_search import fit_global
 from .model_ladder import LadderResult, fit_ladder
-from .relative import fit_relative
+from .relative import fit_relative, with_extinction_bias
 
 
 def fit(
@@ -33,6 +33,7 @@ def fit(
     normalize=None,
     search: str = "local",
     seed: Optional[int] = None,
+    extinction_bias: bool = False,
 ) -> Union[FitResult, LadderResult]:
     """Fit the ``free`` scalars of ``system`` (its values are the start) to ``measured`` G at
     ``ranges``.
@@ -57,10 +58,17 @@ def fit(
     model families fitted in turn and chosen by BIC (needs sigma;
     :mod:`lidar_overlap.analysis.model_ladder`; returns a ``LadderResult``).
 
+    extinction_bias : True fits, with ``normalize=(z_low, z_high)``, the error δα (1/m) of the
+    extinction the retrieval of relative data assumed: the model is multiplied by
+    exp(-2 δα (z - z_ref)) before normalising, δα within ±1e-4 /m and profiled out for each curve
+    (:mod:`lidar_overlap.analysis.relative`; reported as ``extinction_bias`` with its uncertainty).
+    It describes the retrieval, not the instrument; with ``free="auto"`` every family carries it.
+
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
     pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
     """
     search = _checks.choice("search", search, SEARCHES)
+    normalize = with_extinction_bias(normalize, extinction_bias)
     data = (system, ranges, measured, sigma)
     if isinstance(free, str) and free == "auto":
         return fit_ladder(

@@ -96,6 +96,11 @@ class LadderResult:
                 f"  runs p {s.runs_p:.3g}  {'reaches the noise' if s.reaches_noise else ''}"
                 f"{'' if s.supported else '  (not supported: see FamilyScore.supported)'}"
             )
+        if getattr(self.chosen, "extinction_bias", None) is not None:
+            lines.append(
+                "  every family carries the retrieval's extinction bias (counted in k): it "
+                "describes how the data were retrieved, not the instrument"
+            )
         if self.note:
             lines.append(f"  {self.note}")
         return "\n".join(lines) + "\n" + self.chosen.summary()
@@ -262,7 +267,9 @@ def _fit_families(
 def _score(system, family: Family, f) -> FamilyScore:
     paths = [p for p in family.paths if _freeable(system, p)]
     dropped = tuple(p for p in family.paths if p not in paths)
-    n, k = f.degrees_of_freedom + len(paths), len(paths)
+    # the retrieval's extinction bias, when fitted, is one more free parameter of every family
+    k = len(paths) + (getattr(f, "extinction_bias", None) is not None)
+    n = f.degrees_of_freedom + k
     dof = max(f.degrees_of_freedom, 1)
     runs = runs_p_value(f.residuals)
     reaches = f.reduced_chi_square <= 1.0 + CHI2_SIGMAS * math.sqrt(2.0 / dof) and runs > RUNS_P

@@ -14,12 +14,26 @@ whitening: r is mapped to W r with Wᵀ W = C⁺ (W has n - 1 rows), and the fit
 are n - 1 - k. ``"far"`` leaves the points independent (W = 1/σ). The Jacobian of the normalised
 model follows from the quotient rule, so the covariance of the parameters is the Gauss-Newton one of
 the normalised problem (:mod:`lidar_overlap.analysis.fit`).
+
+Retrieval extinction bias (``extinction_bias=True``, interval normalisation only). An overlap curve
+retrieved from real signals (the Raman method, Wandinger and Ansmann, Appl. Opt. 41, 511 (2002);
+the near/far-range method) assumes an extinction profile; an error δα (1/m) in it, constant with
+height, stays in the retrieved curve as the two-way transmission factor exp(-2 δα (z - z_ref)). The
+model is then G(z) exp(-2 δα (z - z_ref)) before normalising (z_ref, the mean measured range of the
+interval, only fixes the factor's scale, which the normalisation removes). δα describes the
+retrieval, not the instrument. It is fitted by variable projection: for each model curve the 1-D
+least-squares problem in δα is solved by Gauss-Newton on the whitened residual (no extra model
+evaluations), within ±``EXTINCTION_BIAS_BOUND``; the optimiser sees the Jacobian with the δα
+direction projected out (Kaufman's form), so the covariance of the system parameters is the marginal
+one of the joint problem, and δα's variance follows from the block inverse
+(:func:`bias_covariance`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -45,6 +59,51 @@ FAR_FACTOR = 100.0
 RANK_TOLERANCE = 1e-12
 #: The fewest measured points an interval must hold.
 MIN_INTERVAL_POINTS = 2
+#: |δα| (1/m) the retrieval extinction bias may reach: 0.1 /km, several times the aerosol
+#: extinction of a clean boundary layer, so a larger trend is no extinction error.
+EXTINCTION_BIAS_BOUND = 1e-4
+#: The profile solve in δα stops when a step is below this (1/m): 1e-8 of the bound.
+BIAS_STEP_TOLERANCE = 1e-12
+#: Most Gauss-Newton steps of the profile solve (nearly linear: a few steps reach the tolerance).
+BIAS_MAX_STEPS = 30
+
+
+@dataclass(frozen=True)
+class WithExtinctionBias:
+    """``normalize`` (an interval) with the retrieval extinction bias fitted (module docstring):
+    what ``lo.fit(..., normalize=(z_low, z_high), extinction_bias=True)`` passes on as its
+    normalisation."""
+
+    normalize: Tuple[float, float]
+
+
+def with_extinction_bias(normalize, extinction_bias):
+    """The fit's ``normalize`` with ``extinction_bias`` (a bool) applied; ValueError naming
+    ``extinction_bias`` otherwise, or when the data are not normalised over an interval."""
+    if not isinstance(extinction_bias, (bool, np.bool_)):
+        raise ValueError(
+            f"extinction_bias = {_checks.shown(extinction_bias)} is invalid: expected True or False"
+        )
+    if not extinction_bias:
+        return normalize
+    if normalize is None or isinstance(normalize, str):
+        raise ValueError(
+            f"extinction_bias=True needs normalize = (z_low, z_high) in m, got {normalize!r}: the "
+            "bias is a factor exp(-2 delta_alpha (z - z_ref)) that only the normalisation over an "
+            "interval of measured ranges removes (absolute data have no retrieval; 'far' would "
+            "extrapolate it 100-fold beyond the data)"
+        )
+    return WithExtinctionBias(normalize)
+
+
+@dataclass(frozen=True, eq=False)
+class Trend:
+    """The retrieval extinction bias of a :class:`Normalization`: ``offsets`` z - z_ref (m) at the
+    measured ranges, ``reference`` z_ref (m), ``bound`` on |δα| (1/m)."""
+
+    offsets: np.ndarray
+    reference: float
+    bound: float
 
 
 @dataclass(frozen=True, eq=False)
@@ -64,6 +123,7 @@ class Normalization:
     sigma: np.ndarray
     data_scale: float
     whitening: np.ndarray
+    trend: Optional[Trend] = None
 
     @property
     def model_ranges(self) -> np.ndarray:
@@ -82,15 +142,90 @@ class Normalization:
         return np.ones(g.shape[:-1])
 
     def model(self, g):
-        """The normalised model at the measured ranges for curves ``g`` (..., model_ranges)."""
+        """The normalised model at the measured ranges for curves ``g`` (..., model_ranges), times
+        the retrieval's transmission factor at the profiled δα when there is a trend."""
         g = np.asarray(g)
+        if self.trend is not None:
+            g = g[..., : self.ranges.size] * self.transmission(self.bias(g))
         with np.errstate(divide="ignore", invalid="ignore"):
             return g[..., : self.ranges.size] / self.scale(g)[..., None]
 
+    def transmission(self, bias):
+        """exp(-2 δα (z - z_ref)) at the measured ranges for δα ``bias`` (...,) in 1/m."""
+        assert self.trend is not None
+        return np.exp(-2.0 * np.asarray(bias)[..., None] * self.trend.offsets)
+
+    def bias(self, g):
+        """The δα (1/m) of least whitened cost for each curve ``g`` (..., model_ranges), within
+        ±bound (Gauss-Newton in one variable, halving a step that raises the cost; 0 where the
+        model vanishes over the interval)."""
+        assert self.trend is not None
+        u = np.asarray(g)[..., : self.ranges.size]
+        bound = self.trend.bound
+        a = np.zeros(u.shape[:-1])
+
+        def cost_and_step(a):
+            v = u * self.transmission(a)
+            m = v / self.scale(v)[..., None]
+            r = (m - self.data) @ self.whitening.T
+            ja = self.bias_column(v) @ self.whitening.T
+            return np.einsum("...i,...i->...", r, r), -np.einsum("...i,...i->...", ja, r) / (
+                np.einsum("...i,...i->...", ja, ja)
+            )
+
+        with np.errstate(all="ignore"):
+            cost, step = cost_and_step(a)
+            for _ in range(BIAS_MAX_STEPS):
+                trial = np.clip(a + np.where(np.isfinite(step), step, 0.0), -bound, bound)
+                for _ in range(8):  # halve until the cost does not rise
+                    new_cost, new_step = cost_and_step(trial)
+                    worse = ~(new_cost <= cost) & np.isfinite(cost)
+                    if not worse.any():
+                        break
+                    trial = np.where(worse, 0.5 * (a + trial), trial)
+                else:  # still worse after the halvings: stay
+                    trial = np.where(worse, a, trial)
+                    new_cost, new_step = cost_and_step(trial)
+                moved = np.abs(trial - a)
+                a, cost, step = trial, new_cost, new_step
+                if not np.any(moved > BIAS_STEP_TOLERANCE):
+                    break
+        return np.where(np.isfinite(a), a, 0.0)
+
+    def bias_column(self, v):
+        """d(normalised model)/dδα for the trended curves ``v`` (..., measured ranges): the
+        normaliser moves too, so -2 m (z - z̄) with z̄ the v-weighted mean range over the
+        interval."""
+        assert self.trend is not None
+        x = self.trend.offsets
+        m = v / self.scale(v)[..., None]
+        zbar = (v[..., self.inside] * x[self.inside]).sum(axis=-1) / v[..., self.inside].sum(
+            axis=-1
+        )
+        return -2.0 * m * (x - zbar[..., None])
+
+    def bias_parts(self, g, j):
+        """(δα, d model/dp at fixed δα (n, k), d model/dδα (n,)) of the curve ``g`` and its
+        Jacobian ``j`` (model_ranges, k)."""
+        n = self.ranges.size
+        a = float(self.bias(g))
+        t = self.transmission(a)
+        v, jv = g[:n] * t, j[:n] * t[:, None]
+        s, ds = self.scale(v), jv[self.inside].mean(axis=0)
+        return a, jv / s - np.outer(v, ds) / s**2, self.bias_column(v)
+
     def model_jacobian(self, g, j):
         """d(normalised model)/dp, (n, k), from the curve ``g`` and its Jacobian ``j``
-        (model_ranges, k): the quotient rule."""
-        n, s = self.ranges.size, self.scale(g)
+        (model_ranges, k): the quotient rule; with a trend, its δα direction projected out in the
+        whitened metric (variable projection) unless δα rests on its bound."""
+        n = self.ranges.size
+        if self.trend is not None:
+            a, jp, ja = self.bias_parts(g, j)
+            if abs(a) >= self.trend.bound:
+                return jp
+            wa, wp = self.whitening @ ja, self.whitening @ jp
+            return jp - np.outer(ja, wa @ wp / (wa @ wa))
+        s = self.scale(g)
         if self.kind == "none":
             return j[:n]
         ds = j[:n][self.inside].mean(axis=0) if self.kind == "interval" else j[n]
@@ -105,10 +240,27 @@ class Normalization:
         return np.where(np.isfinite(cost), cost, np.inf)
 
 
+def bias_covariance(norm: Normalization, jp, ja, covariance, scale: float):
+    """(var δα, cov(p, δα) (k,)) from the joint problem's block inverse: with A = JpᵀJp, b = Jpᵀja,
+    c = jaᵀja (whitened), the parameters' block of the inverse is (A - b bᵀ/c)⁻¹ = ``covariance``
+    (the projected fit's, times ``scale``), δα's is 1/c + bᵀ P b / c² and the cross term -P b / c.
+    ``scale``: the factor the fit scaled its covariance by (chi²/dof without sigma, else 1)."""
+    wa, wp = norm.whitening @ ja, norm.whitening @ jp
+    c, b = float(wa @ wa), wp.T @ wa
+    with np.errstate(invalid="ignore", over="ignore"):
+        return float(scale / c + b @ covariance @ b / c**2), -(covariance @ b) / c
+
+
 def normalization(normalize, ranges, measured, sigma) -> Normalization:
     """The :class:`Normalization` for ``normalize`` (None, ``"far"`` or (z_low, z_high) in m) of
     data ``measured`` at ``ranges`` with errors ``sigma`` (one per point); ValueError naming
     ``normalize`` and its valid range otherwise."""
+    if isinstance(normalize, WithExtinctionBias):
+        plain = normalization(normalize.normalize, ranges, measured, sigma)
+        x = plain.ranges[plain.inside]
+        reference = float(x.mean())
+        trend = Trend(plain.ranges - reference, reference, EXTINCTION_BIAS_BOUND)
+        return dataclasses.replace(plain, trend=trend)
     z = np.asarray(ranges, dtype=float)
     y = np.asarray(measured, dtype=float)
     w = np.asarray(sigma, dtype=float)
@@ -199,6 +351,7 @@ def fit_relative(
     white = norm.whitening
 
     curve = last_curve(p)
+    parts: list = [None]  # the bias split of the last Jacobian (the solution's, after the solve)
 
     def result(trial):
         c = curve(trial)
@@ -206,7 +359,10 @@ def fit_relative(
 
     def model_jacobian(trial):
         g = curve(trial).overlap  # the curve the optimiser has just evaluated
-        return white @ norm.model_jacobian(g, jacobian(p, trial, paths, h_tolerance))
+        j = jacobian(p, trial, paths, h_tolerance)
+        if norm.trend is not None:
+            parts[0] = norm.bias_parts(g, j)
+        return white @ norm.model_jacobian(g, j)
 
     model = Model(
         lambda trial: result(trial)[1], model_jacobian, result, p, h_tolerance, p.tolerance
@@ -222,8 +378,9 @@ def fit_relative(
         loss,
         max_evaluations,
         allow_unconverged,
+        None if norm.trend is None else white.shape[0] - 1,  # δα takes a degree of freedom
     )
-    return relative_result(raw, norm, sigma is not None)
+    return relative_result(raw, norm, sigma is not None, parts[0])
 
 
 def extended_plan(p, norm: Normalization):
@@ -234,10 +391,11 @@ def extended_plan(p, norm: Normalization):
     return p.at(norm.model_ranges)
 
 
-def relative_result(raw, norm: Normalization, sigma_given: bool) -> RelativeFitResult:
+def relative_result(raw, norm: Normalization, sigma_given: bool, parts=None) -> RelativeFitResult:
     """The :class:`RelativeFitResult` of a solve on the whitened problem: chi-square and the
     covariance as solved; residuals, measured and sigma per measured range on the normalised scale
-    (for plots and tables)."""
+    (for plots and tables); with a trend, δα and its uncertainty from ``parts`` (the
+    :meth:`Normalization.bias_parts` at the solution)."""
     g = raw.result.overlap
     model = norm.model(g)
     residuals = (model - norm.data) / (norm.sigma if sigma_given else 1.0)
@@ -254,4 +412,20 @@ def relative_result(raw, norm: Normalization, sigma_given: bool) -> RelativeFitR
         data_scale=norm.data_scale,
         fitted=model,
     )
+    if norm.trend is not None and parts is not None:
+        bias, jp, ja = parts
+        scale = raw.reduced_chi_square if raw.covariance_scaled else 1.0
+        variance, cross = bias_covariance(norm, jp, ja, raw.covariance, scale)
+        if abs(bias) >= norm.trend.bound:
+            _checks.warn(
+                f"fit: extinction_bias {bias:.3g} /m rests on its bound ±{norm.trend.bound:g} /m: "
+                "the trend in the data is larger than an extinction error explains; its "
+                "uncertainty is that of a free parameter there"
+            )
+        fields.update(
+            extinction_bias=bias,
+            extinction_bias_uncertainty=math.sqrt(variance) if variance >= 0 else math.nan,
+            extinction_bias_reference=norm.trend.reference,
+            extinction_bias_covariance=cross,
+        )
     return RelativeFitResult(**fields)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Tuple, Union
+from typing import Optional, Tuple, Union
 
 import numpy as np
 
@@ -25,13 +25,25 @@ class RelativeFitResult(FitResult):
     its far limit; the instrument's absolute G there) and the data's (their mean over the interval,
     1 for "far"). fitted : the normalised model at the measured ranges. ``measured``, ``sigma`` and
     ``residuals`` are per measured range on the normalised scale; ``chi_square`` is that of the
-    whitened problem (n - 1 independent points for an interval)."""
+    whitened problem (n - 1 independent points for an interval).
+
+    With ``extinction_bias=True``: extinction_bias, its 1-sigma extinction_bias_uncertainty (1/m):
+    δα, the error of the extinction the retrieval of the data assumed (two-way: the data carry
+    exp(-2 δα (z - z_ref))), a property of the retrieval, not of the instrument; δα = α_true -
+    α_assumed, positive when the retrieval assumed too little extinction (see
+    :mod:`lidar_overlap.analysis.relative`).
+    extinction_bias_reference : z_ref (m). extinction_bias_covariance : cov(p, δα), one per
+    parameter. All None without it."""
 
     normalize: Union[str, Tuple[float, float]] = "far"
     normalizing_ranges: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
     model_scale: float = 1.0
     data_scale: float = 1.0
     fitted: np.ndarray = dataclasses.field(default_factory=lambda: np.empty(0))
+    extinction_bias: Optional[float] = None
+    extinction_bias_uncertainty: Optional[float] = None
+    extinction_bias_reference: Optional[float] = None
+    extinction_bias_covariance: Optional[np.ndarray] = None
 
     @property
     def ranges(self) -> np.ndarray:
@@ -42,12 +54,30 @@ class RelativeFitResult(FitResult):
         """The fitted model at ``ranges`` (m) on the data's normalised scale, and its 1-sigma band
         from the covariance, sqrt(diag(J C Jᵀ)) with J the derivative of the normalised model (its
         normaliser moves with the parameters too)."""
-        return normalised_prediction(self, ranges, self.normalizing_ranges)
+        return normalised_prediction(self, ranges, self.normalizing_ranges, self._trend())
+
+    def _trend(self):
+        if self.extinction_bias is None:
+            return None
+        return (
+            self.extinction_bias,
+            self.extinction_bias_reference,
+            self.extinction_bias_uncertainty,
+            self.extinction_bias_covariance,
+        )
 
     def absolute(self, ranges) -> Prediction:
         """The fitted instrument's absolute G at ``ranges`` (m) with its band (the model before
         normalising: what the instrument's geometry implies, e.g. for :func:`lo.correct`)."""
         return FitResult.predict(self, ranges)
+
+    def table(self):
+        """:meth:`FitResult.table`, then the extinction bias (1/m; start 0) when it was fitted."""
+        rows = FitResult.table(self)
+        if self.extinction_bias is not None:
+            u = self.extinction_bias_uncertainty
+            rows.append(("extinction_bias", self.extinction_bias, u, "1/m", 0.0))
+        return rows
 
     def summary(self) -> str:
         """:meth:`FitResult.summary` with how the data were normalised."""
@@ -56,19 +86,29 @@ class RelativeFitResult(FitResult):
             if self.normalize == "far"
             else "each by its mean over {:g}-{:g} m".format(*self.normalize)
         )
-        return (
+        text = (
             FitResult.summary(self)
             + f"\n  relative data: model and data normalised {how}; the model's absolute G "
             f"there is {self.model_scale:.4g}"
         )
+        if self.extinction_bias is not None:
+            text += (
+                "\n  retrieval extinction bias (two-way; the data's retrieval, not the "
+                f"instrument): {1e3 * self.extinction_bias:.4g} +- "
+                f"{1e3 * float(self.extinction_bias_uncertainty or 0.0):.2g} /km (z_ref "
+                f"{self.extinction_bias_reference:.4g} m)"
+            )
+        return text
 
     __str__ = summary
 
 
-def normalised_prediction(fit: FitResult, ranges, normalizing_ranges) -> Prediction:
+def normalised_prediction(fit: FitResult, ranges, normalizing_ranges, trend=None) -> Prediction:
     """The fitted model of ``fit`` at ``ranges`` (m) divided by its mean over ``normalizing_ranges``
     (m), with the 1-sigma band of that ratio from the fit's covariance (the
-    quotient rule on the Jacobian: the normaliser moves with the parameters too)."""
+    quotient rule on the Jacobian: the normaliser moves with the parameters too). ``trend``: None or
+    (δα (1/m), z_ref (m), its uncertainty, cov(p, δα)): the model times exp(-2 δα (z - z_ref)), δα's
+    variance and covariance in the band."""
     z = _checks.ranges("ranges", ranges)
     fit.system._native.validate_ranges(z)
     both = np.union1d(z, normalizing_ranges)
@@ -76,8 +116,19 @@ def normalised_prediction(fit: FitResult, ranges, normalizing_ranges) -> Predict
     g = run(p).overlap
     j = jacobian(p, fit.system, list(fit.parameters), fit.step_tolerance)
     at, norm = np.searchsorted(both, z), np.searchsorted(both, normalizing_ranges)
+    if trend is not None:
+        t = np.exp(-2.0 * trend[0] * (both - trend[1]))
+        g, j = g * t, j * t[:, None]
     s, ds = g[norm].mean(), j[norm].mean(axis=0)
     jn = j[at] / s - np.outer(g[at], ds) / s**2
     with np.errstate(invalid="ignore"):
-        band = np.sqrt(np.einsum("ij,jk,ik->i", jn, fit.covariance, jn))
+        variance = np.einsum("ij,jk,ik->i", jn, fit.covariance, jn)
+        if (
+            trend is not None
+        ):  # d(model)/dδα = -2 m (z - z̄), z̄ the g-weighted mean over the interval
+            m = g[at] / s
+            zbar = (g[norm] * both[norm]).sum() / g[norm].sum()
+            ja = -2.0 * m * (both[at] - zbar)
+            variance = variance + 2 * ja * (jn @ trend[3]) + ja**2 * trend[2] ** 2
+        band = np.sqrt(variance)
     return Prediction(z, g[at] / s, band)

@@ -93,6 +93,12 @@ def _parser() -> argparse.ArgumentParser:
         help="relative data: divide the model and the data each by their mean over Z_LOW..Z_HIGH "
         "(m), e.g. an overlap curve normalised to 1 in the far range",
     )
+    fit.add_argument(
+        "--extinction-bias",
+        action="store_true",
+        help="with --normalize: also fit the error (1/m) of the extinction the curve's retrieval "
+        "assumed, the factor exp(-2 da (z - z_ref)) it leaves in the data",
+    )
     tc = sub.add_parser(
         "telecover",
         help="the telecover test of a scenario, or a fit to measured deviations",
@@ -220,6 +226,7 @@ def _fit(scenario: Scenario, args) -> int:
                 args.out or Path(scenario.name),
                 args.method,
                 normalize=None if args.normalize is None else tuple(args.normalize),
+                extinction_bias=args.extinction_bias,
             )
             noted((None, note))
     except (RuntimeError, ImportError) as exc:  # not converged; scipy missing

@@ -95,15 +95,23 @@ def read_table(
 
 
 def fit_scenario(
-    scenario: Scenario, measurements: Path, free: List[str], out: Path, method=None, normalize=None
+    scenario: Scenario,
+    measurements: Path,
+    free: List[str],
+    out: Path,
+    method=None,
+    normalize=None,
+    extinction_bias: bool = False,
 ):
     """Fit, then write ``<name>_fit.csv`` and ``<name>_fit.png`` into ``out``; returns (result,
-    files, note). ``normalize``: None or (z_low, z_high) in m, as :func:`lidar_overlap.fit`."""
+    files, note). ``normalize``: None or (z_low, z_high) in m; ``extinction_bias``: as
+    :func:`lidar_overlap.fit`."""
     z, g, sigma = read_measurements(measurements)
     model, threads = scenario.method_object(method), scenario.threads
     result = fit(
-        scenario.system, z, g, sigma, free=free, method=model, threads=threads, normalize=normalize
-    )
+        scenario.system, z, g, sigma, free=free, method=model, threads=threads,
+        normalize=normalize, extinction_bias=extinction_bias,
+    )  # fmt: skip
     header = [f"# scenario: {scenario.name}", f"# measurements: {measurements}"]
     if normalize is not None:
         header.append(f"# normalize: model and data each by their mean over {normalize} m")
