@@ -33,10 +33,8 @@ BOUNDS = {"detector.numerical_aperture": (0.05, 0.5), "detector.defocus": (-0.01
 CURVES = [
     ("noa_355", "pollyxt_noa_overlap_355.txt", 355e-9, (150, 1200), (600, 1200), (800, 1190), True,
      {}),
-    # the IfT fits reach divergences near the 532 nm diffraction limit (1.13e-5 rad), where the
-    # Jacobian's step (11 % of the value at this tolerance) would cross it: kept above 1.5e-5 rad
     ("ift_532", "pollyxt_ift_overlap_532.txt", 532e-9, (100, 2500), (600, 2500), (1500, 2480), True,
-     {"beam.divergence": (1.5e-5, 2e-3)}),
+     {}),
 ]  # fmt: skip
 
 

@@ -158,28 +158,68 @@ def central_differences(p, system, paths, multiples, tolerance: float):
     h = s (3 tolerance)^(1/3) (the module's step rule, s the path's scale in ``system``). The
     shifted systems run through :func:`lidar_overlap.forward.backends.many.systems` (one core call
     on ray tracing; on another backend a run of ``p`` re-targeted at each)."""
-    factor = (3.0 * tolerance) ** (1.0 / 3.0)
-    steps = np.array([step_scale(system, path) * factor for path in paths])
-    values = [_parameters.get(system, path) for path in paths]
-    shifted = [
-        _shifted(system, path, v, h, k)
-        for path, v, h in zip(paths, values, steps)
-        for k in multiples
-    ]
-    z = p.ranges
-    shape = (len(paths), len(multiples), z.size)
-    _checks.check_memory(
-        "parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges"
-    )
-    curves = many.systems(p.with_system(system), shifted)
-    return steps, curves.overlap.reshape(shape), curves.error_estimate.reshape(shape)
+    steps = _steps(system, paths, tolerance)
+    return (steps, *_shifted_curves(p, system, paths, steps, [tuple(multiples)] * len(paths)))
 
 
 def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
     """dG/dp of ``system`` on plan ``p``'s model and ranges, shape (range, path): central
-    differences with :func:`central_differences` (one core call on ray tracing)."""
-    steps, g, _ = central_differences(p, system, paths, (1, -1), tolerance)
-    return ((g[:, 0] - g[:, 1]) / (2.0 * steps[:, None])).T
+    differences with the steps of :func:`central_differences`, all in one core call on ray tracing.
+    A path one step from the edge of the model's range (a divergence within a step of the
+    diffraction limit, a weight within a step of 1) gets the one-sided difference on the side that
+    stays inside: first order, where the central one has no second point."""
+    steps = _steps(system, paths, tolerance)
+    points = [
+        _difference_points(system, path, _parameters.get(system, path), h)
+        for path, h in zip(paths, steps)
+    ]
+    g, _ = _shifted_curves(p, system, paths, steps, points)
+    width = steps * np.array([high - low for high, low in points], dtype=float)
+    return ((g[:, 0] - g[:, 1]) / width[:, None]).T
+
+
+def _steps(system, paths, tolerance: float) -> np.ndarray:
+    """The step h = s (3 tolerance)^(1/3) of each path (the module's step rule)."""
+    factor = (3.0 * tolerance) ** (1.0 / 3.0)
+    return np.array([step_scale(system, path) * factor for path in paths])
+
+
+def _shifted_curves(p, system, paths, steps, points):
+    """G and its error estimate, each (path, point, range), of ``system`` with each path shifted by
+    k h for each k of its ``points`` (the same number for every path), in one run."""
+    shifted = [
+        _shifted(system, path, _parameters.get(system, path), h, k)
+        for path, h, ks in zip(paths, steps, points)
+        for k in ks
+    ]
+    z = p.ranges
+    shape = (len(paths), len(points[0]), z.size)
+    _checks.check_memory(
+        "parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges"
+    )
+    curves = many.systems(p.with_system(system), shifted)
+    return curves.overlap.reshape(shape), curves.error_estimate.reshape(shape)
+
+
+def _difference_points(system, path: str, value: float, step: float):
+    """The multiples of ``step`` a difference of ``path`` takes: (1, -1), or (1, 0) / (0, -1) where
+    the point below / above leaves the model's range (both leaving it is the central error)."""
+    above, below = (_inside(system, path, value, step, k) for k in (1, -1))
+    if above and below:
+        return (1, -1)
+    if above:
+        return (1, 0)
+    if not below:
+        _shifted(system, path, value, step, -1)  # raises, naming the parameter and the step
+    return (0, -1)
+
+
+def _inside(system, path: str, value: float, step: float, k: int) -> bool:
+    try:
+        _shifted(system, path, value, step, k)
+    except ValueError:
+        return False
+    return True
 
 
 def _shifted(system, path: str, value: float, step: float, k: int):
