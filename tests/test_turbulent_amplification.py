@@ -5,13 +5,12 @@ Published limits (docs/turbulence.md): a point receiver (aperture << r0) in satu
 gains a factor tending to 2, the mean of the squared exponential intensity the outgoing and
 returning waves share (Kravtsov & Saichev, Sov. Phys. Usp. 25, 494 (1982); Banakh & Mironov,
 *Lidar in a Turbulent Atmosphere* (1987)); a receiver much larger than r0 averages the shared bright
-spots away. The factor 2 itself is out of reach of these grids: the random-phase receiver's speckle
-in the sky is λz/D wide, and averaging it under a beam the field of view must also cover needs a
-grid of ~320 λz/D² (10⁴ for D = 4 mm at 500 m). What is tested is the fall with the aperture at a
-fixed atmosphere, both amplifications above 1, the smaller below the bound, and the large-aperture
-limit: a 20 cm receiver (3.9 r0, aperture averaging 0.011) gains nothing beyond what ray tracing,
-which leaves the enhancement out, gives for the same scene (as ray tracing's own limit,
-tests/test_turbulent_rt_return.py::test_amplification_limits).
+spots away. The point-like lidar's 1 + σ_I² is tested in tests/test_turbulent_point_receiver.py;
+the saturated factor 2 is out of reach of these grids. What is tested here is the fall with the
+aperture at a fixed atmosphere, both amplifications above 1, the smaller below the bound, and the
+large-aperture limit: a 20 cm receiver (3.9 r0, aperture averaging 0.011) gains nothing beyond
+what ray tracing, which leaves the enhancement out, gives for the same scene (as ray tracing's own
+limit, tests/test_turbulent_rt_return.py::test_amplification_limits).
 
 The scene is the oracle's (tests/test_turbulent_return.py): 1064 nm, w0 = 2.5 mm, f = 0.5 m, a 25 µm
 detector, 200 m through Cn² = 7.3e-13 (spherical r0 = 1.8 cm, spherical-wave Rytov variance 0.48).
