@@ -304,8 +304,8 @@ def _cosines(j: np.ndarray) -> np.ndarray:
 
 
 #: A divergence's default lower bound stays this factor above the diffraction limit λ/(π w0) (width
-#: law "gaussian"): below the limit there is no such beam (within a step of it the Jacobian takes the
-#: one-sided difference, :func:`lidar_overlap.analysis.sensitivity.jacobian`).
+#: law "gaussian"): below the limit there is no such beam (within a step of it the Jacobian takes
+#: the one-sided difference, :func:`lidar_overlap.analysis.sensitivity.jacobian`).
 DIFFRACTION_MARGIN = 1.05
 
 
