@@ -1,6 +1,7 @@
 // The turbulent FO path's grid rule (atmosphere/turbulent_grid.hpp): overlap_fo_turbulent accepts exactly the
 // beam_grid turbulent_grid states as the least on both paths and refuses the even size below it, naming the
 // size; the windows never shrink; transmit needs no more than the floor; bad options are refused by name.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,7 @@ void bad_options() {
   o.screens = 0;
   test::throws("no screens", [&] { turbulent_grid(small_lidar(), z, air, o); }, "screens");
   o = both(0);
-  o.beam_window = 0.0 / 0.0;
+  o.beam_window = std::numeric_limits<double>::quiet_NaN();
   test::throws("a NaN window", [&] { turbulent_grid(small_lidar(), z, air, o); }, "beam_window");
   test::throws("a negative range", [&] { turbulent_grid(small_lidar(), {-1.0}, air, both(0)); }, "ranges[0]");
 }
