@@ -20,9 +20,9 @@ import math
 
 import numpy as np
 import pytest
+from _amplification import fo_amplification
 
 import lidar_overlap as lo
-from lidar_overlap import _core
 from lidar_overlap.forward.backends.turbulent_return import missed_enhancement
 from lidar_overlap.model.turbulence import TWO_WAY_BOUND
 
@@ -48,18 +48,7 @@ def lidar(diameter, detector_radius=25e-6, waist=2.5e-3):
 def amplification(diameter, seed, system=None, z=Z, cn2=CN2, fields=FIELDS):
     """Mean G over mean uncorrelated G at z, its standard error (the paired rows, delta method)
     and the mean G."""
-    system, air = system or lidar(diameter), lo.Turbulence(cn2)
-    options = _core.TurbulenceOptions(
-        paths="both", realizations=DRAWS[diameter], screens=10, receiver_fields=fields, seed=seed
-    )
-    options.beam_grid = _core.turbulent_grid(
-        system._native, [z], air._native, options
-    ).min_beam_grid
-    raw = _core.overlap_fo_turbulent(system._native, [z], air._native, options)
-    g, u = raw.overlap[:, 0], raw.uncorrelated[:, 0]
-    ratio = g.mean() / u.mean()
-    error = np.std(g - ratio * u, ddof=1) / math.sqrt(g.size) / u.mean()
-    return float(ratio), float(error), float(g.mean())
+    return fo_amplification(system or lidar(diameter), z, cn2, DRAWS[diameter], fields, seed)
 
 
 @pytest.fixture(scope="module")
