@@ -159,7 +159,12 @@ def central_differences(p, system, paths, multiples, tolerance: float):
     shifted systems run through :func:`lidar_overlap.forward.backends.many.systems` (one core call
     on ray tracing; on another backend a run of ``p`` re-targeted at each)."""
     steps = _steps(system, paths, tolerance)
-    return (steps, *_shifted_curves(p, system, paths, steps, [tuple(multiples)] * len(paths)))
+    shifted = [
+        _shifted(system, path, _parameters.get(system, path), h, k)
+        for path, h in zip(paths, steps)
+        for k in multiples
+    ]
+    return (steps, *_curves(p, system, paths, shifted))
 
 
 def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
@@ -169,13 +174,9 @@ def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
     diffraction limit, a weight within a step of 1) gets the one-sided difference on the side that
     stays inside: first order, where the central one has no second point."""
     steps = _steps(system, paths, tolerance)
-    points = [
-        _difference_points(system, path, _parameters.get(system, path), h)
-        for path, h in zip(paths, steps)
-    ]
-    g, _ = _shifted_curves(p, system, paths, steps, points)
-    width = steps * np.array([high - low for high, low in points], dtype=float)
-    return ((g[:, 0] - g[:, 1]) / width[:, None]).T
+    pairs, widths = zip(*(_difference(system, path, h) for path, h in zip(paths, steps)))
+    g, _ = _curves(p, system, paths, [s for pair in pairs for s in pair])
+    return ((g[:, 0] - g[:, 1]) / np.array(widths)[:, None]).T
 
 
 def _steps(system, paths, tolerance: float) -> np.ndarray:
@@ -184,16 +185,11 @@ def _steps(system, paths, tolerance: float) -> np.ndarray:
     return np.array([step_scale(system, path) * factor for path in paths])
 
 
-def _shifted_curves(p, system, paths, steps, points):
-    """G and its error estimate, each (path, point, range), of ``system`` with each path shifted by
-    k h for each k of its ``points`` (the same number for every path), in one run."""
-    shifted = [
-        _shifted(system, path, _parameters.get(system, path), h, k)
-        for path, h, ks in zip(paths, steps, points)
-        for k in ks
-    ]
+def _curves(p, system, paths, shifted):
+    """G and its error estimate, each (path, point, range), of the ``shifted`` systems (the same
+    number per path, path by path), in one run of plan ``p``'s model."""
     z = p.ranges
-    shape = (len(paths), len(points[0]), z.size)
+    shape = (len(paths), len(shifted) // len(paths), z.size)
     _checks.check_memory(
         "parameters", paths, 64.0 * len(shifted) * z.size, "vary fewer parameters or ranges"
     )
@@ -201,25 +197,24 @@ def _shifted_curves(p, system, paths, steps, points):
     return curves.overlap.reshape(shape), curves.error_estimate.reshape(shape)
 
 
-def _difference_points(system, path: str, value: float, step: float):
-    """The multiples of ``step`` a difference of ``path`` takes: (1, -1), or (1, 0) / (0, -1) where
-    the point below / above leaves the model's range (both leaving it is the central error)."""
-    above, below = (_inside(system, path, value, step, k) for k in (1, -1))
-    if above and below:
-        return (1, -1)
-    if above:
-        return (1, 0)
-    if not below:
-        _shifted(system, path, value, step, -1)  # raises, naming the parameter and the step
-    return (0, -1)
-
-
-def _inside(system, path: str, value: float, step: float, k: int) -> bool:
+def _difference(system, path: str, step: float):
+    """((``system`` at p + h, at p - h), their distance 2h) for ``path``'s difference; where one
+    side leaves the model's range ``system`` itself stands for it, at distance h (both leaving it is
+    the central error, naming the parameter and the step)."""
+    value = _parameters.get(system, path)
     try:
-        _shifted(system, path, value, step, k)
+        above = _shifted(system, path, value, step, 1)
     except ValueError:
-        return False
-    return True
+        above = None
+    try:
+        below = _shifted(system, path, value, step, -1)
+    except ValueError:
+        if above is None:
+            raise
+        return (above, system), step
+    if above is None:
+        return (system, below), step
+    return (above, below), 2.0 * step
 
 
 def _shifted(system, path: str, value: float, step: float, k: int):
