@@ -15,6 +15,14 @@ import lidar_overlap as lo
 #: Where every benchmark writes its ``<name>.json``.
 RESULTS = Path(__file__).resolve().parent / "results"
 
+#: The 5 cm coaxial lidar of docs/turbulence.md (1064 nm, w0 = 5 mm, f = 0.5 m, detector radius
+#: 70 um: 0.28 mrad), the scene of the turbulence benchmarks on both paths.
+FIVE_CM_LIDAR = lo.LidarSystem(
+    beam=lo.GaussianBeam(wavelength=1064e-9, waist_radius=5e-3),
+    telescope=lo.Telescope(diameter=0.05, focal_length=0.5),
+    detector=lo.Detector(radius=70e-6),
+)
+
 
 def best_time(fn, repeats, setup=None):
     """Best wall time (s) of `repeats` calls after one untimed call; `setup()` (untimed) makes the

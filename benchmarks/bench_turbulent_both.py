@@ -24,7 +24,7 @@ import sys
 import time
 
 import numpy as np
-from _common import load_average, run_meta, source_commit, write_result
+from _common import FIVE_CM_LIDAR, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -33,11 +33,7 @@ TARGET_RATIO = 2.0
 SEED = 1
 SCENES = {
     "5 cm": dict(
-        system=lo.LidarSystem(
-            beam=lo.GaussianBeam(wavelength=1064e-9, waist_radius=5e-3),
-            telescope=lo.Telescope(diameter=0.05, focal_length=0.5),
-            detector=lo.Detector(radius=70e-6),
-        ),
+        system=FIVE_CM_LIDAR,
         ranges=np.geomspace(100.0, 1000.0, 20),
         cn2=1e-13,
         beam_grid=432,

@@ -18,7 +18,7 @@ import time
 import warnings
 
 import numpy as np
-from _common import load_average, run_meta, source_commit, write_result
+from _common import FIVE_CM_LIDAR, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 from lidar_overlap.forward.backends import turbulent_return
@@ -28,11 +28,7 @@ CN2 = 1e-14
 REALIZATIONS = 500
 REPEATS = 5
 TARGET_RATIO = 2.0
-SYSTEM = lo.LidarSystem(
-    beam=lo.GaussianBeam(wavelength=1064e-9, waist_radius=5e-3),
-    telescope=lo.Telescope(diameter=0.05, focal_length=0.5),
-    detector=lo.Detector(radius=70e-6),
-)
+SYSTEM = FIVE_CM_LIDAR
 
 
 def run(paths, seed):

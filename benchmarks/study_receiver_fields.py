@@ -21,7 +21,7 @@ import sys
 import time
 
 import numpy as np
-from _common import load_average, run_meta, source_commit, write_result
+from _common import FIVE_CM_LIDAR, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -31,11 +31,7 @@ BEAM_GRID = 432
 SEED = 11
 LAST = 3  # the last LAST ranges are reported
 FIELDS = (1, 2, 4, 8)
-SYSTEM = lo.LidarSystem(
-    beam=lo.GaussianBeam(wavelength=1064e-9, waist_radius=5e-3),
-    telescope=lo.Telescope(diameter=0.05, focal_length=0.5),
-    detector=lo.Detector(radius=70e-6),
-)
+SYSTEM = FIVE_CM_LIDAR
 
 
 def run(fields, realizations):
