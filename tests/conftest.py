@@ -1,6 +1,7 @@
 """Fixtures shared by test files."""
 
 import os
+from pathlib import Path
 
 import pytest
 from _probe_runner import ProbeRunner
@@ -38,3 +39,27 @@ def runner():
     that crashes or hangs fails its test, not the session."""
     with ProbeRunner() as r:
         yield r
+
+
+@pytest.fixture
+def fit_inputs(tmp_path):
+    """Writes the command-line fit's inputs into tmp_path: the start, Table 1's scenario with its
+    beam tilted by 0.2 mrad and its detector defocused by 1 mm, and the measured curve as CSV
+    ``range_m,overlap``. Call it with (ranges, overlap); it returns (scenario, data) paths."""
+
+    def write(ranges, overlap):
+        scenario = tmp_path / "start.toml"
+        table1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
+        scenario.write_text(
+            table1.read_text()
+            .replace("tilt = [0.0, 0.0]", "tilt = [2e-4, 0.0]")
+            .replace("defocus = 0.0 ", "defocus = 1e-3 ")
+        )
+        data = tmp_path / "m.csv"
+        data.write_text(
+            "range_m,overlap\n"
+            + "\n".join(f"{a!r},{b!r}" for a, b in zip(list(ranges), list(overlap)))
+        )
+        return scenario, data
+
+    return write

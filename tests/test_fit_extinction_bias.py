@@ -7,7 +7,6 @@ search's batched profile equals a grid search over da; the ladder counts da in e
 the command line's --extinction-bias; bad input is a clear error."""
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -235,19 +234,8 @@ def test_profiled_cost_of_many_curves_is_the_least_over_a_grid_of_da():
 
 
 @pytest.mark.filterwarnings("ignore:fit. the model's tolerance")  # noise-free data
-def test_command_line_extinction_bias(tmp_path, capsys):
-    scenario = tmp_path / "start.toml"
-    table1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
-    scenario.write_text(
-        table1.read_text()
-        .replace("tilt = [0.0, 0.0]", "tilt = [2e-4, 0.0]")
-        .replace("defocus = 0.0 ", "defocus = 1e-3 ")
-    )
-    data = tmp_path / "m.csv"
-    y = _truth() * _trend(DA)
-    data.write_text(
-        "range_m,overlap\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(Z.tolist(), y.tolist()))
-    )
+def test_command_line_extinction_bias(tmp_path, capsys, fit_inputs):
+    scenario, data = fit_inputs(Z.tolist(), (_truth() * _trend(DA)).tolist())
     args = ["fit", str(scenario), str(data), "--free", *TRUE, "--out", str(tmp_path / "out")]
     assert main(args + ["--normalize", *map(str, INTERVAL), "--extinction-bias"]) == 0
     assert "retrieval extinction bias" in capsys.readouterr().out

@@ -3,8 +3,6 @@ the far range) give the parameters an absolute fit of absolute data gives; the c
 normalised problem covers the truth at its stated rate; bad intervals are clear errors; the command
 line's --normalize."""
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
@@ -110,19 +108,8 @@ def test_fewer_points_than_parameters_is_a_clear_error():
         lo.fit(_start(), z, _truth(z), free=list(TRUE), normalize=(z[0], z[-1]), **FAST)
 
 
-def test_command_line_normalize(tmp_path, capsys):
-    scenario = tmp_path / "start.toml"
-    table1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
-    scenario.write_text(
-        table1.read_text()
-        .replace("tilt = [0.0, 0.0]", "tilt = [2e-4, 0.0]")
-        .replace("defocus = 0.0 ", "defocus = 1e-3 ")
-    )
-    y = 0.9 * _truth()
-    data = tmp_path / "m.csv"
-    data.write_text(
-        "range_m,overlap\n" + "\n".join(f"{a!r},{b!r}" for a, b in zip(Z.tolist(), y.tolist()))
-    )
+def test_command_line_normalize(tmp_path, capsys, fit_inputs):
+    scenario, data = fit_inputs(Z.tolist(), (0.9 * _truth()).tolist())
     args = ["fit", str(scenario), str(data), "--free", *TRUE, "--out", str(tmp_path / "out")]
     assert main(args + ["--normalize", "1000", "3000"]) == 0
     printed = capsys.readouterr().out
