@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <string>
 
 #include "lidar_overlap/core/limits.hpp"
@@ -11,6 +10,7 @@
 #include "core/checks.hpp"
 #include "core/constants.hpp"
 #include "core/quadrature.hpp"
+#include "core/xoshiro.hpp"
 #include "fourier/fft.hpp"
 #include "fourier/zeroed_buffer.hpp"
 
@@ -87,9 +87,9 @@ struct Ziggurat {
 };
 
 // Uniform deviate in (0, 1] on a 2^-53 lattice (never 0: it goes into a logarithm).
-double uniform(std::mt19937_64& rng) { return static_cast<double>((rng() >> 11) + 1) * 0x1p-53; }
+double uniform(detail::Xoshiro256& rng) { return static_cast<double>((rng() >> 11) + 1) * 0x1p-53; }
 
-double normal(std::mt19937_64& rng) {
+double normal(detail::Xoshiro256& rng) {
   static const Ziggurat z;
   for (;;) {
     const std::uint64_t bits = rng();
@@ -112,7 +112,7 @@ double normal(std::mt19937_64& rng) {
 }
 
 // Two independent N(0, 1) deviates as one complex number.
-Complex complex_normal(std::mt19937_64& rng) {
+Complex complex_normal(detail::Xoshiro256& rng) {
   const double re = normal(rng);
   return {re, normal(rng)};
 }
@@ -195,7 +195,7 @@ std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint
 void PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair, std::array<std::vector<double>, 2>& out,
                                          ComplexBuffer& spectrum) const {
   const std::size_t n = n_, h = n / 2;
-  std::mt19937_64 rng(mix(mix(seed) ^ static_cast<std::uint64_t>(pair)));
+  detail::Xoshiro256 rng(mix(mix(seed) ^ static_cast<std::uint64_t>(pair)));
   // Every element of the three buffers is written below: their earlier contents never matter.
   if (spectrum.size() != n * n) spectrum = detail::zeroed_buffer(n * n);
   for (std::vector<double>& screen : out)

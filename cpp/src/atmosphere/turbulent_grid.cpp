@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/checks.hpp"
 #include "core/entry_checks.hpp"
@@ -64,16 +65,34 @@ TurbulentGrid turbulent_grid(const LidarSystem& system, const std::vector<double
   if (ranges.empty()) return out;
   const double lambda = system.beam.wavelength, z_max = *std::max_element(ranges.begin(), ranges.end());
   // The planes in overlap_fo_turbulent's order: screens, then ranges, stably sorted by range.
+  std::vector<std::pair<double, bool>> planes;  // (range, a screen's plane)
+  for (const ScreenPlacement& p : atmosphere.place_screens(lambda, z_max, o.screens)) planes.push_back({p.range, true});
+  for (double zi : ranges) planes.push_back({zi, false});
+  std::stable_sort(planes.begin(), planes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<double> z;
-  for (const ScreenPlacement& p : atmosphere.place_screens(lambda, z_max, o.screens)) z.push_back(p.range);
-  z.insert(z.end(), ranges.begin(), ranges.end());
-  std::stable_sort(z.begin(), z.end());
+  for (const auto& p : planes) z.push_back(p.first);
   out.pupil_window = turbulent_window(system, atmosphere, o.beam_window, o.paths, 0.0);
-  double side = out.pupil_window;
-  for (double zi : z) {
-    side = std::max(side, turbulent_window(system, atmosphere, o.beam_window, o.paths, zi));
-    out.plane_range.push_back(zi);
-    out.window.push_back(side);
+  out.plane_range = z;
+  out.window.assign(z.size(), 0.0);
+  // Segments run from a screen (or the transmitter) to the next screen (or the last plane); in each the side
+  // grows linearly with range from the start's (a cone: atmosphere/scaled_step.hpp), to the least end side
+  // that keeps every plane's side at or above its window and the start's.
+  double z_a = 0.0, side_a = out.pupil_window;
+  for (std::size_t p = 0; p < z.size();) {
+    if (z[p] <= z_a) {  // a range at the segment's start (after the screen there): the screen's side
+      out.window[p++] = side_a;
+      continue;
+    }
+    std::size_t e = p;
+    while (e + 1 < z.size() && !planes[e].second) ++e;
+    const double span = z[e] - z_a;
+    double side_b = std::max(side_a, turbulent_window(system, atmosphere, o.beam_window, o.paths, z[e]));
+    for (std::size_t q = p; q < e; ++q)
+      side_b = std::max(side_b, side_a + (turbulent_window(system, atmosphere, o.beam_window, o.paths, z[q]) - side_a) *
+                                             span / (z[q] - z_a));
+    for (std::size_t q = p; q < e; ++q) out.window[q] = side_a + (side_b - side_a) * (z[q] - z_a) / span;
+    out.window[e] = side_b;
+    z_a = z[e], side_a = side_b, p = e + 1;
   }
   if (o.paths != TurbulencePaths::both) return out;
   const double angle = receiver_max_angle(system), d = system.telescope.focal_length + system.detector.defocus;
@@ -89,7 +108,7 @@ TurbulentGrid turbulent_grid(const LidarSystem& system, const std::vector<double
 
 double turbulent_both_bytes(std::size_t beam_grid, std::size_t screens, std::size_t receiver_fields, int threads) {
   const double n2 = double(beam_grid) * double(beam_grid);
-  return 16.0 * n2 * double(screens) + 16.0 * double(threads) * n2 * (2.0 * double(receiver_fields) + 7.0);
+  return 16.0 * n2 * double(screens) + 16.0 * double(threads) * n2 * (2.0 * double(receiver_fields) + 8.0);
 }
 
 }  // namespace lidar_overlap

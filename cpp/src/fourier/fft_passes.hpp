@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <utility>
 
 #include "core/cancel_every.hpp"
 #include "core/parallel.hpp"
@@ -74,11 +75,12 @@ void scatter(const Complex* block, std::size_t rows, std::size_t cols, std::size
 // block's columns (and the rows they come from, a power of two apart) do not share cache sets.
 inline std::size_t column_stride(std::size_t rows) { return rows + 4; }
 
-// For each block of up to kFftBlock columns of a rows x cols row-major array: the columns gathered into
-// a scratch block (column c of the block at scratch + c * column_stride(rows), contiguous), work(first
-// column, count, scratch), the block written back. RowTransform::columns transforms such a block.
+// For each block of up to kFftBlock columns of a rows x cols row-major array `from`: the columns gathered
+// into a scratch block (column c of the block at scratch + c * column_stride(rows), contiguous), work(first
+// column, count, scratch), the block written to the same columns of `to` (`from` itself, or an array that
+// does not overlap it). RowTransform::columns transforms such a block.
 template <class Work>
-void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {
+void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads, Work&& work) {
   const long blocks = static_cast<long>((cols + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
   RegionStop stop;
@@ -93,21 +95,27 @@ void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads,
       const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, cols - c0);
       Complex* s = scratch.data();
       if (count == kFftBlock) {  // the common case, unrolled by the compiler
-        gather<kFftBlock>(data + c0, rows, cols, stride, s);
+        gather<kFftBlock>(from + c0, rows, cols, stride, s);
         work(c0, count, s);
-        scatter<kFftBlock>(s, rows, cols, stride, data + c0);
+        scatter<kFftBlock>(s, rows, cols, stride, to + c0);
       } else {
         for (std::size_t r = 0; r < rows; ++r)
-          for (std::size_t c = 0; c < count; ++c) copy_one(data + r * cols + c0 + c, s + c * stride + r);
+          for (std::size_t c = 0; c < count; ++c) copy_one(from + r * cols + c0 + c, s + c * stride + r);
         work(c0, count, s);
         for (std::size_t r = 0; r < rows; ++r)
-          for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, data + r * cols + c0 + c);
+          for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, to + r * cols + c0 + c);
       }
     }
     clock.finished(mark);
   }
   clock.report(threads);
   stop.rethrow();
+}
+
+// The same in place.
+template <class Work>
+void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {
+  column_pass(static_cast<const Complex*>(data), data, rows, cols, threads, std::forward<Work>(work));
 }
 
 }  // namespace lidar_overlap::detail

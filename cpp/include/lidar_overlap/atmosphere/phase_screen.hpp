@@ -23,8 +23,8 @@
 // (tests/cpp/test_phase_screen.cpp); SubharmonicWeights::schmidt reproduces the listing.
 //
 // Reproducible and thread-safe: screen `index` of the stream `seed` depends only on (seed, index). The
-// pair index / 2 seeds a std::mt19937_64 with a splitmix64 hash of (seed, index / 2), whose 64-bit
-// outputs (fixed by the C++ standard) are turned into normal deviates here by a ziggurat, not by
+// pair index / 2 seeds a xoshiro256++ generator with a splitmix64 hash of (seed, index / 2), whose 64-bit
+// outputs (fixed by its definition) are turned into normal deviates here by a ziggurat, not by
 // std::normal_distribution, which differs between standard libraries. Even indices are the real part,
 // odd ones the imaginary part. The same (seed, index) gives the same screen in any call order and from
 // any thread, bit for bit (on one platform: libm and FFTW round as they do).

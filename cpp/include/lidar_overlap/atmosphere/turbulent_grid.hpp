@@ -4,7 +4,10 @@
 // Every plane's grid (a phase screen's or a range's) spans the beam's window: beam_window long-term radii
 // plus 8 rms wander (the beam of any realisation stays inside it). With paths = both it also holds the
 // receiver's light about the receiver's axis: 1.25 times its geometric footprint plus the spread by eddies of
-// r0, 2 lambda z / r0. Its spacing (side / beam_grid) never shrinks along the path. On both paths every plane's
+// r0, 2 lambda z / r0. Its spacing (side / beam_grid) never shrinks along the path, and between two screens
+// (from the transmitter to the first, from the last to the furthest range) it grows linearly with range, so
+// that one forward transform at a screen serves every plane up to the next: each such segment ends at the
+// least side that keeps every plane in it at or above its window. On both paths every plane's
 // spacing must also sample the receiver's light: its largest angle plus lambda / r0, below lambda / (2
 // spacing); so beam_grid >= side x 2 (angle + lambda / r0) / lambda at every plane, whatever beam_grid (the
 // side does not depend on it).
@@ -28,14 +31,14 @@ double turbulent_seeing(const LidarSystem& system, const Cn2Profile& atmosphere,
 // grid drifts with the beam).
 double receiver_max_angle(const LidarSystem& system);
 
-// Side (m) of the grid of the plane at range z (m) before the path's running maximum: spacing times
+// Side (m) the grid of the plane at range z (m) needs, before the segments' linear growth: spacing times
 // beam_grid.
 double turbulent_window(const LidarSystem& system, const Cn2Profile& atmosphere, double beam_window,
                         TurbulencePaths paths, double z);
 
 struct TurbulentGrid {
   std::vector<double> plane_range;  // m, the planes in propagation order: screens, then ranges at equal range
-  std::vector<double> window;       // m, each plane's grid side (spacing x beam_grid), the running maximum
+  std::vector<double> window;       // m, each plane's grid side (spacing x beam_grid), linear in range between screens
   double pupil_window = 0.0;        // m, the transmitter plane's (z = 0)
   std::size_t min_beam_grid = 32;   // least (even) beam_grid the call accepts for these paths
 };
