@@ -40,31 +40,32 @@ void a_chain_along_the_cone_is_one_step() {
       const double x = u.coordinate(ix), y = u.coordinate(iy);
       u.values[iy * n + ix] *= std::polar(1.0, 900.0 * x - 400.0 * y + 2e5 * (x * x + y * y));
     }
+  auto none = [](std::size_t, const Complex*) {};
   const detail::Departure leave(n, d, 0.0, c, lambda);
   Field spectrum = u;
   leave.execute(spectrum, nullptr, nullptr, nullptr);
   // At once: dz1 + dz2 from the spectrum.
   const detail::Arrival direct(n, d, dz1 + dz2, c, lambda);
   Field once = u;
-  direct.execute(spectrum, once, [](std::size_t, Complex*) {});
+  direct.execute(spectrum, once, &once, none);
   // In two steps: reach dz1, leave again along the same cone (the virtual source dz1 further behind).
   const detail::Arrival first(n, d, dz1, c, lambda);
   Field twice = u;
-  first.execute(spectrum, twice, [](std::size_t, Complex*) {});
+  first.execute(spectrum, twice, &twice, none);
   const double m1 = 1.0 + c * dz1;
   const detail::Departure again(n, first.spacing(), first.q3_curvature(), c / m1, lambda);
   again.execute(twice, nullptr, nullptr, nullptr);
   const detail::Arrival second(n, first.spacing(), dz2, c / m1, lambda);
-  second.execute(twice, twice, [](std::size_t, Complex*) {});
+  second.execute(twice, twice, &twice, none);
   test::near("spacing after two steps", twice.spacing / once.spacing, 1.0, 1e-14);
   test::near("field after two steps against one (relative)", relative_difference(twice, once), 0.0, 1e-12);
   // Off the cone the second step is a different operator: the test can tell them apart.
   const detail::Departure off(n, first.spacing(), first.q3_curvature(), 2.0 * c / m1, lambda);
   Field other = u;
-  first.execute(spectrum, other, [](std::size_t, Complex*) {});
+  first.execute(spectrum, other, &other, none);
   off.execute(other, nullptr, nullptr, nullptr);
   const detail::Arrival off_second(n, first.spacing(), dz2, 2.0 * c / m1, lambda);
-  off_second.execute(other, other, [](std::size_t, Complex*) {});
+  off_second.execute(other, other, &other, none);
   test::that("a step off the cone differs", relative_difference(other, once) > 1e-3);
 }
 

@@ -107,8 +107,8 @@ CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double
     for (std::size_t b = 0; b < count; ++b) {
       const Complex* column = &block[b * np + off];
       for (std::size_t iy = 0; iy < n; ++iy) {
-        map_[iy * n + c0 + 2 * b] = column[iy].real() * scale;
-        map_[iy * n + c0 + 2 * b + 1] = column[iy].imag() * scale;
+        map_[(c0 + 2 * b) * n + iy] = column[iy].real() * scale;
+        map_[(c0 + 2 * b + 1) * n + iy] = column[iy].imag() * scale;
       }
     }
   }
@@ -122,11 +122,10 @@ CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double
     }
     backward(s, 1);
     const Complex px = phase.x[half];
-    for (std::size_t iy = 0; iy < n; ++iy)
-      for (std::size_t ix = 0; ix < n; ++ix) {
-        const double sign = (off + ix) % 2 ? -1.0 : 1.0;
-        map_[iy * n + ix] += sign * (px * s[off + iy]).real() * scale;
-      }
+    for (std::size_t ix = 0; ix < n; ++ix) {
+      const double sign = (off + ix) % 2 ? -1.0 : 1.0;
+      for (std::size_t iy = 0; iy < n; ++iy) map_[ix * n + iy] += sign * (px * s[off + iy]).real() * scale;
+    }
   }
 }
 

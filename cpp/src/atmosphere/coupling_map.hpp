@@ -37,21 +37,13 @@ class CouplingMap {
   }
   CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n, std::size_t np);
 
-  double overlap(const Field& u) const {
+  // G from the per-column sums an arrival leaves (scaled_step.hpp, map_column_sums), added in column order.
+  double overlap(const std::vector<double>& column_sums) const {
     double e = 0.0, em = 0.0;
-    for (std::size_t i = 0; i < n_ * n_; ++i) {
-      const double v = std::norm(u.values[i]);
-      e += v;
-      em += v * map_[i];
-    }
+    for (std::size_t ix = 0; ix < n_; ++ix) e += column_sums[2 * ix], em += column_sums[2 * ix + 1];
     return em / e;
   }
-  // The same from the per-row sums a split step leaves (ScaledStep::execute), added in row order.
-  double overlap(const std::vector<double>& row_sums) const {
-    double e = 0.0, em = 0.0;
-    for (std::size_t iy = 0; iy < n_; ++iy) e += row_sums[2 * iy], em += row_sums[2 * iy + 1];
-    return em / e;
-  }
+  // The map by columns: values()[ix * n + iy] is m at (x_ix, y_iy).
   const double* values() const { return map_.data(); }
 
  private:

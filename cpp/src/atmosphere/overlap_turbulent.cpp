@@ -72,7 +72,7 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
     ComplexBuffer spectrum;
     std::array<std::vector<double>, 2> screens;
     Field work = beams[0];
-    std::vector<double> irradiance(2 * n * n), rows(2 * n), es(2 * fields), eu(2 * fields);
+    std::vector<double> irradiance(2 * n * n), lines(2 * n), es(2 * fields), eu(2 * fields);  // by columns
     for (const Segment& s : plan.segments) {
       if (s.screen >= 0) {
         const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(s.screen + 1));
@@ -88,43 +88,44 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
         const Plane& p = plan.planes[s.targets[j]];
         const detail::Arrival& arrival = s.arrivals[j];
         const bool last = j + 1 == s.targets.size();  // the segment's end: each field arrives in place
+        // Each field is read by columns; at the segment's end it is also written back (it goes on).
+        auto reach = [&](Field& u, auto&& read) { arrival.execute(u, last ? u : work, last ? &u : nullptr, read); };
         if (p.range < 0) {
           if (last)
             for (std::size_t c = 0; c < 2; ++c) {
-              arrival.execute(beams[c], beams[c], [](std::size_t, Complex*) {});
-              for (Field& v : back[c]) arrival.execute(v, v, [](std::size_t, Complex*) {});
+              reach(beams[c], [](std::size_t, const Complex*) {});
+              for (Field& v : back[c]) reach(v, [](std::size_t, const Complex*) {});
             }
           continue;
         }
         // G of each receiver field alone (their mean is the draw's G; their spread over sqrt(M) its random-phase
-        // standard error), with this draw's beam and with the other draw's: each beam's irradiance once, then
-        // each receiver field's sums with both, row by row as it arrives.
+        // standard error), with this draw's beam and with the other draw's: each beam's irradiance once (by
+        // columns), then each receiver field's sums with both, column by column as it arrives.
         double e[2] = {0.0, 0.0};
         for (std::size_t c = 0; c < 2; ++c) {
           double* v = irradiance.data() + c * n * n;
-          arrival.execute(beams[c], last ? beams[c] : work, [&](std::size_t iy, Complex* row) {
+          reach(beams[c], [&](std::size_t ix, const Complex* column) {
             double sum = 0.0;
-            for (std::size_t ix = 0; ix < n; ++ix) sum += v[iy * n + ix] = std::norm(row[ix]);
-            rows[iy] = sum;
+            for (std::size_t iy = 0; iy < n; ++iy) sum += v[ix * n + iy] = std::norm(column[iy]);
+            lines[ix] = sum;
           });
-          for (std::size_t iy = 0; iy < n; ++iy) e[c] += rows[iy];
+          for (std::size_t ix = 0; ix < n; ++ix) e[c] += lines[ix];
         }
         for (std::size_t c = 0; c < 2; ++c)
           for (std::size_t m = 0; m < fields; ++m) {
-            Field& b = back[c][m];
             const double* own = irradiance.data() + c * n * n;
             const double* other = irradiance.data() + (1 - c) * n * n;
-            arrival.execute(b, last ? b : work, [&](std::size_t iy, Complex* row) {
+            reach(back[c][m], [&](std::size_t ix, const Complex* column) {
               double so = 0.0, su = 0.0;
-              for (std::size_t ix = 0; ix < n; ++ix) {
-                const double w = std::norm(row[ix]);
-                so += own[iy * n + ix] * w;
-                su += other[iy * n + ix] * w;
+              for (std::size_t iy = 0; iy < n; ++iy) {
+                const double w = std::norm(column[iy]);
+                so += own[ix * n + iy] * w;
+                su += other[ix * n + iy] * w;
               }
-              rows[2 * iy] = so, rows[2 * iy + 1] = su;
+              lines[2 * ix] = so, lines[2 * ix + 1] = su;
             });
             double so = 0.0, su = 0.0;
-            for (std::size_t iy = 0; iy < n; ++iy) so += rows[2 * iy], su += rows[2 * iy + 1];
+            for (std::size_t ix = 0; ix < n; ++ix) so += lines[2 * ix], su += lines[2 * ix + 1];
             es[c * fields + m] = so, eu[(1 - c) * fields + m] = su;
           }
         const double lz = lambda * p.z, factor = lz * lz / area;
@@ -178,20 +179,19 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
 // which u itself reaches.
 template <class Read>
 void arrive(const Segment& s, const TurbulentPlan& plan, const std::vector<std::unique_ptr<CouplingMap>>& maps,
-            Field& u, Field& work, std::vector<double>& row_sums, Read&& read) {
+            Field& u, Field& work, std::vector<double>& column_sums, Read&& read) {
   const std::size_t n = u.n;
   for (std::size_t j = 0; j < s.targets.size(); ++j) {
     const Plane& p = plan.planes[s.targets[j]];
     const bool last = j + 1 == s.targets.size();
-    Field& to = last ? u : work;
     if (p.range >= 0) {
       const double* map = maps[p.range]->values();
-      s.arrivals[j].execute(u, to, [&](std::size_t iy, Complex* row) {
-        detail::map_row_sums(iy, row, n, map, row_sums.data());
+      s.arrivals[j].execute(u, last ? u : work, last ? &u : nullptr, [&](std::size_t ix, const Complex* column) {
+        detail::map_column_sums(ix, column, n, map, column_sums.data());
       });
-      read(static_cast<std::size_t>(p.range), maps[p.range]->overlap(row_sums));
+      read(static_cast<std::size_t>(p.range), maps[p.range]->overlap(column_sums));
     } else if (last) {
-      s.arrivals[j].execute(u, to, [](std::size_t, Complex*) {});
+      s.arrivals[j].execute(u, u, &u, [](std::size_t, const Complex*) {});
     }
   }
 }
@@ -301,9 +301,9 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   std::vector<char> shared(ranges.size(), 0);
   {
     Field work = start;
-    std::vector<double> row_sums(2 * n);
+    std::vector<double> column_sums(2 * n);
     plan.segments.front().departure.execute(start, nullptr, nullptr, nullptr);
-    arrive(plan.segments.front(), plan, maps, start, work, row_sums,
+    arrive(plan.segments.front(), plan, maps, start, work, column_sums,
            [&](std::size_t range, double g) { before_screens[range] = g, shared[range] = 1; });
   }
   TurbulentOverlap out;
@@ -329,7 +329,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
     Field work = start;
     std::array<std::vector<double>, 2> screen_pair;  // the pair's screens at one plane
     ComplexBuffer spectrum;                         // their transform's workspace
-    std::vector<double> row_sums(2 * n);
+    std::vector<double> column_sums(2 * n);
     for (std::size_t s = 1; s < plan.segments.size(); ++s) {
       const Segment& segment = plan.segments[s];
       const std::uint64_t stream = o.seed ^ (0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(segment.screen + 1));
@@ -337,7 +337,7 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
       for (std::size_t c = 0; c < count; ++c) {
         segment.departure.execute(fields[c], s == 1 ? start.values.data() : nullptr, screen_pair[(k0 + c) % 2].data(),
                                   nullptr);
-        arrive(segment, plan, maps, fields[c], work, row_sums,
+        arrive(segment, plan, maps, fields[c], work, column_sums,
                [&](std::size_t range, double g) { out.overlap[k0 - first + c][range] = g; });
       }
     }

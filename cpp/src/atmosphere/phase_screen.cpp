@@ -89,26 +89,36 @@ struct Ziggurat {
 // Uniform deviate in (0, 1] on a 2^-53 lattice (never 0: it goes into a logarithm).
 double uniform(detail::Xoshiro256& rng) { return static_cast<double>((rng() >> 11) + 1) * 0x1p-53; }
 
-double normal(detail::Xoshiro256& rng) {
-  static const Ziggurat z;
-  for (;;) {
-    const std::uint64_t bits = rng();
-    const double u = static_cast<double>(bits >> 11) * 0x1p-52 - 1.0;
-    const int i = static_cast<int>(bits & 0x7f);
-    if (std::abs(u) < z.ratio[i]) return u * z.x[i];
-    if (i == 0) {  // the tail beyond R (Marsaglia's exponential rejection)
-      double t, y;
-      do {
-        t = std::log(uniform(rng)) / Ziggurat::kR;
-        y = std::log(uniform(rng));
-      } while (-2.0 * y < t * t);
-      return u < 0.0 ? t - Ziggurat::kR : Ziggurat::kR - t;
-    }
-    // The wedge of layer i between x[i + 1] and x[i]: accept under the curve.
-    const double v = u * z.x[i], v2 = v * v;
-    const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - v2)), f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - v2));
-    if (f1 + uniform(rng) * (f0 - f1) < 1.0) return v;
+const Ziggurat kZiggurat;
+
+double normal(detail::Xoshiro256& rng);
+
+// The ~1 % of attempts outside the layers' rectangles: the tail beyond R (layer 0) or a wedge.
+[[gnu::noinline]] double normal_beyond(detail::Xoshiro256& rng, double u, int i) {
+  const Ziggurat& z = kZiggurat;
+  if (i == 0) {  // the tail beyond R (Marsaglia's exponential rejection)
+    double t, y;
+    do {
+      t = std::log(uniform(rng)) / Ziggurat::kR;
+      y = std::log(uniform(rng));
+    } while (-2.0 * y < t * t);
+    return u < 0.0 ? t - Ziggurat::kR : Ziggurat::kR - t;
   }
+  // The wedge of layer i between x[i + 1] and x[i]: accept under the curve, else a new attempt.
+  const double v = u * z.x[i], v2 = v * v;
+  const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - v2)), f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - v2));
+  if (f1 + uniform(rng) * (f0 - f1) < 1.0) return v;
+  return normal(rng);
+}
+
+// Inlined into the loops that draw n^2 deviates: the common attempt keeps the generator in registers.
+inline double normal(detail::Xoshiro256& rng) {
+  const std::uint64_t bits = rng();
+  // bits >> 11 < 2^53 converts exactly through a signed integer (a shorter instruction sequence).
+  const double u = static_cast<double>(static_cast<std::int64_t>(bits >> 11)) * 0x1p-52 - 1.0;
+  const int i = static_cast<int>(bits & 0x7f);
+  if (std::abs(u) < kZiggurat.ratio[i]) return u * kZiggurat.x[i];
+  return normal_beyond(rng, u, i);
 }
 
 // Two independent N(0, 1) deviates as one complex number.

@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include "lidar_overlap/fourier/complex_buffer.hpp"
 
@@ -24,55 +23,40 @@ constexpr double s1 = -1.66666666666666324348e-01, s2 = 8.33333333332248946124e-
 constexpr double c1 = 4.16666666666666019037e-02, c2 = -1.38888888888741095749e-03, c3 = 2.48015872894767294178e-05,
                  c4 = -2.75573143513906633035e-07, c5 = 2.08757232129817482790e-09, c6 = -1.13596475577881948265e-11;
 
-// Two lanes at a time (GCC and Clang vector extensions: SSE2 on x86-64, NEON on AArch64, scalar code
-// elsewhere), the same IEEE operations in each lane.
+// Lanes at a time (GCC and Clang vector extensions: SSE2 or AVX2 on x86-64, NEON on AArch64, scalar code
+// elsewhere), the same IEEE operations in each lane, no fused multiply-adds.
 using Doubles = double __attribute__((vector_size(16)));
 using Words = std::uint64_t __attribute__((vector_size(16)));
 
 // exp(i phase) for |phase| <= kPhasorReach, branch-free (k = round(phase / (pi/2)), exact there; the low bits
 // of t are k mod 4, also for k < 0): the quadrant's swap and signs are bit masks.
-inline void reduced(Doubles phase, Doubles& re, Doubles& im) {
-  const Doubles t = phase * two_over_pi + magic, k = t - magic;
-  const Words quadrant = __builtin_bit_cast(Words, t) & 3;
-  const Doubles r = ((phase - k * p1) - k * p2) - k * p3, z = r * r;
-  const Doubles sin_r = r + r * z * (s1 + z * (s2 + z * (s3 + z * (s4 + z * (s5 + z * s6)))));
-  const Doubles half_z = 0.5 * z, w = 1.0 - half_z;
-  const Doubles cos_r = w + (((1.0 - w) - half_z) + z * z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * c6))))));
-  const Words swap = 0 - (quadrant & 1), sb = __builtin_bit_cast(Words, sin_r),
-              cb = __builtin_bit_cast(Words, cos_r);
-  const Words s = (sb & ~swap) | (cb & swap), c = (cb & ~swap) | (sb & swap);
-  const Words re_bits = c ^ (((quadrant + 1) & 2) << 62), im_bits = s ^ ((quadrant & 2) << 62);  // quadrants 1, 2; 2, 3
-  re = __builtin_bit_cast(Doubles, re_bits);
-  im = __builtin_bit_cast(Doubles, im_bits);
+template <class D, class W>
+__attribute__((always_inline)) inline void reduced(D phase, D& re, D& im) {
+  const D t = phase * two_over_pi + magic, k = t - magic;
+  const W quadrant = __builtin_bit_cast(W, t) & 3;
+  const D r = ((phase - k * p1) - k * p2) - k * p3, z = r * r;
+  const D sin_r = r + r * z * (s1 + z * (s2 + z * (s3 + z * (s4 + z * (s5 + z * s6)))));
+  const D half_z = 0.5 * z, w = 1.0 - half_z;
+  const D cos_r = w + (((1.0 - w) - half_z) + z * z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * c6))))));
+  const W swap = 0 - (quadrant & 1), sb = __builtin_bit_cast(W, sin_r), cb = __builtin_bit_cast(W, cos_r);
+  const W s = (sb & ~swap) | (cb & swap), c = (cb & ~swap) | (sb & swap);
+  const W re_bits = c ^ (((quadrant + 1) & 2) << 62), im_bits = s ^ ((quadrant & 2) << 62);  // quadrants 1, 2; 2, 3
+  re = __builtin_bit_cast(D, re_bits);
+  im = __builtin_bit_cast(D, im_bits);
 }
 }  // namespace phasor_kernel
 
 // exp(i phase) for phase in rad.
 inline Complex phasor(double phase) {
   if (!(std::abs(phase) <= kPhasorReach)) return {std::cos(phase), std::sin(phase)};
-  phasor_kernel::Doubles re, im;
-  phasor_kernel::reduced(phasor_kernel::Doubles{phase, 0.0}, re, im);
+  using phasor_kernel::Doubles;
+  Doubles re, im;
+  phasor_kernel::reduced<Doubles, phasor_kernel::Words>(Doubles{phase, 0.0}, re, im);
   return {re[0], im[0]};
 }
 
-// out[j] = phasor(phase[j]) for j < count, the same bits, two at a time (phases beyond kPhasorReach, or NaN,
-// are mended afterwards one by one).
-inline void phasors(const double* phase, Complex* out, std::size_t count) {
-  using phasor_kernel::Doubles;
-  auto inside = [](double x) { return std::abs(x) <= kPhasorReach ? x : 0.0; };
-  std::size_t j = 0;
-  for (; j + 1 < count; j += 2) {
-    Doubles re, im;
-    phasor_kernel::reduced(Doubles{inside(phase[j]), inside(phase[j + 1])}, re, im);
-    out[j] = {re[0], im[0]};
-    out[j + 1] = {re[1], im[1]};
-  }
-  if (j < count) out[j] = phasor(inside(phase[j]));
-  bool far = false;
-  for (std::size_t j = 0; j < count; ++j) far |= !(std::abs(phase[j]) <= kPhasorReach);
-  if (far)
-    for (std::size_t j = 0; j < count; ++j)
-      if (!(std::abs(phase[j]) <= kPhasorReach)) out[j] = phasor(phase[j]);
-}
+// out[j] = phasor(phase[j]) for j < count, the same bits, several at a time (phasor.cpp: four lanes where the
+// processor has AVX2, else two); phases beyond kPhasorReach, or NaN, are mended one by one.
+void phasors(const double* phase, Complex* out, std::size_t count);
 
 }  // namespace lidar_overlap::detail

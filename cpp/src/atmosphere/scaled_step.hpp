@@ -4,6 +4,7 @@
 #pragma once
 
 #include <complex>
+#include <cstring>
 #include <vector>
 
 #include "atmosphere/phasor.hpp"
@@ -25,7 +26,8 @@ namespace lidar_overlap::detail {
 
 // Leaving a plane of spacing d: the field times the screen's exp(i phase), the previous arrival's Q3 (left
 // until now: a phase does not change the irradiance a range reads) and this segment's Q1, then the forward
-// transform, in place. The 1 / n^2 of the transform pair is applied here.
+// transform (out of place through a row block, then back into the field). The 1 / n^2 of the transform
+// pair is applied here.
 class Departure {
  public:
   // `incoming`: the arriving step's Q3 curvature, c / m of that step (1/m; 0 at the transmitter);
@@ -46,8 +48,8 @@ class Departure {
     cancellation_point();
     const std::size_t n = n_;
     Complex* data = u.values.data();
-    auto before = [&](std::size_t iy, Complex* row) {
-      const Complex* in = source ? source + iy * n : row;
+    auto fill = [&](std::size_t iy, Complex* row) {
+      const Complex* in = (source ? source : data) + iy * n;
       const Complex a = factor_y_[iy];
       if (screen || phasor) {
         const Complex* p = phasor ? phasor + iy * n : screen_row(screen + iy * n, n);
@@ -56,9 +58,8 @@ class Departure {
         for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(in[ix], product(a, factor_x_[ix]));
       }
     };
-    auto none = [](std::size_t, Complex*) {};
     const int threads = fft_threads(n * n);
-    row_pass(data, n, n, FftDirection::forward, threads, before, none);
+    row_pass_into(data, n, n, FftDirection::forward, threads, fill, [](std::size_t, Complex*) {});
     const RowTransform forward(n, FftDirection::forward);
     column_pass(data, n, n, threads,
                 [&](std::size_t, std::size_t count, Complex* block) { forward.columns(block, count, column_stride(n)); });
@@ -78,8 +79,8 @@ class Departure {
 };
 
 // Reaching a plane dz beyond the departure, at spacing m d (m = 1 + c dz): the spectrum times Q2 and 1 / m,
-// the backward transform, written to `out` (the spectrum's own field, or another buffer of n x n). The
-// field reached lacks its Q3, a phase (Departure applies it if the field goes on).
+// then the backward transform. The field reached lacks its Q3, a phase (Departure applies it if the field
+// goes on).
 class Arrival {
  public:
   Arrival(std::size_t n, double spacing, double dz, double curvature, double lambda)
@@ -96,25 +97,44 @@ class Arrival {
   double spacing() const { return spacing_; }  // m, of the plane reached
   double q3_curvature() const { return q3_curvature_; }  // c / m (1/m): Q3 = exp(i k (c / m) r2^2 / 2)
 
-  // Each row of the field reached is handed to after(iy, row) while it is in cache.
-  template <class After>
-  void execute(const Field& spectrum, Field& out, After&& after) const {
+  // The field reached, by columns: the rows are transformed first (into `rows`, n x n, which may be the
+  // spectrum itself), then each column of the field, contiguous, is handed to read(ix, column) and written
+  // back to `field` (the field reached, at its spacing; or null: the columns are only read, one strided
+  // pass fewer). `read` may run on several threads at once, for different columns.
+  template <class Read>
+  void execute(const Field& spectrum, Field& rows, Field* field, Read&& read) const {
     cancellation_point();
-    const std::size_t n = n_, stride = column_stride(n);
+    const std::size_t n = n_;
     const int threads = fft_threads(n * n);
-    const RowTransform backward(n, FftDirection::backward);
-    column_pass(spectrum.values.data(), out.values.data(), n, n, threads,
-                [&](std::size_t c0, std::size_t count, Complex* block) {
-                  for (std::size_t c = 0; c < count; ++c) {
-                    Complex* column = block + c * stride;
-                    const Complex fx = q2_x_[c0 + c];
-                    for (std::size_t iy = 0; iy < n; ++iy) column[iy] = product(column[iy], product(q2_y_[iy], fx));
-                  }
-                  backward.columns(block, count, stride);
-                });
-    auto none = [](std::size_t, Complex*) {};
-    row_pass(out.values.data(), n, n, FftDirection::backward, threads, none, after);
-    out.spacing = spacing_;
+    const Complex* in = spectrum.values.data();
+    auto q2 = [&](std::size_t iy, Complex* row) {
+      const Complex a = q2_y_[iy];
+      const Complex* from = in + iy * n;
+      for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(from[ix], product(a, q2_x_[ix]));
+    };
+    row_pass_into(rows.values.data(), n, n, FftDirection::backward, threads, q2, [](std::size_t, Complex*) {});
+    const std::size_t stride = column_stride(n);
+    if (field) {
+      const RowTransform backward(n, FftDirection::backward);
+      column_pass(rows.values.data(), field->values.data(), n, n, threads,
+                  [&](std::size_t c0, std::size_t count, Complex* block) {
+                    backward.columns(block, count, stride);
+                    for (std::size_t c = 0; c < count; ++c) read(c0 + c, static_cast<const Complex*>(block + c * stride));
+                  });
+      field->spacing = spacing_;
+      return;
+    }
+    // Only read: each column transformed out of place into a buffer of one column, which FFTW's in-place
+    // plans would copy through anyway.
+    const BlockTransform backward(n, FftDirection::backward, n);
+    column_pass(rows.values.data(), nullptr, n, n, threads, [&](std::size_t c0, std::size_t count, Complex* block) {
+      thread_local ComplexBuffer column;
+      if (column.size() < n) column.resize(n);
+      for (std::size_t c = 0; c < count; ++c) {
+        backward(block + c * stride, column.data(), 1);
+        read(c0 + c, static_cast<const Complex*>(column.data()));
+      }
+    });
   }
 
  private:
@@ -123,17 +143,24 @@ class Arrival {
   std::vector<Complex> q2_y_, q2_x_;
 };
 
-// Sums of one row for a range's coupling map: sums[2 iy] = sum |u|^2, sums[2 iy + 1] = sum |u|^2 map.
-inline void map_row_sums(std::size_t iy, const Complex* row, std::size_t n, const double* map, double* sums) {
-  const double* m = map + iy * n;
-  double e = 0.0, em = 0.0;
-  for (std::size_t ix = 0; ix < n; ++ix) {
-    const double v = std::norm(row[ix]);
-    e += v;
-    em += v * m[ix];
+// Sums of one column of a field for a range's coupling map (CouplingMap, by columns): sums[2 ix] = sum
+// |u|^2, sums[2 ix + 1] = sum |u|^2 map over column ix.
+inline void map_column_sums(std::size_t ix, const Complex* column, std::size_t n, const double* map, double* sums) {
+  const double* m = map + ix * n;
+  // (re^2, im^2) of each sample as one two-lane vector, in two interleaved partial sums (one chain of
+  // additions would wait on each one's latency); the lanes and partial sums are added in a fixed order.
+  using V = phasor_kernel::Doubles;
+  V e[2] = {V{0.0, 0.0}, V{0.0, 0.0}}, em[2] = {V{0.0, 0.0}, V{0.0, 0.0}};
+  for (std::size_t iy = 0; iy < n; ++iy) {
+    V u;
+    std::memcpy(&u, column + iy, sizeof u);
+    const V v = u * u;
+    e[iy & 1] += v;
+    em[iy & 1] += v * m[iy];
   }
-  sums[2 * iy] = e;
-  sums[2 * iy + 1] = em;
+  const V et = e[0] + e[1], emt = em[0] + em[1];
+  sums[2 * ix] = et[0] + et[1];
+  sums[2 * ix + 1] = emt[0] + emt[1];
 }
 
 }  // namespace lidar_overlap::detail

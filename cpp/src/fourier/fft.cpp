@@ -19,12 +19,15 @@ namespace {
 // dynamically scheduled team still shortens; below it a team's start-up is not repaid.
 constexpr std::size_t kThreadedPoints = std::size_t{1} << 16;
 
-// (length, rows per plan, sign) -> plan, made once and kept for the whole process (the map is never
-// destroyed, so no plan outlives FFTW's cleanup and leak checkers see reachable memory).
-fftw_plan block_plan(std::size_t length, std::size_t count, int sign) {
-  static auto& plans = *new std::map<std::tuple<std::size_t, std::size_t, int>, fftw_plan>;
+// (length, rows per plan, sign, distance between rows, out of place) -> plan, made once and kept for the
+// whole process (the map is never destroyed, so no plan outlives FFTW's cleanup and leak checkers see
+// reachable memory).
+fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_t distance = 0,
+                     bool out_of_place = false) {
+  if (distance == 0) distance = length;
+  static auto& plans = *new std::map<std::tuple<std::size_t, std::size_t, int, std::size_t, bool>, fftw_plan>;
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-  const auto key = std::make_tuple(length, count, sign);
+  const auto key = std::make_tuple(length, count, sign, distance, out_of_place);
   if (auto it = plans.find(key); it != plans.end()) return it->second;
   // Estimated plans depend on the shape alone, unless wisdom gathered by timing (in this process, by any
   // FFTW user) steers them: forget it first. Plans are single-threaded: threads share blocks instead.
@@ -35,11 +38,12 @@ fftw_plan block_plan(std::size_t length, std::size_t count, int sign) {
   }
   fftw_forget_wisdom();
   fftw_plan_with_nthreads(1);
-  ComplexBuffer scratch(length * count);
-  auto* p = reinterpret_cast<fftw_complex*>(scratch.data());
-  const int n = static_cast<int>(length);
-  const fftw_plan plan = fftw_plan_many_dft(1, &n, static_cast<int>(count), p, nullptr, 1, n, p, nullptr, 1, n,
-                                            sign, FFTW_ESTIMATE);
+  ComplexBuffer scratch(distance * count * (out_of_place ? 2 : 1));
+  auto* in = reinterpret_cast<fftw_complex*>(scratch.data());
+  auto* out = out_of_place ? in + distance * count : in;
+  const int n = static_cast<int>(length), dist = static_cast<int>(distance);
+  const fftw_plan plan = fftw_plan_many_dft(1, &n, static_cast<int>(count), in, nullptr, 1, dist, out, nullptr, 1,
+                                            dist, sign, FFTW_ESTIMATE);
   if (!plan) throw std::runtime_error("FFTW could not make a plan");
   plans[key] = plan;
   return plan;
@@ -74,6 +78,28 @@ void RowTransform::operator()(Complex* rows, std::size_t count) const {
 
 void RowTransform::columns(Complex* block, std::size_t count, std::size_t stride) const {
   for (std::size_t c = 0; c < count; ++c) (*this)(block + c * stride, 1);
+}
+
+BlockTransform::BlockTransform(std::size_t length, FftDirection direction, std::size_t distance)
+    : length_(length),
+      distance_(distance),
+      block_(block_plan(length, kFftBlock, sign_of(direction), distance, true)),
+      single_(block_plan(length, 1, sign_of(direction), distance, true)) {
+  if (distance < length) throw std::logic_error("BlockTransform: rows closer than their length");
+}
+
+void BlockTransform::operator()(const Complex* in, Complex* out, std::size_t count) const {
+  auto* i = reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in));  // complex out-of-place plans preserve their input
+  auto* o = reinterpret_cast<fftw_complex*>(out);
+  if (fftw_alignment_of(reinterpret_cast<double*>(const_cast<Complex*>(in))) != 0 ||
+      fftw_alignment_of(reinterpret_cast<double*>(out)) != 0)
+    throw std::logic_error("BlockTransform: a buffer without the alignment of std::complex<double>");
+  if (count == kFftBlock) {
+    fftw_execute_dft(static_cast<fftw_plan>(block_), i, o);
+    return;
+  }
+  for (std::size_t r = 0; r < count; ++r)
+    fftw_execute_dft(static_cast<fftw_plan>(single_), i + r * distance_, o + r * distance_);
 }
 
 int fft_threads(std::size_t points) {

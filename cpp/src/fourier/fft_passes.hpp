@@ -77,8 +77,9 @@ inline std::size_t column_stride(std::size_t rows) { return rows + 4; }
 
 // For each block of up to kFftBlock columns of a rows x cols row-major array `from`: the columns gathered
 // into a scratch block (column c of the block at scratch + c * column_stride(rows), contiguous), work(first
-// column, count, scratch), the block written to the same columns of `to` (`from` itself, or an array that
-// does not overlap it). RowTransform::columns transforms such a block.
+// column, count, scratch), the block written to the same columns of `to` (`from` itself, an array that
+// does not overlap it, or null: the work reads the block and nothing is written back). RowTransform::columns
+// transforms such a block.
 template <class Work>
 void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads, Work&& work) {
   const long blocks = static_cast<long>((cols + kFftBlock - 1) / kFftBlock);
@@ -88,7 +89,8 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
   {
     const TeamClock::Mark mark = clock.started();
     const std::size_t stride = column_stride(rows);
-    ComplexBuffer scratch(kFftBlock * stride);
+    thread_local ComplexBuffer scratch;  // kept from pass to pass: an allocation per pass is measurable
+    if (scratch.size() < kFftBlock * stride) scratch.resize(kFftBlock * stride);
 #pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
@@ -97,13 +99,14 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
       if (count == kFftBlock) {  // the common case, unrolled by the compiler
         gather<kFftBlock>(from + c0, rows, cols, stride, s);
         work(c0, count, s);
-        scatter<kFftBlock>(s, rows, cols, stride, to + c0);
+        if (to) scatter<kFftBlock>(s, rows, cols, stride, to + c0);
       } else {
         for (std::size_t r = 0; r < rows; ++r)
           for (std::size_t c = 0; c < count; ++c) copy_one(from + r * cols + c0 + c, s + c * stride + r);
         work(c0, count, s);
-        for (std::size_t r = 0; r < rows; ++r)
-          for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, to + r * cols + c0 + c);
+        if (to)
+          for (std::size_t r = 0; r < rows; ++r)
+            for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, to + r * cols + c0 + c);
       }
     }
     clock.finished(mark);
@@ -116,6 +119,36 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
 template <class Work>
 void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {
   column_pass(static_cast<const Complex*>(data), data, rows, cols, threads, std::forward<Work>(work));
+}
+
+// Out of place, through a per-thread scratch block (BlockTransform): for each row r of a rows x length
+// row-major array, fill(r, scratch_row) writes all `length` values the row's transform starts from (from the
+// row itself or from anywhere else), the transform writes row r of `data`, then after(r, row).
+template <class Fill, class After>
+void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads,
+                   Fill&& fill, After&& after) {
+  const BlockTransform transform(length, direction, length);
+  const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
+  TeamClock clock;
+  RegionStop stop;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const TeamClock::Mark mark = clock.started();
+    thread_local ComplexBuffer scratch;
+    if (scratch.size() < kFftBlock * length) scratch.resize(kFftBlock * length);
+#pragma omp for schedule(dynamic, 1) nowait
+    for (long b = 0; b < blocks; ++b) {
+      if (stop.stopped()) continue;
+      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
+      for (std::size_t r = 0; r < count; ++r) fill(r0 + r, scratch.data() + r * length);
+      Complex* block = data + r0 * length;
+      transform(scratch.data(), block, count);
+      for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
+    }
+    clock.finished(mark);
+  }
+  clock.report(threads);
+  stop.rethrow();
 }
 
 }  // namespace lidar_overlap::detail
