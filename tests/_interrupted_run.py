@@ -162,11 +162,11 @@ LONG_CALLS = {
         "turbulence=lo.Turbulence(1e-14), realizations=2000, paths='transmit')",
         (WARM_CPU,),
     ),
-    # two realisations of a 1024^2 beam: screens, split steps and coupling maps of one draw
+    # eight realisations of a 1024^2 beam (~6 CPU s): screens, split steps and coupling maps
     "turbulent_large_grid": (
         "",
         "lo.overlap(lo.paper_table1(), np.geomspace(300, 2000, 5), 'fo', "
-        "turbulence=lo.Turbulence(1e-14), realizations=2, beam_grid=1024, paths='transmit')",
+        "turbulence=lo.Turbulence(1e-14), realizations=8, beam_grid=1024, paths='transmit')",
         (WARM_CPU, 2.0),
     ),
     # both paths: 1000 random-phase receiver fields per draw, made and summed one by one
