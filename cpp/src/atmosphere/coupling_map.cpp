@@ -72,12 +72,15 @@ CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double
       row[half] = Complex{};  // the Nyquist column: separately, below
     }
     backward(block.data(), count);
-    for (std::size_t b = 0; b < count; ++b) {
-      const std::size_t ky = k0 + 2 * b;
-      const Complex* row = &block[b * np + off];
-      for (std::size_t ix = 0; ix < n; ++ix) r[ix * rows + ky] = row[ix].real();
-      if (ky + 1 < rows)
-        for (std::size_t ix = 0; ix < n; ++ix) r[ix * rows + ky + 1] = row[ix].imag();
+    // Written by window column, the block's 2 count rows side by side: r is laid out by column, and row by
+    // row every write would land on another cache line.
+    for (std::size_t ix = 0; ix < n; ++ix) {
+      double* out = &r[ix * rows + k0];
+      for (std::size_t b = 0; b < count; ++b) {
+        const Complex v = block[b * np + off + ix];
+        out[2 * b] = v.real();
+        if (k0 + 2 * b + 1 < rows) out[2 * b + 1] = v.imag();
+      }
     }
   }
   // Along y: two window columns per transform.
