@@ -264,28 +264,42 @@ Propagated PropagationPlan::execute(Field in) const {
     } else {
       detail::cancellation_point();
       std::vector<double> spectrum(n_), removed(n_);
-      detail::row_pass(u.data(), n_, n_, FftDirection::forward, threads,
-                       [&](std::size_t iy, Complex* line) { input.add(iy, line); }, none);
-      const RowTransform forward(n_, FftDirection::forward), backward(n_, FftDirection::backward);
+      // Out of place throughout (FFTW's in-place plans copy through a buffer of their own): rows from a
+      // per-thread block, columns through a one-column buffer.
+      const Complex* field = u.data();
+      detail::row_pass_into(u.data(), n_, n_, FftDirection::forward, threads,
+                            [&](std::size_t iy, Complex* line) {
+                              std::copy(field + iy * n_, field + (iy + 1) * n_, line);
+                              input.add(iy, line);
+                            },
+                            none);
+      const BlockTransform forward(n_, FftDirection::forward, n_), backward(n_, FftDirection::backward, n_);
       detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
         const std::size_t stride = detail::column_stride(n_);
-        forward.columns(block, count, stride);
+        thread_local ComplexBuffer spectrum_column;
+        if (spectrum_column.size() < n_) spectrum_column.resize(n_);
+        Complex* k = spectrum_column.data();
         for (std::size_t c = 0; c < count; ++c) {
           Complex* column = block + c * stride;
+          forward(column, k, 1);
           const Complex* h = transfer_.data() + (x0 + c) * n_;
           // Only the band edge is zero: the power it removes is summed where h vanishes, the rest multiplied.
           double cut = 0.0;
-          spectrum[x0 + c] = power(column, n_);
+          spectrum[x0 + c] = power(k, n_);
           for (std::size_t ky = 0; ky < n_; ++ky) {
-            if (h[ky] == Complex{}) cut += std::norm(column[ky]);
-            column[ky] = times(column[ky], h[ky]);
+            if (h[ky] == Complex{}) cut += std::norm(k[ky]);
+            k[ky] = times(k[ky], h[ky]);
           }
           removed[x0 + c] = cut;
+          backward(k, column, 1);
         }
-        backward.columns(block, count, stride);
       });
-      detail::row_pass(u.data(), n_, n_, FftDirection::backward, threads, none,
-                       [&](std::size_t iy, Complex* line) { output.add(iy, line); });
+      const Complex* spectrum_rows = u.data();
+      detail::row_pass_into(u.data(), n_, n_, FftDirection::backward, threads,
+                            [&](std::size_t iy, Complex* line) {
+                              std::copy(spectrum_rows + iy * n_, spectrum_rows + (iy + 1) * n_, line);
+                            },
+                            [&](std::size_t iy, Complex* line) { output.add(iy, line); });
       double spectrum_total = 0.0, removed_total = 0.0;
       for (std::size_t k = 0; k < n_; ++k) {
         spectrum_total += spectrum[k];
@@ -307,21 +321,28 @@ Propagated PropagationPlan::execute(Field in) const {
     // and front factor to each column after its transform, the sums of both on the way.
     detail::cancellation_point();
     ExtentSums input(n_, threads, true), output(n_, threads, true);
-    detail::row_pass(u.data(), n_, n_, FftDirection::forward, threads,
-                     [&](std::size_t iy, Complex* line) {
-                       const Complex row = chirp_in_[iy];
-                       for (std::size_t ix = 0; ix < n_; ++ix) line[ix] = times(line[ix], times(row, chirp_in_[ix]));
-                       input.add(iy, line);
-                     },
-                     [](std::size_t, Complex*) {});
-    const RowTransform columns(n_, FftDirection::forward);
+    // Both passes out of place (FFTW's in-place plans copy through a buffer of their own): each row, chirped,
+    // into a block that is transformed into the field's rows; each gathered column into a one-column buffer,
+    // chirped on its way back.
+    const Complex* field = u.data();
+    detail::row_pass_into(u.data(), n_, n_, FftDirection::forward, threads,
+                          [&](std::size_t iy, Complex* line) {
+                            const Complex row = chirp_in_[iy];
+                            const Complex* from = field + iy * n_;
+                            for (std::size_t ix = 0; ix < n_; ++ix) line[ix] = times(from[ix], times(row, chirp_in_[ix]));
+                            input.add(iy, line);
+                          },
+                          [](std::size_t, Complex*) {});
+    const BlockTransform columns(n_, FftDirection::forward, n_);
     detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
       const std::size_t stride = detail::column_stride(n_);
-      columns.columns(block, count, stride);
+      thread_local ComplexBuffer transformed;
+      if (transformed.size() < n_) transformed.resize(n_);
       for (std::size_t c = 0; c < count; ++c) {
         Complex* column = block + c * stride;
+        columns(column, transformed.data(), 1);
         const Complex scale = front_ * chirp_out_[x0 + c];
-        for (std::size_t ky = 0; ky < n_; ++ky) column[ky] = times(column[ky], times(scale, chirp_out_[ky]));
+        for (std::size_t ky = 0; ky < n_; ++ky) column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
         output.add(x0 + c, column);
       }
     });
