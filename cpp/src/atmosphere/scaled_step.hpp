@@ -128,11 +128,10 @@ class Arrival {
     // plans would copy through anyway.
     const BlockTransform backward(n, FftDirection::backward, n);
     column_pass(rows.values.data(), nullptr, n, n, threads, [&](std::size_t c0, std::size_t count, Complex* block) {
-      thread_local ComplexBuffer column;
-      if (column.size() < n) column.resize(n);
+      Complex* column = column_buffer(n);
       for (std::size_t c = 0; c < count; ++c) {
-        backward(block + c * stride, column.data(), 1);
-        read(c0 + c, static_cast<const Complex*>(column.data()));
+        backward(block + c * stride, column, 1);
+        read(c0 + c, static_cast<const Complex*>(column));
       }
     });
   }

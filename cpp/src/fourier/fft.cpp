@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "core/parallel.hpp"
@@ -51,6 +52,23 @@ fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_
 
 int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD : FFTW_BACKWARD; }
 
+// `count` rows `distance` apart from `in` to `out` (the same array for in-place plans): the block plan for a
+// whole block, else the single-row plan row by row. Plans were made on FFTW-aligned memory; std::complex<double>
+// arrays keep that alignment (16 bytes). Complex out-of-place plans preserve their input.
+void execute_blocks(void* block, void* single, const Complex* in, Complex* out, std::size_t count,
+                    std::size_t distance, const char* who) {
+  auto* i = reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in));
+  auto* o = reinterpret_cast<fftw_complex*>(out);
+  if (fftw_alignment_of(reinterpret_cast<double*>(i)) != 0 || fftw_alignment_of(reinterpret_cast<double*>(o)) != 0)
+    throw std::logic_error(std::string(who) + ": a buffer without the alignment of std::complex<double>");
+  if (count == kFftBlock) {
+    fftw_execute_dft(static_cast<fftw_plan>(block), i, o);
+    return;
+  }
+  for (std::size_t r = 0; r < count; ++r)
+    fftw_execute_dft(static_cast<fftw_plan>(single), i + r * distance, o + r * distance);
+}
+
 }  // namespace
 
 std::mutex& fftw_planner_mutex() {
@@ -64,16 +82,7 @@ RowTransform::RowTransform(std::size_t length, FftDirection direction)
       single_(block_plan(length, 1, sign_of(direction))) {}
 
 void RowTransform::operator()(Complex* rows, std::size_t count) const {
-  auto* p = reinterpret_cast<fftw_complex*>(rows);
-  // Plans were made on FFTW-aligned memory; std::complex<double> arrays keep that alignment (16 bytes).
-  if (fftw_alignment_of(reinterpret_cast<double*>(rows)) != 0)
-    throw std::logic_error("RowTransform: a buffer without the alignment of std::complex<double>");
-  if (count == kFftBlock) {
-    fftw_execute_dft(static_cast<fftw_plan>(block_), p, p);
-    return;
-  }
-  for (std::size_t r = 0; r < count; ++r)
-    fftw_execute_dft(static_cast<fftw_plan>(single_), p + r * length_, p + r * length_);
+  execute_blocks(block_, single_, rows, rows, count, length_, "RowTransform");
 }
 
 void RowTransform::columns(Complex* block, std::size_t count, std::size_t stride) const {
@@ -89,17 +98,7 @@ BlockTransform::BlockTransform(std::size_t length, FftDirection direction, std::
 }
 
 void BlockTransform::operator()(const Complex* in, Complex* out, std::size_t count) const {
-  auto* i = reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in));  // complex out-of-place plans preserve their input
-  auto* o = reinterpret_cast<fftw_complex*>(out);
-  if (fftw_alignment_of(reinterpret_cast<double*>(const_cast<Complex*>(in))) != 0 ||
-      fftw_alignment_of(reinterpret_cast<double*>(out)) != 0)
-    throw std::logic_error("BlockTransform: a buffer without the alignment of std::complex<double>");
-  if (count == kFftBlock) {
-    fftw_execute_dft(static_cast<fftw_plan>(block_), i, o);
-    return;
-  }
-  for (std::size_t r = 0; r < count; ++r)
-    fftw_execute_dft(static_cast<fftw_plan>(single_), i + r * distance_, o + r * distance_);
+  execute_blocks(block_, single_, in, out, count, distance_, "BlockTransform");
 }
 
 int fft_threads(std::size_t points) {

@@ -115,6 +115,14 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
   stop.rethrow();
 }
 
+// A buffer of at least n values for the calling thread, kept from call to call: one column transformed out
+// of place inside a column pass's work (BlockTransform with count 1). Not for two uses alive at once.
+inline Complex* column_buffer(std::size_t n) {
+  thread_local ComplexBuffer column;
+  if (column.size() < n) column.resize(n);
+  return column.data();
+}
+
 // The same in place.
 template <class Work>
 void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {

@@ -276,9 +276,7 @@ Propagated PropagationPlan::execute(Field in) const {
       const BlockTransform forward(n_, FftDirection::forward, n_), backward(n_, FftDirection::backward, n_);
       detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
         const std::size_t stride = detail::column_stride(n_);
-        thread_local ComplexBuffer spectrum_column;
-        if (spectrum_column.size() < n_) spectrum_column.resize(n_);
-        Complex* k = spectrum_column.data();
+        Complex* k = detail::column_buffer(n_);
         for (std::size_t c = 0; c < count; ++c) {
           Complex* column = block + c * stride;
           forward(column, k, 1);
@@ -336,11 +334,10 @@ Propagated PropagationPlan::execute(Field in) const {
     const BlockTransform columns(n_, FftDirection::forward, n_);
     detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
       const std::size_t stride = detail::column_stride(n_);
-      thread_local ComplexBuffer transformed;
-      if (transformed.size() < n_) transformed.resize(n_);
+      Complex* transformed = detail::column_buffer(n_);
       for (std::size_t c = 0; c < count; ++c) {
         Complex* column = block + c * stride;
-        columns(column, transformed.data(), 1);
+        columns(column, transformed, 1);
         const Complex scale = front_ * chirp_out_[x0 + c];
         for (std::size_t ky = 0; ky < n_; ++ky) column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
         output.add(x0 + c, column);
