@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "small_lidar.hpp"
 #include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
 #include "lidar_overlap/atmosphere/turbulent_grid.hpp"
 
@@ -15,13 +16,7 @@ namespace {
 
 // D = 5 cm, f = 0.5 m, a field of view of 0.36 mrad at 1064 nm through Cn2 = 1e-14 over 300 m: a least grid
 // between 64 and 256, so that both sides of it run in well under a second.
-LidarSystem small_lidar() {
-  LidarSystem s;
-  s.beam = GaussianBeam{1064e-9, 5e-3};
-  s.telescope = Telescope{0.05, 0.5, 0.0, 0.0};
-  s.detector.radius = 90e-6;
-  return s;
-}
+LidarSystem small_lidar() { return test::small_lidar(90e-6); }
 
 TurbulenceOptions both(std::size_t grid) {
   TurbulenceOptions o;

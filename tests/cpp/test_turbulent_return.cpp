@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "small_lidar.hpp"
 #include "lidar_overlap/atmosphere/overlap_turbulent.hpp"
 
 using namespace lidar_overlap;
@@ -15,13 +16,7 @@ using namespace lidar_overlap;
 namespace {
 
 // A small coaxial lidar at 1064 nm: D = 5 cm, f = 0.5 m, w0 = 5 mm, a field of view of 4 diffraction widths.
-LidarSystem small_lidar() {
-  LidarSystem s;
-  s.beam = GaussianBeam{1064e-9, 5e-3};
-  s.telescope = Telescope{0.05, 0.5, 0.0, 0.0};
-  s.detector.radius = 45e-6;
-  return s;
-}
+LidarSystem small_lidar() { return test::small_lidar(45e-6); }
 
 TurbulenceOptions both(std::size_t realizations, int threads) {
   TurbulenceOptions o;
