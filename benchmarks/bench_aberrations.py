@@ -339,7 +339,7 @@ def seidel_section():
             RANGES[-1:],
             lo._core.RtAberratedOptions(directions=DIRECTIONS),
         )
-        curve = lambda: lo.overlap(system, RANGES, "rt").overlap  # noqa: E731
+        curve = lambda system=system: lo.overlap(system, RANGES, "rt").overlap  # noqa: E731
         t, g = best_time(curve, 3) if label == "w131" else timed(curve)  # ~0.5 s against ~18 s
         out[label] = {
             "s": t,

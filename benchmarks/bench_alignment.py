@@ -20,7 +20,7 @@ import numpy as np
 from _common import best_time, load_average, run_meta, write_result
 
 import lidar_overlap as lo
-from lidar_overlap.analysis.alignment import misaligned
+from lidar_overlap.analysis.design.alignment import misaligned
 
 TILTS = np.linspace(-1e-3, 1e-3, 41)  # rad
 RANGES = np.geomspace(20.0, 2000.0, 50)  # m
@@ -40,7 +40,10 @@ def main():
     maps = {}
     for tol in TOLERANCES:
         t, ds = best_time(
-            lambda: lo.alignment_map(system, RANGES, tilt_x=TILTS, tilt_y=TILTS, tolerance=tol), 3
+            lambda tol=tol: lo.alignment_map(
+                system, RANGES, tilt_x=TILTS, tilt_y=TILTS, tolerance=tol
+            ),
+            3,
         )
         maps[tol] = (t, ds)
         print(

@@ -53,7 +53,7 @@ def main():
     rows = {}
     for threads in (0, 1):
         t, f = best_time(
-            lambda: lo.fit(
+            lambda threads=threads: lo.fit(
                 start,
                 RANGES,
                 measured,

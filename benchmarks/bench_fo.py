@@ -273,7 +273,8 @@ def run_size(n, peer_variants):
         # Cold: first calls of the process at this N (angular spectrum first: it plans both FFTW
         # directions).
         cold = {
-            m: timed_once(lambda m=m: lo.propagate(field, z, method=m))[0] for m, z in CASES.items()
+            m: timed_once(lambda m=m, z=z: lo.propagate(field, z, method=m))[0]
+            for m, z in CASES.items()
         }
         rounds = {
             "reference": lambda: _core.fft2d_roundtrip(field.values),
@@ -288,7 +289,9 @@ def run_size(n, peer_variants):
         warm = interleaved_best(rounds, REPEATS_LO[n])
         new_z = {
             m: min(
-                timed_once(lambda m=m, k=k: lo.propagate(field, z * (1.0 + 1e-6 * k), method=m))[0]
+                timed_once(
+                    lambda m=m, k=k, z=z: lo.propagate(field, z * (1.0 + 1e-6 * k), method=m)
+                )[0]
                 for k in range(1, NEW_DISTANCES + 1)
             )
             for m, z in CASES.items()

@@ -131,10 +131,16 @@ def main():
             cold = time.perf_counter() - t0
             load = load_average()
             t_all, cpu_all, res = best_times(
-                lambda: lo.overlap(system, z, method="fo", fo_path=path, threads=0), REPEATS
+                lambda system=system, z=z, path=path: lo.overlap(
+                    system, z, method="fo", fo_path=path, threads=0
+                ),
+                REPEATS,
             )
             t_one, cpu_one, _ = best_times(
-                lambda: lo.overlap(system, z, method="fo", fo_path=path, threads=1), REPEATS
+                lambda system=system, z=z, path=path: lo.overlap(
+                    system, z, method="fo", fo_path=path, threads=1
+                ),
+                REPEATS,
             )
             error = float(np.max(np.abs(res.overlap - reference)))
             rows[f"{name} {path}"] = {

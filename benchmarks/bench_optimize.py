@@ -48,7 +48,9 @@ def main():
     print(f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | load average {load:.2f}")
     rows = {}
     for name, (system, objective, free, bounds) in PROBLEMS.items():
-        t, res = best_time(lambda: lo.optimize(system, objective, free, bounds), 3)
+        t, res = best_time(
+            lambda s=system, o=objective, f=free, b=bounds: lo.optimize(s, o, f, b), 3
+        )
         rows[name] = {
             "seconds": t,
             "evaluations": res.evaluations,

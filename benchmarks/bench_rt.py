@@ -124,7 +124,7 @@ def baseline_overlap(system, ranges, n=N_EMITTERS, half_width=GRID_HALF_WIDTH):
 
         # B9-B10: the two rays of an emitter aim at opposite edges of the aperture, here (+R, 0) and
         # (-R, 0); x and y propagate independently (paraxial).
-        def detector_height(h, a):
+        def detector_height(h, a, m=m, z=z):
             return m[0, 0] * h + m[0, 1] * (a - h) / z
 
         x_plus = detector_height(hx, +radius_aperture)
@@ -139,7 +139,7 @@ def baseline_overlap(system, ranges, n=N_EMITTERS, half_width=GRID_HALF_WIDTH):
         if r_obs > 0:
             # Section 4A: two more rays through the obstruction's edges (+-r_obs at z_obs) reach the
             # aperture at h + (edge - h) z / (z - z_obs); their images bound the shadow circle.
-            def through_edge(h, edge):
+            def through_edge(h, edge, z=z):
                 return detector_height(h, h + (edge - h) * z / (z - z_obs))
 
             sx_plus, sx_minus = through_edge(hx, +r_obs), through_edge(hx, -r_obs)
@@ -182,7 +182,10 @@ def run_case(name, offset, tilt, detector_offset, obstruction):
         tolerance, err_lo = TOLERANCES[-1], err
     t_lo = {
         threads: best_time(
-            lambda: lo.overlap(system, RANGES, tolerance=tolerance, threads=threads), REPEATS_LO
+            lambda threads=threads: lo.overlap(
+                system, RANGES, tolerance=tolerance, threads=threads
+            ),
+            REPEATS_LO,
         )[0]
         for threads in (0, 1)
     }

@@ -41,13 +41,13 @@ def scaling():
             for n in SCALING_COUNTS:
                 z = np.geomspace(*SCALING_SPAN, n)
                 repeats = REPEATS if (method != "FO 2-D" or n <= 100) else 1
-                times.append(best_time(lambda: fn(z, th), repeats)[0])
+                times.append(best_time(lambda fn=fn, z=z, th=th: fn(z, th), repeats)[0])
             by_count[method][str(th)] = times
     by_grid = {}
     for th in (1, 2):
         by_grid[str(th)] = [
             best_time(
-                lambda: lo.overlap(
+                lambda n=n, th=th: lo.overlap(
                     system, SCALING_GRID_RANGES, method="fo", fo_path="2d", beam_grid=n, threads=th
                 ),
                 REPEATS,

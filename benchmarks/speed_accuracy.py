@@ -377,7 +377,7 @@ def label(p):
 
 def plot_speed_accuracy(scenes, path):
     fig, axes = plt.subplots(2, 2, figsize=(13, 10.5))
-    for ax, (name, s) in zip(axes.flat, scenes.items()):
+    for ax, (_name, s) in zip(axes.flat, scenes.items()):
         front = pareto_front(s["points"])
         fe = [max(p["max_error"], ERROR_FLOOR) for p in front]
         ft = [p["time_s"] for p in front]

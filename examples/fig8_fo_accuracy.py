@@ -255,7 +255,7 @@ def plot(results):
         )
 
     # Legend entries for the marker meaning (method colour, wavelength shape).
-    for method, mstyle in METHOD_STYLE.items():
+    for _method, mstyle in METHOD_STYLE.items():
         ax_w.plot(
             [],
             [],

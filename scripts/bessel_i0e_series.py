@@ -53,7 +53,13 @@ if __name__ == "__main__":
         # I1 near 0 is x / 2: its series is of exp(-x) I1(x) / x, which keeps the relative error
         # there.
         for name, f in (
-            (f"kI{order}eNear", lambda t: ine(order, 4 * (t + 1)) / (4 * (t + 1)) ** order),
-            (f"kI{order}eFar", lambda t: ine(order, 16 / (t + 1)) * (16 / (t + 1)).sqrt()),
+            (
+                f"kI{order}eNear",
+                lambda t, order=order: ine(order, 4 * (t + 1)) / (4 * (t + 1)) ** order,
+            ),
+            (
+                f"kI{order}eFar",
+                lambda t, order=order: ine(order, 16 / (t + 1)) * (16 / (t + 1)).sqrt(),
+            ),
         ):
             print(name, ", ".join(f"{v:.17e}" for v in chebyshev(f)))

@@ -33,7 +33,8 @@ def scenario(tmp_path):
     return path
 
 
-def _measurements(path, sigma=True, z=np.geomspace(150.0, 2000.0, 15)):
+def _measurements(path, sigma=True, z=None):
+    z = np.geomspace(150.0, 2000.0, 15) if z is None else z
     g = lo.overlap(parameters.replace(lo.paper_table1(), TRUE), z, "rt", tolerance=1e-7).overlap
     g = g + np.random.default_rng(0).normal(0.0, SIGMA, z.size)
     rows = [f"{float(a)!r},{float(b)!r}" + (f",{SIGMA!r}" if sigma else "") for a, b in zip(z, g)]

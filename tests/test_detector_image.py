@@ -104,7 +104,7 @@ def test_memory_estimate_covers_the_arrays_built(field_beam):
     n = 256
     tracemalloc.start()
     try:
-        lo.detector_image(system, 100.0, n=n).fraction
+        _ = lo.detector_image(system, 100.0, n=n).fraction
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()

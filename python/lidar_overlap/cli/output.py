@@ -46,7 +46,7 @@ def noted(written_and_note):
     """The path of a (path, note) pair, the note (an output left out) raised as a :class:`Note`."""
     path, note = written_and_note
     if note:
-        warnings.warn(note, Note)
+        warnings.warn(note, Note, stacklevel=2)
     return path
 
 

@@ -180,7 +180,9 @@ def path_tilts(
         tail = _low_tail(float(kappa[0]), kappa0)
         lnk = np.log(kappa)
 
-        def layer(f):  # per unit Cn² dr: C ∫ κ³ Φ F1 F2 dκ, the grid plus its closed-form tail
+        # per unit Cn² dr: C ∫ κ³ Φ F1 F2 dκ, the grid plus its closed-form tail (this layer's grid
+        # bound now: the loop moves on)
+        def layer(f, spectrum=spectrum, lnk=lnk, tail=tail):
             return LAYER * (np.trapezoid(f * spectrum[None, :], lnk, axis=1) + tail)
 
         lever = (zi * t) ** 2 * cn2 * weight

@@ -60,7 +60,7 @@ class App:
         self.state, self.ctrl = self.server.state, self.server.controller
         self._positions = twin.positions()
         state = self.state
-        for key, s in twin.sliders.items():
+        for key in twin.sliders:
             state[key] = self._positions[key]
         state.update(dict(probe=twin.probe, error="", saved="", timing="", scene_version=0))
         self._publish()

@@ -139,7 +139,7 @@ class TwinScene:
         add(self.meshes["axis"], name="axis", color="grey", line_width=1)
         mask = twin.mask
         if mask is not None:  # open sectors just in front of the aperture, one colour each
-            for i, (sector, name) in enumerate(zip(mask.sectors, mask.names)):
+            for i, sector in enumerate(mask.sectors):
                 key = f"mask_{i}"
                 self.meshes[key] = _sector(pv, sector, 0.5 * tel.diameter, scale, 1e-3 * self.zmax)
                 add(
