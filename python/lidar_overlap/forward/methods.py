@@ -31,6 +31,8 @@ FO_PATHS = ("auto", "radial", "2d")
 #: (docs/turbulence.md).
 TURBULENT_PATHS = ("transmit", "both")
 SHORTCUTS = ("rt", "fo", "auto")
+#: The fewest and most random-phase fields of the detector (``Turbulent.receiver_fields``).
+RECEIVER_FIELDS = (1, 1000)
 
 
 @dataclass(frozen=True)
@@ -161,7 +163,7 @@ class Turbulent:
         object.__setattr__(self, "seed", _checks.count("seed", self.seed, 0, 2**64 - 1))
         object.__setattr__(self, "screens", _checks.count("screens", self.screens, 1))
         _checks.choice("paths", self.paths, TURBULENT_PATHS)
-        fields = _checks.count("receiver_fields", self.receiver_fields, 1, 1000)
+        fields = _checks.count("receiver_fields", self.receiver_fields, *RECEIVER_FIELDS)
         object.__setattr__(self, "receiver_fields", fields)
 
 

@@ -9,6 +9,8 @@ import re
 from dataclasses import dataclass
 from typing import Any, Dict, Optional
 
+from ..forward.methods import RECEIVER_FIELDS
+
 METHODS = ("rt", "fo", "auto")
 OUTPUTS = ("csv", "netcdf", "plot", "scene")
 #: The most ranges one scenario may ask for (``count``, or the length of ``values``).
@@ -44,7 +46,9 @@ INTEGER_LIMITS: Dict[str, IntegerKey] = {
     "flat_top.max_iterations": IntegerKey(1, 10_000, "iterations of the plate's design"),
     "turbulence.realizations": IntegerKey(1, 100_000, "draws of the atmosphere"),
     "turbulence.screens": IntegerKey(1, 1000, "phase screens of the Fourier-optics path"),
-    "turbulence.receiver_fields": IntegerKey(1, 1000, "random-phase fields of the detector"),
+    "turbulence.receiver_fields": IntegerKey(
+        *RECEIVER_FIELDS, "random-phase fields of the detector"
+    ),
     "turbulence.seed": IntegerKey(0, 2**63 - 1, "the draws' seed"),
 }
 NUMBER, STRING, BOOL, PAIR = "a finite real number", "a string", "true or false", "pair"
