@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import lidar_overlap as lo
-from lidar_overlap.analysis.alignment import misaligned
+from lidar_overlap.analysis.design.alignment import misaligned
 
 pytest.importorskip("xarray")
 

@@ -13,13 +13,10 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.model_families import Family
-from lidar_overlap.analysis.model_ladder import BIC_TIE, fit_ladder
-from lidar_overlap.analysis.relative import (
-    EXTINCTION_BIAS_BOUND,
-    WithExtinctionBias,
-    normalization,
-)
+from lidar_overlap.analysis.fitting.families import Family
+from lidar_overlap.analysis.fitting.ladder import BIC_TIE, fit_ladder
+from lidar_overlap.analysis.fitting.normalization import EXTINCTION_BIAS_BOUND, normalization
+from lidar_overlap.analysis.fitting.problem import fit_problem
 from lidar_overlap.cli import main
 
 pytest.importorskip("scipy")
@@ -204,7 +201,7 @@ def test_profiled_cost_of_many_curves_is_the_least_over_a_grid_of_da():
     rng = np.random.default_rng(11)
     y = _truth() * _trend(DA) + rng.normal(0.0, SIGMA, Z.size)
     sigma = np.full(Z.size, SIGMA)
-    trended = normalization(WithExtinctionBias(INTERVAL), Z, y, sigma)
+    trended = normalization(INTERVAL, Z, y, sigma, extinction_bias=True)
     plain = normalization(INTERVAL, Z, y, sigma)
     curves = np.array(
         [
@@ -251,11 +248,12 @@ def test_ladder_carries_the_bias_in_every_family_and_counts_it():
     tilt = Family("tilt", ("beam.tilt[0]",), "pointing")
     tilt_focus = Family("tilt + focus", tuple(TRUE), "pointing, focus")
     y = _truth() * _trend(DA) + np.random.default_rng(5).normal(0.0, SIGMA, Z.size)
-    r = fit_ladder(
-        _start(), Z, y, SIGMA, {"beam.tilt[0]": (-1e-3, 1e-3), "detector.defocus": (-0.01, 0.02)},
-        "rt", 1e-6, "linear", 200, False, 1, WithExtinctionBias(INTERVAL), 0,
-        families=(tilt, tilt_focus),
+    problem = fit_problem(
+        _start(), Z, y, SIGMA, free="auto",
+        bounds={"beam.tilt[0]": (-1e-3, 1e-3), "detector.defocus": (-0.01, 0.02)}, method="rt",
+        tolerance=1e-6, threads=1, normalize=INTERVAL, extinction_bias=True, seed=0,
     )  # fmt: skip
+    r = fit_ladder(problem, families=(tilt, tilt_focus))
     assert r.chosen_family is tilt_focus
     for s in r.scores:
         assert s.k == len(s.family.paths) + 1
@@ -270,7 +268,7 @@ def test_profile_of_hostile_curves():
     """Curves the search may propose: zero or NaN over the interval cost inf (δα 0), a curve of
     1e300 is a shape like any other, and a pure exponential trend is taken out exactly."""
     z = np.linspace(100.0, 3000.0, 20)
-    norm = normalization(WithExtinctionBias((1000.0, 3000.0)), z, np.ones(20), np.full(20, 0.01))
+    norm = normalization((1000.0, 3000.0), z, np.ones(20), np.full(20, 0.01), True)
     curves = np.array([np.zeros(20), np.full(20, np.nan), np.full(20, 1e300), np.exp(1e-4 * z)])
     with np.errstate(all="raise"):  # nothing escapes as a floating-point warning
         bias, cost = norm.bias(curves), norm.whitened_cost(curves)

@@ -41,26 +41,16 @@ def _data():
 
 
 def _global(start, seed, **kw):
-    from lidar_overlap.analysis.global_search import fit_global
+    from lidar_overlap.analysis.fitting.global_search import fit_global
+    from lidar_overlap.analysis.fitting.problem import fit_problem
 
     s = parameters.replace(BIAXIAL, start)
     return fit_global(
-        s,
-        Z,
-        _data(),
-        SIGMA,
-        list(TRUE),
-        BOUNDS,
-        "rt",
-        1e-6,
-        "linear",
-        200,
-        False,
-        1,
-        None,
-        seed,
-        **{**SEARCH, **kw},
-    )
+        fit_problem(
+            s, Z, _data(), SIGMA, free=list(TRUE), bounds=BOUNDS, method="rt", tolerance=1e-6,
+            threads=1, seed=seed, **{**SEARCH, **kw},
+        )
+    )  # fmt: skip
 
 
 @pytest.mark.filterwarnings("ignore::lidar_overlap.DegeneracyWarning")  # G = 0 there
@@ -103,28 +93,18 @@ def test_a_seed_reproduces_its_result():
 def test_global_search_of_relative_data():
     # Without the scale, the truth sits in a narrow valley (a beam barely in view has the right
     # shape too), so the box is tighter and the population larger than for absolute data.
-    from lidar_overlap.analysis.global_search import fit_global
+    from lidar_overlap.analysis.fitting.global_search import fit_global
+    from lidar_overlap.analysis.fitting.problem import fit_problem
 
     bounds = {"beam.tilt[0]": (-1.5e-3, 2.5e-3), "detector.defocus": (-0.01, 0.02)}
     start = parameters.replace(BIAXIAL, BAD_STARTS[0])
     f = fit_global(
-        start,
-        Z,
-        0.7 * _data(),
-        0.7 * SIGMA,
-        list(TRUE),
-        bounds,
-        "rt",
-        1e-6,
-        "linear",
-        200,
-        False,
-        1,
-        (1000.0, 3000.0),
-        1,
-        population=40,
-        generations=30,
-    )
+        fit_problem(
+            start, Z, 0.7 * _data(), 0.7 * SIGMA, free=list(TRUE), bounds=bounds, method="rt",
+            tolerance=1e-6, threads=1, normalize=(1000.0, 3000.0), seed=1, population=40,
+            generations=30,
+        )
+    )  # fmt: skip
     assert isinstance(f, lo.GlobalRelativeFitResult)
     for p, v in TRUE.items():
         assert abs(f.parameters[p] - v) < FOUND_SIGMAS * f.uncertainties[p]

@@ -7,7 +7,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.realign import FAR_FACTOR, realign
+from lidar_overlap.analysis.design.realign import FAR_FACTOR, realign
 
 pytest.importorskip("scipy")
 

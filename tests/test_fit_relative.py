@@ -8,7 +8,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.relative import normalization
+from lidar_overlap.analysis.fitting.normalization import normalization
 from lidar_overlap.cli import main
 
 pytest.importorskip("scipy")

@@ -12,7 +12,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis import fit_verdict
+from lidar_overlap.analysis.fitting import verdict as fit_verdict
 
 pytest.importorskip("scipy")
 

@@ -16,7 +16,7 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.model_families import (
+from lidar_overlap.analysis.fitting.families import (
     LADDER,
     Family,
     stop_bounds,
@@ -24,7 +24,8 @@ from lidar_overlap.analysis.model_families import (
     with_stop,
     with_wing,
 )
-from lidar_overlap.analysis.model_ladder import fit_ladder
+from lidar_overlap.analysis.fitting.ladder import fit_ladder
+from lidar_overlap.analysis.fitting.problem import fit_problem
 
 pytest.importorskip("scipy")
 # a stop's radius and distance trade against each other, and so do a wing's share and divergence:
@@ -74,19 +75,19 @@ START = parameters.replace(BIAXIAL, {"beam.tilt[0]": 2e-4})
 def _ladder(g, seed):
     y = g + np.random.default_rng(seed).normal(0.0, SIGMA, Z.size)
     return fit_ladder(
-        START,
-        Z,
-        y,
-        SIGMA,
-        {"beam.tilt[0]": (-1e-3, 1e-3)},
-        "rt",
-        1e-5,
-        "linear",
-        200,
-        True,
-        1,
-        None,
-        seed,
+        fit_problem(
+            START,
+            Z,
+            y,
+            SIGMA,
+            free="auto",
+            bounds={"beam.tilt[0]": (-1e-3, 1e-3)},
+            method="rt",
+            tolerance=1e-5,
+            allow_unconverged=True,
+            threads=1,
+            seed=seed,
+        ),
         families=(BEAM, WINGS, STOP),
     )
 

@@ -1,7 +1,9 @@
 """The package's layers hold: each module imports only its own layer and those below it, at module
-level; only optional dependencies are imported inside functions; no module takes another's private
-names; only the backends call the core's overlap computations; and the package imports with numpy
-and its compiled core alone."""
+level; within ``analysis``, each room (fitting, studies, design, bottom to top, above the shared
+modules of ``analysis`` itself) imports only the shared modules, its own room and the rooms below;
+only optional dependencies are imported inside functions; no module takes another's private names;
+only the backends call the core's overlap computations; and the package imports with numpy and its
+compiled core alone."""
 
 import ast
 import pathlib
@@ -16,6 +18,8 @@ PACKAGE = pathlib.Path(lidar_overlap.__file__).parent
 #: Bottom to top; the private foundation modules (_core, _checks, _pickling, _files) are below all.
 LAYERS = ("model", "optics", "forward", "analysis", "io", "views", "cli")
 FOUNDATION = ("_core", "_checks", "_pickling", "_files", "_reading", "_interrupts")
+#: The rooms of ``analysis``, bottom to top, above its shared modules (analysis/*.py).
+ROOMS = ("fitting", "studies", "design")
 #: Packages the library may import only inside the functions that need them.
 OPTIONAL = (
     "scipy",
@@ -47,6 +51,13 @@ def _layer(dotted: str) -> int:
     if head in FOUNDATION or head == "":
         return -1
     return LAYERS.index(head) if head in LAYERS else len(LAYERS)  # the top-level namespace
+
+
+def _room(dotted: str) -> int:
+    """0 for a shared module of ``analysis`` (or the package ``analysis`` itself), 1 + the room's
+    place for a module in a room."""
+    parts = dotted.split(".")
+    return 1 + ROOMS.index(parts[1]) if len(parts) > 1 and parts[1] in ROOMS else 0
 
 
 def _absolute(node: ast.ImportFrom, package: list) -> str:
@@ -110,6 +121,15 @@ def test_imports_run_downward_and_optional_ones_late(path, dotted, package):
                 continue
             assert not inside, f"{dotted}: {target} imported inside a function"
             assert _layer(target) <= own, f"{dotted} (layer {own}) imports {target} from above"
+            if dotted.startswith("analysis.") and target.startswith("analysis"):
+                assert _room(target) <= _room(dotted), (
+                    f"{dotted} (room {_room(dotted)}) imports {target} from a room above"
+                )
+
+
+def test_the_rooms_of_analysis_are_all_named():
+    rooms = {p.parent.name for p in (PACKAGE / "analysis").glob("*/__init__.py")}
+    assert rooms == set(ROOMS)
 
 
 @pytest.mark.parametrize("path, dotted, package", MODULES, ids=[m[1] or "init" for m in MODULES])

@@ -17,8 +17,8 @@ from test_rt_monte_carlo import N_RAYS, accepted, allowed, aperture_points
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.sensitivity import unit
 from lidar_overlap.forward.backends import many
+from lidar_overlap.model.parameters import unit
 
 BASE = lo.paper_table1()
 ENGINE_TOL = 1e-6

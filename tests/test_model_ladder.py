@@ -7,8 +7,9 @@ import pytest
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.analysis.model_families import Family
-from lidar_overlap.analysis.model_ladder import fit_ladder, runs_p_value
+from lidar_overlap.analysis.fitting.families import Family
+from lidar_overlap.analysis.fitting.ladder import fit_ladder, runs_p_value
+from lidar_overlap.analysis.fitting.problem import fit_problem
 
 pytest.importorskip("scipy")
 
@@ -29,19 +30,18 @@ def _ladder(truth, seed, families=(TILT, TILT_FOCUS)):
     g = lo.overlap(parameters.replace(BIAXIAL, truth), Z, "rt", tolerance=1e-8).overlap
     y = g + np.random.default_rng(seed).normal(0.0, SIGMA, Z.size)
     return fit_ladder(
-        parameters.replace(BIAXIAL, START),
-        Z,
-        y,
-        SIGMA,
-        BOUNDS,
-        "rt",
-        1e-5,
-        "linear",
-        200,
-        False,
-        1,
-        None,
-        seed,
+        fit_problem(
+            parameters.replace(BIAXIAL, START),
+            Z,
+            y,
+            SIGMA,
+            free="auto",
+            bounds=BOUNDS,
+            method="rt",
+            tolerance=1e-5,
+            threads=1,
+            seed=seed,
+        ),
         families=families,
     )
 

@@ -9,22 +9,22 @@ call.
 
 from ._checks import set_max_memory
 from ._core import __version__, max_memory, max_threads
-from .analysis.alignment import alignment_map, alignment_maps
-from .analysis.autoalign import AlignResult, align
-from .analysis.fit import fit
-from .analysis.fit_result import DegeneracyWarning, FitResult, Prediction
-from .analysis.fit_telecover import fit_telecover
-from .analysis.fit_verdict import FitQualityWarning
-from .analysis.global_result import GlobalFitResult, GlobalRelativeFitResult
-from .analysis.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
-from .analysis.optimize import OptimizeResult, optimize
-from .analysis.realign import Realignment, realign
-from .analysis.relative_result import RelativeFitResult
+from .analysis.design.alignment import alignment_map, alignment_maps
+from .analysis.design.autoalign import AlignResult, align
+from .analysis.design.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
+from .analysis.design.optimize import OptimizeResult, optimize
+from .analysis.design.realign import Realignment, realign
+from .analysis.fitting.fit import fit
+from .analysis.fitting.global_result import GlobalFitResult, GlobalRelativeFitResult
+from .analysis.fitting.relative_result import RelativeFitResult
+from .analysis.fitting.result import DegeneracyWarning, FitResult, Prediction
+from .analysis.fitting.verdict import FitQualityWarning
 from .analysis.sensitivity import sensitivity
-from .analysis.signals import CorrectedSignal, LidarSignal, correct, signal
-from .analysis.studies import tolerance_study
-from .analysis.telecover import TelecoverResult, telecover
-from .analysis.turbulent_study import turbulent_realizations
+from .analysis.studies.signals import CorrectedSignal, LidarSignal, correct, signal
+from .analysis.studies.telecover import TelecoverResult, telecover
+from .analysis.studies.telecover_fit import fit_telecover
+from .analysis.studies.tolerance import tolerance_study
+from .analysis.studies.turbulence import turbulent_realizations
 from .forward.compute import overlap, run
 from .forward.coupling import emitter_coupling, optimal_focus_range
 from .forward.methods import FO, RT, Auto, Turbulent

@@ -4,12 +4,7 @@ G.
 Step rule. The central difference D(h) = (G(p + h) - G(p - h)) / 2h errs by the truncation h² G'''/6
 plus the quadrature error of the two values, up to ``tolerance``/h. With G''' ~ 1/s³ for a parameter
 whose natural scale is s (G changes by O(1) over s), the sum is smallest at h = s (3
-tolerance)^(1/3). The scales:
-
-- ``beam.tilt[i]``: the receiver's half field of view r_d / f (rad);
-- ``beam.offset[i]``: the aperture radius D/2; ``detector.offset[i]``: the detector radius r_d;
-- ``detector.defocus``: 2 r_d f / D, the defocus whose blur circle is the detector's size;
-- every other (positive) scalar: its own value (a relative step).
+tolerance)^(1/3). The scales are the parameter table's (:mod:`lidar_overlap.model.parameters`).
 
 The error stated for each derivative is measured, not assumed: the truncation from D(h) and D(2h)
 (Richardson's leading-order estimate |D(2h) - D(h)| / 3, doubled as a margin for the h⁴ terms, which
@@ -27,38 +22,8 @@ from .. import _checks
 from ..forward.backends import many
 from ..forward.planning import plan
 from ..model import parameters as _parameters
-from .alignment import ray_tracing, requested
 from .datasets import range_coordinate, xarray
-
-_ANGLES = ("beam.tilt[0]", "beam.tilt[1]", "beam.divergence")
-_DIMENSIONLESS = ("detector.numerical_aperture",)
-
-
-def step_scale(system, path: str) -> float:
-    """The natural scale s of ``path`` in ``system`` (rad or m; see the module's step rule)."""
-    r_d, f, d = system.detector.radius, system.telescope.focal_length, system.telescope.diameter
-    if path.startswith("beam.tilt["):
-        return r_d / f
-    if path.startswith("beam.offset["):
-        return 0.5 * d
-    if path.startswith("detector.offset["):
-        return r_d
-    if path == "detector.defocus":
-        return 2.0 * r_d * f / d
-    value = abs(_parameters.get(system, path))
-    if not value > 0:
-        raise ValueError(
-            f"parameters: {path} = 0 is at the edge of its valid range (it cannot be negative), so "
-            "no central difference can be taken there"
-        )
-    return value
-
-
-def unit(path: str) -> str:
-    """The SI unit of the scalar at ``path``."""
-    if path.startswith("beam.components["):  # a component's weight, waist_radius, divergence
-        return "rad" if path.endswith("divergence") else "1" if path.endswith("weight") else "m"
-    return "rad" if path in _ANGLES else "1" if path in _DIMENSIONLESS else "m"
+from .method_choice import ray_tracing, requested
 
 
 def sensitivity(
@@ -110,7 +75,7 @@ def sensitivity(
     d1 = (g[:, 0] - g[:, 1]) / (2 * h)
     d2 = (g[:, 2] - g[:, 3]) / (4 * h)
     error = 2.0 * np.abs(d2 - d1) / 3.0 + (e[:, 0] + e[:, 1]) / (2 * h)
-    units = [unit(path) for path in paths]
+    units = [_parameters.unit(path) for path in paths]
     per_unit = [f"1/{u}" if u != "1" else "1" for u in units]
     dims = ("parameter", "range")
     return xr.Dataset(
@@ -182,7 +147,7 @@ def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
 def _steps(system, paths, tolerance: float) -> np.ndarray:
     """The step h = s (3 tolerance)^(1/3) of each path (the module's step rule)."""
     factor = (3.0 * tolerance) ** (1.0 / 3.0)
-    return np.array([step_scale(system, path) * factor for path in paths])
+    return np.array([_parameters.step_scale(system, path) * factor for path in paths])
 
 
 def _curves(p, system, paths, shifted):

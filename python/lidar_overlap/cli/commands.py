@@ -1,7 +1,7 @@
 """Command line: ``lidar-overlap run SCENARIO.toml``, ``lidar-overlap demo`` (see
 :mod:`lidar_overlap.io.scenario`), ``lidar-overlap fit SCENARIO.toml MEASUREMENTS.csv --free PATH
-...`` (see :mod:`lidar_overlap.analysis.fit`) and ``lidar-overlap telecover SCENARIO.toml
-[--measurements CSV --free PATH ...]`` (see :mod:`lidar_overlap.analysis.telecover`) and
+...`` (see :mod:`lidar_overlap.analysis.fitting.fit`) and ``lidar-overlap telecover SCENARIO.toml
+[--measurements CSV --free PATH ...]`` (see :mod:`lidar_overlap.analysis.studies.telecover`) and
 ``lidar-overlap view SCENARIO.toml`` (the interactive page: :mod:`lidar_overlap.views.app`).
 
 Exit codes: 0 success; 1 any failure: a scenario that cannot be used, a computation the library

@@ -16,7 +16,7 @@ from typing import List, Sequence, Tuple
 import numpy as np
 
 from .. import _files, _reading
-from ..analysis.fit import fit
+from ..analysis.fitting.fit import fit
 from ..io.scenario import Scenario
 
 COLUMNS = ("range_m", "overlap", "sigma")

@@ -23,8 +23,8 @@ from typing import List, Optional
 import numpy as np
 
 from .. import _files
-from ..analysis.fit_telecover import fit_telecover
-from ..analysis.telecover import sector_mask, telecover
+from ..analysis.studies.telecover import sector_mask, telecover
+from ..analysis.studies.telecover_fit import fit_telecover
 from ..forward.result_files import csv_value
 from ..io.scenario import Scenario
 from ..model.aperture_mask import ApertureMask, equal_sectors

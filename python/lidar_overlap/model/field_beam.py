@@ -6,7 +6,7 @@ import copy
 import math
 from dataclasses import dataclass
 from dataclasses import field as dataclass_field
-from typing import Optional, Tuple
+from typing import ClassVar, Optional, Tuple
 
 from .. import _checks, _core
 from .._pickling import ByArguments, ByValue
@@ -36,6 +36,12 @@ class FieldBeam(ByValue, ByArguments):
 
     Only ``lo.overlap(..., method="fo")`` accepts it: ray tracing models Gaussian beams only.
     """
+
+    #: What the parameter paths may address (:mod:`lidar_overlap.model.parameters`):
+    #: ``field_given`` (only offset and tilt vary: the field is data), ``has_components`` (its
+    #: ``beam.components[i]`` scalars; ``beam.divergence`` is component 0's).
+    field_given: ClassVar[bool] = True
+    has_components: ClassVar[bool] = False
 
     field: Field
     offset: Pair = (0.0, 0.0)

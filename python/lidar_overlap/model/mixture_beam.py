@@ -18,7 +18,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Literal, Optional, Tuple
+from typing import ClassVar, Literal, Optional, Tuple
 
 from .. import _checks, _core
 from .._pickling import ByArguments
@@ -73,6 +73,12 @@ class GaussianMixtureBeam(ByArguments):
     Each component is checked as a :class:`GaussianBeam` would be; an error names it as
     ``beam.components[i].<name>``.
     """
+
+    #: What the parameter paths may address (:mod:`lidar_overlap.model.parameters`):
+    #: ``field_given`` (only offset and tilt vary: the field is data), ``has_components`` (its
+    #: ``beam.components[i]`` scalars; ``beam.divergence`` is component 0's).
+    field_given: ClassVar[bool] = False
+    has_components: ClassVar[bool] = True
 
     components: Tuple[BeamComponent, ...] = (BeamComponent(),)
     wavelength: float = 355e-9

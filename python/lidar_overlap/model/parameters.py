@@ -1,103 +1,293 @@
-"""Scalars of a :class:`LidarSystem` addressed by path, for maps, sensitivities, fits and studies
-(SI units).
+"""What the library knows about each scalar of a :class:`LidarSystem` it addresses by path (the
+paths themselves: :mod:`lidar_overlap.model.parameter_paths`, whose names this module hands on, so
+``lidar_overlap.parameters.get`` and ``.replace`` work as before).
 
-A path names one scalar: ``"beam.tilt[0]"`` (rad), ``"beam.offset[1]"`` (m), ``"beam.divergence"``
-(rad, the 1/e² half-angle; read as the actual divergence when the beam is diffraction-limited),
-``"beam.waist_radius"``, ``"beam.wavelength"``, ``"telescope.diameter"``,
-``"telescope.focal_length"``, ``"telescope.obstruction_radius"``,
-``"telescope.obstruction_distance"``, ``"detector.radius"``, ``"detector.defocus"``,
-``"detector.offset[0]"``, ``"detector.numerical_aperture"``, ``"detector.stop_radius"``,
-``"detector.stop_distance"``, ``"telescope.aberrations.zernike[11]"``
-(m RMS, Noll index), ``"telescope.aberrations.w040"`` (and the other Seidel terms) and, for a
-:class:`GaussianMixtureBeam`, ``"beam.components[i].weight"`` (relative power),
-``"beam.components[i].waist_radius"`` (m) and ``"beam.components[i].divergence"`` (rad), whose
-``"beam.waist_radius"`` and ``"beam.divergence"`` are those of component 0 (the main beam). A pair
-without an index (``"beam.tilt"``) stands for both of its scalars where a list of parameters is
-asked for (:func:`expand`).
+:data:`TABLE` holds each form of path once, as a :class:`Parameter`: its SI unit, its physical
+meaning, the part of the instrument it belongs to (the model families group by it), its natural
+scale s (G changes by O(1) over s: the steps of sensitivities and fit Jacobians, and the fit's
+parameter scaling), its default bounds in a fit, and whether a global search takes it linearly or
+in its logarithm. The scales:
 
-Systems are immutable: :func:`replace` builds a new one, validated like any other, so a value
-outside the model's range is refused naming the path.
+- ``beam.tilt[i]``: the receiver's half field of view r_d / f (rad);
+- ``beam.offset[i]``: the aperture radius D/2; ``detector.offset[i]``: the detector radius r_d;
+- ``detector.defocus``: 2 r_d f / D, the defocus whose blur circle is the detector's size;
+- every other (positive) scalar: its own value (a relative step).
+
+Default bounds: ``beam.tilt[i]`` ±``MAX_TILT`` (10 mrad, far beyond any lidar whose beam still
+meets the field of view; a search: the start ± ``TILT_FIELDS`` half fields of view, within that);
+``beam.offset[i]`` the start ± the aperture diameter D; ``detector.offset[i]`` the start ± 10
+detector radii; ``detector.defocus`` the start ± f / 10; a divergence (a Gaussian width law's) from
+a tenth of its start, but not below ``DIFFRACTION_MARGIN`` times the diffraction limit (nor above
+the start), to ten times its start; any other (positive) scalar from a tenth to ten times its start.
+A one-parameter scan (:func:`lidar_overlap.realign`) has a default interval for the tilt (the start
+± ``MAX_TILT`` / 2) and the beam offset (± D) only.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import re
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple
+import math
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
-from .. import _checks
-from .aberrations import SEIDEL_TERMS, Aberrations
-from .field_beam import FieldBeam
-from .mixture_beam import GaussianMixtureBeam
+from .parameter_paths import (
+    COMPONENT_SCALARS,
+    PAIRS,
+    SCALARS,
+    canonical,
+    expand,
+    get,
+    parse,
+    replace,
+    valid_paths,
+)
 from .system import LidarSystem
 
-PAIRS = {"beam": ("offset", "tilt"), "detector": ("offset",)}
-SCALARS = {
-    "beam": ("wavelength", "waist_radius", "divergence"),
-    "telescope": ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"),
-    "detector": ("radius", "defocus", "numerical_aperture", "stop_radius", "stop_distance"),
-}
-# ASCII only and anchored at the very end (\Z, not $, which also matches before a final newline): a
-# path is one spelling of one scalar, so that duplicates can be found (see canonical()).
-_PATH = re.compile(r"(beam|telescope|detector)\.([A-Za-z_0-9]+)(?:\[([0-9]+)\])?\Z")
-_COMPONENT = re.compile(r"beam\.components\[([0-9]{1,4})\]\.(weight|waist_radius|divergence)\Z")
-COMPONENT_SCALARS = ("weight", "waist_radius", "divergence")
-_ABERRATION = re.compile(r"telescope\.aberrations\.(?:zernike\[([0-9]+)\]|([A-Za-z_0-9]+))\Z")
+__all__ = [
+    "COMPONENT_SCALARS",
+    "PAIRS",
+    "SCALARS",
+    "Parameter",
+    "TABLE",
+    "canonical",
+    "default_bounds",
+    "describe",
+    "expand",
+    "get",
+    "plain_paths",
+    "replace",
+    "scan_bounds",
+    "search_bounds",
+    "searched_in_log",
+    "step_scale",
+    "unit",
+    "valid_paths",
+]
+
+#: A divergence's default lower bound stays this factor above the diffraction limit λ/(π w0) (width
+#: law "gaussian"): below the limit there is no such beam (within a step of it the Jacobian takes
+#: the one-sided difference, :func:`lidar_overlap.analysis.sensitivity.jacobian`).
+DIFFRACTION_MARGIN = 1.05
+#: Largest |beam tilt| of the default bounds (rad): 10 mrad, far beyond any lidar whose beam still
+#: meets the field of view.
+MAX_TILT = 1e-2
+#: A search's default tilt bounds: the start ± this many half fields of view r_d / f (wider tilts
+#: put the beam out of the field of view at every range, where a cost is flat).
+TILT_FIELDS = 4.0
 
 
-def valid_paths() -> List[str]:
-    """Every path form :func:`get` and :func:`replace` accept (``zernike[j]`` for any Noll index
-    j)."""
-    paths = [f"{part}.{name}" for part, names in SCALARS.items() for name in names]
-    paths += [
-        f"{part}.{name}[{i}]" for part, names in PAIRS.items() for name in names for i in (0, 1)
-    ]
+@dataclass(frozen=True)
+class Parameter:
+    """What the library knows about one form of path (module docstring's table): ``form`` (the
+    path with ``i`` for an index), ``unit`` (SI), ``meaning``, ``family`` (the part of the
+    instrument it describes: ``"alignment"``, ``"beam"``, ``"field of view"``, ``"focus"``,
+    ``"acceptance"``, ``"second stop"``, ``"beam wings"``, ``"receiver"``, ``"aberrations"``),
+    ``search`` (``"linear"``, or ``"log"`` for a positive scalar searched in its logarithm),
+    ``scale`` ((system, value) -> the natural step scale s: G changes by O(1) over s) and
+    ``bounds`` ((system, path, start) -> default (low, high)); ``search_bounds``, where given, the
+    narrower box a global search uses by default; ``scan``, where given, the interval a
+    one-parameter scan searches by default."""
+
+    form: str
+    unit: str
+    meaning: str
+    family: str
+    search: str
+    scale: Callable[[Any, str], float]
+    bounds: Callable[[Any, str, float], Tuple[float, float]]
+    search_bounds: Optional[Callable[[Any, float], Tuple[float, float]]] = None
+    scan: Optional[Callable[[Any, float], Tuple[float, float]]] = None
+
+
+def _field(system, path) -> float:  # the receiver's half field of view r_d / f (rad)
+    return system.detector.radius / system.telescope.focal_length
+
+
+def _half_aperture(system, path) -> float:
+    return 0.5 * system.telescope.diameter
+
+
+def _detector_radius(system, path) -> float:
+    return system.detector.radius
+
+
+def _blur_defocus(system, path) -> float:  # the defocus whose blur circle is the detector's size
+    return 2.0 * system.detector.radius * system.telescope.focal_length / system.telescope.diameter
+
+
+def _own_value(system, path) -> float:
+    value = abs(get(system, path))
+    if not value > 0:
+        raise ValueError(
+            f"parameters: {path} = 0 is at the edge of its valid range (it cannot be negative), so "
+            "no central difference can be taken there"
+        )
+    return value
+
+
+def _tilt_bounds(system, path, start):
+    return -MAX_TILT, MAX_TILT
+
+
+def _tilt_search(system, start):
+    field = TILT_FIELDS * system.detector.radius / system.telescope.focal_length
+    return max(-MAX_TILT, start - field), min(MAX_TILT, start + field)
+
+
+def _tilt_scan(system, start):
+    return start - MAX_TILT / 2, start + MAX_TILT / 2
+
+
+def _offset_scan(system, start):
+    return start - system.telescope.diameter, start + system.telescope.diameter
+
+
+def _aperture_bounds(system, path, start):
+    return start - system.telescope.diameter, start + system.telescope.diameter
+
+
+def _detector_bounds(system, path, start):
+    return start - 10 * system.detector.radius, start + 10 * system.detector.radius
+
+
+def _defocus_bounds(system, path, start):
     return (
-        paths
-        + [f"beam.components[i].{name}" for name in COMPONENT_SCALARS]
-        + ["telescope.aberrations.zernike[j]"]
-        + [f"telescope.aberrations.{t}" for t in SEIDEL_TERMS]
+        start - 0.1 * system.telescope.focal_length,
+        start + 0.1 * system.telescope.focal_length,
     )
 
 
-def expand(paths: Iterable[str]) -> List[str]:
-    """``paths`` with each bare pair (``"beam.tilt"``) replaced by its two scalars; each path
-    checked."""
-    if isinstance(paths, str):
-        paths = [paths]
-    if paths is None or not isinstance(paths, Iterable):
-        raise ValueError(
-            f"parameters = {_checks.shown(paths)} is invalid: expected a list of parameter paths, "
-            "e.g. ['beam.tilt', 'detector.defocus']"
-        )
-    paths = list(paths)
-    out: List[str] = []
-    for path in paths:
-        m = _PATH.match(path) if isinstance(path, str) else None
-        if m and m.group(3) is None and m.group(2) in PAIRS.get(m.group(1), ()):
-            out += [f"{path}[0]", f"{path}[1]"]
-        else:
-            out.append(canonical(path))
-    twice = sorted({p for p in out if out.count(p) > 1})
-    if twice:
-        raise ValueError(
-            f"parameters = {_checks.shown(paths)} is invalid: {twice[0]} is named twice (paths are "
-            "compared in their plain form: no leading zeros in an index)"
-        )
-    return out
+def _relative_bounds(system, path, start):
+    return start / 10, start * 10
 
 
-def canonical(path) -> str:
-    """The one spelling of the scalar ``path`` names (``"beam.tilt[00]"`` -> ``"beam.tilt[0]"``);
-    ValueError for anything that is not a path."""
-    kind, part, name, index = _parse(path)
+def _divergence_bounds(system, path, start):
+    """A tenth to ten times the start, the lower bound not below DIFFRACTION_MARGIN times the
+    diffraction limit (nor above the start) for a Gaussian width law."""
+    if getattr(system.beam, "width_law", "") == "gaussian":
+        waist = get(system, path[: -len("divergence")] + "waist_radius")
+        limit = DIFFRACTION_MARGIN * system.beam.wavelength / (math.pi * waist)
+        return min(start, max(start / 10, limit)), start * 10
+    return start / 10, start * 10
+
+
+def _scalar(form, unit, meaning, family, search="log", scale=_own_value, bounds=_relative_bounds):
+    return Parameter(form, unit, meaning, family, search, scale, bounds)
+
+
+#: Every form of path, once.
+TABLE: Dict[str, Parameter] = {
+    p.form: p
+    for p in (
+        Parameter(
+            "beam.tilt[i]", "rad", "the beam's tilt from the telescope axis", "alignment",
+            "linear", _field, _tilt_bounds, _tilt_search, _tilt_scan,
+        ),
+        Parameter(
+            "beam.offset[i]", "m", "the beam axis's offset from the telescope axis", "alignment",
+            "linear", _half_aperture, _aperture_bounds, scan=_offset_scan,
+        ),
+        Parameter(
+            "detector.offset[i]", "m", "the field stop's offset from the telescope axis",
+            "alignment", "linear", _detector_radius, _detector_bounds,
+        ),
+        Parameter(
+            "detector.defocus", "m", "the field stop's distance behind the image plane", "focus",
+            "linear", _blur_defocus, _defocus_bounds,
+        ),
+        _scalar("beam.wavelength", "m", "the laser's wavelength", "beam"),
+        _scalar("beam.waist_radius", "m", "the beam's 1/e² waist radius", "beam"),
+        _scalar(
+            "beam.divergence", "rad", "the beam's 1/e² half-angle divergence", "beam",
+            bounds=_divergence_bounds,
+        ),
+        _scalar("telescope.diameter", "m", "the telescope's aperture diameter", "receiver"),
+        _scalar("telescope.focal_length", "m", "the telescope's focal length", "receiver"),
+        _scalar(
+            "telescope.obstruction_radius", "m", "the central obstruction's radius", "receiver"
+        ),
+        _scalar(
+            "telescope.obstruction_distance", "m", "the obstruction's distance before the lens",
+            "receiver",
+        ),
+        _scalar("detector.radius", "m", "the field stop's radius", "field of view"),
+        _scalar(
+            "detector.numerical_aperture", "1", "the relay's (or fibre's) acceptance",
+            "acceptance",
+        ),
+        _scalar("detector.stop_radius", "m", "a second stop's radius", "second stop"),
+        _scalar(
+            "detector.stop_distance", "m", "a second stop's distance behind the lens",
+            "second stop",
+        ),
+        _scalar(
+            "beam.components[i].weight", "1", "a beam component's share of power", "beam wings"
+        ),
+        _scalar(
+            "beam.components[i].waist_radius", "m", "a beam component's waist radius", "beam wings"
+        ),
+        _scalar(
+            "beam.components[i].divergence", "rad", "a beam component's half-angle divergence",
+            "beam wings", bounds=_divergence_bounds,
+        ),
+        _scalar(
+            "telescope.aberrations.zernike[j]", "m", "a Zernike term's RMS wavefront error "
+            "(Noll j)", "aberrations",
+        ),
+        _scalar(
+            "telescope.aberrations.seidel", "m", "a Seidel term's wavefront coefficient (or the "
+            "field radius)", "aberrations",
+        ),
+    )
+}  # fmt: skip
+
+
+def describe(path: str) -> Parameter:
+    """The :class:`Parameter` of the scalar ``path`` (any spelling :func:`canonical` accepts)."""
+    kind, part, name, index = parse(path)
     if kind == "zernike":
-        return f"telescope.aberrations.zernike[{index}]"
+        return TABLE["telescope.aberrations.zernike[j]"]
     if kind == "seidel":
-        return f"telescope.aberrations.{name}"
+        return TABLE["telescope.aberrations.seidel"]
     if kind == "component":
-        return f"beam.components[{index}].{name}"
-    return f"{part}.{name}" + ("" if index is None else f"[{index}]")
+        return TABLE[f"beam.components[i].{name}"]
+    return TABLE[f"{part}.{name}" + ("" if index is None else "[i]")]
+
+
+def step_scale(system: LidarSystem, path: str) -> float:
+    """The natural scale s of ``path`` in ``system`` (its unit): G changes by O(1) over s."""
+    return describe(path).scale(system, path)
+
+
+def default_bounds(system: LidarSystem, path: str, start: float) -> Tuple[float, float]:
+    """(low, high) of ``path`` when a fit is given none, in SI units."""
+    return describe(path).bounds(system, path, start)
+
+
+def unit(path: str) -> str:
+    """The SI unit of the scalar at ``path``."""
+    return describe(path).unit
+
+
+def search_bounds(system: LidarSystem, path: str, start: float) -> Tuple[float, float]:
+    """(low, high) of ``path`` in a global search when none is given: the fit's default bounds, or
+    the table's narrower search box where it has one."""
+    p = describe(path)
+    return p.search_bounds(system, start) if p.search_bounds else p.bounds(system, path, start)
+
+
+def searched_in_log(path: str, low: float) -> bool:
+    """Whether a search takes ``path`` in its logarithm (a positive scalar whose bounds are
+    positive) rather than linearly."""
+    return describe(path).search == "log" and low > 0
+
+
+def scan_bounds(system: LidarSystem, path: str, start: float) -> Tuple[float, float]:
+    """The interval a one-parameter scan of ``path`` searches when none is given; ValueError naming
+    ``bounds`` for a parameter without one."""
+    p = describe(path)
+    if p.scan is None:
+        raise ValueError(f"bounds: give (low, high) for {path}: it has no default search interval")
+    return p.scan(system, start)
 
 
 def plain_paths(paths, name: str, why: str) -> List[str]:
@@ -114,161 +304,7 @@ def plain_paths(paths, name: str, why: str) -> List[str]:
         raise ValueError(
             f"{name} = [] is invalid: expected at least one parameter path, e.g. ['beam.tilt']"
         )
-    aberrations = [path for path in out if path.startswith("telescope.aberrations.")]
+    aberrations = [path for path in out if describe(path).family == "aberrations"]
     if aberrations:
         raise ValueError(f"{name}: {', '.join(aberrations)} is not available: {why}")
     return out
-
-
-def get(system: LidarSystem, path: str) -> float:
-    """The value of the scalar at ``path`` in ``system`` (SI units)."""
-    kind, part, name, index = _main_component(system, *_parse(path))
-    if kind == "zernike":
-        ab = system.telescope.aberrations
-        return float(ab.zernike.get(index or 0, 0.0)) if ab is not None else 0.0
-    if kind == "seidel":
-        ab = system.telescope.aberrations
-        return float(getattr(ab, name)) if ab is not None else 0.0
-    if kind == "component":
-        beam = _mixture(system, path, index)
-        i = index or 0
-        if name == "divergence":
-            return float(beam.divergences[i])
-        return float(getattr(beam.components[i], name))
-    owner = getattr(system, part)
-    if (
-        part == "beam"
-        and name == "divergence"
-        and not isinstance(owner, (FieldBeam, GaussianMixtureBeam))
-    ):
-        return float(owner.half_angle_divergence)
-    _check_owner(owner, part, name, path)
-    value = getattr(owner, name)
-    if value is None:
-        raise ValueError(
-            f"{path} is not set in this system (None): give it a value before varying it"
-        )
-    return float(value[index] if index is not None else value)
-
-
-def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
-    """A new system with each path in ``values`` set to its value (SI units); refused naming the
-    path when a value is not a real number or the system it makes is invalid."""
-    changes: Dict[str, Dict[str, Any]] = {"beam": {}, "telescope": {}, "detector": {}}
-    aberrations: Dict[str, Any] = {}
-    components: Dict[int, Dict[str, float]] = {}
-    for path, value in values.items():
-        kind, part, name, index = _main_component(system, *_parse(path))
-        value = _checks.real(path, value)
-        if kind == "component":
-            _mixture(system, path, index)
-            components.setdefault(index or 0, {})[name] = value
-        elif kind == "zernike":
-            current = aberrations.get("zernike", dict(_aberrations(system).zernike))
-            aberrations["zernike"] = {**current, index: value}
-        elif kind == "seidel":
-            aberrations[name] = value
-        elif index is not None:
-            pair = list(changes[part].get(name, getattr(getattr(system, part), name)))
-            pair[index] = value
-            changes[part][name] = tuple(pair)
-        else:
-            _check_owner(getattr(system, part), part, name, path)
-            changes[part][name] = value
-    try:
-        if aberrations:
-            changes["telescope"]["aberrations"] = dataclasses.replace(
-                _aberrations(system), **aberrations
-            )
-        parts = {part: _replaced(getattr(system, part), part, c) for part, c in changes.items()}
-        for i, c in components.items():
-            parts["beam"] = parts["beam"].with_component(i, **c)
-        return LidarSystem(**parts)
-    except ValueError as exc:
-        raise ValueError(
-            f"{', '.join(values)} = {_shown(values)} makes an invalid system: {exc}"
-        ) from None
-
-
-def _parse(path) -> Tuple[str, str, str, Optional[int]]:
-    """(kind, part, name, index) of a path: kind ``"plain"``, ``"zernike"`` or ``"seidel"``."""
-    if isinstance(path, str):
-        m = _COMPONENT.match(path)
-        if m:
-            return "component", "beam", m.group(2), int(m.group(1))
-        m = _ABERRATION.match(path)
-        if m and m.group(1) is not None and len(m.group(1)) <= 4:
-            j = int(m.group(1))
-            if 1 <= j <= 231:
-                return "zernike", "telescope", "zernike", j
-        elif m and m.group(2) in SEIDEL_TERMS + ("field_radius",):
-            return "seidel", "telescope", m.group(2), None
-        m = _PATH.match(path)
-        if m:
-            part, name, index = m.group(1), m.group(2), m.group(3)
-            if index is None and name in SCALARS[part]:
-                return "plain", part, name, None
-            if (
-                index is not None
-                and name in PAIRS.get(part, ())
-                and len(index) <= 4
-                and int(index) in (0, 1)
-            ):
-                return "plain", part, name, int(index)
-    raise ValueError(
-        f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}"
-    )
-
-
-def _main_component(system, kind: str, part: str, name: str, index):
-    """A mixture's ``beam.waist_radius`` and ``beam.divergence`` as its component 0's."""
-    if (
-        kind == "plain"
-        and part == "beam"
-        and name in ("waist_radius", "divergence")
-        and isinstance(system.beam, GaussianMixtureBeam)
-    ):
-        return "component", part, name, 0
-    return kind, part, name, index
-
-
-def _mixture(system, path: str, index) -> GaussianMixtureBeam:
-    """``system``'s beam when it has a component ``index``; refused naming ``path`` otherwise."""
-    beam = system.beam
-    if not isinstance(beam, GaussianMixtureBeam):
-        raise ValueError(
-            f"{path} is invalid for a {type(beam).__name__}: only a GaussianMixtureBeam has "
-            "components"
-        )
-    if not 0 <= index < len(beam.components):
-        raise ValueError(
-            f"{path} is invalid: the beam has {len(beam.components)} components (index 0 to "
-            f"{len(beam.components) - 1})"
-        )
-    return beam
-
-
-def _check_owner(owner, part: str, name: str, path: str) -> None:
-    if isinstance(owner, FieldBeam) and name not in ("offset", "tilt"):
-        raise ValueError(
-            f"{path} is invalid for a {type(owner).__name__}: only its offset and tilt can vary "
-            "(its field is given)"
-        )
-
-
-def _aberrations(system) -> Aberrations:
-    return (
-        system.telescope.aberrations if system.telescope.aberrations is not None else Aberrations()
-    )
-
-
-def _replaced(owner, part: str, changes: Dict[str, Any]):
-    if not changes:
-        return owner
-    if isinstance(owner, FieldBeam):
-        return owner.with_pointing(changes.get("offset"), changes.get("tilt"))
-    return dataclasses.replace(owner, **changes)
-
-
-def _shown(values: Mapping[str, float]) -> str:
-    return ", ".join(repr(v) for v in values.values())

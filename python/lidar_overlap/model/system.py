@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Literal, Optional, Tuple
+from typing import ClassVar, Literal, Optional, Tuple
 
 import numpy as np
 
@@ -45,6 +45,12 @@ class GaussianBeam(ByArguments):
     width_law : ``"gaussian"``: w(z)² = w0² + (θz)²; ``"linear"``: w(z) = w0 + θz, the paper's
         marginal ray of Appendix B, kept to reproduce its figures.
     """
+
+    #: What the parameter paths may address (:mod:`lidar_overlap.model.parameters`):
+    #: ``field_given`` (only offset and tilt vary: the field is data), ``has_components`` (its
+    #: ``beam.components[i]`` scalars; ``beam.divergence`` is component 0's).
+    field_given: ClassVar[bool] = False
+    has_components: ClassVar[bool] = False
 
     wavelength: float = 355e-9
     waist_radius: float = 1e-3

@@ -21,7 +21,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ..analysis.telecover import telecover
+from ..analysis.studies.telecover import telecover
 from ..forward.compute import overlap
 from ..model import parameters
 from ..model.aperture_mask import ApertureMask

@@ -11,7 +11,7 @@ spread.
   (``overlap_rt_batch``).
 
 Both compute any slice of realisations bit for bit as the whole run does (``fo_rows``, ``rt_rows``
-with a slice of ``wander``'s offsets): :mod:`lidar_overlap.analysis.turbulent_study` runs them as
+with a slice of ``wander``'s offsets): :mod:`lidar_overlap.analysis.studies.turbulence` runs them as
 tasks.
 """
 

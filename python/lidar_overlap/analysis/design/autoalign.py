@@ -14,7 +14,8 @@ sees only the shot-averaged, background-subtracted photon count in the range bin
   tilt is not higher than at the old one, until it is below ``resolution``.
 
 The G of each candidate comes from the ray tracer (a grid in one core call); the best G (for judging
-how far a search got) from :func:`lidar_overlap.analysis.optimize` with :class:`MaximumOverlapAt`.
+how far a search got) from :func:`lidar_overlap.analysis.design.optimize` with
+:class:`MaximumOverlapAt`.
 """
 
 from __future__ import annotations
@@ -24,12 +25,12 @@ from typing import Mapping, Optional
 
 import numpy as np
 
-from .. import _checks, _core
-from ..forward.methods import RT
-from ..model.system import LidarSystem
+from ... import _checks, _core
+from ...forward.methods import RT
+from ...model.system import LidarSystem
+from ..studies.signals import signal as _signal
 from .objectives import MaximumOverlapAt
 from .optimize import Problem, optimize
-from .signals import signal as _signal
 
 TILT = ["beam.tilt[0]", "beam.tilt[1]"]
 RASTER_POINTS = 5

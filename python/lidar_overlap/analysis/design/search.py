@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .sensitivity import step_scale
+from ...model.parameters import step_scale
 
 #: Grid points over the bounds before the local refine: about this many in all, at most 33 per axis.
 GRID_POINTS, MAX_AXIS_POINTS = 300, 33
@@ -90,9 +90,9 @@ def grid_points(lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
 
 def refine_tolerance(problem) -> np.ndarray:
     """Per free path, the step below which G cannot tell two candidates apart: near a maximum G
-    falls as (dx / s)² for a parameter of natural scale s (:func:`sensitivity.step_scale`), so by
-    the quadrature tolerance at dx = s sqrt(tolerance). A path without a natural scale uses its
-    bounds' span."""
+    falls as (dx / s)² for a parameter of natural scale s
+    (:func:`lidar_overlap.model.parameters.step_scale`), so by the quadrature tolerance at dx = s
+    sqrt(tolerance). A path without a natural scale uses its bounds' span."""
     out = []
     for path, lo, hi in zip(problem.paths, problem.lower, problem.upper):
         try:

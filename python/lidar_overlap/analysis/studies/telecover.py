@@ -12,19 +12,21 @@ and the full-aperture G.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks
-from ..forward.backends import many
-from ..forward.compute import run
-from ..forward.planning import plan
-from ..forward.result import OverlapResult
-from ..model.aperture_mask import ApertureMask
-from ..model.system import LidarSystem
-from .datasets import xarray
+from ... import _checks
+from ...forward.backends import many
+from ...forward.compute import run
+from ...forward.planning import plan
+from ...forward.result import OverlapResult
+from ...model.aperture_mask import ApertureMask
+from ...model.parameters import unit
+from ...model.system import LidarSystem
+from ..datasets import xarray
 
 #: The ``sectors`` strings :func:`telecover` knows.
 SECTOR_SETS = ("quadrants",)
@@ -112,9 +114,45 @@ class TelecoverResult:
         """The conventional telecover figure: range-corrected signals per sector (∝ G_i) and the
         normalised deviations with the ±``band`` lines. Returns the two Axes (needs ``pip install
         lidar-overlap[plot]``)."""
-        from ..views.plotting import plot_telecover
+        from ...views.plotting import plot_telecover
 
         return plot_telecover(self, band=band, axes=axes)
+
+    def plot_fit(self, fit, fig):
+        """A telecover fit's plot (``fit.plot()``, ``fit`` the FitResult whose result this is):
+        measured deviations (with error bars) and the fitted ones per sector in %, residuals
+        below."""
+        t = self
+        z, shape = t.ranges, (len(t.names), t.ranges.size)
+        measured, residuals = fit.measured.reshape(shape), fit.residuals.reshape(shape)
+        err = (
+            fit.sigma.reshape(shape)
+            if fit.sigma is not None
+            else np.full(shape, math.sqrt(fit.reduced_chi_square))
+        )
+        top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
+        for k, (name, d) in enumerate(zip(t.names, t.deviation)):
+            color = f"C{k % 10}"
+            top.errorbar(
+                z, 100 * measured[k], yerr=100 * err[k], fmt=".", ms=3, lw=0.6, color=color
+            )
+            top.plot(z, 100 * d, color=color, label=f"{name} (fitted)")
+            bottom.plot(z, residuals[k], ".", ms=3, color=color)
+        top.axhline(0.0, color="0.5", lw=0.6)
+        top.set_xscale("log")
+        top.set_ylabel("normalised deviation (%)")
+        top.legend(fontsize=8)
+        top.set_title(
+            "; ".join(
+                f"{p} = {v:.4g} ± {fit.uncertainties[p]:.2g} {unit(p)}"
+                for p, v in fit.parameters.items()
+            ),
+            fontsize=8,
+        )
+        bottom.axhline(0.0, color="0.5", lw=0.6)
+        bottom.set_xlabel("range (m)")
+        bottom.set_ylabel("residual / sigma" if fit.sigma is not None else "residual")
+        return fig
 
 
 def telecover(

@@ -15,10 +15,10 @@ from typing import Dict, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks, _core
-from ..forward.planning import plan
-from ..model import parameters as _parameters
-from .batch_curves import curves, variants
+from ... import _checks, _core
+from ...forward.planning import plan
+from ...model import parameters as _parameters
+from ..batch_curves import curves, variants
 
 #: The far-range limit is taken at this multiple of the target range.
 FAR_FACTOR = 100.0
@@ -67,7 +67,7 @@ def realign(
     out = {}
     for path in _parameters.expand(list(paths)):
         x0 = _parameters.get(system, path)
-        low, high = (bounds or {}).get(path) or _default_bounds(system, path, x0)
+        low, high = (bounds or {}).get(path) or _parameters.scan_bounds(system, path, x0)
         grid = np.linspace(low, high, SCAN_POINTS)
         g = curves(p, variants(system, [path], grid[:, None]))
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -93,12 +93,3 @@ def realign(
         root = optimize.brentq(ratio, grid[i], grid[i + 1], xtol=1e-6 * (high - low))
         out[path] = Realignment(path, float(root), float(root - x0), target, float(now[0] / now[1]))
     return out
-
-
-def _default_bounds(system, path, x0):
-    if path.startswith("beam.tilt["):
-        return x0 - 5e-3, x0 + 5e-3
-    if path.startswith("beam.offset["):
-        d = system.telescope.diameter
-        return x0 - d, x0 + d
-    raise ValueError(f"bounds: give (low, high) for {path}: it has no default search interval")

@@ -19,9 +19,9 @@ from typing import Any, List, Mapping, Tuple
 
 import numpy as np
 
-from .. import _checks
-from ..model import parameters
-from ..model.system import LidarSystem
+from ... import _checks
+from ...model import parameters
+from ...model.system import LidarSystem
 
 KINDS = ("normal", "uniform")
 

@@ -1,4 +1,4 @@
-"""Design questions for :func:`lidar_overlap.analysis.optimize`: what to minimise and which
+"""Design questions for :func:`lidar_overlap.analysis.design.optimize`: what to minimise and which
 constraints must hold (SI units).
 
 Each objective states the ranges it needs G at (``ranges``, m), the number it minimises from an
@@ -17,8 +17,8 @@ from typing import Callable, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks
-from ..forward.result import OverlapResult
+from ... import _checks
+from ...forward.result import OverlapResult
 
 #: Ranges (between the target and the far range, geometric) at which SmallestFieldOfView checks G.
 FULL_OVERLAP_POINTS = 6

@@ -1,7 +1,7 @@
-"""The result of :func:`lidar_overlap.analysis.fit` (and
-:func:`lidar_overlap.analysis.fit_telecover`): the parameters, their covariance, the fitted curve,
-and the model's prediction at other ranges with its 1-sigma band (the covariance propagated through
-the Jacobian)."""
+"""The result of :func:`lidar_overlap.analysis.fitting.fit` (and
+:func:`lidar_overlap.analysis.studies.telecover_fit`): the parameters, their covariance, the fitted
+curve, and the model's prediction at other ranges with its 1-sigma band (the covariance propagated
+through the Jacobian)."""
 
 from __future__ import annotations
 
@@ -12,12 +12,12 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from .. import _checks
-from ..forward.compute import run
-from ..forward.planning import plan
-from ..forward.result import OverlapResult
-from .sensitivity import jacobian, unit
-from .telecover import TelecoverResult
+from ... import _checks
+from ...forward.compute import run
+from ...forward.planning import plan
+from ...forward.result import OverlapResult
+from ...model.parameters import unit
+from ..sensitivity import jacobian
 
 #: Singular values of the normalised Jacobian below this fraction of the largest count as zero.
 RANK_TOLERANCE = 1e-10
@@ -78,7 +78,7 @@ class FitResult:
     chi_square: float
     reduced_chi_square: float
     degrees_of_freedom: int
-    result: Union[OverlapResult, TelecoverResult]
+    result: Union[OverlapResult, Any]  # a telecover fit's: its TelecoverResult
     measured: np.ndarray
     sigma: Optional[np.ndarray]
     covariance_scaled: bool
@@ -168,10 +168,9 @@ class FitResult:
         the residuals."""
         from matplotlib.figure import Figure
 
-        if isinstance(self.result, TelecoverResult):
-            return _plot_telecover_fit(
-                self, fig or Figure(figsize=(7.0, 5.6), constrained_layout=True)
-            )
+        plot_fit = getattr(self.result, "plot_fit", None)  # a telecover fit's result plots it
+        if plot_fit is not None:
+            return plot_fit(self, fig or Figure(figsize=(7.0, 5.6), constrained_layout=True))
         z = self.ranges
         if ranges is None:
             ranges = np.geomspace(z[0] / 4, z[-1], 200)
@@ -222,38 +221,3 @@ def _rebuild_fit(cls, state, recipe):
     with warnings.catch_warnings():  # said when the fit was planned
         warnings.simplefilter("ignore")
         return cls(**state, plan=plan(system, ranges, request, threads=threads))
-
-
-def _plot_telecover_fit(fit: FitResult, fig):
-    """Measured deviations (with error bars) and the fitted ones per sector in %, residuals
-    below."""
-    t = fit.result
-    assert isinstance(t, TelecoverResult)
-    z, shape = t.ranges, (len(t.names), t.ranges.size)
-    measured, residuals = fit.measured.reshape(shape), fit.residuals.reshape(shape)
-    err = (
-        fit.sigma.reshape(shape)
-        if fit.sigma is not None
-        else np.full(shape, math.sqrt(fit.reduced_chi_square))
-    )
-    top, bottom = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": (3, 1)})
-    for k, (name, d) in enumerate(zip(t.names, t.deviation)):
-        color = f"C{k % 10}"
-        top.errorbar(z, 100 * measured[k], yerr=100 * err[k], fmt=".", ms=3, lw=0.6, color=color)
-        top.plot(z, 100 * d, color=color, label=f"{name} (fitted)")
-        bottom.plot(z, residuals[k], ".", ms=3, color=color)
-    top.axhline(0.0, color="0.5", lw=0.6)
-    top.set_xscale("log")
-    top.set_ylabel("normalised deviation (%)")
-    top.legend(fontsize=8)
-    top.set_title(
-        "; ".join(
-            f"{p} = {v:.4g} ± {fit.uncertainties[p]:.2g} {unit(p)}"
-            for p, v in fit.parameters.items()
-        ),
-        fontsize=8,
-    )
-    bottom.axhline(0.0, color="0.5", lw=0.6)
-    bottom.set_xlabel("range (m)")
-    bottom.set_ylabel("residual / sigma" if fit.sigma is not None else "residual")
-    return fig

@@ -23,7 +23,7 @@ from typing import Optional
 
 import numpy as np
 
-from .. import _checks
+from ... import _checks
 
 #: A chi-square this improbable for the degrees of freedom counts as far above 1.
 P_VALUE = 1e-6

@@ -1,10 +1,10 @@
 """Tolerance studies: G(z) of many systems drawn around one, and its percentiles, computed through
 Dask.
 
-:func:`tolerance_study` draws every member up front (:mod:`lidar_overlap.analysis.distributions`),
-so the result depends on the system, the distributions, n, the ranges, the method and the seed only:
-not on the chunk size nor on where the members run. Each member is planned from its own system and
-run by :func:`lidar_overlap.run`.
+:func:`tolerance_study` draws every member up front
+(:mod:`lidar_overlap.analysis.studies.distributions`), so the result depends on the system, the
+distributions, n, the ranges, the method and the seed only: not on the chunk size nor on where the
+members run. Each member is planned from its own system and run by :func:`lidar_overlap.run`.
 
 Where they run:
 
@@ -28,16 +28,16 @@ from typing import Any, List, Mapping, Sequence
 
 import numpy as np
 
-from .. import _checks
-from ..forward.compute import run
-from ..forward.methods import Turbulent
-from ..forward.planning import plan
-from ..model import parameters
-from ..model.system import LidarSystem
-from . import engines
-from .datasets import xarray
+from ... import _checks
+from ...forward.compute import run
+from ...forward.methods import Turbulent
+from ...forward.planning import plan
+from ...model import parameters
+from ...model.system import LidarSystem
+from .. import engines
+from ..datasets import xarray
+from ..engines import TASK_SECONDS, run_tasks
 from .distributions import draw, normalized, text
-from .engines import TASK_SECONDS, run_tasks
 
 #: Most members a study may have (the draws alone are 8 bytes x n x parameters).
 MAX_MEMBERS = 10**7
@@ -60,7 +60,7 @@ def tolerance_study(
     ``[dask]`` to run in parallel).
 
     distributions : parameter path -> distribution of the *offset* from the system's value
-        (:mod:`lidar_overlap.analysis.distributions`): ``("normal", mean_offset, sd)``,
+        (:mod:`lidar_overlap.analysis.studies.distributions`): ``("normal", mean_offset, sd)``,
         ``("uniform", low, high)`` or an object with ``rvs(size, random_state)`` (a frozen
         ``scipy.stats`` distribution). SI units.
     n : members, 1 to :data:`MAX_MEMBERS`. ranges : m, as for :func:`lidar_overlap.overlap`.
@@ -117,7 +117,7 @@ def tolerance_study(
     bounds = [(s, min(s + chunk, n)) for s in range(done, n, chunk)]
     loop_threads = threads if seconds >= TASK_SECONDS else 1
     parts = _compute(
-        engine, client, bounds, system, paths, values, z, request, loop_threads, workers
+        engine, client, bounds, system, (paths, values, z, request), loop_threads, workers
     )
     g = np.concatenate([head] + parts)
 
@@ -231,9 +231,10 @@ def _chunk(system, paths, values, z, request, threads: int, start: int) -> np.nd
     return out
 
 
-def _compute(
-    kind, client, bounds, system, paths, values, z, request, loop_threads, parallel
-) -> list:
+def _compute(kind, client, bounds, system, members, loop_threads, parallel) -> list:
+    """The members' curves, chunk by chunk (``bounds``) on the engine ``kind``; ``members``: (paths,
+    their values per member, ranges, method request)."""
+    paths, values, z, request = members
     threads = loop_threads if kind == "loop" else 1
     return run_tasks(
         kind,

@@ -1,5 +1,6 @@
 """What a global fit reports beyond the local fit it ends with: the search (candidates, core calls)
-and the distinct minima it polished, with their costs (:mod:`lidar_overlap.analysis.global_search`).
+and the distinct minima it polished, with their costs
+(:mod:`lidar_overlap.analysis.fitting.global_search`).
 """
 
 from __future__ import annotations
@@ -8,8 +9,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Dict, Optional, Tuple
 
-from .fit_result import FitResult
 from .relative_result import RelativeFitResult
+from .result import FitResult
 
 
 @dataclass(frozen=True)

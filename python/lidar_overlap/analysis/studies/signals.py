@@ -22,10 +22,10 @@ from typing import Optional
 
 import numpy as np
 
-from .. import _checks
-from ..forward.result import OverlapResult
-from ..model.atmosphere import Atmosphere
-from .fit_correction import fitted_overlap, is_fit
+from ... import _checks
+from ...forward.result import OverlapResult
+from ...model.atmosphere import Atmosphere
+from ..fitting.correction import fitted_overlap, is_fit
 
 #: Planck constant (J s) and speed of light (m/s), exact in SI.
 PLANCK, LIGHT_SPEED = 6.62607015e-34, 299792458.0
@@ -36,6 +36,8 @@ MAX_PULSE_ENERGY, MAX_RANGE_RESOLUTION, MAX_BACKGROUND, MAX_SHOTS = 1e3, 1e4, 1e
 #: mean and variance instead of the Poisson one (whose relative skewness, 1/sqrt(counts), is then
 #: below 1e-6).
 POISSON_LIMIT = 1e12
+#: The default atmosphere of :func:`signal` (one value: atmospheres are immutable).
+STANDARD_ATMOSPHERE = Atmosphere()
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,7 +80,7 @@ class LidarSignal:
         """The dynamic-range view on log axes: expected photons per bin and shot with and without
         the overlap, the background, the noise level and the noisy realisation. Returns the
         matplotlib Axes."""
-        from ..views.plotting import plot_signal
+        from ...views.plotting import plot_signal
 
         return plot_signal(self, ax=ax)
 
@@ -114,7 +116,7 @@ def _freeze(obj) -> None:
 
 def signal(
     result: OverlapResult,
-    atmosphere: Atmosphere = Atmosphere(),
+    atmosphere: Atmosphere = STANDARD_ATMOSPHERE,
     *,
     pulse_energy: float,
     receiver_efficiency: float,
@@ -126,7 +128,7 @@ def signal(
 ) -> LidarSignal:
     """Expected photons per range bin and shot of the lidar of ``result`` (its ``system``'s
     wavelength and telescope diameter, its overlap at its ranges) looking through ``atmosphere``, by
-    the lidar equation of :mod:`lidar_overlap.analysis.signals`.
+    the lidar equation of :mod:`lidar_overlap.analysis.studies.signals`.
 
     Parameters
     ----------

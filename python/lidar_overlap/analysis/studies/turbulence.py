@@ -38,15 +38,15 @@ from typing import cast
 
 import numpy as np
 
-from .. import _checks
-from ..forward.backends import BACKENDS, many
-from ..forward.compute import run
-from ..forward.methods import Turbulent
-from ..forward.planning import plan
-from ..forward.result import BAND, MAX_REALIZATIONS, TurbulentOverlapResult
-from ..model.system import LidarSystem
-from . import engines
-from .datasets import range_coordinate, xarray
+from ... import _checks
+from ...forward.backends import BACKENDS, many
+from ...forward.compute import run
+from ...forward.methods import Turbulent
+from ...forward.planning import plan
+from ...forward.result import BAND, MAX_REALIZATIONS, TurbulentOverlapResult
+from ...model.system import LidarSystem
+from .. import engines
+from ..datasets import range_coordinate, xarray
 
 #: Most realisations a study may have: the core's bound on one turbulent run.
 

@@ -29,15 +29,15 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks
-from ..model import parameters as _parameters
-from .fit_result import DegeneracyWarning
-from .fit_solve import fit_local
-from .fit_verdict import FitQualityWarning
+from ... import _checks
+from ...model import parameters as _parameters
+from .families import LADDER, Family
 from .global_result import with_search
 from .global_search import fit_global
-from .model_families import LADDER, Family
-from .relative import fit_relative
+from .problem import FitProblem
+from .relative import polish
+from .result import DegeneracyWarning
+from .verdict import FitQualityWarning
 
 #: BIC differences below this are no evidence (Kass and Raftery's "not worth more than a mention").
 BIC_TIE = 2.0
@@ -127,49 +127,16 @@ def runs_p_value(residuals) -> float:
     return 0.5 * math.erfc(-z / math.sqrt(2.0))
 
 
-def fit_ladder(
-    system,
-    ranges,
-    measured,
-    sigma,
-    bounds,
-    method,
-    tolerance,
-    loss,
-    max_evaluations,
-    allow_unconverged,
-    threads,
-    normalize,
-    seed,
-    families=LADDER,
-) -> LadderResult:
-    """Fit each of ``families`` (global search from ``system``, arguments as
-    :func:`lidar_overlap.fit`) and choose one (module docstring)."""
-    if sigma is None:
-        raise ValueError(
-            "free = 'auto' needs sigma (the curve's noise, e.g. far_range_noise of its far-range "
-            "scatter): an information criterion compares chi-squares on the noise's scale"
-        )
+def fit_ladder(problem: FitProblem, families=LADDER) -> LadderResult:
+    """Fit each of ``families`` (global search from ``problem``'s start, with its data and
+    settings) and choose one (module docstring)."""
     with warnings.catch_warnings():
         # each family's own quality and degeneracy warnings are its score in the ladder's report;
         # what the chosen family deserves is said once, below
         warnings.simplefilter("ignore", FitQualityWarning)
         warnings.simplefilter("ignore", DegeneracyWarning)
-        fits = _fit_families(
-            system,
-            families,
-            ranges,
-            measured,
-            sigma,
-            bounds,
-            method,
-            tolerance,
-            loss,
-            max_evaluations,
-            threads,
-            normalize,
-            seed,
-        )
+        fits = _fit_families(problem, families)
+    system = problem.start
     failed = [(fam, f) for fam, f in zip(families, fits) if isinstance(f, FailedFit)]
     scores = [
         _score(fam.model(system), fam, f)
@@ -188,7 +155,7 @@ def fit_ladder(
     if failed:
         dropped = "; ".join(f"'{fam.name}' could not be fitted ({f.reason})" for fam, f in failed)
         note = f"{note}; {dropped}" if note else dropped
-    if not chosen.fit.converged and not allow_unconverged:
+    if not chosen.fit.converged and not problem.allow_unconverged:
         raise RuntimeError(
             f"fit did not converge: the chosen family '{chosen.family.name}' stopped short; raise "
             "max_evaluations or pass allow_unconverged=True"
@@ -206,50 +173,23 @@ def fit_ladder(
     return LadderResult(chosen.fit, chosen.family, tuple(scores), "BIC", note)
 
 
-def _fit_families(
-    system,
-    families,
-    ranges,
-    measured,
-    sigma,
-    bounds,
-    method,
-    tolerance,
-    loss,
-    max_evaluations,
-    threads,
-    normalize,
-    seed,
-) -> list:
+def _fit_families(problem: FitProblem, families) -> list:
     """Each family fitted in turn by the global search, each starting from the one before, then
     refitted from a larger family's better solution."""
     fits: list = []
     best: Dict[str, Any] = {}
     for i, family in enumerate(families):
         if i == 0:
-            start = system
+            start = problem.start
         else:
             before = families[i - 1].name if family.start_from is None else family.start_from
             start = best.get(before, best[families[i - 1].name])
         start = family.model(start)
         paths = [p for p in family.paths if _freeable(start, p)]
-        given = _family_bounds(family, start, paths, bounds)
+        given = _family_bounds(family, start, paths, problem.bounds)
         try:
             fit = fit_global(
-                start,
-                ranges,
-                measured,
-                sigma,
-                paths,
-                given,
-                method,
-                tolerance,
-                loss,
-                max_evaluations,
-                True,
-                threads,
-                normalize,
-                seed,
+                problem.derived(start=start, free=paths, bounds=given, allow_unconverged=True)
             )
         except ValueError as exc:
             if family.extend is None:  # the user's own model: its errors are the user's to see
@@ -260,8 +200,7 @@ def _fit_families(
             continue
         fits.append(fit)
         best[family.name] = _parameters.replace(start, fit.parameters)
-    local = (ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads)
-    return _from_larger_families(system, families, fits, normalize, local)
+    return _from_larger_families(problem, families, fits)
 
 
 def _score(system, family: Family, f) -> FamilyScore:
@@ -279,30 +218,26 @@ def _score(system, family: Family, f) -> FamilyScore:
     return FamilyScore(family, f, k, bic, f.reduced_chi_square, runs, reaches, dropped, supported)
 
 
-def _from_larger_families(system, families, fits, normalize, local) -> list:
+def _from_larger_families(problem: FitProblem, families, fits) -> list:
     """Each family's fit, replaced by a local fit of its own paths from a larger family's solution
     when that ends lower: a larger family's search may find a valley the smaller one's missed, and
     the smaller family can reach it too when the extra parameters do not matter there."""
-    ranges, measured, sigma, bounds, method, tolerance, loss, max_evaluations, threads = local
     out = list(fits)
     for i in range(len(families) - 2, -1, -1):
         if isinstance(out[i], FailedFit):
             continue
-        model = families[i].model(system)
+        model = families[i].model(problem.start)
         paths = [p for p in families[i].paths if _freeable(model, p)]
-        given = _family_bounds(families[i], model, paths, bounds)
+        given = _family_bounds(families[i], model, paths, problem.bounds)
         for j in range(i + 1, len(families)):
             if isinstance(out[j], FailedFit) or not out[j].chi_square < out[i].chi_square:
                 continue
             if not set(paths) <= set(out[j].parameters):  # not a larger model of family i's
                 continue
             start = _parameters.replace(model, {p: out[j].parameters[p] for p in paths})
-            common = (start, ranges, measured, sigma, paths, given, method, tolerance, loss)
+            local = problem.derived(start=start, free=paths, bounds=given, allow_unconverged=True)
             try:
-                if normalize is None:
-                    g = fit_local(*common, max_evaluations, allow_unconverged=True, threads=threads)
-                else:
-                    g = fit_relative(*common, max_evaluations, True, threads, normalize)
+                g = polish(local)
             except ValueError:  # that start lies outside the smaller family's bounds
                 continue
             if g.chi_square < out[i].chi_square:

@@ -1,7 +1,7 @@
 """Fitting misalignment to a measured telecover test: the free scalars of a system such that its
 sectors' normalised deviations G_i / mean G - 1 (:func:`.telecover`) match the measured ones, by the
-least-squares driver of :mod:`lidar_overlap.analysis.fit` (:func:`.fit.solve`: optimiser,
-covariance, degeneracy warnings, convergence error).
+least-squares driver of :mod:`lidar_overlap.analysis.fitting.solve` (:func:`.solve.solve`:
+optimiser, covariance, degeneracy warnings, convergence error).
 
 Model. Ray tracing through each sector's mask, planned once per sector on the start (RT at
 ``tolerance``); the vector is the deviations, sector-major (sector x range, flattened). Jacobian:
@@ -20,11 +20,12 @@ from typing import Optional
 
 import numpy as np
 
-from ..forward.compute import run
-from . import fit_inputs
-from .fit_result import FitResult, step_tolerance
-from .fit_solve import Model, fit_plan, free_paths, model_tolerance, solve
-from .sensitivity import central_differences
+from ...forward.compute import run
+from ..fitting import inputs as fit_inputs
+from ..fitting.problem import fit_settings, free_paths
+from ..fitting.result import FitResult, step_tolerance
+from ..fitting.solve import Model, fit_plan, solve
+from ..sensitivity import central_differences
 from .telecover import TelecoverResult, deviations, sector_curves, sector_mask, with_mask
 
 
@@ -35,11 +36,11 @@ def fit_telecover(
     sigma=None,
     free=("beam.tilt",),
     sectors="quadrants",
+    *,
     bounds=None,
     tolerance: Optional[float] = None,
     loss: str = "linear",
     max_evaluations: int = 200,
-    *,
     method="rt",
     allow_unconverged: bool = False,
     threads: int = 0,
@@ -64,20 +65,25 @@ def fit_telecover(
     :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are sector-major
     (sector x range, flattened); ``predict`` gives the full aperture's G. Needs scipy.
     """
-    paths = free_paths(free)
+    problem = fit_settings(
+        system, free=tuple(free_paths(free)), bounds=bounds, method=method, tolerance=tolerance,
+        loss=loss, max_evaluations=max_evaluations, allow_unconverged=allow_unconverged,
+        threads=threads,
+    )  # fmt: skip
+    paths = problem.paths
     mask = sector_mask(system, sectors)
     if len(mask.names) < 2:
         raise ValueError(
             f"sectors has {len(mask.names)} sector: expected at least two (a deviation compares "
             "sectors)"
         )
-    full = fit_plan(system, ranges, method, tolerance, threads)
+    full = fit_plan(problem, system, ranges)
     z = full.ranges
     parts = mask.split()
-    plans = [fit_plan(with_mask(system, part), z, method, tolerance, threads) for part in parts]
+    plans = [fit_plan(problem, with_mask(system, part), z) for part in parts]
     y = _measured(measured_deviation, mask.names, z)
     w = _sigma(sigma, y.shape, mask.names)
-    h = step_tolerance(plans[0], model_tolerance(tolerance))
+    h = step_tolerance(plans[0], problem.tolerance)
 
     def sector_g(trial):
         return sector_curves(
@@ -110,27 +116,18 @@ def fit_telecover(
         )
     # the model's error on a deviation: G's tolerance relative to a sector's typical (median) mean G
     model = Model(
-        lambda trial: deviations(np.array([c.overlap for c in sector_g(trial)])).ravel(),
-        jacobian,
-        result,
-        full,
-        h,
-        model_tolerance(tolerance) / float(np.median(start_g.mean(axis=0))),
-    )
-    y = y - y.mean(axis=0)
-    return solve(
-        system,
-        paths,
-        model,
-        y.ravel(),
-        w.ravel(),
-        sigma is not None,
-        bounds,
-        loss,
-        max_evaluations,
-        allow_unconverged,
+        evaluate=lambda trial: deviations(np.array([c.overlap for c in sector_g(trial)])).ravel(),
+        jacobian=jacobian,
+        result=result,
+        target=(y - y.mean(axis=0)).ravel(),
+        weights=w.ravel(),
+        sigma_given=sigma is not None,
+        plan=full,
+        step_tolerance=h,
+        tolerance=problem.tolerance / float(np.median(start_g.mean(axis=0))),
         independent=(len(parts) - 1) * z.size,
     )
+    return solve(problem, model)
 
 
 def _measured(measured, names, z) -> np.ndarray:

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import _checks
+from ... import _checks
 
 #: Largest |measured| value: G and telecover deviations are of order one, and squares of weighted
 #: residuals must stay finite.

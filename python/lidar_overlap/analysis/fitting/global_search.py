@@ -8,9 +8,10 @@ design value can stop in the wrong valley.
 
 Search space. Tilt, offset and defocus are searched linearly, every other (positive) scalar in its
 logarithm (a divergence between a tenth and ten times the start is as likely to be 3x smaller as 3x
-larger). Default bounds are the fit's (:func:`lidar_overlap.analysis.fit.default_bounds`) except the
-beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider tilts put the beam out of
-the field of view at every range, where the cost is flat and tells the search nothing).
+larger): the parameter table's ``search`` (:mod:`lidar_overlap.model.parameters`). Default bounds
+are the fit's except the beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider
+tilts put the beam out of the field of view at every range, where the cost is flat and tells the
+search nothing).
 
 Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), its
 first population a Latin hypercube with the start as one member (a good start is never lost), so a
@@ -29,76 +30,43 @@ from typing import Any, Dict, List, Tuple
 
 import numpy as np
 
-from .. import _checks
-from ..model import parameters as _parameters
-from .batch_curves import curves, variants
-from .fit_solve import (
-    fit_local,
-    fit_plan,
-    free_paths,
-    measured_values,
-    parameter_bounds,
-    sigma_weights,
-)
+from ...model import parameters as _parameters
+from ..batch_curves import curves, variants
 from .global_result import SearchMinimum, SearchReport, with_search
-from .relative import extended_plan, fit_relative, normalization
+from .normalization import extended_plan, normalization
+from .problem import Curve, FitProblem
+from .relative import polish
+from .solve import fit_plan, parameter_bounds
 
-#: Default tilt bounds: the start ± this many half fields of view r_d / f.
-TILT_FIELDS = 4.0
 #: Two candidates are distinct minima when some unit-cube coordinate differs by more than this.
 DISTINCT = 0.1
 #: Default population: this many candidates per free parameter (at least MIN_POPULATION).
 POPULATION_PER_PARAMETER, MIN_POPULATION = 5, 15
-#: Default generations at most; the search stops earlier when the population's costs agree (scipy's
-#: relative tolerance TOLERANCE).
-GENERATIONS, TOLERANCE = 40, 1e-3
+#: The search stops before its most generations (:data:`.problem.GENERATIONS` by default) when the
+#: population's costs agree (scipy's relative tolerance TOLERANCE).
+TOLERANCE = 1e-3
 #: The search compares candidates on at most this many of the measured ranges (evenly thinned: a
 #: valley's place does not need every point, its polish uses them all).
 SEARCH_POINTS = 60
-_LINEAR = ("beam.tilt[", "beam.offset[", "detector.offset[", "detector.defocus")
 
 
-def fit_global(
-    system,
-    ranges,
-    measured,
-    sigma,
-    free,
-    bounds,
-    method,
-    tolerance,
-    loss,
-    max_evaluations,
-    allow_unconverged,
-    threads,
-    normalize,
-    seed=None,
-    population=None,
-    generations=GENERATIONS,
-    minima=3,
-):
-    """The global fit (module docstring); arguments as :func:`lidar_overlap.fit`, and ``population``
-    (candidates per generation), ``generations`` (most generations) and ``minima`` (distinct
+def fit_global(problem: FitProblem):
+    """The global fit of ``problem`` (module docstring), its search as ``problem.search`` says
+    (``population`` candidates per generation, at most ``generations``, ``minima`` distinct
     candidates polished, >= 1; those that end in one valley are reported once). Returns a
-    ``GlobalFitResult`` (or ``GlobalRelativeFitResult`` with ``normalize``): the best local fit and
-    its ``search`` report (candidates, generations, core calls, and every distinct polished minimum
-    with its chi-square)."""
+    ``GlobalFitResult`` (or ``GlobalRelativeFitResult`` with a normalised curve): the best local fit
+    and its ``search`` report (candidates, generations, core calls, and every distinct polished
+    minimum with its chi-square)."""
     optimize = _scipy()
-    paths = free_paths(free)
+    system, paths, curve, settings = problem.start, problem.paths, problem.curve, problem.search
     k = len(paths)
-    seed = 0 if seed is None else _checks.count("seed", seed, 0, 2**32 - 1)
-    population = _checks.count(
-        "population", population or max(MIN_POPULATION, POPULATION_PER_PARAMETER * k), 5
-    )
-    generations = _checks.count("generations", generations, 1)
-    minima = _checks.count("minima", minima, 1)
-    p0 = fit_plan(system, ranges, method, tolerance, threads)
-    y = measured_values(measured, p0.ranges)
-    w = sigma_weights(sigma, y)
-    norm, p = thinned(p0, normalize, y, w)
+    population = settings.population or max(MIN_POPULATION, POPULATION_PER_PARAMETER * k)
+    p0 = fit_plan(problem, system, curve.ranges)
+    norm, p = thinned(p0, curve)
     start = np.array([_parameters.get(system, path) for path in paths])
-    low, high = parameter_bounds(system, paths, start, search_bounds(system, paths, start, bounds))
-    logs = np.array([not path.startswith(_LINEAR) and lo > 0 for path, lo in zip(paths, low)])
+    box = search_bounds(system, paths, start, problem.bounds)
+    low, high = parameter_bounds(system, paths, start, box)
+    logs = np.array([_parameters.searched_in_log(path, lo) for path, lo in zip(paths, low)])
     a = np.where(logs, np.log(np.where(logs, low, 1.0)), low)
     b = np.where(logs, np.log(np.where(logs, high, 1.0)), high)
 
@@ -121,9 +89,9 @@ def fit_global(
         cost,
         [(0.0, 1.0)] * k,
         popsize=max(1, math.ceil(population / k)),
-        maxiter=generations,
+        maxiter=settings.generations,
         tol=TOLERANCE,
-        seed=seed,
+        seed=settings.seed,
         polish=False,
         init="latinhypercube",
         x0=np.clip(
@@ -133,32 +101,28 @@ def fit_global(
         vectorized=True,
     )
     u_all, c_all = np.vstack(seen_u), np.concatenate(seen_cost)
-    starts = distinct_minima(u_all, c_all, minima)
+    starts = distinct_minima(u_all, c_all, settings.minima)
     given = {path: (float(lo), float(hi)) for path, lo, hi in zip(paths, low, high)}
     fits, caught = [], []
     for i in starts:
         trial = _parameters.replace(system, dict(zip(paths, values(u_all[i][None])[0].tolist())))
         with warnings.catch_warnings(record=True) as record:
             warnings.simplefilter("always")
-            common = (trial, ranges, measured, sigma, free, given, method, tolerance, loss)
-            if normalize is None:
-                local = fit_local(*common, max_evaluations, allow_unconverged=True, threads=threads)
-            else:
-                local = fit_relative(*common, max_evaluations, True, threads, normalize)
+            local = polish(problem.derived(start=trial, bounds=given, allow_unconverged=True))
         fits.append((local, float(c_all[i])))
         caught.append(record)
     order = _distinct_fits(fits, paths, a, b, logs)
     best = fits[order[0]][0]
     for item in caught[order[0]]:
         warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
-    if not best.converged and not allow_unconverged:
+    if not best.converged and not problem.allow_unconverged:
         raise RuntimeError(
             "fit did not converge: the local fit from the global search's best candidate stopped "
             f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
         )
     report = SearchReport(
         method="differential evolution",
-        seed=seed,
+        seed=settings.seed,
         population=int(np.asarray(solution.population).shape[0]),
         generations=int(solution.nit),
         candidates=int(c_all.size),
@@ -174,33 +138,34 @@ def fit_global(
     return with_search(best, report, evaluations)
 
 
-def thinned(p0, normalize, y, w):
+def thinned(p0, curve: Curve):
     """(Normalization, plan) of the search: on every j-th measured range so that at most
     SEARCH_POINTS remain (all of them when thinning would leave fewer than 2 in the interval)."""
+    y, w, normalize, bias = curve.measured, curve.sigma, curve.normalize, curve.extinction_bias
     step = max(1, math.ceil(y.size / SEARCH_POINTS))
     keep = np.unique(np.append(np.arange(0, y.size, step), y.size - 1))
     if keep.size == y.size:
-        norm = normalization(normalize, p0.ranges, y, w)
+        norm = normalization(normalize, p0.ranges, y, w, bias)
         return norm, extended_plan(p0, norm)
-    normalization(normalize, p0.ranges, y, w)  # the argument's errors name the data as given
+    normalization(normalize, p0.ranges, y, w, bias)  # the argument's errors name the data as given
     try:
-        norm = normalization(normalize, p0.ranges[keep], y[keep], w[keep])
+        norm = normalization(normalize, p0.ranges[keep], y[keep], w[keep], bias)
     except ValueError:
         keep = np.arange(y.size)
-        norm = normalization(normalize, p0.ranges, y, w)
+        norm = normalization(normalize, p0.ranges, y, w, bias)
     p = dataclasses.replace(p0, ranges=p0.ranges[keep]) if keep.size < y.size else p0
     return norm, extended_plan(p, norm)
 
 
 def search_bounds(system, paths, start, bounds) -> Dict[str, Tuple[float, float]]:
-    """The bounds the search uses: those given, else the fit's defaults but for the tilt (start ±
-    TILT_FIELDS r_d / f, within the fit's ±1e-2 rad)."""
+    """The bounds the search uses: those given, else the parameter table's search box where it has
+    one (the tilt: start ± TILT_FIELDS r_d / f, within the fit's ±MAX_TILT), else the fit's
+    defaults."""
     out = dict(bounds or {})
-    field = TILT_FIELDS * system.detector.radius / system.telescope.focal_length
     for path, x0 in zip(paths, start):
         named = path in out or path.split("[")[0] in out
-        if path.startswith("beam.tilt[") and not named:
-            out[path] = (max(-1e-2, x0 - field), min(1e-2, x0 + field))
+        if not named and _parameters.describe(path).search_bounds is not None:
+            out[path] = _parameters.search_bounds(system, path, x0)
     return out
 
 

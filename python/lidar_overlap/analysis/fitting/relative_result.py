@@ -1,5 +1,6 @@
-"""The result of a fit to a relative overlap curve (:mod:`lidar_overlap.analysis.relative`): a
-:class:`FitResult` whose measured data, residuals and predictions are on the normalised scale."""
+"""The result of a fit to a relative overlap curve
+(:mod:`lidar_overlap.analysis.fitting.relative`): a :class:`FitResult` whose measured data,
+residuals and predictions are on the normalised scale."""
 
 from __future__ import annotations
 
@@ -9,10 +10,10 @@ from typing import Optional, Tuple, Union
 
 import numpy as np
 
-from .. import _checks
-from ..forward.compute import run
-from .fit_result import FitResult, Prediction
-from .sensitivity import jacobian
+from ... import _checks
+from ...forward.compute import run
+from ..sensitivity import jacobian
+from .result import FitResult, Prediction
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,7 +32,7 @@ class RelativeFitResult(FitResult):
     δα, the error of the extinction the retrieval of the data assumed (two-way: the data carry
     exp(-2 δα (z - z_ref))), a property of the retrieval, not of the instrument; δα = α_true -
     α_assumed, positive when the retrieval assumed too little extinction (see
-    :mod:`lidar_overlap.analysis.relative`).
+    :mod:`lidar_overlap.analysis.fitting.relative`).
     extinction_bias_reference : z_ref (m). extinction_bias_covariance : cov(p, δα), one per
     parameter. All None without it."""
 

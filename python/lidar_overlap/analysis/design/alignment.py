@@ -13,15 +13,16 @@ from typing import Optional
 
 import numpy as np
 
-from .. import _checks, _core
-from ..forward.backends import many
-from ..forward.compute import run
-from ..forward.methods import FO, RT, from_shortcuts
-from ..forward.planning import plan
-from ..model import parameters
-from ..model.system import LidarSystem
-from .datasets import range_coordinate, xarray
-from .engines import engine, run_tasks, workers
+from ... import _checks, _core
+from ...forward.backends import many
+from ...forward.compute import run
+from ...forward.methods import FO
+from ...forward.planning import plan
+from ...model import parameters
+from ...model.system import LidarSystem
+from ..datasets import range_coordinate, xarray
+from ..engines import engine, run_tasks, workers
+from ..method_choice import ray_tracing, requested
 
 #: Each axis keyword: the parameter path it adds to (:mod:`lidar_overlap.model.parameters`) and its
 #: unit.
@@ -176,23 +177,6 @@ def misaligned(system, **offsets):
             for n, v in offsets.items()
         },
     )
-
-
-def requested(method, tolerance) -> object:
-    """The method object of ``method`` (a shortcut string takes ``tolerance``; an object is used as
-    it is)."""
-    return (
-        from_shortcuts(method, tolerance=tolerance)
-        if isinstance(method, str)
-        else from_shortcuts(method)
-    )
-
-
-def ray_tracing(model, why: str) -> RT:
-    """``model`` if it is ray tracing, else a ValueError saying ``why`` it must be."""
-    if not isinstance(model, RT):
-        raise ValueError(f"method = {_checks.shown(model)} is not available {why}")
-    return model
 
 
 def _fo_map(system, ranges, axes, points, model: FO, threads):

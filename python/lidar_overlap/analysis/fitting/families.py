@@ -1,7 +1,8 @@
-"""The model families of ``lo.fit(..., free="auto")`` (:mod:`lidar_overlap.analysis.model_ladder`),
-simplest first: each a physical explanation of an overlap curve (where the beam enters the field of
-view, how fast it fills it, a field stop out of focus, the acceptance cutting steep rays, a beam's
-wings, a second stop), the paths it frees, and for the last two how the model is extended."""
+"""The model families of ``lo.fit(..., free="auto")``
+(:mod:`lidar_overlap.analysis.fitting.ladder`), simplest first: each a physical explanation of an
+overlap curve (where the beam enters the field of view, how fast it fills it, a field stop out of
+focus, the acceptance cutting steep rays, a beam's wings, a second stop), the paths it frees, and
+for the last two how the model is extended."""
 
 from __future__ import annotations
 
@@ -9,9 +10,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional, Tuple
 
-from ..model import parameters as _parameters
-from ..model.mixture_beam import GaussianMixtureBeam
-from ..model.system import GaussianBeam
+from ...model import parameters as _parameters
+from ...model.mixture_beam import GaussianMixtureBeam
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,7 @@ def with_wing(system):
     """``system`` with a weak, more divergent wing added to its Gaussian beam (WING_WEIGHT of the
     power, WING_DIVERGENCE times the divergence, the same waist); other systems as they are."""
     beam = system.beam
-    if not isinstance(beam, GaussianBeam):
+    if beam.field_given or beam.has_components:  # a given field, or a mixture already
         return system
     wing = GaussianMixtureBeam.with_wings(
         beam, WING_WEIGHT, WING_DIVERGENCE * beam.half_angle_divergence

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .relative import FAR_FACTOR
+from .normalization import FAR_FACTOR
 from .relative_result import RelativeFitResult, normalised_prediction
 
 

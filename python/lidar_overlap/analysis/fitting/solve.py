@@ -19,38 +19,33 @@ Covariance. (Jᵀ J)⁻¹ of the sigma-normalised residuals at the solution (Gau
 the noise is then estimated from the scatter of the residuals. With a robust loss it is the same
 form with every point counted (outliers included): an approximation, on the large side.
 
-Driver. :func:`solve` is shared by the fits (:func:`fit` here, :func:`.fit_telecover`): each gives a
-:class:`Model` (its vector and Jacobian as functions of a trial system); the optimiser, covariance,
-degeneracy warnings and convergence error are the same. The optimiser stops when a step lowers the
+Driver. :func:`solve` is shared by the fits (:func:`fit_local` here, the relative fit, the telecover
+fit): each gives its :class:`FitProblem` and a :class:`Model` (its vector and Jacobian as functions
+of a trial system); the optimiser, covariance, degeneracy warnings and convergence error are the
+same. The optimiser stops when a step lowers the
 cost by less than ``COST_TOLERANCE`` of it: gains below that are noise for any verdict on the fit.
 
-Default bounds (:func:`default_bounds`): ``beam.tilt[i]`` ±1e-2 rad (10 mrad, far beyond any lidar
-whose beam still meets the field of view); ``beam.offset[i]`` the start ± the aperture diameter D;
-``detector.offset[i]`` the start ± 10 detector radii; ``detector.defocus`` the start ± f / 10; a
-divergence (a Gaussian width law's) from a tenth of its start, but not below ``DIFFRACTION_MARGIN``
-times the diffraction limit (nor above the start), to ten times its start; any other (positive)
-scalar from a tenth to ten times its start.
+Default bounds, natural scales: the parameter table (:mod:`lidar_overlap.model.parameters`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks
-from ..forward.compute import run
-from ..forward.methods import RT, Turbulent
-from ..forward.planning import plan, resolve
-from ..model import parameters as _parameters
-from . import fit_inputs, fit_verdict
-from .fit_result import DegeneracyWarning, FitResult, covariance, step_tolerance
-from .sensitivity import jacobian, step_scale
+from ... import _checks
+from ...forward.compute import run
+from ...forward.planning import Plan, plan, resolve
+from ...model import parameters as _parameters
+from ...model.system import LidarSystem
+from ..sensitivity import jacobian
+from . import verdict
+from .problem import FitProblem
+from .result import DegeneracyWarning, FitResult, covariance, step_tolerance
 
-LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
-SEARCHES = ("local", "global")
 #: |correlation| above which a pair of parameters is reported as degenerate.
 DEGENERATE_CORRELATION = 0.95
 #: The optimiser stops when a step lowers the cost by less than this fraction of it (scipy's ftol):
@@ -64,69 +59,53 @@ COST_TOLERANCE = 1e-5
 TOLERANCE_FRACTION = 0.1
 
 
-def fit_local(
-    system,
-    ranges,
-    measured,
-    sigma=None,
-    free=("beam.tilt", "detector.defocus"),
-    bounds=None,
-    method="auto",
-    tolerance: Optional[float] = None,
-    loss: str = "linear",
-    max_evaluations: int = 200,
-    *,
-    allow_unconverged: bool = False,
-    threads: int = 0,
-) -> FitResult:
+def fit_local(problem: FitProblem) -> FitResult:
     """:func:`lidar_overlap.fit` of absolute data from the start (no normalisation, no global
-    search): the free scalars by weighted least squares; arguments as :func:`lidar_overlap.fit`."""
-    paths = free_paths(free)
-    p = fit_plan(system, ranges, method, tolerance, threads)
-    y = measured_values(measured, p.ranges)
-    h_tolerance = step_tolerance(p, model_tolerance(tolerance))
+    search): the free scalars of ``problem`` by weighted least squares."""
+    curve, paths = problem.curve, problem.paths
+    p = fit_plan(problem, problem.start, curve.ranges)
+    h_tolerance = step_tolerance(p, problem.tolerance)
 
-    curve = last_curve(p)
+    last = last_curve(p)
 
     def result(trial):
-        c = curve(trial)
+        c = last(trial)
         return c, c.overlap
 
     model = Model(
-        lambda trial: result(trial)[1],
-        lambda trial: jacobian(p, trial, paths, h_tolerance),
-        result,
-        p,
-        h_tolerance,
-        p.tolerance,
+        evaluate=lambda trial: result(trial)[1],
+        jacobian=lambda trial: jacobian(p, trial, paths, h_tolerance),
+        result=result,
+        target=curve.measured,
+        weights=curve.sigma,
+        sigma_given=curve.sigma_given,
+        plan=p,
+        step_tolerance=h_tolerance,
+        tolerance=p.tolerance,
     )
-    return solve(
-        system,
-        paths,
-        model,
-        y,
-        sigma_weights(sigma, y),
-        sigma is not None,
-        bounds,
-        loss,
-        max_evaluations,
-        allow_unconverged,
-    )
+    return solve(problem, model)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Model:
-    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per measured
-    point; ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)`` ->
-    (the result kept as ``FitResult.result``, the vector); ``plan`` and ``step_tolerance``, kept by
-    the FitResult; ``tolerance``, the model's error on the vector (compared with sigma)."""
+    """What :func:`solve` fits: ``evaluate(system)`` -> the model vector, one entry per point of
+    ``target``; ``jacobian(system)`` -> d(vector)/dp (point, path) per SI unit; ``result(system)``
+    -> (the result kept as ``FitResult.result``, the vector). ``target``: the data the vector is
+    fitted to, with 1-sigma ``weights`` (given by the caller when ``sigma_given``, else ones);
+    ``independent``: the number of independent points (None: ``target.size``), which sets the
+    degrees of freedom. ``plan`` and ``step_tolerance`` are kept by the FitResult; ``tolerance`` is
+    the model's error on the vector (compared with sigma)."""
 
-    evaluate: Callable
-    jacobian: Callable
-    result: Callable
-    plan: Any
+    evaluate: Callable[[LidarSystem], np.ndarray]
+    jacobian: Callable[[LidarSystem], np.ndarray]
+    result: Callable[[LidarSystem], Tuple[Any, np.ndarray]]
+    target: np.ndarray
+    weights: np.ndarray
+    sigma_given: bool
+    plan: Plan
     step_tolerance: float
     tolerance: float
+    independent: Optional[int] = None
 
 
 def last_curve(p) -> Callable:
@@ -143,37 +122,25 @@ def last_curve(p) -> Callable:
     return curve
 
 
-def solve(
-    system,
-    paths,
-    model: Model,
-    y,
-    w,
-    sigma_given: bool,
-    bounds,
-    loss,
-    max_evaluations,
-    allow_unconverged: bool,
-    independent: Optional[int] = None,
-) -> FitResult:
-    """The least-squares driver shared by the fits: the free ``paths`` of ``system`` (the start) so
-    that ``model``'s vector matches ``y`` (weights 1 / ``w``). ``independent``: the number of
-    independent points (default ``y.size``), which sets the degrees of freedom. See :func:`fit` for
-    the rest."""
+def solve(problem: FitProblem, model: Model) -> FitResult:
+    """The least-squares driver shared by the fits: the free paths of ``problem`` (its start,
+    bounds, loss, most evaluations, whether an unconverged result is returned) so that ``model``'s
+    vector matches its target (module docstring)."""
     optimize = _scipy()
+    system, paths, y, w = problem.start, problem.paths, model.target, model.weights
+    sigma_given, loss = model.sigma_given, problem.loss
+    max_evaluations, allow_unconverged = problem.max_evaluations, problem.allow_unconverged
     k = len(paths)
-    n = y.size if independent is None else independent
+    n = y.size if model.independent is None else model.independent
     if n <= k:  # n == k leaves no degrees of freedom: chi²/dof would be 0/0
-        kind = "" if independent is None else " independent"
+        kind = "" if model.independent is None else " independent"
         raise ValueError(
             f"measured has {n}{kind} points for {k} free parameters: expected more points than "
             "parameters; measure more ranges or free fewer"
         )
-    loss = _checks.choice("loss", loss, LOSSES)
-    max_evaluations = _checks.count("max_evaluations", max_evaluations, 1)
     start = np.array([_parameters.get(system, path) for path in paths])
-    low, high = parameter_bounds(system, paths, start, bounds)
-    scale = np.array([step_scale(system, path) for path in paths])
+    low, high = parameter_bounds(system, paths, start, problem.bounds)
+    scale = np.array([_parameters.step_scale(system, path) for path in paths])
     tolerance = model.tolerance
     if sigma_given and math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * np.median(w):
         _checks.warn(
@@ -193,7 +160,7 @@ def solve(
         counts["jacobian"] += 1
         return model.jacobian(system_at(u)) * scale / w[:, None]
 
-    solution = fit_verdict.least_squares(
+    solution = verdict.least_squares(
         optimize,
         residuals,
         start / scale,
@@ -221,7 +188,7 @@ def solve(
         # inf (singular J) stays inf when scaled by a zero chi-square (inf x 0 would be NaN)
         scale_by = chi_square / dof if not sigma_given else 1.0
         cov = np.where(np.isinf(unscaled), unscaled, unscaled * scale_by)
-    fit_verdict.check_usable("fit", chi_square, cov)
+    verdict.check_usable("fit", chi_square, cov)
     sd = np.sqrt(np.diag(cov))
     unit_sd = np.sqrt(np.diag(unscaled))
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -254,9 +221,7 @@ def solve(
             DegeneracyWarning,
         )
     # A robust loss expects outliers, which the chi-square and the runs test would count as misfit.
-    exact = loss == "linear" and fit_verdict.check_quality(
-        "fit", r, y, w, dof, sigma_given, tolerance
-    )
+    exact = loss == "linear" and verdict.check_quality("fit", r, y, w, dof, sigma_given, tolerance)
     noise = math.sqrt(chi_square / dof)
     if (
         not sigma_given
@@ -303,32 +268,6 @@ def _cosines(j: np.ndarray) -> np.ndarray:
     return np.clip(cos, -1.0, 1.0)
 
 
-#: A divergence's default lower bound stays this factor above the diffraction limit λ/(π w0) (width
-#: law "gaussian"): below the limit there is no such beam (within a step of it the Jacobian takes
-#: the one-sided difference, :func:`lidar_overlap.analysis.sensitivity.jacobian`).
-DIFFRACTION_MARGIN = 1.05
-
-
-def default_bounds(system, path: str, start: float):
-    """(low, high) of ``path`` when none is given (module docstring), in SI units."""
-    if path.endswith("divergence") and getattr(system.beam, "width_law", "") == "gaussian":
-        waist = _parameters.get(system, path[: -len("divergence")] + "waist_radius")
-        limit = DIFFRACTION_MARGIN * system.beam.wavelength / (math.pi * waist)
-        return min(start, max(start / 10, limit)), start * 10
-    if path.startswith("beam.tilt["):
-        return -1e-2, 1e-2
-    if path.startswith("beam.offset["):
-        return start - system.telescope.diameter, start + system.telescope.diameter
-    if path.startswith("detector.offset["):
-        return start - 10 * system.detector.radius, start + 10 * system.detector.radius
-    if path == "detector.defocus":
-        return (
-            start - 0.1 * system.telescope.focal_length,
-            start + 0.1 * system.telescope.focal_length,
-        )
-    return start / 10, start * 10
-
-
 def _scipy():
     try:
         from scipy import optimize
@@ -337,71 +276,18 @@ def _scipy():
     return optimize
 
 
-def free_paths(free):
-    """The fit's ``free`` argument as scalar paths (pairs expanded), refused naming ``free``."""
-    try:
-        return _parameters.plain_paths(
-            free,
-            "free",
-            "the fit is planned on the start, whose model may not include aberrations; fit the "
-            "alignment scalars",
-        )
-    except ValueError as exc:
-        if str(exc).startswith("parameter"):
-            raise ValueError(f"free: {exc}; name parameters of the system") from None
-        raise
-
-
-def fit_plan(system, ranges, method, tolerance, threads):
-    """The plan every evaluation of a fit runs: made once, on the start, with every decision taken
-    (auto's choice kept for the whole fit; no turbulence)."""
-    if isinstance(method, Turbulent):
-        raise ValueError(
-            "method = Turbulent(...) is invalid for a fit: its curves are random draws; fit with "
-            "'rt', 'fo' or 'auto'"
-        )
-    shortcuts = {"tolerance": model_tolerance(tolerance)} if isinstance(method, str) else {}
-    return resolve(plan(system, ranges, method, threads=threads, **shortcuts))
-
-
-def model_tolerance(tolerance) -> float:
-    """The fit's ``tolerance`` (absolute, on G), checked; None: :class:`lidar_overlap.RT`'s
-    default."""
-    return RT().tolerance if tolerance is None else _checks.tolerance("tolerance", tolerance)
-
-
-def measured_values(measured, z):
-    y = fit_inputs.measured_array("measured", measured, "G, one per range")
-    if y.shape != z.shape:
-        raise ValueError(f"measured has shape {y.shape}: expected {z.shape}, one G per range")
-    bad = ~np.isfinite(y)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(
-            f"measured[{i}] = {y[i]} is invalid: expected finite values; drop that range (and its "
-            "measured value) instead"
-        )
-    return y
-
-
-def sigma_weights(sigma, y):
-    if sigma is None:
-        return np.ones_like(y)
-    w = fit_inputs.sigma_array(sigma, y.shape, f"one value per range (shape {y.shape})")
-    bad = fit_inputs.bad_sigma(w)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"sigma[{i}] = {w[i]} is invalid: expected {fit_inputs.SIGMA_EXPECTED}")
-    return w
+def fit_plan(problem: FitProblem, system, ranges):
+    """The plan every evaluation of a fit of ``problem`` runs on ``system`` (its start, or a part of
+    it) at ``ranges``: made once, with every decision taken (auto's choice kept for the whole fit;
+    no turbulence)."""
+    method = problem.method
+    shortcuts = {"tolerance": problem.tolerance} if isinstance(method, str) else {}
+    return resolve(plan(system, ranges, method, threads=problem.threads, **shortcuts))
 
 
 def parameter_bounds(system, paths, start, bounds):
     given = {}
     if bounds is not None:
-        if not isinstance(bounds, dict):
-            raise ValueError(
-                f"bounds = {_checks.shown(bounds)} is invalid: expected a dict path -> (low, high)"
-            )
         for key, value in bounds.items():
             keys = _parameters.expand([key]) if isinstance(key, str) else [key]
             for path in keys:
@@ -416,7 +302,7 @@ def parameter_bounds(system, paths, start, bounds):
         if path in given:
             lo, hi = _checks.pair(f"bounds[{path!r}]", given[path])
         else:
-            lo, hi = default_bounds(system, path, x0)
+            lo, hi = _parameters.default_bounds(system, path, x0)
         if not lo < hi:
             raise ValueError(f"bounds[{path!r}] = ({lo:g}, {hi:g}) is invalid: expected low < high")
         if not lo <= x0 <= hi:

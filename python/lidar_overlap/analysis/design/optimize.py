@@ -1,5 +1,5 @@
 """Design optimisation: the values of free parameters that answer a design question
-(:mod:`lidar_overlap.analysis.objectives`).
+(:mod:`lidar_overlap.analysis.design.objectives`).
 
 Search. Every candidate is ray traced at the objective's ranges; many candidates at once go through
 one parallel core call (an alignment grid for one or two tilts, offsets or defocus, else
@@ -23,15 +23,16 @@ from typing import Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-from .. import _checks
-from ..forward.backends import many
-from ..forward.compute import run
-from ..forward.planning import plan
-from ..forward.result import OverlapResult
-from ..forward.validity import warn_if_rt_invalid
-from ..model import parameters as _parameters
-from ..model.system import LidarSystem
-from .alignment import AXES, ray_tracing, requested
+from ... import _checks
+from ...forward.backends import many
+from ...forward.compute import run
+from ...forward.planning import plan
+from ...forward.result import OverlapResult
+from ...forward.validity import warn_if_rt_invalid
+from ...model import parameters as _parameters
+from ...model.system import LidarSystem
+from ..method_choice import ray_tracing, requested
+from .alignment import AXES
 from .objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .search import axis_points, grid_points, refine, refine_tolerance
 from .smallest_fov import search as smallest_fov_search

@@ -1,5 +1,6 @@
-"""Fits to relative overlap curves: data normalised to about 1 in the far range, as overlap curves
-retrieved from real signals are (the Raman or near/far method gives G only up to a factor).
+"""How relative overlap curves are compared with the model: data normalised to about 1 in the far
+range, as overlap curves retrieved from real signals are (the Raman or near/far method gives G only
+up to a factor); the fit itself is :mod:`lidar_overlap.analysis.fitting.relative`.
 
 ``normalize=(z_low, z_high)``: the model and the data are each divided by their own mean over the
 measured ranges in [z_low, z_high], so the fit compares shapes and no scale is fitted.
@@ -13,7 +14,7 @@ the residual has no component along e_I. The fit minimises rᵀ C⁺ r (C⁺ the
 whitening: r is mapped to W r with Wᵀ W = C⁺ (W has n - 1 rows), and the fit's degrees of freedom
 are n - 1 - k. ``"far"`` leaves the points independent (W = 1/σ). The Jacobian of the normalised
 model follows from the quotient rule, so the covariance of the parameters is the Gauss-Newton one of
-the normalised problem (:mod:`lidar_overlap.analysis.fit`).
+the normalised problem (:mod:`lidar_overlap.analysis.fitting.solve`).
 
 Retrieval extinction bias (``extinction_bias=True``, interval normalisation only). An overlap curve
 retrieved from real signals (the Raman method, Wandinger and Ansmann, Appl. Opt. 41, 511 (2002);
@@ -33,25 +34,12 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import math
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
 import numpy as np
 
-from .. import _checks
-from .fit_result import step_tolerance
-from .fit_solve import (
-    Model,
-    fit_plan,
-    free_paths,
-    last_curve,
-    measured_values,
-    sigma_weights,
-    solve,
-)
-from .relative_result import RelativeFitResult
-from .sensitivity import jacobian
+from ... import _checks
 
 #: normalize="far" divides by G at this multiple of the last measured range.
 FAR_FACTOR = 100.0
@@ -66,34 +54,6 @@ EXTINCTION_BIAS_BOUND = 1e-4
 BIAS_STEP_TOLERANCE = 1e-12
 #: Most Gauss-Newton steps of the profile solve (nearly linear: a few steps reach the tolerance).
 BIAS_MAX_STEPS = 30
-
-
-@dataclass(frozen=True)
-class WithExtinctionBias:
-    """``normalize`` (an interval) with the retrieval extinction bias fitted (module docstring):
-    what ``lo.fit(..., normalize=(z_low, z_high), extinction_bias=True)`` passes on as its
-    normalisation."""
-
-    normalize: Tuple[float, float]
-
-
-def with_extinction_bias(normalize, extinction_bias):
-    """The fit's ``normalize`` with ``extinction_bias`` (a bool) applied; ValueError naming
-    ``extinction_bias`` otherwise, or when the data are not normalised over an interval."""
-    if not isinstance(extinction_bias, (bool, np.bool_)):
-        raise ValueError(
-            f"extinction_bias = {_checks.shown(extinction_bias)} is invalid: expected True or False"
-        )
-    if not extinction_bias:
-        return normalize
-    if normalize is None or isinstance(normalize, str):
-        raise ValueError(
-            f"extinction_bias=True needs normalize = (z_low, z_high) in m, got {normalize!r}: the "
-            "bias is a factor exp(-2 delta_alpha (z - z_ref)) that only the normalisation over an "
-            "interval of measured ranges removes (absolute data have no retrieval; 'far' would "
-            "extrapolate it 100-fold beyond the data)"
-        )
-    return WithExtinctionBias(normalize)
 
 
 @dataclass(frozen=True, eq=False)
@@ -251,12 +211,15 @@ def bias_covariance(norm: Normalization, jp, ja, covariance, scale: float):
         return float(scale / c + b @ covariance @ b / c**2), -(covariance @ b) / c
 
 
-def normalization(normalize, ranges, measured, sigma) -> Normalization:
+def normalization(
+    normalize, ranges, measured, sigma, extinction_bias: bool = False
+) -> Normalization:
     """The :class:`Normalization` for ``normalize`` (None, ``"far"`` or (z_low, z_high) in m) of
-    data ``measured`` at ``ranges`` with errors ``sigma`` (one per point); ValueError naming
-    ``normalize`` and its valid range otherwise."""
-    if isinstance(normalize, WithExtinctionBias):
-        plain = normalization(normalize.normalize, ranges, measured, sigma)
+    data ``measured`` at ``ranges`` with errors ``sigma`` (one per point), with the retrieval's
+    ``extinction_bias`` profiled when True (an interval only: :mod:`.problem` checks it); ValueError
+    naming ``normalize`` and its valid range otherwise."""
+    if extinction_bias:
+        plain = normalization(normalize, ranges, measured, sigma)
         x = plain.ranges[plain.inside]
         reference = float(x.mean())
         trend = Trend(plain.ranges - reference, reference, EXTINCTION_BIAS_BOUND)
@@ -326,106 +289,9 @@ def _whitening(data: bytes, inside: bytes, sigma: bytes, mean: float) -> np.ndar
     return out
 
 
-def fit_relative(
-    system,
-    ranges,
-    measured,
-    sigma,
-    free,
-    bounds,
-    method,
-    tolerance,
-    loss,
-    max_evaluations,
-    allow_unconverged,
-    threads,
-    normalize,
-) -> RelativeFitResult:
-    """:func:`lidar_overlap.fit` with ``normalize`` given (arguments as there)."""
-    paths = free_paths(free)
-    p0 = fit_plan(system, ranges, method, tolerance, threads)
-    y = measured_values(measured, p0.ranges)
-    w = sigma_weights(sigma, y)
-    norm = normalization(normalize, p0.ranges, y, w)
-    p, h_tolerance = extended_plan(p0, norm), step_tolerance(p0, tolerance)
-    white = norm.whitening
-
-    curve = last_curve(p)
-    parts: list = [None]  # the bias split of the last Jacobian (the solution's, after the solve)
-
-    def result(trial):
-        c = curve(trial)
-        return c, white @ norm.model(c.overlap)
-
-    def model_jacobian(trial):
-        g = curve(trial).overlap  # the curve the optimiser has just evaluated
-        j = jacobian(p, trial, paths, h_tolerance)
-        if norm.trend is not None:
-            parts[0] = norm.bias_parts(g, j)
-        return white @ norm.model_jacobian(g, j)
-
-    model = Model(
-        lambda trial: result(trial)[1], model_jacobian, result, p, h_tolerance, p.tolerance
-    )
-    raw = solve(
-        system,
-        paths,
-        model,
-        white @ norm.data,
-        np.ones(white.shape[0]),
-        sigma is not None,
-        bounds,
-        loss,
-        max_evaluations,
-        allow_unconverged,
-        None if norm.trend is None else white.shape[0] - 1,  # δα takes a degree of freedom
-    )
-    return relative_result(raw, norm, sigma is not None, parts[0])
-
-
 def extended_plan(p, norm: Normalization):
     """Plan ``p`` on the ranges the normalised model needs (the measured ones and the far point),
     its system's range limits checked there."""
     if norm.extra_ranges.size == 0:
         return p
     return p.at(norm.model_ranges)
-
-
-def relative_result(raw, norm: Normalization, sigma_given: bool, parts=None) -> RelativeFitResult:
-    """The :class:`RelativeFitResult` of a solve on the whitened problem: chi-square and the
-    covariance as solved; residuals, measured and sigma per measured range on the normalised scale
-    (for plots and tables); with a trend, δα and its uncertainty from ``parts`` (the
-    :meth:`Normalization.bias_parts` at the solution)."""
-    g = raw.result.overlap
-    model = norm.model(g)
-    residuals = (model - norm.data) / (norm.sigma if sigma_given else 1.0)
-    fields = {f.name: getattr(raw, f.name) for f in dataclasses.fields(raw)}
-    fields.update(
-        residuals=residuals,
-        measured=norm.data,
-        sigma=norm.sigma if sigma_given else None,
-        normalize=norm.kind if norm.kind != "interval" else norm.interval,
-        normalizing_ranges=(
-            norm.ranges[norm.inside] if norm.kind == "interval" else norm.extra_ranges
-        ),
-        model_scale=float(norm.scale(g)),
-        data_scale=norm.data_scale,
-        fitted=model,
-    )
-    if norm.trend is not None and parts is not None:
-        bias, jp, ja = parts
-        scale = raw.reduced_chi_square if raw.covariance_scaled else 1.0
-        variance, cross = bias_covariance(norm, jp, ja, raw.covariance, scale)
-        if abs(bias) >= norm.trend.bound:
-            _checks.warn(
-                f"fit: extinction_bias {bias:.3g} /m rests on its bound ±{norm.trend.bound:g} /m: "
-                "the trend in the data is larger than an extinction error explains; its "
-                "uncertainty is that of a free parameter there"
-            )
-        fields.update(
-            extinction_bias=bias,
-            extinction_bias_uncertainty=math.sqrt(variance) if variance >= 0 else math.nan,
-            extinction_bias_reference=norm.trend.reference,
-            extinction_bias_covariance=cross,
-        )
-    return RelativeFitResult(**fields)
