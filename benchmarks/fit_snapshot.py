@@ -1,10 +1,11 @@
 """Every number of a representative set of fits, written to JSON and compared with an earlier
 snapshot.
 
-A refactoring of the fit layer that keeps the algorithms must keep these numbers to the last bit: run
-it before the change (``--write before.json``) and after (``--compare before.json``); the comparison
-prints every value that differs and fails (exit 1) unless all are exactly equal (floats are stored
-by ``repr``, which reads back to the same double).
+A refactoring of the fit layer that keeps the algorithms must keep these numbers to the last bit:
+run it before the change (``--write before.json``) and after (``--compare before.json``; without a
+file, both use benchmarks/results/fit_snapshot.json); the comparison prints every value that
+differs and fails (exit 1) unless all are exactly equal (floats are stored by ``repr``, which reads
+back to the same double).
 
 Cases: local fits of absolute data (given sigma, unit weights, a robust loss, a biaxial lidar), a
 telecover fit, relative fits (interval, far, interval with the retrieval's extinction bias), global

@@ -184,42 +184,9 @@ def solve(problem: FitProblem, model: Model) -> FitResult:
     j = normalised_jacobian(solution.x) / scale  # per SI unit of each parameter
     with np.errstate(over="ignore", invalid="ignore"):
         chi_square, dof = float(r @ r), n - k
-        unscaled = covariance(j, 1.0)
-        # inf (singular J) stays inf when scaled by a zero chi-square (inf x 0 would be NaN)
-        scale_by = chi_square / dof if not sigma_given else 1.0
-        cov = np.where(np.isinf(unscaled), unscaled, unscaled * scale_by)
-    verdict.check_usable("fit", chi_square, cov)
+    cov, corr = _covariance(j, chi_square, dof, sigma_given)
     sd = np.sqrt(np.diag(cov))
-    unit_sd = np.sqrt(np.diag(unscaled))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        # The correlation does not depend on the scale (so a zero-residual fit has one). Singular J
-        # (infinite covariance): -cos of the angle between two columns is their correlation when
-        # only they are free, and +-1 names the pair that cannot be told apart.
-        corr = (
-            unscaled / np.outer(unit_sd, unit_sd) if np.all(np.isfinite(unit_sd)) else -_cosines(j)
-        )
-        np.fill_diagonal(corr, 1.0)  # -cos gives -1 there
-    pairs = tuple(
-        (paths[a], paths[b], float(corr[a, b]))
-        for a in range(k)
-        for b in range(a + 1, k)
-        if abs(corr[a, b]) > DEGENERATE_CORRELATION
-    )
-    if pairs:
-        _checks.warn(
-            "fit: degenerate parameters, the data cannot tell them apart: "
-            + ", ".join(f"{a} and {b} (correlation {c:+.3f})" for a, b, c in pairs)
-            + "; fix one, or measure other ranges",
-            DegeneracyWarning,
-        )
-    if not np.all(np.isfinite(sd)):
-        _checks.warn(
-            "fit: the Jacobian is singular at the solution, so the data do not constrain every "
-            "free parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or "
-            "a beam tilt and a detector offset along one axis, which move the field of view "
-            "alike); uncertainties are infinite",
-            DegeneracyWarning,
-        )
+    pairs = _degeneracies(paths, corr, sd)
     # A robust loss expects outliers, which the chi-square and the runs test would count as misfit.
     exact = loss == "linear" and verdict.check_quality("fit", r, y, w, dof, sigma_given, tolerance)
     noise = math.sqrt(chi_square / dof)
@@ -257,6 +224,55 @@ def solve(problem: FitProblem, model: Model) -> FitResult:
         plan=model.plan,
         step_tolerance=model.step_tolerance,
     )
+
+
+def _covariance(j, chi_square: float, dof: int, sigma_given: bool):
+    """(covariance, correlation) of the parameters from J (point, parameter) per SI unit at the
+    solution: Gauss-Newton, scaled by chi²/dof without sigma (module docstring)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        unscaled = covariance(j, 1.0)
+        # inf (singular J) stays inf when scaled by a zero chi-square (inf x 0 would be NaN)
+        scale_by = chi_square / dof if not sigma_given else 1.0
+        cov = np.where(np.isinf(unscaled), unscaled, unscaled * scale_by)
+    verdict.check_usable("fit", chi_square, cov)
+    unit_sd = np.sqrt(np.diag(unscaled))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # The correlation does not depend on the scale (so a zero-residual fit has one). Singular J
+        # (infinite covariance): -cos of the angle between two columns is their correlation when
+        # only they are free, and +-1 names the pair that cannot be told apart.
+        corr = (
+            unscaled / np.outer(unit_sd, unit_sd) if np.all(np.isfinite(unit_sd)) else -_cosines(j)
+        )
+        np.fill_diagonal(corr, 1.0)  # -cos gives -1 there
+    return cov, corr
+
+
+def _degeneracies(paths, corr, sd) -> tuple:
+    """The pairs (path, path, correlation) the data cannot tell apart, warned (with a singular
+    Jacobian's infinite uncertainties) as a DegeneracyWarning."""
+    k = len(paths)
+    pairs = tuple(
+        (paths[a], paths[b], float(corr[a, b]))
+        for a in range(k)
+        for b in range(a + 1, k)
+        if abs(corr[a, b]) > DEGENERATE_CORRELATION
+    )
+    if pairs:
+        _checks.warn(
+            "fit: degenerate parameters, the data cannot tell them apart: "
+            + ", ".join(f"{a} and {b} (correlation {c:+.3f})" for a, b, c in pairs)
+            + "; fix one, or measure other ranges",
+            DegeneracyWarning,
+        )
+    if not np.all(np.isfinite(sd)):
+        _checks.warn(
+            "fit: the Jacobian is singular at the solution, so the data do not constrain every "
+            "free parameter (say a tilt at exactly 0 in a coaxial lidar, where G is even in it, or "
+            "a beam tilt and a detector offset along one axis, which move the field of view "
+            "alike); uncertainties are infinite",
+            DegeneracyWarning,
+        )
+    return pairs
 
 
 def _cosines(j: np.ndarray) -> np.ndarray:
