@@ -67,7 +67,7 @@ def test_correct_with_a_relative_fit_recovers_the_profile_to_its_band():
     assert use.sum() >= 8
     # The fitted curve differs from the truth by its parameters' error (within 4 of its bands),
     # and this defocused curve peaks above its far limit, so it is divided by the peak: the
-    # corrected signal is low by peak / far limit (stated by fit_correction), 1e-5 here.
+    # corrected signal is low by peak / far limit (stated by fitting/correction.py), 1e-5 here.
     a = f.absolute(np.append(Z, FAR_FACTOR * Z[-1])).overlap
     excess = a[:-1].max() / a[-1] - 1.0
     assert 0.0 <= excess < 1e-4

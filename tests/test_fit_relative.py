@@ -123,7 +123,7 @@ def test_interval_whitening_is_the_pseudo_inverse_square_root_and_is_reused_read
     y = 0.9 + 0.1 * rng.random(z.size)
     w = 0.01 + 0.01 * rng.random(z.size)
     first = normalization((500.0, 1000.0), z, y, w)
-    # W^T W = C^+, C the covariance of the data divided by their own mean (relative.py docstring)
+    # W^T W = C^+, C the covariance of the data divided by their own mean (normalization.py)
     inside = first.inside
     a = (np.eye(z.size) - np.outer(first.data, inside / inside.sum())) / first.data_scale
     cov = (a * w**2) @ a.T

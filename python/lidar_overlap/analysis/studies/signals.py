@@ -244,7 +244,7 @@ def correct(
     """
     z = _checks.ranges("ranges", ranges)
     s = _profile("signal", signal, z.size)
-    if is_fit(overlap):  # a fitted curve: G and its band from the fit (analysis/fit_correction.py)
+    if is_fit(overlap):  # a fitted curve: G and its band from the fit (fitting/correction.py)
         overlap, band = fitted_overlap(overlap, z)
         overlap_std = band if overlap_std is None else overlap_std
     if isinstance(overlap, OverlapResult):
