@@ -1,11 +1,13 @@
-// Limits and cancellation: the memory budget and thread cap every entry point enforces, and
-// lidar_overlap::Cancelled raised as the pending KeyboardInterrupt.
+// Limits, errors and cancellation: the memory budget and thread cap every entry point enforces,
+// lidar_overlap::ParameterError raised as _core.ParameterError (a ValueError carrying the parameter, value and
+// expected range as attributes), and lidar_overlap::Cancelled raised as the pending KeyboardInterrupt.
 #include <pybind11/pybind11.h>
 
 #include <exception>
 
 #include "lidar_overlap/core/cancel.hpp"
 #include "lidar_overlap/core/limits.hpp"
+#include "lidar_overlap/core/parameter_error.hpp"
 #include "interruptible.hpp"
 
 namespace py = pybind11;
@@ -23,9 +25,21 @@ void bind_limits(py::module_& m) {
   m.attr("MAX_ANGLE") = kMaxAngle;
   m.attr("MAX_GRID_SIDE") = kMaxGridSide;
   m.attr("MIN_TOLERANCE") = kMinTolerance;
+  // Made once (the module lives as long as the interpreter); the package's _checks raises it too.
+  static py::exception<ParameterError> parameter_error(m, "ParameterError", PyExc_ValueError);
+  parameter_error.attr("__doc__") =
+      "A ValueError naming a parameter: .parameter (its name as the caller spells it, e.g. "
+      "'beam.offset[0]' or 'ranges[3]'), .value (the value refused) and .expected (the valid range, "
+      "in words).";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const ParameterError& e) {
+      py::object error = py::handle(parameter_error.ptr())(e.what());
+      error.attr("parameter") = e.parameter();
+      error.attr("value") = e.value();
+      error.attr("expected") = e.expected();
+      PyErr_SetObject(parameter_error.ptr(), error.ptr());
     } catch (const Cancelled& e) {
       if (!PyErr_Occurred()) PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     }

@@ -11,7 +11,7 @@ import pytest
 import lidar_overlap as lo
 from lidar_overlap import parameters
 from lidar_overlap.cli import main
-from lidar_overlap.cli.fit import read_measurements
+from lidar_overlap.io.overlap_curves import read_measurements
 from lidar_overlap.io.scenario import load_scenario
 
 pytest.importorskip("scipy")

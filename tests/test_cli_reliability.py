@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from lidar_overlap.cli import main
-from lidar_overlap.cli.fit import read_measurements
+from lidar_overlap.io.overlap_curves import read_measurements
 
 TABLE1 = Path(__file__).resolve().parents[1] / "examples" / "scenarios" / "table1.toml"
 
@@ -36,9 +36,9 @@ def test_measurements_after_a_long_comment_block_are_read_to_the_last_digit(tmp_
 
 
 def test_a_measurements_file_beyond_the_limit_is_refused_not_cut(tmp_path, monkeypatch):
-    from lidar_overlap.cli import fit as fit_command
+    from lidar_overlap.io import overlap_curves
 
-    monkeypatch.setattr(fit_command, "MAX_BYTES", 100)
+    monkeypatch.setattr(overlap_curves, "MAX_CSV_BYTES", 100)
     path = tmp_path / "m.csv"
     path.write_text("range_m,overlap\n" + "".join(f"{z}.0,0.5\n" for z in range(100, 200)))
     with pytest.raises(ValueError, match="larger than 100 bytes"):

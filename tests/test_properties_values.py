@@ -18,8 +18,8 @@ from hypothesis import strategies as st
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
-from lidar_overlap.cli.fit import read_measurements
 from lidar_overlap.forward.result import ROUND_OFF
+from lidar_overlap.io.overlap_curves import read_measurements
 
 SETTINGS = dict(
     derandomize=True,

@@ -15,7 +15,7 @@ from test_rt_monte_carlo import CHUNK, N_RAYS, accepted, allowed, aperture_point
 import lidar_overlap as lo
 from lidar_overlap import parameters
 from lidar_overlap.io.scenario import scenario_from_dict
-from lidar_overlap.views.twin import scenario_toml
+from lidar_overlap.io.scenario_writer import scenario_toml
 
 BASE = lo.paper_table1()
 ENGINE_TOL = 1e-6

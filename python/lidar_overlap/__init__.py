@@ -7,7 +7,7 @@ results), ``analysis`` (maps, sensitivities, fits, telecover, design, signals, s
 call.
 """
 
-from ._checks import set_max_memory
+from ._checks import ParameterError, set_max_memory
 from ._core import __version__, max_memory, max_threads
 from .analysis.design.alignment import alignment_map, alignment_maps
 from .analysis.design.autoalign import AlignResult, align
@@ -67,6 +67,7 @@ __all__ = [
     "LidarSignal",
     "Auto",
     "FO",
+    "ParameterError",
     "Plan",
     "RT",
     "Turbulent",

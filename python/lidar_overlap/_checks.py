@@ -18,6 +18,36 @@ import numpy as np
 
 from . import _core
 
+#: The error of every check here and in the core: a ValueError whose ``parameter``, ``value`` and
+#: ``expected`` say what was refused, so that callers never read its message to learn which.
+ParameterError = _core.ParameterError
+
+
+def refused(
+    parameter: str, value: Any, expected: str, message: Optional[str] = None
+) -> ParameterError:
+    """The :data:`ParameterError` refusing ``value`` of ``parameter``; ``message`` defaults to
+    "{parameter} = {value} is invalid: expected {expected}"."""
+    error = ParameterError(
+        message or f"{parameter} = {shown(value)} is invalid: expected {expected}"
+    )
+    error.parameter, error.value, error.expected = parameter, value, expected
+    return error
+
+
+def reindexed(error: ParameterError, offset: int) -> ParameterError:
+    """``error`` about item ``name[i]`` of an array as the same error about ``name[i + offset]``
+    (a part of the array was checked, and the caller names the whole); any other ``error`` as it
+    is."""
+    name, bracket, rest = error.parameter.partition("[")
+    index, _, tail = rest.partition("]")
+    if not bracket or not index.isdigit() or not str(error).startswith(error.parameter):
+        return error
+    parameter = f"{name}[{int(index) + offset}]{tail}"
+    message = parameter + str(error)[len(error.parameter) :]
+    return refused(parameter, error.value, error.expected, message)
+
+
 #: Largest integer option passed to the core (sizes are checked there against grid and memory
 #: limits).
 MAX_COUNT = 2**62
@@ -35,21 +65,20 @@ def real(name: str, value: Any) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(
         value, (int, float, np.integer, np.floating)
     ):
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected a real number")
+        raise refused(name, value, "a real number")
     try:
         return float(value)
     except OverflowError:
-        raise ValueError(
-            f"{name} = {shown(value)} is invalid: expected a real number within double range (|x| "
-            "< 1.8e308)"
-        ) from None
+        raise refused(name, value, "a real number within double range (|x| < 1.8e308)") from None
 
 
 def positive(name: str, value: Any) -> float:
     """A finite real number > 0."""
     v = real(name, value)
     if not (v > 0 and math.isfinite(v)):
-        raise ValueError(f"{name} = {v!r} is invalid: expected a finite value > 0")
+        raise refused(
+            name, v, "a finite value > 0", f"{name} = {v!r} is invalid: expected a finite value > 0"
+        )
     return v
 
 
@@ -62,12 +91,10 @@ def pair(name: str, value: Any) -> tuple[float, float]:
     strings)."""
     items = value.tolist() if isinstance(value, np.ndarray) and value.ndim == 1 else value
     if not isinstance(items, (tuple, list)) or len(items) != 2:
-        raise ValueError(
-            f"{name} = {shown(value)} is invalid: expected an (x, y) pair of two numbers"
-        )
+        raise refused(name, value, "an (x, y) pair of two numbers")
     x, y = (real(f"{name}[{i}]", v) for i, v in enumerate(items))
     if not (math.isfinite(x) and math.isfinite(y)):
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected finite numbers")
+        raise refused(name, value, "finite numbers")
     return (x, y)
 
 
@@ -76,36 +103,38 @@ def ranges(name: str, value: Any) -> np.ndarray:
     try:  # ragged nesting such as [1.0, (2.0, 3.0)] fails here, in NumPy's words
         raw = np.asarray(value) if not isinstance(value, (str, bytes)) else np.asarray([value])
     except (TypeError, ValueError, OverflowError) as exc:
-        raise ValueError(
-            f"{name} is invalid: expected a 1-D array of ranges in m ({exc})"
+        expected = "a 1-D array of ranges in m"
+        raise refused(
+            name, value, expected, f"{name} is invalid: expected {expected} ({exc})"
         ) from None
     if (
         raw.dtype.kind not in "iuf"
     ):  # strings, bools, objects: refused before float() could accept "100"
-        raise ValueError(
-            f"{name} = {shown(value)} is invalid: expected a 1-D array of ranges in m (real "
-            "numbers)"
-        )
+        raise refused(name, value, "a 1-D array of ranges in m (real numbers)")
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError, OverflowError) as exc:
-        raise ValueError(
-            f"{name} is invalid: expected a 1-D array of ranges in m ({exc})"
+        expected = "a 1-D array of ranges in m"
+        raise refused(
+            name, value, expected, f"{name} is invalid: expected {expected} ({exc})"
         ) from None
     if arr.ndim != 1 or arr.size == 0:
-        raise ValueError(
-            f"{name} has shape {arr.shape}: expected a non-empty 1-D array of ranges in m"
-        )
+        expected = "a non-empty 1-D array of ranges in m"
+        raise refused(name, value, expected, f"{name} has shape {arr.shape}: expected {expected}")
     bad = ~np.isfinite(arr)
     if bad.any():
-        raise ValueError(
-            f"{name}[{int(np.argmax(bad))}] = {arr[bad][0]} is invalid: expected a finite range in "
-            "m"
+        item = f"{name}[{int(np.argmax(bad))}]"
+        expected = "a finite range in m"
+        raise refused(
+            item, arr[bad][0], expected, f"{item} = {arr[bad][0]} is invalid: expected {expected}"
         )
     if arr.size > 1 and not np.all(np.diff(arr) > 0):
         i = int(np.argmax(~(np.diff(arr) > 0)))
-        raise ValueError(
-            f"{name} must be strictly increasing: {name}[{i + 1}] = {arr[i + 1]} follows {arr[i]}"
+        raise refused(
+            f"{name}[{i + 1}]",
+            arr[i + 1],
+            f"a range above {name}[{i}] = {arr[i]} (strictly increasing)",
+            f"{name} must be strictly increasing: {name}[{i + 1}] = {arr[i + 1]} follows {arr[i]}",
         )
     return arr
 
@@ -114,9 +143,7 @@ def choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
     """One of ``valid``; non-strings (NumPy arrays would make the comparison ambiguous) refused by
     name."""
     if not isinstance(value, str) or value not in valid:
-        raise ValueError(
-            f"{name} = {shown(value)} is invalid: expected one of {', '.join(map(repr, valid))}"
-        )
+        raise refused(name, value, f"one of {', '.join(map(repr, valid))}")
     return value
 
 
@@ -131,7 +158,7 @@ def count(name: str, value: Any, minimum: int, maximum: int = MAX_COUNT) -> int:
         limit = (
             f"from {minimum} to {maximum}" if maximum != MAX_COUNT or too_large else f">= {minimum}"
         )
-        raise ValueError(f"{name} = {shown(value)} is invalid: expected an integer {limit}")
+        raise refused(name, value, f"an integer {limit}")
     return int(value)
 
 
@@ -148,10 +175,11 @@ def tolerance(name: str, value: Any) -> float:
     """An absolute tolerance on G, in [MIN_TOLERANCE, 1)."""
     v = real(name, value)
     if not MIN_TOLERANCE <= v < 1.0:
-        raise ValueError(
-            f"{name} = {v!r} is invalid: expected a value in [{MIN_TOLERANCE:g}, 1) (an absolute "
-            "error on G; double precision resolves none smaller)"
+        expected = (
+            f"a value in [{MIN_TOLERANCE:g}, 1) (an absolute error on G; double precision resolves "
+            "none smaller)"
         )
+        raise refused(name, v, expected, f"{name} = {v!r} is invalid: expected {expected}")
     return v
 
 
@@ -159,9 +187,8 @@ def unit_interval(name: str, value: Any, include_one: bool = False) -> float:
     """A value in (0, 1), or (0, 1] with include_one."""
     v = real(name, value)
     if not (0.0 < v < 1.0 or (include_one and v == 1.0)):
-        raise ValueError(
-            f"{name} = {v!r} is invalid: expected a value in (0, {'1]' if include_one else '1)'}"
-        )
+        expected = f"a value in (0, {'1]' if include_one else '1)'}"
+        raise refused(name, v, expected, f"{name} = {v!r} is invalid: expected {expected}")
     return v
 
 
@@ -170,10 +197,8 @@ def length(name: str, value) -> float:
     otherwise."""
     v = real(name, value)
     if not _core.MIN_LENGTH <= v <= _core.MAX_LENGTH:
-        raise ValueError(
-            f"{name} = {v!r} is invalid: expected a length from {_core.MIN_LENGTH:g} m to "
-            f"{_core.MAX_LENGTH:g} m"
-        )
+        expected = f"a length from {_core.MIN_LENGTH:g} m to {_core.MAX_LENGTH:g} m"
+        raise refused(name, v, expected, f"{name} = {v!r} is invalid: expected {expected}")
     return v
 
 
@@ -182,10 +207,13 @@ def check_memory(name: str, value, needed: float, fix: str) -> None:
     core's rule for its own grids); ``needed`` in bytes, ``fix`` says what to lower."""
     budget = _core.max_memory()
     if not needed <= budget:
-        raise ValueError(
+        raise refused(
+            name,
+            value,
+            f"at most {_bytes_shown(budget)} of memory (max_memory)",
             f"{name} = {shown(value)} needs {_bytes_shown(needed)} of memory, more than the budget "
             f"of {_bytes_shown(budget)} (max_memory): {fix}, or raise the budget with "
-            "set_max_memory"
+            "set_max_memory",
         )
 
 
@@ -200,11 +228,11 @@ def system_range(system, z: float, name: str) -> None:
     (``LidarSystem.validate_ranges`` in C++)."""
     try:
         system._native.validate_ranges([z])
-    except ValueError as exc:
-        message = str(exc)
-        raise ValueError(
-            name + message.removeprefix("ranges[0]") if message.startswith("ranges[0]") else message
-        ) from None
+    except ParameterError as exc:
+        if exc.parameter != "ranges[0]":
+            raise
+        message = name + str(exc)[len(exc.parameter) :]  # the message begins with the parameter
+        raise refused(name, exc.value, exc.expected, message) from None
 
 
 def warn(message: str, category: type = RuntimeWarning) -> None:
@@ -232,16 +260,16 @@ def real_array(name: str, value: Any, ndim: int | None = None) -> np.ndarray:
             raw = None
     if raw is None or raw.dtype.kind not in "iuf":
         kind = "complex numbers" if raw is not None and raw.dtype.kind == "c" else "not numbers"
-        raise ValueError(
-            f"{name} = {shown(value)} is invalid: expected an array of real numbers ({kind})"
-        )
+        raise refused(name, value, f"an array of real numbers ({kind})")
     try:
         values = raw.astype(float)
     except OverflowError:
-        raise ValueError(f"{name} is invalid: expected real numbers within double range") from None
+        expected = "real numbers within double range"
+        raise refused(name, value, expected, f"{name} is invalid: expected {expected}") from None
     if ndim is not None and values.ndim != ndim:
-        raise ValueError(
-            f"{name} has shape {values.shape}: expected a {ndim}-D array of real numbers"
+        expected = f"a {ndim}-D array of real numbers"
+        raise refused(
+            name, value, expected, f"{name} has shape {values.shape}: expected {expected}"
         )
     return values
 

@@ -36,6 +36,11 @@ MAX_LENGTH: float
 MAX_ANGLE: float
 MAX_GRID_SIDE: int
 
+class ParameterError(ValueError):
+    parameter: str
+    value: Any
+    expected: str
+
 def max_memory() -> int: ...
 def set_max_memory(bytes: _Int) -> None: ...
 def _set_interrupt_requested(on: bool) -> None: ...

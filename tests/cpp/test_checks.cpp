@@ -1,4 +1,5 @@
-// Invalid input throws std::invalid_argument naming the parameter.
+// Invalid input throws std::invalid_argument naming the parameter: a ParameterError that carries the
+// parameter, the value and the valid range as data.
 #include <cmath>
 #include <limits>
 
@@ -38,5 +39,27 @@ int main() {
   test::throws("negative threads", [&] { overlap_rt(s, {10.0}, {1e-4, -1, 10}); }, "threads");
   test::throws("fov <= 0", [] { Detector::from_fov(0.0, 1.0); }, "fov");
   test::throws("negative defocus in Eq. 5", [] { optimal_focus_range(1.0, -1e-3); }, "defocus");
+  // The parameter as data: the name the message starts with, the value refused and what was expected.
+  auto refusal = [](auto&& call) -> ParameterError {
+    try {
+      call();
+    } catch (const ParameterError& e) {
+      return e;
+    }
+    return ParameterError("nothing refused", "", 0.0, "");
+  };
+  const ParameterError waist = refusal([&] { with([](LidarSystem& c) { c.beam.waist_radius = -1; }).validate(); });
+  test::that("waist: parameter", waist.parameter() == "beam.waist_radius");
+  test::that("waist: value", waist.value() == -1.0);
+  test::that("waist: message starts with it", std::string(waist.what()).rfind("beam.waist_radius = -1", 0) == 0);
+  test::that("waist: expected in the message",
+             !waist.expected().empty() && std::string(waist.what()).find(waist.expected()) != std::string::npos);
+  const ParameterError range = refusal([&] { overlap_rt(s, {10.0, 20.0, -5.0}); });
+  test::that("range: parameter names the index", range.parameter() == "ranges[2]" && range.value() == -5.0);
+  const ParameterError batch = refusal([&] {
+    overlap_rt_batch({s, with([](LidarSystem& c) { c.detector.radius = nan; })}, {10.0, 20.0});
+  });
+  test::that("batch: parameter names the system", batch.parameter() == "systems[1].detector.radius");
+  test::that("batch: message names it", std::string(batch.what()).rfind("systems[1]: detector.radius", 0) == 0);
   return test::report("test_checks");
 }

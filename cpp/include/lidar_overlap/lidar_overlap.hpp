@@ -22,6 +22,7 @@
 #include "lidar_overlap/core/beam.hpp"
 #include "lidar_overlap/core/cancel.hpp"
 #include "lidar_overlap/core/limits.hpp"
+#include "lidar_overlap/core/parameter_error.hpp"
 #include "lidar_overlap/core/system.hpp"
 #include "lidar_overlap/core/vec2.hpp"
 

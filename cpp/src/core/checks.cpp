@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "lidar_overlap/core/limits.hpp"
+#include "lidar_overlap/core/parameter_error.hpp"
 
 namespace lidar_overlap::checks {
 
@@ -13,7 +14,7 @@ void fail(const std::string& parameter, double value, const std::string& valid_r
   std::ostringstream msg;
   msg.precision(17);
   msg << parameter << " = " << value << " is invalid: expected " << valid_range;
-  throw std::invalid_argument(msg.str());
+  throw ParameterError(msg.str(), parameter, value, valid_range);
 }
 
 void finite(const std::string& parameter, double value) {
@@ -94,7 +95,7 @@ std::size_t count_from(double estimate, std::size_t limit, const std::string& pa
     msg.precision(17);
     msg << parameter << " = " << value << " asks for " << number(estimate) << " " << why << " (at most "
         << limit << ")";
-    throw std::invalid_argument(msg.str());
+    throw ParameterError(msg.str(), parameter, value, "at most " + std::to_string(limit) + " " + why);
   }
   return static_cast<std::size_t>(estimate);
 }
@@ -110,9 +111,10 @@ void memory(const std::string& parameter, double value, double bytes, const std:
   if (!(bytes <= static_cast<double>(max_memory()))) {
     std::ostringstream msg;
     msg.precision(17);
-    msg << parameter << " = " << value << " needs " << gib(bytes) << " of memory, more than the budget of "
-        << gib(static_cast<double>(max_memory())) << " (max_memory): " << fix;
-    throw std::invalid_argument(msg.str());
+    const std::string budget = gib(static_cast<double>(max_memory()));
+    msg << parameter << " = " << value << " needs " << gib(bytes) << " of memory, more than the budget of " << budget
+        << " (max_memory): " << fix;
+    throw ParameterError(msg.str(), parameter, value, "at most " + budget + " of memory (max_memory)");
   }
 }
 

@@ -1,5 +1,6 @@
-// Argument checks shared by every public entry point. Each throws std::invalid_argument whose
-// message names the parameter, the value received and the valid range (Python sees ValueError).
+// Argument checks shared by every public entry point. Each throws ParameterError (a std::invalid_argument,
+// lidar_overlap/core/parameter_error.hpp) whose message names the parameter, the value received and the valid
+// range, and which carries them as data (Python sees lidar_overlap.ParameterError, a ValueError).
 #pragma once
 
 #include <cstddef>
@@ -7,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lidar_overlap/core/parameter_error.hpp"
 #include "lidar_overlap/core/vec2.hpp"
 
 namespace lidar_overlap::checks {

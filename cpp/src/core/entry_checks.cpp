@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "core/parallel.hpp"
+#include "lidar_overlap/core/parameter_error.hpp"
 
 namespace lidar_overlap::detail {
 
@@ -20,6 +21,9 @@ int checked_threads_and_ranges(const std::vector<LidarSystem>& systems, const st
   for (std::size_t i = 0; i < systems.size(); ++i) {
     try {
       systems[i].validate();
+    } catch (const ParameterError& e) {
+      const std::string item = "systems[" + std::to_string(i) + "]";
+      throw ParameterError(item + ": " + e.what(), item + "." + e.parameter(), e.value(), e.expected());
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("systems[" + std::to_string(i) + "]: " + e.what());
     }

@@ -193,9 +193,12 @@ std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<d
   for (std::size_t i = 0; i < masks.size(); ++i) {
     try {
       sectors.push_back(checked_sectors(system, masks[i]));
-    } catch (const std::invalid_argument& e) {
-      if (std::string(e.what()).rfind("mask.", 0) != 0) throw;  // the system's own error
-      throw std::invalid_argument("masks[" + std::to_string(i) + "]" + std::string(e.what()).substr(4));
+    } catch (const ParameterError& e) {
+      if (e.parameter().rfind("mask.", 0) != 0) throw;  // the system's own error
+      // "mask.sectors[0]..." becomes "masks[i].sectors[0]...", in the message that begins with it too
+      const std::string parameter = "masks[" + std::to_string(i) + "]" + e.parameter().substr(4);
+      throw ParameterError(parameter + std::string(e.what()).substr(e.parameter().size()), parameter, e.value(),
+                           e.expected());
     }
   }
   detail::check_rt_options(options);

@@ -9,89 +9,13 @@ the file, the line and the column.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
-from typing import List, Sequence, Tuple
+from typing import List
 
-import numpy as np
-
-from .. import _files, _reading
+from .. import _files
 from ..analysis.fitting.fit import fit
+from ..io.overlap_curves import read_measurements
 from ..io.scenario import Scenario
-
-COLUMNS = ("range_m", "overlap", "sigma")
-#: The most rows read (as many as a scenario's ranges).
-MAX_ROWS = 100_000
-#: The largest file read (comments included); a larger one is refused whole, never cut.
-MAX_BYTES = 64_000_000
-
-
-def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
-    """(ranges, overlap, sigma or None) from a measurements CSV; ValueError naming file, line and
-    column."""
-    data, sigma = read_table(path, COLUMNS[:2], signed=("overlap",))
-    return data[:, 0], data[:, 1], sigma
-
-
-def read_table(
-    path, columns: Sequence[str], signed: Sequence[str] = ()
-) -> Tuple[np.ndarray, np.ndarray | None]:
-    """(rows x ``columns``, the optional last column ``sigma`` or None) from a CSV whose header is
-    ``columns`` (the first ``range_m``, strictly increasing), optionally followed by ``sigma``.
-    Values are finite, and > 0 but in the ``signed`` columns. ValueError naming file, line and
-    column."""
-    name, header_text = str(path), ",".join(columns)
-    lines = _reading.read_text(
-        path, MAX_BYTES, "the measurements", f"a CSV file with the columns '{header_text}'"
-    ).splitlines()
-    rows: List[List[float]] = []
-    header = None
-    for number, line in enumerate(lines, start=1):
-        text = line.strip()
-        if not text or text.startswith("#"):
-            continue
-        cells = [c.strip() for c in text.split(",")]
-        if header is None:
-            header = tuple(cells)
-            if header not in (tuple(columns), (*columns, "sigma")):
-                raise ValueError(
-                    f"{name}: line {number}: header {text!r} is invalid: expected '{header_text}' "
-                    f"or '{header_text},sigma'"
-                )
-            continue
-        if len(cells) != len(header):
-            raise ValueError(
-                f"{name}: line {number}: {len(cells)} values, expected {len(header)} "
-                f"({','.join(header)})"
-            )
-        row = []
-        for column, (key, cell) in enumerate(zip(header, cells), start=1):
-            try:
-                value = float(cell)
-            except ValueError:
-                value = float("nan")
-            if not math.isfinite(value) or (key not in signed and value <= 0):
-                what = "a finite number" if key in signed else "a finite number > 0"
-                raise ValueError(
-                    f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: "
-                    f"expected {what}"
-                )
-            row.append(value)
-        if rows and not row[0] > rows[-1][0]:
-            raise ValueError(
-                f"{name}: line {number}, column 1 (range_m): {row[0]:g} does not follow "
-                f"{rows[-1][0]:g}: ranges must be strictly increasing"
-            )
-        rows.append(row)
-        if len(rows) > MAX_ROWS:
-            raise ValueError(f"{name}: more than {MAX_ROWS} rows")
-    if header is None or not rows:
-        raise ValueError(
-            f"{name}: no {'header' if header is None else 'data'}: expected a header "
-            f"'{header_text},sigma' (sigma optional) and one row per range"
-        )
-    data = np.array(rows)
-    return data[:, : len(columns)], (data[:, -1] if len(header) > len(columns) else None)
 
 
 def fit_scenario(

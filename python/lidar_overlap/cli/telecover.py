@@ -26,9 +26,10 @@ from .. import _files
 from ..analysis.studies.telecover import sector_mask, telecover
 from ..analysis.studies.telecover_fit import fit_telecover
 from ..forward.result_files import csv_value
+from ..io.overlap_curves import read_csv_table
 from ..io.scenario import Scenario
 from ..model.aperture_mask import ApertureMask, equal_sectors
-from .fit import read_table, write_fit
+from .fit import write_fit
 
 
 def sectors_argument(text: str) -> ApertureMask:
@@ -142,7 +143,7 @@ def fit(
     tolerance (the command line's telecover fit; ``lo.fit_telecover`` takes any model), written;
     returns (FitResult, files, notes)."""
     names = [column(n) for n in sector_mask(scenario.system, mask).names]
-    data, sigma = read_table(measurements, ["range_m"] + names, signed=names)
+    data, sigma = read_csv_table(measurements, ["range_m"] + names, signed=names)
     result = fit_telecover(
         scenario.system,
         data[:, 0],

@@ -43,7 +43,7 @@ from __future__ import annotations
 import functools
 import os
 from dataclasses import dataclass, field
-from typing import List
+from typing import List, Tuple
 
 import numpy as np
 
@@ -90,6 +90,8 @@ class Decision:
     rt_quadrature_tolerance: float  # what the model error leaves to RT's quadrature (0 for FO)
     reasons: List[str] = field(default_factory=list)
     warning: str = ""  # said when the plan runs (RT chosen beyond its estimated accuracy)
+    # the reasons (among ``reasons``) for the FO path: not said where another path is taken
+    fo_path_reasons: Tuple[str, ...] = ()
 
 
 def rt_model_error(system, ranges: np.ndarray) -> float:
@@ -161,14 +163,15 @@ def decide(system, ranges: np.ndarray, tolerance: float) -> Decision:
     reasons.append(
         f"{error:.2g} > tolerance {tolerance:g}: diffraction matters, Fourier optics is needed"
     )
-    reasons.append(
+    radial = (
         "Gaussian beam: the radial FO path (one integral per range, the beam image's offset as J0)"
     )
+    reasons.append(radial)
     if fo_accuracy > tolerance:
         reasons.append(
             f"warning: the FO path's own accuracy ~{fo_accuracy:.0e} exceeds the tolerance"
         )
-    return Decision("fo", fo_path, error, 0.0, reasons)
+    return Decision("fo", fo_path, error, 0.0, reasons, fo_path_reasons=(radial,))
 
 
 @dataclass(frozen=True)

@@ -2,21 +2,57 @@
 receiver (ray tracing, radial / 2-D / field Fourier optics, auto's choice between them), an aperture
 mask, receiver aberrations, turbulence and a beam of incoherent Gaussian components. Each returns a
 :class:`~lidar_overlap.forward.plans.Plan`; :func:`lidar_overlap.forward.planning.plan` picks the
-planner."""
+planner.
+
+A receiver's planners stand in one table, a :class:`Receiver` (:data:`PLAIN`, :data:`MASKED`,
+:data:`ABERRATED`): the plan of each model (Auto, RT, FO) for that receiver, so that the ladder from
+auto's choice to ray tracing or Fourier optics is written once (:meth:`Receiver.plan`)."""
 
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, Dict, Tuple
+from dataclasses import dataclass
+from typing import Any, Callable, Dict
 
-from .. import _checks, _core
+from .. import _core
 from ..model.field_beam import FieldBeam
 from . import auto
-from .methods import FO, RT, Auto, Turbulent
+from .methods import FO, RT, Auto
 from .plans import Plan, base_fields, power_weighted
 
-#: The 2-D path of the turbulent FO overlap needs this many samples per side at least.
-MIN_TURBULENT_GRID = 32
+
+@dataclass(frozen=True)
+class Scene:
+    """What the planners of one request share: the system, the ranges ``z`` (m, checked), the
+    plan's base fields (:func:`~.plans.base_fields`), the threads, and whether the beam is a
+    sampled field."""
+
+    system: Any
+    z: Any
+    base: Dict[str, Any]
+    threads: int
+
+    @property
+    def field_beam(self) -> bool:
+        return isinstance(self.system.beam, FieldBeam)
+
+
+@dataclass(frozen=True)
+class Receiver:
+    """How one kind of receiver is planned: the plan of each model for a :class:`Scene`."""
+
+    auto: Callable[[Scene, Auto], Plan]
+    rt: Callable[[Scene, RT], Plan]
+    fo: Callable[[Scene, FO], Plan]
+
+    def plan(self, scene: Scene, model) -> Plan:
+        """The plan of ``model`` (an Auto, RT or FO object)."""
+        planners: Dict[type, Callable[[Scene, Any], Plan]] = {
+            Auto: self.auto,
+            RT: self.rt,
+            FO: self.fo,
+        }
+        return planners[type(model)](scene, model)
 
 
 def mixture(system, z, request, threads) -> Plan:
@@ -71,71 +107,96 @@ def mixture_of(system, z, request, parts, threads) -> Plan:
 def plain(system, z, model, request, threads) -> Plan:
     """The plan of ``model`` (RT, FO or Auto) without turbulence; ``request`` is what the caller
     asked for."""
-    base = base_fields(system, z, request)
+    scene = Scene(system, z, base_fields(system, z, request), threads)
+    return receiver(system).plan(scene, model)
+
+
+def receiver(system) -> Receiver:
+    """The planners of ``system``'s receiver: with an aperture mask, with aberrations, or plain;
+    a combination that no path models is refused naming both."""
     if system.telescope.mask is not None:
-        return masked(base, system, z, model, threads)
-    if system.aberrated and system.detector.stop_radius is not None:
+        if system.aberrated:
+            raise ValueError(
+                "telescope.mask with aberrations is not modelled: set telescope.aberrations or "
+                "telescope.mask to None"
+            )
+        if isinstance(system.beam, FieldBeam):
+            raise ValueError(
+                f"telescope.mask is invalid for a {type(system.beam).__name__}: the masked paths "
+                "model Gaussian beams only"
+            )
+        return MASKED
+    if not system.aberrated:
+        return PLAIN
+    if system.detector.stop_radius is not None:
         raise ValueError(
             "detector.stop_radius with receiver aberrations is not modelled: set "
             "telescope.aberrations or detector.stop_radius to None"
         )
-    if system.aberrated:
-        if isinstance(system.beam, FieldBeam):
-            raise ValueError(
-                "aberrations with a FieldBeam are not modelled: expected a GaussianBeam (the "
-                "aberrated paths weight the point image by the Gaussian beam image)"
-            )
-        return aberrated(base, system, model, threads)
-    field_beam = isinstance(system.beam, FieldBeam)
-    if isinstance(model, Auto):
-        d = auto.decide(system, z, model.tolerance)
+    if isinstance(system.beam, FieldBeam):
+        raise ValueError(
+            "aberrations with a FieldBeam are not modelled: expected a GaussianBeam (the "
+            "aberrated paths weight the point image by the Gaussian beam image)"
+        )
+    return ABERRATED
+
+
+def geometric_auto(rt_key: str, fo: Callable[[Scene, Auto, auto.Decision], Plan]):
+    """Auto for a receiver whose RT error auto estimates from the geometry (:func:`auto.decide`):
+    ray tracing on backend ``rt_key`` with the quadrature's share of the tolerance, or the plan
+    ``fo(scene, model, decision)`` with auto's reasons."""
+
+    def plan(scene: Scene, model: Auto) -> Plan:
+        d = auto.decide(scene.system, scene.z, model.tolerance)
         common: Dict[str, Any] = dict(
-            base, tolerance=model.tolerance, rt_model_error=d.rt_model_error
+            scene.base, tolerance=model.tolerance, rt_model_error=d.rt_model_error
         )
         if d.method == "rt":
-            options = rt_options(model.rt, d.rt_quadrature_tolerance, threads)
-            return auto_rt(common, "rt", options, d)
-        fo = fo_plan(base, system, auto_fo(model.fo, d.fo_path, field_beam), threads, field_beam)
-        return dataclasses.replace(fo, reasons=tuple(d.reasons), **common)
-    if isinstance(model, RT):
-        if field_beam:
-            raise ValueError(
-                f"method = 'rt' is invalid for a {type(system.beam).__name__}: ray tracing models "
-                "Gaussian beams only; use method='fo'"
-            )
-        return Plan(
-            **base,
-            backend="rt",
-            tolerance=model.tolerance,
-            options=rt_options(model, model.tolerance, threads),
-            reasons=(f"ray tracing asked for, to {model.tolerance:g} on G",),
+            options = rt_options(model.rt, d.rt_quadrature_tolerance, scene.threads)
+            return auto_rt(common, rt_key, options, d)
+        return dataclasses.replace(fo(scene, model, d), reasons=tuple(d.reasons), **common)
+
+    return plan
+
+
+def plain_rt(scene: Scene, model: RT) -> Plan:
+    if scene.field_beam:
+        raise ValueError(
+            f"method = 'rt' is invalid for a {type(scene.system.beam).__name__}: ray tracing "
+            "models Gaussian beams only; use method='fo'"
         )
-    return fo_plan(base, system, model, threads, field_beam)
+    return Plan(
+        **scene.base,
+        backend="rt",
+        tolerance=model.tolerance,
+        options=rt_options(model, model.tolerance, scene.threads),
+        reasons=(f"ray tracing asked for, to {model.tolerance:g} on G",),
+    )
 
 
-def fo_plan(base, system, model: FO, threads, field_beam) -> Plan:
-    common: Dict[str, Any] = dict(base, tolerance=float("nan"))
-    if field_beam:
+def plain_fo(scene: Scene, model: FO) -> Plan:
+    common: Dict[str, Any] = dict(scene.base, tolerance=float("nan"))
+    if scene.field_beam:
         if model.beam_grid is not None or model.beam_window is not None:
             raise ValueError(
                 "beam_grid and beam_window apply to Gaussian beams only: a FieldBeam is propagated "
                 "on its own grid"
             )
         options = _core.FoOptions()
-        options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
+        options.max_spectrum_grid, options.threads = model.max_spectrum_grid, scene.threads
         return Plan(
             **common,
             backend="fo_field",
             options=options,
-            reasons=(f"Fourier optics on the {type(system.beam).__name__}'s own grid",),
+            reasons=(f"Fourier optics on the {type(scene.system.beam).__name__}'s own grid",),
         )
-    if model.path == "radial" or (model.path == "auto" and auto.radial_fo_applies(system)):
+    if model.path == "radial" or (model.path == "auto" and auto.radial_fo_applies(scene.system)):
         if model.beam_grid is not None or model.beam_window is not None:
             raise ValueError(
                 "beam_grid and beam_window apply to the 2-D FO path only; use fo_path='2d'"
             )
         radial = _core.RadialFoOptions()
-        radial.threads = threads
+        radial.threads = scene.threads
         return Plan(
             **common,
             backend="fo_radial",
@@ -147,7 +208,7 @@ def fo_plan(base, system, model: FO, threads, field_beam) -> Plan:
         options.beam_grid = model.beam_grid
     if model.beam_window is not None:
         options.beam_window = model.beam_window
-    options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
+    options.max_spectrum_grid, options.threads = model.max_spectrum_grid, scene.threads
     return Plan(
         **common,
         backend="fo_2d",
@@ -159,42 +220,24 @@ def fo_plan(base, system, model: FO, threads, field_beam) -> Plan:
     )
 
 
-def masked(base, system, z, model, threads) -> Plan:
-    """An aperture mask (telecover): ray tracing with each scatterer's coupling restricted to the
-    mask, or Fourier optics through the sampled pupil cut to it; auto chooses by RT's diffraction
-    estimate, as without a mask."""
-    if system.aberrated:
-        raise ValueError(
-            "telescope.mask with aberrations is not modelled: set telescope.aberrations or "
-            "telescope.mask to None"
-        )
-    if isinstance(system.beam, FieldBeam):
-        raise ValueError(
-            f"telescope.mask is invalid for a {type(system.beam).__name__}: the masked paths model "
-            "Gaussian beams only"
-        )
-    names = ", ".join(system.telescope.mask.names)
-    if isinstance(model, Auto):
-        d = auto.decide(system, z, model.tolerance)
-        common: Dict[str, Any] = dict(
-            base, tolerance=model.tolerance, rt_model_error=d.rt_model_error
-        )
-        if d.method == "rt":
-            options = rt_options(model.rt, d.rt_quadrature_tolerance, threads)
-            return auto_rt(common, "rt_masked", options, d)
-        fo = masked(base, system, z, model.fo, threads)
-        return dataclasses.replace(fo, reasons=tuple(d.reasons), **common)
-    if isinstance(model, RT):
-        return Plan(
-            **base,
-            backend="rt_masked",
-            tolerance=model.tolerance,
-            options=rt_options(model, model.tolerance, threads),
-            reasons=(
-                f"ray tracing through the aperture mask ({names}), to {model.tolerance:g} on G; G "
-                "is normalised to the full aperture",
-            ),
-        )
+def masked_rt(scene: Scene, model: RT) -> Plan:
+    """Ray tracing with each scatterer's coupling restricted to the mask."""
+    names = ", ".join(scene.system.telescope.mask.names)
+    return Plan(
+        **scene.base,
+        backend="rt_masked",
+        tolerance=model.tolerance,
+        options=rt_options(model, model.tolerance, scene.threads),
+        reasons=(
+            f"ray tracing through the aperture mask ({names}), to {model.tolerance:g} on G; G "
+            "is normalised to the full aperture",
+        ),
+    )
+
+
+def masked_fo(scene: Scene, model: FO) -> Plan:
+    """Fourier optics through the sampled pupil cut to the mask."""
+    system = scene.system
     if system.detector.stop_radius is not None:
         raise ValueError(
             "detector.stop_radius with telescope.mask is modelled by ray tracing only: use "
@@ -206,9 +249,10 @@ def masked(base, system, z, model, threads) -> Plan:
             "Fourier-optics path samples the pupil cut to the mask (leave them at their defaults)"
         )
     options = _core.FoAberratedOptions()
-    options.max_grid, options.threads = model.max_spectrum_grid, threads
+    options.max_grid, options.threads = model.max_spectrum_grid, scene.threads
+    names = ", ".join(system.telescope.mask.names)
     return Plan(
-        **base,
+        **scene.base,
         backend="fo_masked",
         tolerance=float("nan"),
         options=options,
@@ -219,36 +263,38 @@ def masked(base, system, z, model, threads) -> Plan:
     )
 
 
-def aberrated(base, system, model, threads) -> Plan:
-    if isinstance(model, Auto):
-        # the estimate needs two coarse RT curves: made when the plan runs (resolve)
-        return Plan(
-            **base,
-            backend="auto_aberrated",
-            tolerance=model.tolerance,
-            options=fan_options(model.rt, model.tolerance, threads),
-            reasons=(
-                "receiver aberrations: auto's estimate of ray tracing's diffraction error needs "
-                "two coarse aberrated RT curves, so ray tracing or Fourier optics is chosen when "
-                "the plan runs",
-            ),
-        )
-    if isinstance(model, RT):
-        field_dependent = system.telescope.aberrations.field_dependent
-        form = "a ray fan per scatterer" if field_dependent else "the pupil form where it applies"
-        return Plan(
-            **base,
-            backend="rt_aberrated",
-            tolerance=model.tolerance,
-            options=fan_options(model, model.tolerance, threads),
-            reasons=(
-                f"ray tracing through the aberrated pupil ({form}), to {model.tolerance:g} on G",
-            ),
-        )
-    options = _core.FoAberratedOptions()
-    options.max_grid, options.threads = model.max_spectrum_grid, threads
+def aberrated_auto(scene: Scene, model: Auto) -> Plan:
+    """The estimate needs two coarse RT curves: made when the plan runs (planning.resolve)."""
     return Plan(
-        **base,
+        **scene.base,
+        backend="auto_aberrated",
+        tolerance=model.tolerance,
+        options=fan_options(model.rt, model.tolerance, scene.threads),
+        reasons=(
+            "receiver aberrations: auto's estimate of ray tracing's diffraction error needs "
+            "two coarse aberrated RT curves, so ray tracing or Fourier optics is chosen when "
+            "the plan runs",
+        ),
+    )
+
+
+def aberrated_rt(scene: Scene, model: RT) -> Plan:
+    field_dependent = scene.system.telescope.aberrations.field_dependent
+    form = "a ray fan per scatterer" if field_dependent else "the pupil form where it applies"
+    return Plan(
+        **scene.base,
+        backend="rt_aberrated",
+        tolerance=model.tolerance,
+        options=fan_options(model, model.tolerance, scene.threads),
+        reasons=(f"ray tracing through the aberrated pupil ({form}), to {model.tolerance:g} on G",),
+    )
+
+
+def aberrated_fo(scene: Scene, model: FO) -> Plan:
+    options = _core.FoAberratedOptions()
+    options.max_grid, options.threads = model.max_spectrum_grid, scene.threads
+    return Plan(
+        **scene.base,
         backend="fo_aberrated",
         tolerance=float("nan"),
         options=options,
@@ -256,113 +302,30 @@ def aberrated(base, system, model, threads) -> Plan:
     )
 
 
-def turbulent(system, z, request: Turbulent, threads) -> Plan:
-    if system.telescope.mask is not None:
-        raise ValueError(
-            "turbulence with telescope.mask is not modelled: set telescope.mask or turbulence to "
-            "None"
-        )
-    if system.aberrated:
-        raise ValueError(
-            "turbulence with receiver aberrations is not modelled yet: set telescope.aberrations "
-            "to None or turbulence to None"
-        )
-    if isinstance(system.beam, FieldBeam):
-        raise ValueError("turbulence with a FieldBeam is not modelled yet: expected a GaussianBeam")
-    if system.detector.stop_radius is not None and request.paths == "both":
-        raise ValueError(
-            "detector.stop_radius with paths = 'both' is not modelled: the return path's receiver "
-            "fields fill the aperture; expected paths = 'transmit' or detector.stop_radius None"
-        )
-    model = request.method
-    tolerance = model.tolerance if isinstance(model, (RT, Auto)) else float("nan")
-    chosen: Tuple[str, ...] = ()  # auto's reasons, said before the plan's own
-    warned: Tuple[str, ...] = ()
-    wavelength = system.beam.wavelength
-    calm = request.turbulence.rytov_variance(wavelength, float(z[-1])) == 0.0
-    if isinstance(model, Auto):
-        if request.paths == "both" and not calm:
-            # FO only on a grid the core accepts and auto allows (auto.turbulent_fo_grid)
-            grid = auto.turbulent_fo_grid(
-                system,
-                z,
-                request.turbulence,
-                fo_options(request, model.fo, threads),
-                model.fo.beam_grid,
-                threads,
-            )
-            d = auto.decide_both_paths(system, z, model.tolerance, request.turbulence, grid)
-        else:
-            d = auto.decide(system, z, model.tolerance)
-        # through turbulence Fourier optics is always the 2-D path through the screens
-        chosen = tuple(r for r in d.reasons if not r.startswith("Gaussian beam: the radial FO"))
-        warned = (f"overlap(auto): {d.warning}",) if d.warning else ()
-        if d.method == "rt":
-            model = dataclasses.replace(model.rt, tolerance=model.tolerance)
-        elif request.paths == "both" and not calm:
-            model = dataclasses.replace(model.fo, beam_grid=grid.grid)
-        else:
-            model = model.fo
-    if calm:  # no turbulence at all
-        p = plain(system, z, model, request, threads)
-        return dataclasses.replace(
-            p,
-            tolerance=tolerance if p.method == "rt" else p.tolerance,
-            reasons=p.reasons
-            + ("the turbulence is zero along the path: every draw is the turbulence-free curve",),
-        )
-    base = base_fields(system, z, request)
-    if isinstance(model, RT):
-        both = (
-            "; the return path's image tilted (correlated with the wander) and blurred, and the "
-            "mean with independent tilts computed exactly for the amplification"
-            if request.paths == "both"
-            else ""
-        )
-        return Plan(
-            **base,
-            backend="rt_turbulent",
-            tolerance=model.tolerance,
-            options=rt_options(model, model.tolerance, threads),
-            warnings=warned,
-            reasons=chosen
-            + (
-                f"{request.realizations} draws of the beam wander{both}, ray traced to "
-                f"{model.tolerance:g}",
-            ),
-        )
-    options = fo_options(request, model, threads)
-    both = (
-        f"; the return path through the same screens ({request.receiver_fields} random-phase "
-        "receiver fields)"
-        if request.paths == "both"
-        else ""
-    )
-    return Plan(
-        **base,
-        backend="fo_turbulent",
-        tolerance=float("nan"),
-        options=options,
-        reasons=chosen
-        + (
-            f"{request.realizations} draws of {request.screens} phase screens, the beam on "
-            f"{options.beam_grid}^2{both}",
-        ),
-    )
+#: The plain receiver: auto from the geometry; FO on the path auto chose.
+PLAIN = Receiver(
+    auto=geometric_auto(
+        "rt",
+        lambda scene, model, d: plain_fo(scene, auto_fo(model.fo, d.fo_path, scene.field_beam)),
+    ),
+    rt=plain_rt,
+    fo=plain_fo,
+)
+#: An aperture mask (telecover): ray tracing with each scatterer's coupling restricted to the mask,
+#: or Fourier optics through the sampled pupil cut to it; auto chooses by RT's diffraction
+#: estimate, as without a mask.
+MASKED = Receiver(
+    auto=geometric_auto("rt_masked", lambda scene, model, d: masked_fo(scene, model.fo)),
+    rt=masked_rt,
+    fo=masked_fo,
+)
+#: Receiver aberrations: auto decides when the plan runs.
+ABERRATED = Receiver(auto=aberrated_auto, rt=aberrated_rt, fo=aberrated_fo)
 
 
-def fo_options(request: Turbulent, model: FO, threads: int):
-    """The core's options of the turbulent FO path for ``request`` and the FO ``model``."""
-    options = _core.TurbulenceOptions()
-    options.realizations, options.screens = request.realizations, request.screens
-    options.seed = request.seed
-    if model.beam_grid is not None:
-        options.beam_grid = _checks.count("beam_grid", model.beam_grid, MIN_TURBULENT_GRID)
-    if model.beam_window is not None:
-        options.beam_window = model.beam_window
-    options.max_spectrum_grid, options.threads = model.max_spectrum_grid, threads
-    options.paths, options.receiver_fields = request.paths, request.receiver_fields
-    return options
+def aberrated(base, system, model, threads) -> Plan:
+    """The plan of ``model`` for a receiver with aberrations (``base``: the plan's base fields)."""
+    return ABERRATED.plan(Scene(system, base["ranges"], base, threads), model)
 
 
 def auto_rt(common: dict, key: str, options, d) -> Plan:

@@ -21,8 +21,9 @@ from ..model.mixture_beam import GaussianMixtureBeam
 from ..model.system import LidarSystem
 from . import auto
 from .methods import Auto, Turbulent, from_shortcuts
-from .planners import aberrated, fan_options, mixture, mixture_of, plain, turbulent
+from .planners import aberrated, fan_options, mixture, mixture_of, plain
 from .plans import Plan, base_fields, check
+from .turbulent_planner import turbulent
 
 __all__ = ["Plan", "check", "explain", "plan", "resolve"]
 

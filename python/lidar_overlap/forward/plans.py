@@ -15,7 +15,7 @@ from .. import _checks, _core
 from ..model.mixture_beam import GaussianMixtureBeam
 from ..model.system import GaussianBeam, LidarSystem
 from . import auto
-from .backends import BACKENDS, backend
+from .backends import BACKENDS, Backend, backend
 from .methods import Auto, Method, Turbulent
 
 
@@ -71,6 +71,24 @@ class Plan:
         return backend(self.backend).error_kind
 
     @property
+    def engine(self) -> Backend:
+        """The :class:`~lidar_overlap.forward.backends.Backend` that runs this plan: what it models
+        and how it runs (``plan.engine.masks``, ``.aberrations``, ``.turbulence``, ``.mixture``)."""
+        return backend(self.backend)
+
+    @property
+    def batched(self) -> bool:
+        """True when the plan is plain-receiver ray tracing, whose variants (systems, alignment
+        grids) run in one parallel core call (:mod:`lidar_overlap.forward.backends.many`)."""
+        return backend(self.backend).batched
+
+    @property
+    def plain_rt(self) -> bool:
+        """True when G comes from ray tracing of the plain receiver (one beam, or each incoherent
+        component), whose accuracy its quadrature tolerance sets."""
+        return backend(self.backend).plain_rt
+
+    @property
     def turbulence(self) -> Optional[Turbulent]:
         """The :class:`Turbulent` request, or None."""
         return self.request if isinstance(self.request, Turbulent) else None
@@ -110,11 +128,13 @@ class Plan:
     def at(self, ranges) -> "Plan":
         """The same decisions at other ``ranges`` (m, checked as :func:`plan` checks them). Where
         auto chose ray tracing, its model error is estimated again for the new ranges (geometry
-        only) and the quadrature keeps its tolerance."""
+        only) and the quadrature keeps its tolerance. The one way a plan moves to other ranges: a
+        plan rebuilt with ``dataclasses.replace(plan, ranges=...)`` keeps the model error of its
+        old ranges."""
         z = _checks.ranges("ranges", ranges)
         self.system._native.validate_ranges(z)
         error = self.rt_model_error
-        if error > 0.0 and self.backend in ("rt", "rt_masked"):
+        if error > 0.0 and self.engine.geometric_rt:
             error = auto.rt_model_error(self.system, z)
         if self.parts:
             parts = tuple(p.at(z) for p in self.parts)

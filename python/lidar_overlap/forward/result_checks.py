@@ -41,9 +41,12 @@ def checked_curve(ranges, overlap, method, error_estimate, tolerance, upper=1.0)
     _first_bad("ranges", z, ~(np.isfinite(z) & (z > 0)), "expected a finite range > 0 (m)")
     if z.size > 1 and not np.all(np.diff(z) > 0):
         i = int(np.argmax(~(np.diff(z) > 0))) + 1
-        raise ValueError(
+        raise _checks.refused(
+            f"ranges[{i}]",
+            float(z[i]),
+            f"a range above {float(z[i - 1])!r} (strictly increasing)",
             f"ranges must be strictly increasing: ranges[{i}] = {float(z[i])!r} follows "
-            f"{float(z[i - 1])!r}"
+            f"{float(z[i - 1])!r}",
         )
     tolerance = _checks.real("tolerance", tolerance)
     if not (math.isnan(tolerance) or (math.isfinite(tolerance) and tolerance >= 0.0)):
@@ -59,10 +62,14 @@ def checked_curve(ranges, overlap, method, error_estimate, tolerance, upper=1.0)
     outside = ~((g >= -ROUND_OFF) & (g <= upper + ROUND_OFF))  # NaN is outside too
     if outside.any():
         i = int(np.argmax(outside))
-        raise ValueError(
+        expected = f"G finite and within [0, {upper:g}] (up to round-off, {ROUND_OFF:g})"
+        raise _checks.refused(
+            f"overlap[{i}]",
+            float(g[i]),
+            expected,
             f"overlap[{i}] = {float(g[i])!r} at range {float(z[i])!r} m (method {method!r}) is "
             f"invalid: G must be finite and within [0, {upper:g}] (up to round-off, "
-            f"{ROUND_OFF:g}); the computation failed at this range"
+            f"{ROUND_OFF:g}); the computation failed at this range",
         )
     if g.min() < 0.0 or g.max() > upper:
         g = np.clip(g, 0.0, upper)
@@ -90,4 +97,6 @@ def frozen(values: np.ndarray) -> np.ndarray:
 def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, expected: str) -> None:
     if bad.any():
         i = int(np.argmax(bad))
-        raise ValueError(f"{name}[{i}] = {float(values[i])!r} is invalid: {expected}")
+        item = f"{name}[{i}]"
+        message = f"{item} = {float(values[i])!r} is invalid: {expected}"
+        raise _checks.refused(item, float(values[i]), expected.removeprefix("expected "), message)

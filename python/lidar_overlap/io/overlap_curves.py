@@ -6,7 +6,8 @@ Formats read by :func:`read_overlap_curve`:
   (any text that is not two numbers, e.g. ``height(m)   overlap`` or a row count), then one row
   ``range, overlap`` per line, separated by a comma, whitespace or both;
 - CSV with the header ``range_m,overlap`` or ``range_m,overlap,sigma`` (the command line's
-  measurements file), ``#`` lines being comments.
+  measurements file), ``#`` lines being comments: :func:`read_measurements`, on the one CSV reader
+  :func:`read_csv_table` (which also reads the telecover's ``range_m,<sector>,...`` files).
 
 Ranges are in m and strictly increasing; overlap is relative or absolute G (any finite number:
 retrieved curves go slightly negative at the first bins). Every error names the file and the line.
@@ -17,7 +18,7 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from typing import List, Optional, Tuple
+from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -30,6 +31,10 @@ MIN_NOISE_POINTS = 10
 #: MAD of a normal distribution times this is its standard deviation.
 MAD_TO_SIGMA = 1.482602218505602
 _SPLIT = re.compile(r"[,\s;]+")
+#: The measurements CSV's columns (sigma optional).
+CSV_COLUMNS = ("range_m", "overlap", "sigma")
+#: The largest CSV file read (comments included); a larger one is refused whole, never cut.
+MAX_CSV_BYTES = 64_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,6 +75,12 @@ def read_overlap_curve(path) -> OverlapCurve:
     lines = _reading.read_text(
         path, 200 * MAX_ROWS, "the overlap curve", "two columns of range (m) and overlap"
     ).splitlines()
+    head = next((t for t in (line.strip() for line in lines) if t and not t.startswith("#")), "")
+    if tuple(c.strip() for c in head.split(",")) in (CSV_COLUMNS[:2], CSV_COLUMNS):
+        z, g, sigma = read_measurements(path)
+        return OverlapCurve(
+            z.copy(), g.copy(), None if sigma is None else sigma.copy(), (head,), name
+        )
     header: List[str] = []
     rows: List[List[float]] = []
     width = None
@@ -116,6 +127,74 @@ def read_overlap_curve(path) -> OverlapCurve:
     data = np.array(rows, dtype=float)
     sigma = data[:, 2].copy() if width == 3 else None
     return OverlapCurve(data[:, 0].copy(), data[:, 1].copy(), sigma, tuple(header), name)
+
+
+def read_measurements(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+    """(ranges, overlap, sigma or None) from a measurements CSV; ValueError naming file, line and
+    column."""
+    data, sigma = read_csv_table(path, CSV_COLUMNS[:2], signed=("overlap",))
+    return data[:, 0], data[:, 1], sigma
+
+
+def read_csv_table(
+    path, columns: Sequence[str], signed: Sequence[str] = ()
+) -> Tuple[np.ndarray, np.ndarray | None]:
+    """(rows x ``columns``, the optional last column ``sigma`` or None) from a CSV whose header is
+    ``columns`` (the first ``range_m``, strictly increasing), optionally followed by ``sigma``.
+    Values are finite, and > 0 but in the ``signed`` columns. ValueError naming file, line and
+    column."""
+    name, header_text = str(path), ",".join(columns)
+    lines = _reading.read_text(
+        path, MAX_CSV_BYTES, "the measurements", f"a CSV file with the columns '{header_text}'"
+    ).splitlines()
+    rows: List[List[float]] = []
+    header = None
+    for number, line in enumerate(lines, start=1):
+        text = line.strip()
+        if not text or text.startswith("#"):
+            continue
+        cells = [c.strip() for c in text.split(",")]
+        if header is None:
+            header = tuple(cells)
+            if header not in (tuple(columns), (*columns, "sigma")):
+                raise ValueError(
+                    f"{name}: line {number}: header {text!r} is invalid: expected '{header_text}' "
+                    f"or '{header_text},sigma'"
+                )
+            continue
+        if len(cells) != len(header):
+            raise ValueError(
+                f"{name}: line {number}: {len(cells)} values, expected {len(header)} "
+                f"({','.join(header)})"
+            )
+        row = []
+        for column, (key, cell) in enumerate(zip(header, cells), start=1):
+            try:
+                value = float(cell)
+            except ValueError:
+                value = float("nan")
+            if not math.isfinite(value) or (key not in signed and value <= 0):
+                what = "a finite number" if key in signed else "a finite number > 0"
+                raise ValueError(
+                    f"{name}: line {number}, column {column} ({key}): {cell!r} is invalid: "
+                    f"expected {what}"
+                )
+            row.append(value)
+        if rows and not row[0] > rows[-1][0]:
+            raise ValueError(
+                f"{name}: line {number}, column 1 (range_m): {row[0]:g} does not follow "
+                f"{rows[-1][0]:g}: ranges must be strictly increasing"
+            )
+        rows.append(row)
+        if len(rows) > MAX_ROWS:
+            raise ValueError(f"{name}: more than {MAX_ROWS} rows")
+    if header is None or not rows:
+        raise ValueError(
+            f"{name}: no {'header' if header is None else 'data'}: expected a header "
+            f"'{header_text},sigma' (sigma optional) and one row per range"
+        )
+    data = np.array(rows)
+    return data[:, : len(columns)], (data[:, -1] if len(header) > len(columns) else None)
 
 
 def _numbers(cells):

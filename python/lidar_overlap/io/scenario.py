@@ -35,7 +35,7 @@ from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
-from .. import _reading
+from .. import _checks, _reading
 from ..forward.compute import run
 from ..forward.methods import Method, Turbulent, from_shortcuts
 from ..forward.planning import Plan, plan
@@ -176,13 +176,11 @@ class Scenario:
     def _library_error(self, exc: ValueError, start: int) -> ScenarioError:
         """The library's ValueError about ranges ``start``, ... as a ScenarioError naming the file,
         its section and the index in the whole grid."""
-        message = re.sub(
-            r"^(ranges|overlap|error_estimate)\[(\d+)\]",
-            lambda m: f"{m.group(1)}[{int(m.group(2)) + start}]",
-            str(exc),
-        )
-        section = "ranges" if message.startswith("ranges") else "run"
-        return ScenarioError(prefixed(self.source, section, message))
+        if isinstance(exc, _checks.ParameterError) and start:
+            exc = _checks.reindexed(exc, start)
+        parameter = exc.parameter if isinstance(exc, _checks.ParameterError) else ""
+        section = "ranges" if parameter.split("[", 1)[0] == "ranges" else "run"
+        return ScenarioError(prefixed(self.source, section, exc))
 
 
 def load_scenario(path) -> Scenario:

@@ -5,9 +5,10 @@ bounds of the keys that size work or memory) and the checks of a table against t
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
+
+from .. import _checks
 
 from ..forward.methods import RECEIVER_FIELDS
 
@@ -246,24 +247,37 @@ def short(value: Any, limit: int = 80) -> str:
     return text if len(text) <= limit else f"{text[: limit - 3]}..."
 
 
-def prefixed(source: str, section: Optional[str], message: str) -> str:
-    """The library's message about ``beam.offset``, ``aberrations.zernike[11]``, ... as the file's
-    section and
-    key: ``[beam] offset``, ``[telescope.aberrations.zernike] 11``."""
-    for pattern, table in (
-        (r"aberrations\.zernike\[(\d+)\]", "telescope.aberrations.zernike"),
-        (r"aberrations\.(\w+)", "telescope.aberrations"),
-        (r"(?:beam|telescope|detector)\.(\w+)", None),
-    ):
-        match = re.match(pattern, message)
-        if match:
-            table = table or message.split(".", 1)[0]
-            return f"{source}: [{table}] {match.group(1)}{message[match.end() :]}"
+def prefixed(source: str, section: Optional[str], error: ValueError) -> str:
+    """The library's ``error`` about ``beam.offset``, ``aberrations.zernike[11]``, ... as the
+    file's section and key: ``[beam] offset``, ``[telescope.aberrations.zernike] 11`` (from the
+    parameter a :class:`lidar_overlap.ParameterError` carries); any other error under
+    ``section``."""
+    message = str(error)
+    parameter = error.parameter if isinstance(error, _checks.ParameterError) else ""
+    place = file_key(parameter) if message.startswith(parameter) else None
+    if place is not None:
+        table, key, rest = place
+        return f"{source}: [{table}] {key}{message[len(parameter) - len(rest) :]}"
     return f"{source}: [{section}] {message}" if section else f"{source}: {message}"
+
+
+def file_key(parameter: str) -> Optional[Tuple[str, str, str]]:
+    """(table, key, what follows the key) of a system's parameter path in a scenario file:
+    ``beam.offset[0]`` -> (``beam``, ``offset``, ``[0]``), ``aberrations.zernike[11]`` ->
+    (``telescope.aberrations.zernike``, ``11``, ``""``); None for a path of no file table."""
+    head, _, tail = parameter.partition(".")
+    if head == "aberrations" and tail.startswith("zernike[") and "]" in tail:
+        index, _, rest = tail.removeprefix("zernike[").partition("]")
+        return ("telescope.aberrations.zernike", index, rest) if index.isdigit() else None
+    key = tail.split("[", 1)[0].split(".", 1)[0]
+    if head not in ("aberrations", "beam", "telescope", "detector") or not key.isidentifier():
+        return None
+    table = "telescope.aberrations" if head == "aberrations" else head
+    return table, key, tail[len(key) :]
 
 
 def build(source: str, section: Optional[str], factory, *args, **kwargs):
     try:
         return factory(*args, **kwargs)
     except ValueError as exc:
-        raise ScenarioError(prefixed(source, section, str(exc))) from None
+        raise ScenarioError(prefixed(source, section, exc)) from None

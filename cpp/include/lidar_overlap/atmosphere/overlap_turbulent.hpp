@@ -36,6 +36,13 @@ inline constexpr std::size_t kMaxRealizations = 1000000;
 inline constexpr std::size_t kMaxScreens = 1000;
 inline constexpr std::size_t kMaxReceiverFields = 1000;
 
+// Screen j's stream of draws in the run of `seed` (odd multiples of the 64-bit golden ratio keep the screens'
+// streams apart).
+inline constexpr std::uint64_t kScreenStreamStep = 0x9E3779B97F4A7C15ULL;
+inline std::uint64_t screen_stream(std::uint64_t seed, int screen) {
+  return seed ^ (kScreenStreamStep * static_cast<std::uint64_t>(screen + 1));
+}
+
 // Which paths cross the turbulence: the beam's only, or the beam's and the return path's.
 enum class TurbulencePaths { transmit, both };
 
@@ -69,8 +76,8 @@ struct TurbulentOverlap {
   // sky (z times the angle of arrival for a receiver focused there). Empty for transmit.
   std::vector<double> receiver_x, receiver_y;
   // The run's screens: range (m), grid spacing (m) and Fried parameter (m) of screen j, whose draw for
-  // realisation k is PhaseScreenGenerator(beam_grid, spacing, r0, outer, inner).generate(seed ^ (j + 1) *
-  // 0x9E3779B97F4A7C15, k) on the grid centred on the beam's axis at that range: enough to replay them.
+  // realisation k is PhaseScreenGenerator(beam_grid, spacing, r0, outer, inner).generate(screen_stream(seed, j),
+  // k) on the grid centred on the beam's axis at that range: enough to replay them.
   std::vector<double> screen_range, screen_spacing, screen_r0;
 };
 

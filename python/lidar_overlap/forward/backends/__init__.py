@@ -3,8 +3,10 @@ paths, each runner taking a plan and returning an :class:`OverlapResult`, and :m
 plan over many variants (systems, masks, alignment grids). These modules are the only callers of
 the core's compute functions; none calls a public entry point or plans anything.
 
-:data:`BACKENDS` is the one registry: each backend's key (what a plan names), what it computes, the
-model (``"rt"`` or ``"fo"``) and Fourier-optics path it stands for, and its runner.
+:data:`BACKENDS` is the one registry: each :class:`Backend` (what a plan names by its key) says what
+it computes, the model and Fourier-optics path it stands for, what it models (masks, aberrations,
+turbulence, mixtures), how it runs one plan (``run``) and many variants of one (``run_many``), and
+how a turbulent one runs in parts (``draws``).
 """
 
 from __future__ import annotations
@@ -14,92 +16,138 @@ from typing import Callable, Optional
 
 from ... import _checks
 from ..result import OverlapResult
-from . import aberrated, fo, masked, mixture, rt, turbulent
+from . import aberrated, batch, fo, masked, mixture, rt, turbulent, turbulent_parts
 
 
 @dataclass(frozen=True)
 class Backend:
-    """One way to compute G: ``description`` (for plans), ``model`` (``"rt"`` or ``"fo"``),
-    ``fo_path`` (``""`` for RT), ``error_kind`` of the results, ``turbulent`` (draws of the
-    atmosphere), and ``run`` (plan -> result; None where the plan is resolved first)."""
+    """One way to compute G.
+
+    description : for plans. model : ``"rt"``, ``"fo"`` or ``"auto"`` (decided when the plan runs).
+    fo_path : ``""`` for RT. error_kind : of the results (``"bound"``, ``"nominal"``,
+    ``"standard_error"``). run : plan -> result (None where the plan is resolved first). run_many :
+    (plan, variants, warn) -> :class:`~.batch.Curves` of many systems in one batched core call, or
+    None where this plan cannot batch them (None: every backend runs them one by one). masks,
+    aberrations, turbulence, mixture : what it models (an aperture mask, receiver aberrations, draws
+    of a turbulent atmosphere, incoherent beam components). batched : plain-receiver ray tracing,
+    whose variants and alignment grids run in one parallel core call. draws : how a turbulent
+    backend runs in parts (:mod:`.turbulent_parts`), None otherwise.
+    """
 
     description: str
     model: str
     fo_path: str
     error_kind: str
-    turbulent: bool
     run: Optional[Callable]
+    run_many: Optional[Callable] = None
+    masks: bool = False
+    aberrations: bool = False
+    turbulence: bool = False
+    mixture: bool = False
+    batched: bool = False
+    draws: Optional[turbulent_parts.Draws] = None
 
+    @property
+    def plain_rt(self) -> bool:
+        """Ray tracing of the plain receiver (no mask, aberrations or turbulence), of one beam or
+        of each incoherent component: the quadrature's tolerance sets its accuracy."""
+        return self.model == "rt" and not (self.masks or self.aberrations or self.turbulence)
+
+    @property
+    def geometric_rt(self) -> bool:
+        """Ray tracing of one Gaussian beam whose diffraction error auto estimates from the
+        geometry alone (with or without an aperture mask): at other ranges the estimate is made
+        again (:meth:`lidar_overlap.Plan.at`)."""
+        return self.model == "rt" and not (self.aberrations or self.turbulence or self.mixture)
+
+
+_BOUND, _NOMINAL = "bound", "nominal"
 
 BACKENDS = {
-    "rt": Backend("ray tracing", "rt", "", "bound", False, rt.run),
+    "rt": Backend("ray tracing", "rt", "", _BOUND, rt.run, run_many=batch.systems, batched=True),
     "rt_aberrated": Backend(
-        "ray tracing through the aberrated pupil", "rt", "", "bound", False, aberrated.run_rt
+        "ray tracing through the aberrated pupil",
+        "rt",
+        "",
+        _BOUND,
+        aberrated.run_rt,
+        aberrations=True,
     ),
     "rt_masked": Backend(
-        "ray tracing through the aperture mask", "rt", "", "bound", False, masked.run
+        "ray tracing through the aperture mask", "rt", "", _BOUND, masked.run, masks=True
     ),
     "fo_masked": Backend(
         "Fourier optics through the aperture mask (sampled pupil)",
         "fo",
         "masked",
-        "nominal",
-        False,
+        _NOMINAL,
         masked.run_fo,
+        masks=True,
     ),
-    "fo_radial": Backend(
-        "Fourier optics (radial path)", "fo", "radial", "nominal", False, fo.run_radial
-    ),
-    "fo_2d": Backend("Fourier optics (2d path)", "fo", "2d", "nominal", False, fo.run_2d),
+    "fo_radial": Backend("Fourier optics (radial path)", "fo", "radial", _NOMINAL, fo.run_radial),
+    "fo_2d": Backend("Fourier optics (2d path)", "fo", "2d", _NOMINAL, fo.run_2d),
     "fo_field": Backend(
-        "Fourier optics (2d path, the field's own grid)", "fo", "2d", "nominal", False, fo.run_field
+        "Fourier optics (2d path, the field's own grid)", "fo", "2d", _NOMINAL, fo.run_field
     ),
     "fo_aberrated": Backend(
-        "Fourier optics (aberrated path)", "fo", "aberrated", "nominal", False, aberrated.run_fo
+        "Fourier optics (aberrated path)",
+        "fo",
+        "aberrated",
+        _NOMINAL,
+        aberrated.run_fo,
+        aberrations=True,
     ),
     "auto_aberrated": Backend(
         "auto through the aberrated pupil: ray tracing or Fourier optics, decided when run",
         "auto",
         "",
-        "bound",
-        False,
+        _BOUND,
         None,
+        aberrations=True,
     ),
     "rt_mixture": Backend(
         "ray tracing of each incoherent beam component, G their power-weighted sum",
         "rt",
         "",
-        "bound",
-        False,
+        _BOUND,
         lambda plan: _run_mixture(plan),
+        run_many=mixture.systems,
+        mixture=True,
     ),
     "fo_mixture": Backend(
         "Fourier optics of each incoherent beam component, G their power-weighted sum",
         "fo",
         "mixture",
-        "nominal",
-        False,
+        _NOMINAL,
         lambda plan: _run_mixture(plan),
+        mixture=True,
     ),
     "auto_mixture": Backend(
         "auto for each incoherent beam component (with aberrations: decided when run), G their "
         "power-weighted sum",
         "auto",
         "",
-        "bound",
-        False,
+        _BOUND,
         None,
+        mixture=True,
     ),
     "rt_turbulent": Backend(
         "ray tracing of the wandering short-term beam (all draws in one core call)",
         "rt",
         "",
         "standard_error",
-        True,
         turbulent.run_rt,
+        turbulence=True,
+        draws=turbulent_parts.RT,
     ),
     "fo_turbulent": Backend(
-        "Fourier optics through phase screens", "fo", "2d", "standard_error", True, turbulent.run_fo
+        "Fourier optics through phase screens",
+        "fo",
+        "2d",
+        "standard_error",
+        turbulent.run_fo,
+        turbulence=True,
+        draws=turbulent_parts.FO,
     ),
 }
 
@@ -127,7 +175,7 @@ def run(plan) -> OverlapResult:
     for message in plan.warnings:
         _checks.warn(message)
     result = entry.run(plan)
-    if plan.turbulence is not None and not entry.turbulent:
+    if plan.turbulence is not None and not entry.turbulence:
         return turbulent.without_turbulence(plan, result)
     return result
 

@@ -8,11 +8,12 @@ sum where each is a bound, the weighted mean of nominal accuracies otherwise).
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Optional, Sequence
 
 import numpy as np
 
 from ..result import OverlapResult
+from . import batch
 from ._result import result
 
 
@@ -28,3 +29,32 @@ def combine(plan, parts: Sequence) -> OverlapResult:
     overlap = sum(w * np.asarray(r.overlap, dtype=float) for w, r in zip(weights, parts))
     error = sum(w * np.asarray(r.error_estimate, dtype=float) for w, r in zip(weights, parts))
     return result(plan, overlap, error)
+
+
+def systems(plan, variants: Sequence, warn: bool = True) -> Optional[batch.Curves]:
+    """G of each system in ``variants`` under the mixture ``plan``, every component of every variant
+    in one batched core call, then each variant's components summed with its power shares (in the
+    order :func:`combine` sums them, so that G is bit for bit a single run's); None where the
+    components cannot share a call (not all batched ray tracing on the same options)."""
+    if not plan.parts:
+        return None
+    first = plan.parts[0].options
+    if not all(
+        p.batched
+        and (p.options.tolerance, p.options.max_segments, p.options.threads)
+        == (first.tolerance, first.max_segments, first.threads)
+        for p in plan.parts
+    ):
+        return None
+    split = [plan.with_system(s).system.incoherent_parts for s in variants]
+    n = len(plan.parts)
+    component = plan.component_plans()[0]
+    flat = batch.systems(component, [part for parts in split for _, part in parts], warn)
+    shape = (len(variants), n, plan.ranges.size)
+    g, e = flat.overlap.reshape(shape), flat.error_estimate.reshape(shape)
+    overlap = np.empty((len(variants), plan.ranges.size))
+    error = np.empty_like(overlap)
+    for v, parts in enumerate(split):
+        overlap[v] = sum(w * g[v, i] for i, (w, _) in enumerate(parts))
+        error[v] = sum(w * e[v, i] for i, (w, _) in enumerate(parts))
+    return batch.Curves(overlap, error, np.asarray(flat.converged.reshape(shape).all(axis=1)))

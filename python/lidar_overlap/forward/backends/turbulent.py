@@ -20,7 +20,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import math
-from typing import Any, Dict, List, cast
+from typing import Any, Dict, List, NamedTuple, Optional, cast
 
 import numpy as np
 
@@ -30,9 +30,24 @@ from . import turbulent_return
 from ._result import result
 from .batch import pairs, warn_rt
 
+
+class Rows(NamedTuple):
+    """Realisations of a turbulent run: ``overlap`` (realisations x ranges); RT's convergence flags
+    and error estimates (flat), None for FO; FO's uncorrelated G through both paths (realisations x
+    ranges), None otherwise (RT computes their mean exactly, :func:`rt_uncorrelated_mean`)."""
+
+    overlap: np.ndarray
+    converged: Optional[np.ndarray]
+    error_estimate: Optional[np.ndarray]
+    uncorrelated: Optional[np.ndarray]
+
+
 #: Bytes per draw (realisation x range) of the RT path: the drawn system, its result, and the copies
 #: the statistics make.
 BYTES_PER_DRAW = 512
+#: The core's parameters that the return path through the screens constrains (a grid that samples
+#: the receiver's light, no fibre NA): a refusal of either says that paths='transmit' avoids it.
+RETURN_PATH_NEEDS = ("beam_grid", "detector.numerical_aperture")
 
 
 def run_fo(plan) -> TurbulentOverlapResult:
@@ -54,11 +69,10 @@ def fo_rows(plan, first: int, count: int):
         raw = _core.overlap_fo_turbulent(
             plan.system._native, plan.ranges, plan.turbulence.turbulence._native, part
         )
-    except ValueError as exc:  # what the return path needs (a finer grid, no fibre NA)
-        if both and ("beam_grid" in str(exc) or "numerical_aperture" in str(exc)):
-            raise ValueError(
-                f"{exc}; or paths = 'transmit' (the return path unperturbed)"
-            ) from None
+    except _checks.ParameterError as exc:  # what the return path needs (a finer grid, no fibre NA)
+        if both and exc.parameter in RETURN_PATH_NEEDS:
+            message = f"{exc}; or paths = 'transmit' (the return path unperturbed)"
+            raise _checks.refused(exc.parameter, exc.value, exc.expected, message) from None
         raise
     return np.asarray(raw.overlap), (np.asarray(raw.uncorrelated) if both else None)
 
@@ -193,7 +207,7 @@ def rt_rows(plan, short_term: np.ndarray, offsets: np.ndarray):
                     "weaker turbulence (cn2)"
                 ) from None
     rows = pairs(plan, draws, np.tile(z, count), warn=False)
-    return rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate, None
+    return Rows(rows.overlap.reshape(count, z.size), rows.converged, rows.error_estimate, None)
 
 
 def _where(plan, i: int) -> str:
