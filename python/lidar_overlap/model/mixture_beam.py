@@ -186,6 +186,14 @@ class GaussianMixtureBeam(ByArguments):
     def with_component(self, index: int, **changes) -> "GaussianMixtureBeam":
         """A copy with component ``index``'s ``weight``, ``waist_radius`` or ``divergence``
         replaced."""
+        n = len(self.components)
+        index = _checks.count("index", index, -n, n - 1)
+        unknown = sorted(set(changes) - {"weight", "waist_radius", "divergence"})
+        if unknown:
+            raise ValueError(
+                f"with_component: {unknown[0]!r} is invalid: expected weight, waist_radius or "
+                "divergence"
+            )
         parts = list(self.components)
         parts[index] = dataclasses.replace(parts[index], **changes)
         return dataclasses.replace(self, components=tuple(parts))
