@@ -20,11 +20,12 @@ how far a search got) from :func:`lidar_overlap.analysis.optimize` with :class:`
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping, Optional
+from typing import ClassVar, Mapping, Optional
 
 import numpy as np
 
-from .. import _checks, _core
+from .. import _checks, _core, _values
+from .._pickling import ByValue
 from ..forward.methods import RT
 from ..model.system import LidarSystem
 from .objectives import MaximumOverlapAt
@@ -38,7 +39,7 @@ WITHIN = 0.99
 
 
 @dataclass(frozen=True, eq=False)
-class AlignResult:
+class AlignResult(ByValue):
     """tilt : the (x, y) tilt the search ends at (rad). tilts : the search's estimate after each
     step (n x 2, rad); shots : the shots fired by then (n); overlap : G at each estimate;
     best_overlap : the best G in the
@@ -54,6 +55,29 @@ class AlignResult:
     best_tilt: tuple
     shots_to_within: object
     steps: int
+
+    FIELDS: ClassVar = {
+        "tilt": _values.pair,
+        "tilts": _values.array(2),
+        "shots": _values.array(low=0.0),
+        "overlap": _values.array(low=0.0),
+        "best_overlap": _values.real(low=0.0),
+        "best_tilt": _values.pair,
+        "steps": _values.count(0),
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
+        n = self.shots.size
+        if self.tilts.shape != (n, 2) or self.overlap.shape != (n,):
+            raise ValueError(
+                f"tilts has shape {self.tilts.shape} and overlap {self.overlap.shape}: expected "
+                f"({n}, 2) and ({n},), one row per step of shots"
+            )
+        if self.shots_to_within is not None:
+            object.__setattr__(
+                self, "shots_to_within", _checks.count("shots_to_within", self.shots_to_within, 0)
+            )
 
 
 def align(

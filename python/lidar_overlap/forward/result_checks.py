@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from .. import _checks
+from .._values import frozen
 
 #: The one allowance for G outside [0, 1]: the round-off of a sum of up to ~10^6 order-one terms. It
 #: is fixed, not the stated error or tolerance (a result stating an error of 1e300 would otherwise
@@ -81,13 +82,6 @@ def _curve_array(name: str, value) -> np.ndarray:
         raise ValueError(
             f"{name} is invalid: expected a 1-D array of real numbers ({exc})"
         ) from None
-
-
-def frozen(values: np.ndarray) -> np.ndarray:
-    """``values`` as a read-only array of its own (a caller's array is copied, never frozen)."""
-    values = np.array(values, dtype=float, copy=True)
-    values.setflags(write=False)
-    return values
 
 
 def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, expected: str) -> None:

@@ -47,8 +47,9 @@ class BeamComponent(ByArguments):
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         set_(self, "weight", _checks.real("component.weight", self.weight))
-        set_(self, "waist_radius", _checks.real("component.waist_radius", self.waist_radius))
-        set_(self, "divergence", _checks.optional_real("component.divergence", self.divergence))
+        set_(self, "waist_radius", _checks.positive("component.waist_radius", self.waist_radius))
+        if self.divergence is not None:
+            set_(self, "divergence", _checks.positive("component.divergence", self.divergence))
         if not (self.weight > 0 and math.isfinite(self.weight)):
             raise ValueError(
                 f"component.weight = {self.weight!r} is invalid: expected a finite relative power "
