@@ -36,6 +36,9 @@ TILT = ["beam.tilt[0]", "beam.tilt[1]"]
 RASTER_POINTS = 5
 #: How close to its best G a search must bring the lidar (a fraction of the best G).
 WITHIN = 0.99
+#: The finest tilt step a search is asked for (rad): far below any actuator's, far above the
+#: spacing of doubles near a milliradian tilt.
+MIN_RESOLUTION = 1e-12
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,12 +115,28 @@ def align(
         _checks.positive(n, v)
         for n, v in (("box", box), ("resolution", resolution), ("step", step))
     )
+    if not MIN_RESOLUTION <= resolution <= box:
+        raise ValueError(
+            f"resolution = {resolution!r} is invalid: expected from {MIN_RESOLUTION:g} rad to box "
+            f"= {box!r} rad"
+        )
+    if search == "gradient" and not resolution <= step <= box:
+        raise ValueError(
+            f"step = {step!r} is invalid: expected the gradient's first step from resolution = "
+            f"{resolution!r} to box = {box!r} rad"
+        )
     shots_per_step = _checks.count("shots_per_step", shots_per_step, 1, 10**9)
     max_steps = _checks.count("max_steps", max_steps, 1, 10**6)
     if not isinstance(signal, Mapping):
         raise ValueError(
             f"signal = {_checks.shown(signal)} is invalid: expected a mapping of lo.signal "
             "keywords (pulse_energy, receiver_efficiency, range_resolution, ...)"
+        )
+    owned = sorted(set(signal) & {"noise", "shots", "seed"})
+    if owned:
+        raise ValueError(
+            f"signal[{owned[0]!r}] is invalid: align sets noise, shots and seed of each "
+            "measurement itself (use shots_per_step and seed)"
         )
     start = np.array(system.beam.tilt, dtype=float)
     reach = _core.MAX_ANGLE - float(np.max(np.abs(start)))
