@@ -198,7 +198,7 @@ def test_value_semantics(tmp_path):
         ),
         (
             lambda: lo.GaussianMixtureBeam((lo.BeamComponent(waist_radius=float("nan")),)),
-            r"beam.components\[0\].waist_radius = nan is invalid",
+            r"^component.waist_radius = nan is invalid",  # refused by the component itself
         ),
         (
             lambda: lo.GaussianMixtureBeam((lo.BeamComponent(divergence=1e-9),)),
@@ -282,3 +282,18 @@ def test_receivers_with_aberrations_or_a_mask_sum_their_components(receiver):
         ]
         w = system.beam.weights
         np.testing.assert_allclose(r.overlap, w[0] * parts[0] + w[1] * parts[1], rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    "index, change, message",
+    [
+        (7, {"weight": 0.5}, r"^index = 7 is invalid: expected an integer from -2 to 1"),
+        (1.0, {"weight": 0.5}, r"^index = 1.0 is invalid"),
+        (0, {"colour": 1.0}, r"'colour' is invalid: expected weight, waist_radius or divergence"),
+    ],
+)
+def test_with_component_names_a_bad_index_or_field(index, change, message):
+    beam = lo.GaussianMixtureBeam.with_wings(lo.paper_table1().beam, 0.1, 2e-3)
+    with pytest.raises(ValueError, match=message):
+        beam.with_component(index, **change)
+    assert beam.with_component(-1, weight=0.2).components[1].weight == 0.2

@@ -196,6 +196,11 @@ def test_align_brings_g_within_one_percent_of_its_best(search):
         (dict(signal=None), "signal = None is invalid"),
         (dict(shots_per_step=0), "shots_per_step = 0 is invalid"),
         (dict(box=-1.0), "box = -1.0 is invalid"),
+        (dict(resolution=1e-300), r"resolution = 1e-300 is invalid: expected from 1e-12 rad"),
+        (dict(search="gradient", step=1e-300), r"step = 1e-300 is invalid: expected the gradient"),
+        (dict(signal={**SIGNAL, "noise": True}), r"signal\['noise'\] is invalid"),
+        (dict(signal={**SIGNAL, "shots": 3}), r"signal\['shots'\] is invalid"),
+        (dict(signal={**SIGNAL, "seed": 3}), r"signal\['seed'\] is invalid"),
     ],
 )
 def test_align_refuses_bad_input(kwargs, match):

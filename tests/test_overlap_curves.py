@@ -1,13 +1,15 @@
 """Reading measured overlap curves (the published two-column text of lidar networks, the command
 line's CSV) and the far-range noise estimate against a known Gaussian noise level."""
 
+import dataclasses
 import math
+import pickle
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from lidar_overlap.io.overlap_curves import far_range_noise, read_overlap_curve
+from lidar_overlap.io.overlap_curves import OverlapCurve, far_range_noise, read_overlap_curve
 
 DATA = Path(__file__).resolve().parent.parent / "examples" / "data"
 #: The MAD-based estimate from N points scatters by about 1.65 / sqrt(2 N) of sigma (the MAD's
@@ -75,3 +77,42 @@ def test_far_range_noise_refuses_bad_intervals_and_clipped_curves():
         far_range_noise(z, np.ones(50), (900.0, 100.0))
     with pytest.raises(ValueError, match="no scatter"):
         far_range_noise(z, np.ones(50), (100.0, 1000.0))
+
+
+def test_a_curve_is_a_value_checked_on_construction():
+    c = OverlapCurve([100.0, 200.0], [0.5, 0.9], [0.01, 0.02], ("h",), "m.csv")
+    for name in ("ranges", "overlap", "sigma"):
+        with pytest.raises(ValueError, match="read-only"):
+            getattr(c, name)[0] = 3.0
+    assert pickle.loads(pickle.dumps(c)) == c and c != OverlapCurve(
+        [100.0, 200.0], [0.5, 0.9], None
+    )
+    for fields, name in [
+        (([100.0, float("nan")], [0.5, 0.9], None), "ranges"),
+        (([200.0, 100.0], [0.5, 0.9], None), "ranges"),
+        (([100.0, 200.0], [0.5], None), "overlap"),
+        (([100.0, 200.0], [0.5, float("inf")], None), "overlap"),
+        (([100.0, 200.0], [0.5, 0.9], [0.1, -1.0]), "sigma"),
+        (([100.0, 200.0], "xy", None), "overlap"),
+    ]:
+        with pytest.raises(ValueError, match=f"^{name}"):
+            OverlapCurve(*fields)
+    with pytest.raises(ValueError, match="^sigma"):
+        dataclasses.replace(c, sigma=[float("nan"), 1.0])
+    with pytest.raises(ValueError, match="^z_low = '100' is invalid"):
+        c.within("100", "3000")
+
+
+@pytest.mark.parametrize(
+    "ranges, overlap, interval, message",
+    [
+        ([1.0, 2.0], [0.5, float("nan")], (0.0, 3.0), "non-finite value at index 1"),
+        ([1.0, 2.0], [0.5], (0.0, 3.0), "overlap has 1 values for 2 ranges"),
+        ([[1.0, 2.0]], [[0.5, 0.6]], (0.0, 3.0), "ranges has shape"),
+        ([1.0, 2.0], [0.5, 0.6], 3.0, "interval = 3.0 is invalid"),
+        ([1.0, 2.0], [0.5, 0.6], ("1", "3"), "interval = '1' is invalid"),
+    ],
+)
+def test_far_range_noise_names_bad_inputs(ranges, overlap, interval, message):
+    with pytest.raises(ValueError, match=message):
+        far_range_noise(ranges, overlap, interval)

@@ -346,3 +346,10 @@ def test_a_plan_edited_by_hand_for_a_system_of_another_kind_is_refused_when_run(
     for system, message in ((MASKED, "telescope.mask"), (aberrated, "aberrations")):
         with pytest.raises(ValueError, match=message):
             lo.run(dataclasses.replace(p, system=system))
+
+
+@pytest.mark.parametrize("index", [slice(5, 2), slice(10, None), 1, "a"])
+def test_a_subset_selecting_no_range_is_refused_by_name(index):
+    p = lo.plan(lo.paper_table1(), [100.0, 200.0, 300.0], "rt")
+    with pytest.raises(ValueError, match=r"^index = .* expected a slice that selects at least one"):
+        p.subset(index)

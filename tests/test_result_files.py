@@ -186,7 +186,7 @@ def test_not_a_result_file(tmp_path):
         lo.OverlapResult.from_csv(path)
     good = tmp_path / "g.csv"
     lo.overlap(lo.paper_table1(), [10.0, 100.0]).to_csv(good)
-    good.write_text(good.read_text() + "5,x,1\n")
+    good.write_text(_before_count(good.read_text(), "5,x,1"))
     with pytest.raises(ValueError, match="line .* is invalid: expected 3 numbers"):
         lo.OverlapResult.from_csv(good)
 
@@ -309,10 +309,18 @@ def test_a_link_is_kept_and_its_target_replaced(results, tmp_path):
 def test_csv_with_bad_values_is_refused_naming_the_file(tmp_path, row, words):
     path = tmp_path / "g.csv"
     lo.overlap(lo.paper_table1(), [10.0]).to_csv(path)
-    path.write_text(path.read_text() + row + "\n")
+    path.write_text(_before_count(path.read_text(), row, count=2))
     with pytest.raises(ValueError) as info:
         lo.OverlapResult.from_csv(path)
     assert str(info.value).startswith(f"{path}: ") and words in str(info.value)
+
+
+def _before_count(text: str, row: str, count: int = 0) -> str:
+    """``text`` of a CSV result with ``row`` added as its last data row (and its closing row count
+    set to ``count`` when given)."""
+    body, trailer = text.rstrip("\n").rsplit("\n", 1)
+    assert trailer.startswith("# rows: ")
+    return f"{body}\n{row}\n" + (f"# rows: {count}\n" if count else f"{trailer}\n")
 
 
 def test_csv_that_is_not_text_is_refused(tmp_path):

@@ -160,7 +160,7 @@ def test_header_lines_count_only_before_the_data(tmp_path):
     _result().to_csv(path)
     text = path.read_text()
     for tail in ("# method: fo\n", "# tolerance: 0.5\n", "# note\n"):
-        path.write_text(text + tail)
+        path.write_text(text.replace("# rows: 4\n", tail + "# rows: 4\n"))
         with pytest.raises(ValueError, match="before the columns"):
             lo.OverlapResult.from_csv(path)
     path.write_text(text.replace("# method: rt\n", "# method: rt\n# method: fo\n"))
@@ -226,3 +226,40 @@ def test_from_netcdf_says_what_is_wrong_in_its_own_words(tmp_path):
     assert lo.OverlapResult.from_netcdf(good) == _result()
     with pytest.raises(ValueError, match="attrs"):
         _result().to_netcdf(tmp_path / "x.nc", {"history": "none"})
+
+
+@pytest.mark.parametrize("method", ["banana", "auto", "", None, 3])
+def test_a_result_names_the_model_it_came_from(method):
+    with pytest.raises(ValueError, match=r"^method = .* expected the model"):
+        _result(method=method)
+
+
+def test_a_result_within_the_obstruction_distance_is_refused():
+    system = lo.paper_table1(obstruction_radius=0.02)  # obstruction at 0.7 m (Table 1's spider)
+    d = system.telescope.obstruction_distance
+    assert d > 0
+    with pytest.raises(ValueError, match="obstruction"):
+        _result(ranges=[0.5 * d, 400.0, 1200.0, 3000.0], system=system)
+    with pytest.raises(ValueError, match="system = 'x' is invalid"):
+        _result(system="x")
+
+
+def test_a_two_way_amplification_is_nan_only_where_no_light_comes_back():
+    z = np.array([100.0, 200.0])
+    rows = np.array([[0.0, 0.4], [0.0, 0.6]])
+    fields = dict(
+        ranges=z,
+        overlap=rows.mean(axis=0),
+        method="fo",
+        error_estimate=[0.0, 0.1],
+        system=None,
+        tolerance=float("nan"),
+        error_kind="standard_error",
+        realizations=rows,
+        paths="both",
+        uncorrelated=rows,
+    )
+    dark = lo.TurbulentOverlapResult(**fields, amplification=[float("nan"), 1.0])
+    assert np.isnan(dark.amplification[0])
+    with pytest.raises(ValueError, match=r"amplification\[1\] = nan at range 200.0 m"):
+        dataclasses.replace(dark, amplification=[float("nan"), float("nan")])

@@ -169,6 +169,10 @@ class _Draws:
         (dict(distributions={"detector.defocus": ("normal", 0.0, -1e-4)}), "expected sd >= 0"),
         (dict(distributions={"detector.defocus": ("uniform", 1e-4, 0.0)}), "expected low <= high"),
         (
+            dict(distributions={"beam.tilt[0]": ("uniform", -1e308, 1e308)}),
+            r"expected high - low within double range",
+        ),
+        (
             dict(distributions={"detector.defocus": ("gamma", 1.0, 2.0)}),
             r"distributions\['detector.defocus'\] = ",
         ),

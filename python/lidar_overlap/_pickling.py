@@ -25,8 +25,8 @@ class ByArguments:
 
 
 def same_value(a, b) -> bool:
-    """Equality of two field values of a value type: arrays element by element (shape, dtype kind
-    and values), anything else by ``==``."""
+    """Equality of two field values of a value type: arrays element by element (shape and values,
+    NaN equal to NaN), anything else by ``==``."""
     import numpy as np
 
     if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
@@ -34,7 +34,7 @@ def same_value(a, b) -> bool:
             isinstance(a, np.ndarray)
             and isinstance(b, np.ndarray)
             and a.shape == b.shape
-            and bool(np.array_equal(a, b))
+            and bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc" and b.dtype.kind in "fc"))
         )
     return bool(a == b)
 

@@ -3,13 +3,16 @@
 A FIFO, a device or a directory given as an input would block or stream without end, so only
 regular files are read (checked on the open descriptor, which is opened non-blocking so that a FIFO
 without a writer does not hang the open itself). A file larger than the reader's limit is an error,
-not its first part. A UTF-8 byte-order mark, which some editors write, is dropped.
+not its first part. A UTF-8 byte-order mark, which some editors write, is dropped. Numbers in
+files and options are read as ASCII decimals only (:func:`number`, :func:`integer`).
 """
 
 from __future__ import annotations
 
 import os
+import re
 import stat
+from typing import Optional
 
 BOM = b"\xef\xbb\xbf"
 
@@ -69,3 +72,28 @@ def _kind(mode: int) -> str:
         if test(mode):
             return name
     return "a special file"
+
+
+#: A number as the project's files and options write it: ASCII digits, '.' as the decimal point,
+#: an optional exponent, or nan/inf. Python's float() also takes full-width and other Unicode
+#: digits and '_' between digits, which a file or an option would then mean something else by.
+_NUMBER = re.compile(r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|nan|inf|infinity)\Z", re.I)
+_INTEGER = re.compile(r"[+-]?\d+\Z")
+
+
+def number(text: str) -> Optional[float]:
+    """``text`` (surrounding blanks ignored) as a float when it is an ASCII decimal number, else
+    None: no Unicode digits, no '_' separators, no decimal comma."""
+    text = text.strip()
+    if not text.isascii() or not _NUMBER.match(text):
+        return None
+    return float(text)
+
+
+def integer(text: str) -> Optional[int]:
+    """``text`` (surrounding blanks ignored) as an int when it is ASCII digits with an optional
+    sign, else None."""
+    text = text.strip()
+    if not text.isascii() or not _INTEGER.match(text):
+        return None
+    return int(text)

@@ -119,6 +119,11 @@ class Plan:
     def subset(self, index) -> "Plan":
         """The same plan (same decisions, same estimates) on ``ranges[index]`` (a slice): to run a
         long curve in parts."""
+        if not isinstance(index, slice) or self.ranges[index].size == 0:
+            raise ValueError(
+                f"index = {_checks.shown(index)} is invalid: expected a slice that selects at "
+                f"least one of the plan's {self.ranges.size} ranges"
+            )
         return dataclasses.replace(
             self,
             ranges=self.ranges[index],

@@ -80,6 +80,13 @@ class OverlapResult:
         ):
             object.__setattr__(self, name, value)
         _checks.choice("error_kind", self.error_kind, ERROR_KINDS)
+        if self.system is not None:
+            if not isinstance(self.system, LidarSystem):
+                raise ValueError(
+                    f"system = {_checks.shown(self.system)} is invalid: expected a LidarSystem, "
+                    "or None for a curve read from a file without one"
+                )
+            self.system._native.validate_ranges(self.ranges)
 
     def _upper_bound(self) -> float:
         """Largest G the result may hold: 1 (power on the detector over the power into the
@@ -326,6 +333,20 @@ class TurbulentOverlapResult(OverlapResult):
     def _upper_bound(self) -> float:
         return TWO_WAY_BOUND if self.paths == "both" else 1.0
 
+    def _no_light_where_nan(self, amplification: np.ndarray) -> None:
+        """An amplification is NaN only where no light comes back (a ratio 0/0): where the mean G,
+        or the mean of the ``uncorrelated`` rows, is 0."""
+        dark = self.overlap == 0.0
+        if self.uncorrelated is not None:
+            dark |= np.asarray(self.uncorrelated, dtype=float).mean(axis=0) == 0.0
+        bad = np.isnan(amplification) & ~dark
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(
+                f"amplification[{i}] = nan at range {float(self.ranges[i])!r} m is invalid: NaN "
+                f"only where no light comes back, but the mean G there is {self.overlap[i]!r}"
+            )
+
     def attributes(self) -> Dict[str, Any]:
         """As :meth:`OverlapResult.attributes`, and which paths crossed the turbulence and over
         how many draws the mean was taken (a file read back is then a mean through turbulence, whose
@@ -358,6 +379,7 @@ class TurbulentOverlapResult(OverlapResult):
                         f"amplification has shape {values.shape} or a negative value: expected one "
                         f"ratio >= 0 (or NaN) per range, N = {n}"
                     )
+                self._no_light_where_nan(values)
                 object.__setattr__(self, name, frozen(values))
                 continue
             ndim = 2 if name in ("realizations", "uncorrelated") else 1

@@ -8,20 +8,24 @@ import math
 import numpy as np
 
 from .. import _checks
+from .._values import frozen
 
 #: The one allowance for G outside [0, 1]: the round-off of a sum of up to ~10^6 order-one terms. It
 #: is fixed, not the stated error or tolerance (a result stating an error of 1e300 would otherwise
 #: pass any G); the engines clip their own accuracy before building a result.
 ROUND_OFF = 1e-9
+#: The models a result's curve comes from: ray tracing or Fourier optics.
+METHODS = ("rt", "fo")
 
 
 def checked_curve(ranges, overlap, method, error_estimate, tolerance, upper=1.0):
     """The invariants of :class:`~lidar_overlap.forward.result.OverlapResult`: the arrays as float
     arrays, G clipped within its slack, the tolerance as a float; ValueError naming what is wrong
     otherwise."""
-    if not isinstance(method, str) or not method:
+    if not isinstance(method, str) or method not in METHODS:
         raise ValueError(
-            f"method = {method!r} is invalid: expected the name of the model, such as 'rt' or 'fo'"
+            f"method = {_checks.shown(method)} is invalid: expected the model that computed the "
+            f"curve, one of {', '.join(map(repr, METHODS))}"
         )
     z, g, e = (
         _curve_array(name, value)
@@ -85,13 +89,6 @@ def _curve_array(name: str, value) -> np.ndarray:
         raise ValueError(
             f"{name} is invalid: expected a 1-D array of real numbers ({exc})"
         ) from None
-
-
-def frozen(values: np.ndarray) -> np.ndarray:
-    """``values`` as a read-only array of its own (a caller's array is copied, never frozen)."""
-    values = np.array(values, dtype=float, copy=True)
-    values.setflags(write=False)
-    return values
 
 
 def _first_bad(name: str, values: np.ndarray, bad: np.ndarray, expected: str) -> None:

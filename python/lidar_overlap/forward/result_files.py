@@ -36,6 +36,9 @@ RESERVED = (
 #: NetCDF attributes the writer sets for provenance (CF conventions); a caller's ``attrs`` may not
 #: replace them (``title`` and ``references`` it may).
 NETCDF_RESERVED = ("Conventions", "source", "history")
+#: The line that closes a CSV result, with its number of rows: a file cut short (even inside the
+#: last number, which would still read as a number) lacks it and is refused.
+ROWS_TRAILER = "# rows: "
 #: The largest CSV result read whole (about 10^7 ranges); a larger file is refused, not cut.
 MAX_CSV_BYTES = 1_000_000_000
 _KEY = re.compile(r"[A-Za-z_][A-Za-z0-9_.\-]*\Z")
@@ -92,11 +95,11 @@ def csv_value(value: Any) -> str:
 
 
 def parse_value(text: str) -> Any:
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
+    """A header value: an int or a float when it is an ASCII number, else the text."""
+    for read in (_reading.integer, _reading.number):
+        value = read(text)
+        if value is not None:
+            return value
     return text
 
 
@@ -105,6 +108,7 @@ def write_csv(result, path, attrs) -> None:
     lines.append(",".join(CSV_COLUMNS))
     for row in zip(result.ranges.tolist(), result.overlap.tolist(), result.error_estimate.tolist()):
         lines.append(",".join(repr(float(v)) for v in row))
+    lines.append(f"{ROWS_TRAILER}{result.ranges.size}")
     with _files.replacing(path, "w", encoding="utf-8", newline="\n") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -139,10 +143,23 @@ def _kind(cls, turbulent_cls, attrs):
 def _csv_rows(path, lines):
     """The ``# key: value`` header (before the columns, each key once) and the rows of numbers."""
     attrs: Dict[str, Any] = {}
-    rows, columns = [], False
+    rows, columns, count = [], False, None
     for number, line in enumerate(lines, 1):
         line = line.strip()
         if not line:
+            continue
+        if count is not None:
+            raise ValueError(
+                f"{path}: line {number} = {_short(line)} is invalid: nothing may follow the "
+                "closing row count"
+            )
+        if columns and line.startswith(ROWS_TRAILER):
+            count = _reading.integer(line[len(ROWS_TRAILER) :])
+            if count != len(rows):
+                raise ValueError(
+                    f"{path}: line {number} = {_short(line)}: the file closes with a count of "
+                    f"rows that is not the {len(rows)} rows it holds: expected a complete file"
+                )
             continue
         if line.startswith("#"):
             if columns:
@@ -167,11 +184,8 @@ def _csv_rows(path, lines):
                 )
             columns = True
         else:
-            try:
-                values = [float(v) for v in line.split(",")]
-            except ValueError:
-                values = []
-            if len(values) != len(CSV_COLUMNS):
+            values = [_reading.number(v) for v in line.split(",")]
+            if len(values) != len(CSV_COLUMNS) or None in values:
                 raise ValueError(
                     f"{path}: line {number} = {_short(line)} is invalid: expected "
                     f"{len(CSV_COLUMNS)} numbers ({','.join(CSV_COLUMNS)})"
@@ -181,6 +195,12 @@ def _csv_rows(path, lines):
         raise ValueError(
             f"{path}: no columns {','.join(CSV_COLUMNS)}: not a file written by "
             "OverlapResult.to_csv"
+        )
+    if count is None:
+        raise ValueError(
+            f"{path}: the file ends without its closing line '{ROWS_TRAILER}N': it was cut "
+            "short (a number of its last row may be cut too), or written before result files "
+            "closed with a row count; write it again with OverlapResult.to_csv"
         )
     return attrs, rows
 

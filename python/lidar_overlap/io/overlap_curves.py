@@ -22,7 +22,8 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .. import _reading
+from .. import _checks, _reading
+from ..forward.result_checks import frozen
 
 #: The most rows read.
 MAX_ROWS = 100_000
@@ -35,6 +36,7 @@ _SPLIT = re.compile(r"[,\s;]+")
 CSV_COLUMNS = ("range_m", "overlap", "sigma")
 #: The largest CSV file read (comments included); a larger one is refused whole, never cut.
 MAX_CSV_BYTES = 64_000_000
+_DECIMAL_COMMA = re.compile(r"\d,\d")
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,11 +48,65 @@ class OverlapCurve:
     ranges: np.ndarray
     overlap: np.ndarray
     sigma: Optional[np.ndarray]
-    header: Tuple[str, ...]
-    source: str
+    header: Tuple[str, ...] = ()
+    source: str = "a curve"
+
+    def __post_init__(self) -> None:
+        """Checked as the reader checks a file (finite values, ranges > 0 strictly increasing, one
+        overlap and sigma > 0 per range), the arrays kept as read-only copies."""
+        z = _checks.real_array("ranges", self.ranges, ndim=1)
+        if z.size == 0 or not (np.all(np.isfinite(z)) and z[0] > 0 and np.all(np.diff(z) > 0)):
+            raise ValueError(
+                "ranges is invalid: expected finite ranges > 0 m, strictly increasing, at least one"
+            )
+        values = {"ranges": z}
+        for name in ("overlap", "sigma"):
+            given = getattr(self, name)
+            if given is None and name == "sigma":
+                continue
+            a = _checks.real_array(name, given, ndim=1)
+            if a.shape != z.shape or not np.all(np.isfinite(a)):
+                raise ValueError(
+                    f"{name} is invalid: expected {z.size} finite values, one per range"
+                )
+            if name == "sigma" and not np.all(a > 0):
+                raise ValueError("sigma is invalid: expected values > 0")
+            values[name] = a
+        for name, a in values.items():
+            object.__setattr__(self, name, frozen(a))
+        if not isinstance(self.header, tuple) or not all(isinstance(h, str) for h in self.header):
+            raise ValueError(
+                f"header = {_checks.shown(self.header)} is invalid: expected a tuple of strings"
+            )
+        if not isinstance(self.source, str):
+            raise ValueError(f"source = {_checks.shown(self.source)} is invalid: expected a name")
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return (
+            np.array_equal(self.ranges, other.ranges)
+            and np.array_equal(self.overlap, other.overlap)
+            and (
+                self.sigma is other.sigma is None
+                or (
+                    self.sigma is not None
+                    and other.sigma is not None
+                    and np.array_equal(self.sigma, other.sigma)
+                )
+            )
+            and self.header == other.header
+            and self.source == other.source
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # holds arrays
+
+    def __reduce__(self):
+        return (type(self), (self.ranges, self.overlap, self.sigma, self.header, self.source))
 
     def within(self, z_low: float, z_high: float) -> "OverlapCurve":
         """The points with z_low <= range <= z_high (m); ValueError when fewer than 2 remain."""
+        z_low, z_high = _checks.real("z_low", z_low), _checks.real("z_high", z_high)
         keep = (self.ranges >= z_low) & (self.ranges <= z_high)
         if keep.sum() < 2:
             raise ValueError(
@@ -88,8 +144,9 @@ def read_overlap_curve(path) -> OverlapCurve:
         text = line.strip()
         if not text or text.startswith("#"):
             continue
+        _refuse_decimal_comma(name, number, text)
         cells = [c for c in _SPLIT.split(text) if c]
-        values = _numbers(cells)
+        values = _numbers(name, number, cells)
         if values is None or len(values) < 2:
             if rows:
                 raise ValueError(
@@ -169,10 +226,8 @@ def read_csv_table(
             )
         row = []
         for column, (key, cell) in enumerate(zip(header, cells), start=1):
-            try:
-                value = float(cell)
-            except ValueError:
-                value = float("nan")
+            number_or_none = _reading.number(cell)  # ASCII decimals only
+            value = math.nan if number_or_none is None else number_or_none
             if not math.isfinite(value) or (key not in signed and value <= 0):
                 what = "a finite number" if key in signed else "a finite number > 0"
                 raise ValueError(
@@ -197,11 +252,40 @@ def read_csv_table(
     return data[:, : len(columns)], (data[:, -1] if len(header) > len(columns) else None)
 
 
-def _numbers(cells):
+def _numbers(name: str, number: int, cells) -> Optional[List[float]]:
+    """The cells as numbers, or None for a header line; a cell that Python would read as a number
+    but the format does not (Unicode digits, '_' between digits) is a ValueError naming it."""
+    values = [_reading.number(c) for c in cells]
+    for column, (cell, value) in enumerate(zip(cells, values), start=1):
+        if value is None and _python_reads(cell):
+            raise ValueError(
+                f"{name}: line {number}, column {column}: {cell!r} is invalid: expected a number "
+                "in ASCII digits with '.' as the decimal point (no '_', no other digits)"
+            )
+    numbers = [v for v in values if v is not None]
+    return numbers if len(numbers) == len(values) else None
+
+
+def _python_reads(cell: str) -> bool:
     try:
-        return [float(c) for c in cells]
+        float(cell)
     except ValueError:
-        return None
+        return False
+    return True
+
+
+def _refuse_decimal_comma(name: str, number: int, text: str) -> None:
+    """A row whose fields are separated by blanks or ';' and hold a comma between digits
+    (``150 0,250``, as spreadsheets with a decimal comma export it) would read as three numbers:
+    refused, naming the line."""
+    fields = [f for f in re.split(r"[\s;]+", text) if f]
+    if len(fields) < 2 or not any(_DECIMAL_COMMA.search(f) for f in fields):
+        return
+    if all(_reading.number(f.replace(",", ".")) is not None for f in fields):
+        raise ValueError(
+            f"{name}: line {number}: {text!r} is invalid: it reads as numbers with a decimal "
+            "comma; expected '.' as the decimal point (and ',', ';' or blanks between columns)"
+        )
 
 
 def far_range_noise(ranges, overlap, interval: Tuple[float, float]) -> float:
@@ -214,9 +298,24 @@ def far_range_noise(ranges, overlap, interval: Tuple[float, float]) -> float:
     a smoothed curve are correlated, which makes this an underestimate; a curve clipped to a
     constant gives 0 (refused: it has no usable scatter there).
     """
-    z = np.asarray(ranges, dtype=float)
-    g = np.asarray(overlap, dtype=float)
-    z_low, z_high = (float(v) for v in interval)
+    z = _checks.real_array("ranges", ranges, ndim=1)
+    g = _checks.real_array("overlap", overlap, ndim=1)
+    if g.shape != z.shape:
+        raise ValueError(
+            f"overlap has {g.size} values for {z.size} ranges: expected one value per range"
+        )
+    if not isinstance(interval, (tuple, list, np.ndarray)) or len(interval) != 2:
+        raise ValueError(
+            f"interval = {_checks.shown(interval)} is invalid: expected (z_low, z_high) in m"
+        )
+    z_low, z_high = (_checks.real("interval", v) for v in interval)
+    bad = ~np.isfinite(z) | ~np.isfinite(g)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"the curve holds a non-finite value at index {i} (range {z[i]!r}, overlap {g[i]!r}): "
+            "expected finite ranges and overlap"
+        )
     if not z_low < z_high:
         raise ValueError(f"interval = ({z_low:g}, {z_high:g}) m is invalid: expected low < high")
     inside = (z >= z_low) & (z <= z_high)

@@ -30,6 +30,7 @@ import numpy as np
 
 from .. import _checks, _core
 from .._pickling import ByArguments
+from .._values import FrozenMap
 
 SEIDEL_TERMS = ("w040", "w131", "w222", "w220", "w311")
 
@@ -81,7 +82,7 @@ class Aberrations(ByArguments):
                     f"index in [1, {MAX_NOLL_INDEX}] (radial order 20)"
                 )
             terms[int(j)] = _checks.real(f"aberrations.zernike[{j}]", c)
-        object.__setattr__(self, "zernike", dict(sorted(terms.items())))
+        object.__setattr__(self, "zernike", FrozenMap(sorted(terms.items())))
         for name in SEIDEL_TERMS + ("field_radius",):
             object.__setattr__(self, name, _checks.real(f"aberrations.{name}", getattr(self, name)))
         dense = [0.0] * (max(terms) if terms else 0)

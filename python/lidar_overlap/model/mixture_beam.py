@@ -47,8 +47,9 @@ class BeamComponent(ByArguments):
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         set_(self, "weight", _checks.real("component.weight", self.weight))
-        set_(self, "waist_radius", _checks.real("component.waist_radius", self.waist_radius))
-        set_(self, "divergence", _checks.optional_real("component.divergence", self.divergence))
+        set_(self, "waist_radius", _checks.positive("component.waist_radius", self.waist_radius))
+        if self.divergence is not None:
+            set_(self, "divergence", _checks.positive("component.divergence", self.divergence))
         if not (self.weight > 0 and math.isfinite(self.weight)):
             raise ValueError(
                 f"component.weight = {self.weight!r} is invalid: expected a finite relative power "
@@ -192,6 +193,14 @@ class GaussianMixtureBeam(ByArguments):
     def with_component(self, index: int, **changes) -> "GaussianMixtureBeam":
         """A copy with component ``index``'s ``weight``, ``waist_radius`` or ``divergence``
         replaced."""
+        n = len(self.components)
+        index = _checks.count("index", index, -n, n - 1)
+        unknown = sorted(set(changes) - {"weight", "waist_radius", "divergence"})
+        if unknown:
+            raise ValueError(
+                f"with_component: {unknown[0]!r} is invalid: expected weight, waist_radius or "
+                "divergence"
+            )
         parts = list(self.components)
         parts[index] = dataclasses.replace(parts[index], **changes)
         return dataclasses.replace(self, components=tuple(parts))

@@ -82,11 +82,11 @@ class Turbulence(ByArguments):
         hv_ground: float = 1.7e-14,
         hv_wind: float = 21.0,
     ) -> None:
+        # checked whatever cn2 is: a value holds no field it would not accept
+        hv = {k: _hv_term(k, v) for k, v in (("hv_ground", hv_ground), ("hv_wind", hv_wind))}
         if isinstance(cn2, str):
             choice("cn2", cn2, ("hv57",))
-            native = _core.Cn2Profile.hufnagel_valley(
-                _checks.real("hv_ground", hv_ground), _checks.real("hv_wind", hv_wind)
-            )
+            native = _core.Cn2Profile.hufnagel_valley(hv["hv_ground"], hv["hv_wind"])
         elif callable(cn2):
             native = _core.Cn2Profile.custom(_checked_profile(cn2))
         else:
@@ -96,14 +96,13 @@ class Turbulence(ByArguments):
         native.outer_scale = _checks.real("outer_scale", outer_scale)
         native.inner_scale = _checks.real("inner_scale", inner_scale)
         native.validate()
-        hv = {"hv_ground": hv_ground, "hv_wind": hv_wind}
         for name, value in (
             ("cn2", cn2),
             ("elevation", native.elevation),
             ("altitude", native.altitude),
             ("outer_scale", native.outer_scale),
             ("inner_scale", native.inner_scale),
-            *((k, _checks.real(k, v) if isinstance(cn2, str) else v) for k, v in hv.items()),
+            *hv.items(),
             ("_native", native),
         ):
             object.__setattr__(self, name, value)
@@ -224,3 +223,11 @@ def _checked_profile(cn2: Callable[[float], float]) -> Callable[[float], float]:
         return value
 
     return at
+
+
+def _hv_term(name: str, value) -> float:
+    """A Hufnagel–Valley term: finite and >= 0 (the core refuses the rest for ``"hv57"``)."""
+    v = _checks.real(name, value)
+    if not (math.isfinite(v) and v >= 0.0):
+        raise ValueError(f"{name} = {v!r} is invalid: expected a finite value >= 0")
+    return v

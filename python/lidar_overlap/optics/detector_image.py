@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
-from .. import _checks, _core
+from .. import _checks, _core, _values
 from .._checks import check_memory
 from .._checks import system_range as validate_range
+from .._pickling import ByValue
 from ..model.field_beam import FieldBeam
 from ..model.system import LidarSystem
 from .propagation import propagate
@@ -30,11 +32,12 @@ BYTES_PER_FIELD_SAMPLE = 48
 BYTES_PER_WEIGHT = 32
 
 
-@dataclass(frozen=True)
-class DetectorImage:
+@dataclass(frozen=True, eq=False)
+class DetectorImage(ByValue):
     """``image`` (W/m² per W of backscatter entering the aperture) on the detector-plane grid ``u``
     (columns) by ``v`` (rows), m; the detector disc of ``detector_radius`` at ``detector_offset``;
-    ``fraction``: the part of the image's power on the detector."""
+    ``fraction``: the part of the image's power on the detector. A value: checked on construction,
+    read-only arrays."""
 
     u: np.ndarray
     v: np.ndarray
@@ -42,6 +45,32 @@ class DetectorImage:
     detector_radius: float
     detector_offset: tuple
     range: float
+
+    FIELDS: ClassVar = {
+        "u": _values.array(),
+        "v": _values.array(),
+        "image": _values.array(2, low=0.0),
+        "detector_radius": _values.real(low=0.0),
+        "range": _values.real(low=0.0),
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
+        if self.image.shape != (self.v.size, self.u.size):
+            raise ValueError(
+                f"image has shape {self.image.shape}: expected (len(v), len(u)) = "
+                f"({self.v.size}, {self.u.size})"
+            )
+        offset = self.detector_offset
+        if not isinstance(offset, tuple) or len(offset) != 2:
+            raise ValueError(
+                f"detector_offset = {_checks.shown(offset)} is invalid: expected (x, y) in m"
+            )
+        object.__setattr__(
+            self,
+            "detector_offset",
+            tuple(_values.real()(f"detector_offset[{i}]", v) for i, v in enumerate(offset)),
+        )
 
     @property
     def fraction(self) -> float:

@@ -21,11 +21,12 @@ how far a search got) from :func:`lidar_overlap.analysis.design.optimize` with
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping, Optional
+from typing import ClassVar, Mapping, Optional
 
 import numpy as np
 
-from ... import _checks, _core
+from ... import _checks, _core, _values
+from ..._pickling import ByValue
 from ...forward.methods import RT
 from ...model.system import LidarSystem
 from ..studies.signals import signal as _signal
@@ -36,10 +37,13 @@ TILT = ["beam.tilt[0]", "beam.tilt[1]"]
 RASTER_POINTS = 5
 #: How close to its best G a search must bring the lidar (a fraction of the best G).
 WITHIN = 0.99
+#: The finest tilt step a search is asked for (rad): far below any actuator's, far above the
+#: spacing of doubles near a milliradian tilt.
+MIN_RESOLUTION = 1e-12
 
 
 @dataclass(frozen=True, eq=False)
-class AlignResult:
+class AlignResult(ByValue):
     """tilt : the (x, y) tilt the search ends at (rad). tilts : the search's estimate after each
     step (n x 2, rad); shots : the shots fired by then (n); overlap : G at each estimate;
     best_overlap : the best G in the
@@ -55,6 +59,29 @@ class AlignResult:
     best_tilt: tuple
     shots_to_within: object
     steps: int
+
+    FIELDS: ClassVar = {
+        "tilt": _values.pair,
+        "tilts": _values.array(2),
+        "shots": _values.array(low=0.0),
+        "overlap": _values.array(low=0.0),
+        "best_overlap": _values.real(low=0.0),
+        "best_tilt": _values.pair,
+        "steps": _values.count(0),
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
+        n = self.shots.size
+        if self.tilts.shape != (n, 2) or self.overlap.shape != (n,):
+            raise ValueError(
+                f"tilts has shape {self.tilts.shape} and overlap {self.overlap.shape}: expected "
+                f"({n}, 2) and ({n},), one row per step of shots"
+            )
+        if self.shots_to_within is not None:
+            object.__setattr__(
+                self, "shots_to_within", _checks.count("shots_to_within", self.shots_to_within, 0)
+            )
 
 
 def align(
@@ -89,12 +116,28 @@ def align(
         _checks.positive(n, v)
         for n, v in (("box", box), ("resolution", resolution), ("step", step))
     )
+    if not MIN_RESOLUTION <= resolution <= box:
+        raise ValueError(
+            f"resolution = {resolution!r} is invalid: expected from {MIN_RESOLUTION:g} rad to box "
+            f"= {box!r} rad"
+        )
+    if search == "gradient" and not resolution <= step <= box:
+        raise ValueError(
+            f"step = {step!r} is invalid: expected the gradient's first step from resolution = "
+            f"{resolution!r} to box = {box!r} rad"
+        )
     shots_per_step = _checks.count("shots_per_step", shots_per_step, 1, 10**9)
     max_steps = _checks.count("max_steps", max_steps, 1, 10**6)
     if not isinstance(signal, Mapping):
         raise ValueError(
             f"signal = {_checks.shown(signal)} is invalid: expected a mapping of lo.signal "
             "keywords (pulse_energy, receiver_efficiency, range_resolution, ...)"
+        )
+    owned = sorted(set(signal) & {"noise", "shots", "seed"})
+    if owned:
+        raise ValueError(
+            f"signal[{owned[0]!r}] is invalid: align sets noise, shots and seed of each "
+            "measurement itself (use shots_per_step and seed)"
         )
     start = np.array(system.beam.tilt, dtype=float)
     reach = _core.MAX_ANGLE - float(np.max(np.abs(start)))

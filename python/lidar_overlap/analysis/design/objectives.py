@@ -18,6 +18,7 @@ from typing import Callable, Dict, Mapping, Optional, Tuple
 import numpy as np
 
 from ... import _checks
+from ..._values import FrozenMap
 from ...forward.result import OverlapResult
 
 #: Ranges (between the target and the far range, geometric) at which SmallestFieldOfView checks G.
@@ -141,7 +142,7 @@ class Objective:
                 f"constraints = {_checks.shown(self.constraints)} is invalid: expected a mapping "
                 "of names to callables of an OverlapResult (satisfied when >= 0)"
             )
-        object.__setattr__(self, "constraints", dict(self.constraints))
+        object.__setattr__(self, "constraints", FrozenMap(self.constraints))
 
     def score(self, result: OverlapResult) -> float:
         return _number("function", self.function(result))

@@ -19,11 +19,12 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from typing import Dict, List, Mapping, Optional, Sequence
+from typing import ClassVar, Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
+from ..._pickling import ByValue
 from ...forward.backends import many
 from ...forward.compute import run
 from ...forward.planning import plan
@@ -43,7 +44,7 @@ _PATH_OF_AXIS = {path: name for name, (path, _) in AXES.items()}
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class OptimizeResult:
+class OptimizeResult(ByValue):
     """The answer of :func:`optimize`.
 
     values : best value of each free parameter path (SI units). objective : the objective's value
@@ -66,6 +67,25 @@ class OptimizeResult:
     core_calls: int
     converged: bool
     message: str
+
+    FIELDS: ClassVar = {
+        "values": _values.reals(),
+        "objective": _values.real(),
+        "unit": _values.text,
+        "constraints": _values.reals(),
+        "evaluations": _values.count(0),
+        "core_calls": _values.count(0),
+        "converged": _values.flag,
+        "message": _values.text,
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
+        if not isinstance(self.system, LidarSystem) or not isinstance(self.result, OverlapResult):
+            raise ValueError(
+                "system and result are invalid: expected the optimised LidarSystem and its "
+                "OverlapResult"
+            )
 
 
 class Problem:

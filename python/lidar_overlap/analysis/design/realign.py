@@ -11,11 +11,11 @@ method finds the root to ``xtol``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Dict, Optional, Tuple
+from typing import ClassVar, Dict, Optional, Tuple
 
 import numpy as np
 
-from ... import _checks, _core
+from ... import _checks, _core, _values
 from ...forward.planning import plan
 from ...model import parameters as _parameters
 from ..batch_curves import curves, variants
@@ -36,6 +36,17 @@ class Realignment:
     change: float
     target: float
     ratio_before: float
+
+    FIELDS: ClassVar = {
+        "path": _values.text,
+        "value": _values.real(),
+        "change": _values.real(),
+        "target": _values.real(low=0.0),
+        "ratio_before": _values.real(low=0.0),
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
 
 
 def realign(

@@ -15,6 +15,7 @@ mapping's order, n at a time, so they depend on the seed, n and the mapping only
 
 from __future__ import annotations
 
+import math
 from typing import Any, List, Mapping, Tuple
 
 import numpy as np
@@ -111,6 +112,11 @@ def _checked(name: str, spec: Any):
             raise ValueError(f"{name} = {_checks.shown(spec)} is invalid: expected sd >= 0")
         if spec[0] == "uniform" and not b >= a:
             raise ValueError(f"{name} = {_checks.shown(spec)} is invalid: expected low <= high")
+        if spec[0] == "uniform" and not math.isfinite(b - a):
+            raise ValueError(
+                f"{name} = {_checks.shown(spec)} is invalid: expected high - low within double "
+                "range (< 1.8e308)"
+            )
         return (spec[0], a, b)
     if not callable(getattr(spec, "rvs", None)):
         raise ValueError(

@@ -18,11 +18,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
+from typing import ClassVar, Optional
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
+from ..._pickling import ByValue
 from ...forward.result import OverlapResult
 from ...model.atmosphere import Atmosphere
 from ..fitting.correction import fitted_overlap, is_fit
@@ -41,7 +42,7 @@ STANDARD_ATMOSPHERE = Atmosphere()
 
 
 @dataclass(frozen=True, eq=False)
-class LidarSignal:
+class LidarSignal(ByValue):
     """Expected elastic lidar signal of one system and atmosphere (see :func:`signal`).
 
     Attributes
@@ -73,8 +74,23 @@ class LidarSignal:
     shots: int
     wavelength: float
 
+    FIELDS: ClassVar = {
+        "ranges": _values.array(low=0.0),
+        "overlap": _values.array(low=0.0),
+        "photons": _values.array(low=0.0),
+        "range_corrected": _values.array(low=0.0),
+        "range_corrected_full_overlap": _values.array(low=0.0),
+        "std": _values.array(low=0.0),
+        "noisy": _values.array(optional=True),
+        "background": _values.real(low=0.0),
+        "shots": _values.count(1),
+        "wavelength": _values.real(low=0.0),
+    }
+
     def __post_init__(self) -> None:
-        _freeze(self)
+        _values.check(self, self.FIELDS)
+        _same_size(self, ("overlap", "photons", "range_corrected", "range_corrected_full_overlap",
+                          "std", "noisy"))  # fmt: skip
 
     def plot(self, ax=None):
         """The dynamic-range view on log axes: expected photons per bin and shot with and without
@@ -86,7 +102,7 @@ class LidarSignal:
 
 
 @dataclass(frozen=True, eq=False)
-class CorrectedSignal:
+class CorrectedSignal(ByValue):
     """An overlap-corrected signal (see :func:`correct`).
 
     Attributes
@@ -102,16 +118,40 @@ class CorrectedSignal:
     std: np.ndarray
     mask: np.ndarray
 
+    FIELDS: ClassVar = {
+        "ranges": _values.array(low=0.0),
+        "values": _values.array(nan=True),
+        "std": _values.array(nan=True, low=0.0),
+    }
+
     def __post_init__(self) -> None:
-        _freeze(self)
+        _values.check(self, self.FIELDS)
+        mask = np.asarray(self.mask)
+        if mask.dtype != bool or mask.shape != self.ranges.shape:
+            raise ValueError(
+                f"mask = {_checks.shown(self.mask)} is invalid: expected one bool per range"
+            )
+        mask = mask.copy()
+        mask.setflags(write=False)
+        object.__setattr__(self, "mask", mask)
+        _same_size(self, ("values", "std"))
+        hidden = np.isnan(self.values) | np.isnan(self.std)
+        if np.any(hidden & ~mask):
+            i = int(np.argmax(hidden & ~mask))
+            raise ValueError(
+                f"values[{i}] or std[{i}] is NaN where mask is False: expected NaN only where the "
+                "overlap was too small to correct"
+            )
 
 
-def _freeze(obj) -> None:
-    """Make the arrays of a result read-only (each its own copy, so no caller's array is
-    touched)."""
-    for value in vars(obj).values():
-        if isinstance(value, np.ndarray):
-            value.flags.writeable = False
+def _same_size(result, names) -> None:
+    for name in names:
+        value = getattr(result, name)
+        if value is not None and value.shape != result.ranges.shape:
+            raise ValueError(
+                f"{name} has shape {value.shape}: expected one value per range "
+                f"({result.ranges.size})"
+            )
 
 
 def signal(

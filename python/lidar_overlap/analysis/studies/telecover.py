@@ -18,7 +18,8 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
+from ..._pickling import ByValue
 from ...forward.backends import many
 from ...forward.compute import run
 from ...forward.planning import plan
@@ -33,7 +34,7 @@ SECTOR_SETS = ("quadrants",)
 
 
 @dataclass(frozen=True, eq=False)
-class TelecoverResult:
+class TelecoverResult(ByValue):
     """Per-sector overlaps and their normalised deviations.
 
     ranges : m. names : the sectors' names. sectors : one :class:`OverlapResult` per sector (G
@@ -45,6 +46,24 @@ class TelecoverResult:
     names: Tuple[str, ...]
     sectors: Tuple[OverlapResult, ...]
     full: OverlapResult
+
+    def __post_init__(self) -> None:
+        _values.check(self, {"ranges": _values.array(low=0.0)})
+        names, sectors = self.names, self.sectors
+        if (
+            not isinstance(names, tuple)
+            or not isinstance(sectors, tuple)
+            or len(names) != len(sectors)
+            or not all(isinstance(n, str) for n in names)
+            or not all(isinstance(r, OverlapResult) for r in (*sectors, self.full))
+        ):
+            raise ValueError(
+                "names, sectors and full are invalid: expected a name and an OverlapResult per "
+                "sector, and the full aperture's OverlapResult"
+            )
+        for r in (*sectors, self.full):
+            if not np.array_equal(r.ranges, self.ranges):
+                raise ValueError("ranges is invalid: expected the ranges of every sector's result")
 
     @property
     def overlap(self) -> np.ndarray:

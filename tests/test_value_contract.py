@@ -1,0 +1,312 @@
+"""One contract for every public value and result type, checked here once for all of them.
+
+A value is frozen; its arrays are read-only and its mappings cannot be changed; it pickles, copies
+and deep-copies to an equal value; two builds of the same value are equal (``==`` by value, never an
+exception); and its constructor checks every field, so that ``dataclasses.replace`` cannot smuggle
+in NaN, a wrong kind or an unknown name: a hostile field is refused with a ValueError that names it.
+
+The registry below holds one example of each public type (a factory, built once) and the fields
+where NaN is a documented value (``tolerance`` NaN: none asked for). A public dataclass of
+``lidar_overlap`` that is not registered fails :func:`test_every_public_value_type_is_registered`.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import functools
+import math
+import pickle
+import types
+import warnings
+from typing import Any, Callable, Dict, FrozenSet, Iterator, Tuple
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import lidar_overlap as lo
+from lidar_overlap.io.overlap_curves import OverlapCurve
+
+Z = np.array([150.0, 400.0, 1200.0, 3000.0])
+SYSTEM = lo.paper_table1()
+
+
+@dataclasses.dataclass(frozen=True)
+class Entry:
+    """How to build an example of a type, and the fields where NaN, an infinity or None is a
+    documented value."""
+
+    build: Callable[[], Any]
+    nan_ok: FrozenSet[str] = frozenset()
+    inf_ok: FrozenSet[str] = frozenset()
+    none_ok: FrozenSet[str] = frozenset()
+
+
+def _turbulent() -> lo.TurbulentOverlapResult:
+    rows = np.array([[0.1, 0.5, 0.9, 1.0], [0.12, 0.52, 0.92, 1.0]])
+    return lo.TurbulentOverlapResult(
+        ranges=Z,
+        overlap=rows.mean(axis=0),
+        method="fo",
+        error_estimate=rows.std(axis=0, ddof=1) / math.sqrt(2.0),
+        system=SYSTEM,
+        tolerance=math.nan,
+        error_kind="standard_error",
+        realizations=rows,
+        std=rows.std(axis=0, ddof=1),
+        low=rows.min(axis=0),
+        high=rows.max(axis=0),
+    )
+
+
+def _measured() -> Tuple[np.ndarray, np.ndarray]:
+    truth = lo.paper_table1(defocus=1e-3)
+    g = lo.overlap(truth, Z, "rt", tolerance=1e-6).overlap
+    return g, np.full(Z.size, 1e-3)
+
+
+def _fit(**options) -> Any:
+    g, sigma = _measured()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return lo.fit(
+            SYSTEM, Z, g, sigma, free=["detector.defocus"], method="rt", tolerance=1e-6, **options
+        )
+
+
+def _telecover() -> lo.TelecoverResult:
+    return lo.telecover(lo.paper_table1(obstruction_radius=0.0), Z, tolerance=1e-5)
+
+
+def _signal() -> lo.LidarSignal:
+    return lo.signal(
+        lo.overlap(SYSTEM, Z, "rt"),
+        pulse_energy=0.1,
+        receiver_efficiency=0.3,
+        range_resolution=7.5,
+    )
+
+
+def _first_g(result: lo.OverlapResult) -> float:
+    """An objective's function (module level: a value holding it pickles)."""
+    return float(result.overlap[0])
+
+
+REGISTRY: Dict[type, Entry] = {
+    lo.Aberrations: Entry(lambda: lo.Aberrations(zernike={4: 1e-7}, w222=1e-7, field_radius=1e-3)),
+    lo.ApertureMask: Entry(lambda: lo.ApertureMask.quadrants()),
+    lo.Sector: Entry(lambda: lo.ApertureMask.quadrants().sectors[0]),
+    lo.Atmosphere: Entry(lambda: lo.Atmosphere()),
+    lo.BeamComponent: Entry(lambda: lo.BeamComponent(0.5, 1e-3, 2e-3)),
+    lo.GaussianMixtureBeam: Entry(
+        lambda: lo.GaussianMixtureBeam.with_wings(SYSTEM.beam, 0.1, 2e-3)
+    ),
+    lo.GaussianBeam: Entry(lambda: lo.paper_table1().beam),
+    lo.Telescope: Entry(lambda: lo.paper_table1().telescope),
+    lo.Detector: Entry(lambda: lo.paper_table1().detector),
+    lo.LidarSystem: Entry(lambda: lo.paper_table1()),
+    lo.Field: Entry(lambda: lo.Field.gaussian(532e-9, 1e-3, n=32, spacing=2e-4)),
+    lo.FieldBeam: Entry(
+        lambda: lo.FieldBeam(lo.Field.gaussian(355e-9, 1e-3, n=32, spacing=2e-4), tilt=(1e-5, 0))
+    ),
+    lo.FlatTopBeam: Entry(lambda: lo.FlatTopBeam(355e-9, 1e-3, 0.5e-3, grid=128, max_iterations=5)),
+    lo.Turbulence: Entry(
+        lambda: lo.Turbulence(1e-14, inner_scale=0.01), inf_ok=frozenset({"outer_scale"})
+    ),
+    lo.RT: Entry(lambda: lo.RT(1e-4)),
+    lo.FO: Entry(lambda: lo.FO()),
+    lo.Auto: Entry(lambda: lo.Auto(tolerance=1e-3)),
+    lo.Turbulent: Entry(lambda: lo.Turbulent(lo.Turbulence(1e-14), lo.RT(1e-3))),
+    lo.Plan: Entry(lambda: lo.plan(SYSTEM, Z, "rt"), nan_ok=frozenset({"tolerance"})),
+    lo.OverlapResult: Entry(
+        lambda: lo.overlap(SYSTEM, Z, "rt"), nan_ok=frozenset({"tolerance", "error_estimate"})
+    ),
+    lo.TurbulentOverlapResult: Entry(_turbulent, nan_ok=frozenset({"tolerance", "error_estimate"})),
+    lo.DetectorImage: Entry(lambda: lo.detector_image(SYSTEM, 300.0, n=32)),
+    OverlapCurve: Entry(
+        lambda: OverlapCurve(Z, [0.1, 0.5, 0.9, 1.0], [0.01] * 4, ("h",), "m"),
+        none_ok=frozenset({"sigma"}),
+    ),
+    lo.FitResult: Entry(_fit),
+    lo.Prediction: Entry(lambda: _fit().predict(Z)),
+    lo.RelativeFitResult: Entry(lambda: _fit(normalize=(1000.0, 3000.0))),
+    lo.GlobalFitResult: Entry(lambda: _fit(search="global", seed=1, max_evaluations=40)),
+    lo.GlobalRelativeFitResult: Entry(
+        lambda: _fit(search="global", seed=1, max_evaluations=40, normalize=(1000.0, 3000.0))
+    ),
+    lo.TelecoverResult: Entry(_telecover),
+    lo.LidarSignal: Entry(_signal),
+    lo.CorrectedSignal: Entry(
+        lambda: lo.correct(Z, _signal().range_corrected, lo.overlap(SYSTEM, Z, "rt"))
+    ),
+    lo.MaximumOverlapAt: Entry(lambda: lo.MaximumOverlapAt(300.0)),
+    lo.SmallestFieldOfView: Entry(lambda: lo.SmallestFieldOfView(full_overlap_range=500.0)),
+    lo.Objective: Entry(lambda: lo.Objective(_first_g, ranges=(300.0,))),
+    lo.Realignment: Entry(
+        lambda: lo.realign(lo.paper_table1(obstruction_radius=0.0), 300.0)["beam.tilt[0]"]
+    ),
+    lo.AlignResult: Entry(
+        lambda: lo.align(
+            SYSTEM,
+            500.0,
+            box=2e-4,
+            resolution=5e-5,
+            shots_per_step=10,
+            signal=dict(pulse_energy=1e-3, receiver_efficiency=0.3, range_resolution=7.5),
+        )
+    ),
+    lo.OptimizeResult: Entry(
+        lambda: lo.optimize(
+            SYSTEM,
+            lo.MaximumOverlapAt(300.0),
+            ["detector.defocus"],
+            {"detector.defocus": (-1e-3, 1e-3)},
+        )
+    ),
+}
+
+
+@functools.lru_cache(maxsize=None)
+def example(cls: type) -> Any:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return REGISTRY[cls].build()
+
+
+def _public_value_types() -> Iterator[type]:
+    for name in lo.__all__:
+        obj = getattr(lo, name)
+        if isinstance(obj, type) and dataclasses.is_dataclass(obj):
+            yield obj
+
+
+TYPES = sorted(REGISTRY, key=lambda c: c.__name__)
+IDS = [c.__name__ for c in TYPES]
+
+
+def test_every_public_value_type_is_registered():
+    missing = sorted(c.__name__ for c in _public_value_types() if c not in REGISTRY)
+    assert not missing, f"register these value types in tests/test_value_contract.py: {missing}"
+
+
+@pytest.mark.parametrize("cls", TYPES, ids=IDS)
+def test_the_example_is_of_its_type_and_frozen(cls):
+    value = example(cls)
+    assert type(value) is cls
+    first = dataclasses.fields(value)[0].name
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        setattr(value, first, getattr(value, first))
+
+
+def _leaves(value: Any, depth: int = 0) -> Iterator[Any]:
+    """Arrays and containers reachable from a field (not into other registered values, which are
+    checked on their own)."""
+    yield value
+    if depth > 3 or type(value) in REGISTRY:
+        return
+    if isinstance(value, (tuple, list)):
+        for v in value:
+            yield from _leaves(v, depth + 1)
+    elif isinstance(value, (dict, types.MappingProxyType)):
+        for v in value.values():
+            yield from _leaves(v, depth + 1)
+
+
+@pytest.mark.parametrize("cls", TYPES, ids=IDS)
+def test_arrays_are_read_only_and_mappings_cannot_change(cls):
+    value = example(cls)
+    for f in dataclasses.fields(value):
+        for leaf in _leaves(getattr(value, f.name)):
+            if isinstance(leaf, np.ndarray):
+                assert not leaf.flags.writeable, f"{cls.__name__}.{f.name} is a writable array"
+            assert not isinstance(leaf, (dict, list, set)), (
+                f"{cls.__name__}.{f.name} holds a mutable {type(leaf).__name__}"
+            )
+
+
+@pytest.mark.parametrize("cls", TYPES, ids=IDS)
+def test_pickle_copy_and_deepcopy_give_an_equal_value(cls):
+    value = example(cls)
+    for again in (pickle.loads(pickle.dumps(value)), copy.copy(value), copy.deepcopy(value)):
+        assert type(again) is cls and again == value
+
+
+@pytest.mark.parametrize("cls", TYPES, ids=IDS)
+def test_equality_is_by_value(cls):
+    value = example(cls)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        again = REGISTRY[cls].build()
+    assert again is not value and again == value and not (again != value)
+
+
+def _replaceable(cls: type) -> Iterator[Tuple[type, str]]:
+    value = example(cls)
+    for f in dataclasses.fields(value):
+        if f.init and isinstance(getattr(value, f.name), (float, np.ndarray)):
+            yield cls, f.name
+
+
+def _optional(cls: type, name: str) -> bool:
+    default = next(f for f in dataclasses.fields(cls) if f.name == name).default
+    return default is None or name in REGISTRY[cls].none_ok
+
+
+NUMERIC = [pair for cls in TYPES for pair in _replaceable(cls)]
+
+
+@pytest.mark.parametrize("cls, name", NUMERIC, ids=[f"{c.__name__}.{n}" for c, n in NUMERIC])
+@pytest.mark.parametrize("hostile", ["x", None, {"a": 1.0}])
+def test_a_field_of_the_wrong_kind_is_refused_by_name(cls, name, hostile):
+    value = example(cls)
+    if hostile is None and _optional(cls, name):
+        return  # None is a documented value
+    with pytest.raises(ValueError, match=name):
+        dataclasses.replace(value, **{name: hostile})
+
+
+@pytest.mark.parametrize("cls, name", NUMERIC, ids=[f"{c.__name__}.{n}" for c, n in NUMERIC])
+def test_an_array_of_another_shape_is_refused(cls, name):
+    value = example(cls)
+    old = getattr(value, name)
+    if not isinstance(old, np.ndarray):
+        return
+    with pytest.raises(ValueError):
+        dataclasses.replace(value, **{name: np.zeros(old.shape + (2,))})
+    with pytest.raises(ValueError):
+        dataclasses.replace(value, **{name: np.zeros(old.size + 3)})
+
+
+WITH_NUMBERS = sorted({c for c, _ in NUMERIC}, key=lambda c: c.__name__)
+
+
+@pytest.mark.parametrize("cls", WITH_NUMBERS, ids=[c.__name__ for c in WITH_NUMBERS])
+@settings(
+    max_examples=30,
+    derandomize=True,
+    database=None,
+    deadline=None,
+    suppress_health_check=list(HealthCheck),
+)
+@given(data=st.data())
+def test_nan_or_inf_is_refused_by_name_unless_documented(cls, data):
+    name = data.draw(st.sampled_from([n for c, n in NUMERIC if c is cls]), label="field")
+    bad = data.draw(st.sampled_from([math.nan, math.inf, -math.inf]), label="value")
+    value = example(cls)
+    old = getattr(value, name)
+    if isinstance(old, np.ndarray):
+        if old.size == 0:
+            return
+        new: Any = np.array(old, dtype=float, copy=True)
+        new.flat[data.draw(st.integers(0, old.size - 1), label="index")] = bad
+    else:
+        new = bad
+    entry = REGISTRY[cls]
+    documented = entry.nan_ok if math.isnan(bad) else entry.inf_ok if bad > 0 else frozenset()
+    if name in documented:
+        dataclasses.replace(value, **{name: new})  # accepted: a documented value here
+        return
+    with pytest.raises(ValueError, match=name):
+        dataclasses.replace(value, **{name: new})
