@@ -109,7 +109,9 @@ class ExtentSums {
     const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half, per_bin = 8.0 / n_;
     for (std::size_t j = 0; j < n_; j += 2) {
       const double w = static_cast<double>(j) - half;
-      bins[std::min(last, static_cast<std::size_t>((w * w + u * u) * per_bin))] += 4.0 * std::norm(v[j]);
+      // a signed conversion (one instruction; the unsigned one branches): the same bin for these sums >= 0
+      const auto bin = static_cast<std::size_t>(static_cast<long>((w * w + u * u) * per_bin));
+      bins[std::min(last, bin)] += 4.0 * std::norm(v[j]);
     }
   }
 
@@ -292,13 +294,18 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
       detail::cancellation_point();
       std::vector<double> spectrum(n), removed(n);
       // Out of place throughout (FFTW's in-place plans copy through a buffer of their own): rows from a
-      // per-thread block, columns through a one-column buffer.
-      detail::row_pass_into(out, n, n, FftDirection::forward, threads,
-                            [&](std::size_t iy, Complex* line) {
-                              std::copy(in + iy * n, in + (iy + 1) * n, line);
-                              input.add(iy, line);
-                            },
-                            [](std::size_t, Complex*) {});
+      // per-thread block (or straight from the caller's rows when they are another aligned array), columns
+      // through a one-column buffer.
+      if (in != out && fftw_aligned(in))
+        detail::row_pass_from(in, out, n, n, FftDirection::forward, threads,
+                              [&](std::size_t iy, const Complex* row) { input.add(iy, row); });
+      else
+        detail::row_pass_into(out, n, n, FftDirection::forward, threads,
+                              [&](std::size_t iy, Complex* line) {
+                                std::copy(in + iy * n, in + (iy + 1) * n, line);
+                                input.add(iy, line);
+                              },
+                              [](std::size_t, Complex*) {});
       const BlockTransform forward(n, FftDirection::forward, n), backward(n, FftDirection::backward, n);
       detail::column_pass(out, n, n, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
         const std::size_t stride = detail::column_stride(n);
