@@ -255,7 +255,18 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
   auto plan = std::make_shared<const PropagationPlan>(n, spacing, wavelength, distance, method, output_spacing);
   std::lock_guard<std::mutex> lock(mutex);
   recent.emplace_front(key, plan);
-  if (recent.size() > kCapacity) recent.pop_back();
+  // At most kCapacity plans and kCapacityBytes of tables (a transfer function of 8192^2 is 1 GiB): the least
+  // recently used go first, the newest stays.
+  constexpr std::size_t kCapacityBytes = std::size_t{1} << 30;
+  auto bytes = [](const PropagationPlan& p) {
+    return sizeof(Complex) * (p.transfer_.size() + p.chirp_in_.size() + p.chirp_out_.size());
+  };
+  std::size_t total = 0;
+  for (const auto& entry : recent) total += bytes(*entry.second);
+  while (recent.size() > 1 && (recent.size() > kCapacity || total > kCapacityBytes)) {
+    total -= bytes(*recent.back().second);
+    recent.pop_back();
+  }
   return plan;
 }
 
