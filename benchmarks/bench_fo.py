@@ -8,17 +8,24 @@ nm) on a square window of +-5 w0 (spacing 10 w0 / N), propagated
 - ``fresnel`` (single-FFT Eq. (A5), output spacing lambda z / (N dx)) over 100 m, beyond the
   critical distance of every grid.
 
-lo is timed against its floor, FFTW's own 2-D plan of the same size and thread count planned with
-FFTW_MEASURE (``_core._fftw_measured``, the same copies in and out as ``_core.propagate``): the
-forward and backward pair for the angular spectrum, one forward transform for Fresnel (target: lo <=
-1.3x of it). ``_core.fft2d_roundtrip`` (the library's own deterministic pair, the same copies) is
-timed beside them. Warm times are the best of several calls after one untimed call (the cached
-propagation plan exists); lo, the reference and lo's native call are timed in interleaved rounds so
-that a change of machine load hits all of them alike. Cold times are reported separately: ``cold``
-is the first call of the process for that N and method (for the angular spectrum it includes FFTW's
-planning of the forward and backward 2-D transforms; Fresnel then reuses the forward plan), ``new
-z`` the best call at a distance not seen before (FFTW plans exist, the propagation plan -- transfer
-function or chirps -- is made anew), which is what every range of an overlap curve pays today.
+lo is timed against the transforms it is made of, with no copies around them, in the same
+interleaved rounds (each timing the least of its rounds, so that a change of machine load hits all
+alike):
+
+- its own transforms: the library's deterministic 2-D FFT pair (``_core._fft_pair_seconds(n, 1,
+  True)``) for the angular spectrum, one forward transform (``transforms=1``) for Fresnel. Targets:
+  angular spectrum <= 1.2x its pair, Fresnel <= 1.3x its transform;
+- the floor: the fastest transform of the same size available here, the least of the library's own,
+  the system FFTW's 2-D plan planned with FFTW_MEASURE for the same thread count
+  (``_core._fft_pair_seconds(n, 1, False, transforms, threads)``, plans kept) and pyFFTW's build
+  of FFTW, measured the same way, where pyFFTW is installed (optional, benchmark-only). Target: both
+  methods <= 1.3x it.
+
+``--load N`` adds N busy processes (pure-Python loops) for a second run; there every target is
+1.5x. The 1-minute load average is recorded with every size. Cold times are reported separately:
+``cold`` is the first call of the process for that N and method (the library's 1-D plans and the
+propagation plan are made), ``new z`` the best call at a distance not seen before (the propagation
+plan -- transfer function or chirps -- is made anew, which each new range of an overlap curve pays).
 
 Peers (optional, benchmark-only; each is skipped with the reason when it does not import):
 LightPipes (Forvard: spectral, paraxial transfer function; Fresnel: convolution with
@@ -31,15 +38,18 @@ timed), and its accuracy is measured the same way as lo's: the relative error |1
 (D2) without the factor 100) of the second-moment radius w = sqrt(2 (var x + var y)) computed here
 from the returned irradiance on the peer's own grid coordinates, against Eq. (D1).
 
-Run:  python benchmarks/bench_fo.py   (writes benchmarks/results/bench_fo.json). SI units
-    throughout.
+Run:  python benchmarks/bench_fo.py [--load N ...] [--sizes N ...] [--no-peers]
+    (default: loads 0 and 4, all sizes, peers where installed; writes
+    benchmarks/results/bench_fo.json). SI units throughout.
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import platform
+import subprocess
 import sys
 import time
 import warnings
@@ -56,14 +66,20 @@ WAIST = 5e-3  # m, w0
 HALF_WINDOW = 5.0  # window +- HALF_WINDOW w0
 SIZES = (256, 512, 1024, 2048)
 CASES = {"angular_spectrum": 2.0, "fresnel": 100.0}  # method -> distance (m)
-REPEATS_LO = {256: 25, 512: 19, 1024: 13, 2048: 9}  # rounds of (reference, lo, lo native)
+REPEATS_LO = {256: 25, 512: 19, 1024: 13, 2048: 9}  # interleaved rounds of lo and the transforms
 REPEATS_PEER = {256: 7, 512: 5, 1024: 3, 2048: 3}
 NEW_DISTANCES = 5  # distinct unseen distances timed for "new z"
-TARGET_RATIO = 1.3  # wanted lo warm time / floor time
+#: Targets, lo warm time over: the library's own transform(s) for each method, the fastest floor;
+#: and every ratio with busy processes added.
+TARGET_OWN = {"angular_spectrum": 1.2, "fresnel": 1.3}
+TARGET_FLOOR = 1.3
+TARGET_LOADED = 1.5
+LOADS = (0, 4)  # busy processes added, one run each
 THREADS = int(
     os.environ.get("OMP_NUM_THREADS", os.cpu_count())
 )  # the team lo uses, and the floor's
 FLOOR_TRANSFORMS = {"angular_spectrum": 2, "fresnel": 1}  # FFTs each method needs
+FLOOR_NAMES = {1: "one", 2: "pair"}
 
 
 def d1_radius(z):
@@ -86,17 +102,68 @@ def d1_error(intensity, x, y, z):
 
 
 def interleaved_best(fns, repeats):
-    """Best wall time of each function in `fns` (name -> callable), timed in `repeats` rounds that
-    call every function once, after one untimed round."""
+    """Least time (s) of each function in `fns` (name -> callable), timed in `repeats` rounds that
+    call every function once, after one untimed round. A function that returns a float has timed
+    itself (a transform without the Python call around it): that is its time."""
     for fn in fns.values():
         fn()
     best = {name: float("inf") for name in fns}
     for _ in range(repeats):
         for name, fn in fns.items():
             t0 = time.perf_counter()
-            fn()
-            best[name] = min(best[name], time.perf_counter() - t0)
+            own = fn()
+            t = own if isinstance(own, float) else time.perf_counter() - t0
+            best[name] = min(best[name], t)
     return best
+
+
+def pyfftw_floors(n):
+    """pyFFTW's FFTW, FFTW_MEASURE for THREADS threads, out of place on aligned arrays: {"one":
+    timed forward, "pair": timed forward and backward}, each returning its own seconds; {} with
+    the reason printed once where pyFFTW does not import."""
+    try:
+        import pyfftw
+    except ImportError as e:
+        if not getattr(pyfftw_floors, "reported", False):
+            print(f"floor pyFFTW: not installed ({e}); floors without it")
+            pyfftw_floors.reported = True
+        return {}
+    a = pyfftw.empty_aligned((n, n), dtype="complex128")
+    b = pyfftw.empty_aligned((n, n), dtype="complex128")
+    flags = ("FFTW_MEASURE",)
+    forward = pyfftw.FFTW(a, b, axes=(0, 1), direction="FFTW_FORWARD", flags=flags, threads=THREADS)
+    backward = pyfftw.FFTW(
+        b, a, axes=(0, 1), direction="FFTW_BACKWARD", flags=flags, threads=THREADS
+    )
+    a[:] = 1.0 + 0.5j  # planning by timing overwrote the arrays
+
+    def one():
+        t0 = time.perf_counter()
+        forward.execute()
+        return time.perf_counter() - t0
+
+    def pair():
+        t0 = time.perf_counter()
+        forward.execute()
+        backward.execute()
+        t = time.perf_counter() - t0
+        a[:] = 1.0 + 0.5j  # bounded values (FFTW may reuse an out-of-place input as scratch)
+        return t
+
+    return {"one": one, "pair": pair}
+
+
+def floor_rounds(n):
+    """The transforms lo is timed against, each returning its own time (s) of one call:
+    {(source, "one" | "pair"): callable}, source = "own" (the library's deterministic transforms),
+    "fftw" (the system FFTW, measured plan, THREADS threads), "pyfftw" (where installed)."""
+    rounds = {}
+    for k, name in FLOOR_NAMES.items():
+        rounds[("own", name)] = lambda k=k: _core._fft_pair_seconds(n, 1, True, k)
+        rounds[("fftw", name)] = lambda k=k: _core._fft_pair_seconds(n, 1, False, k, THREADS)
+    for name, fn in pyfftw_floors(n).items():
+        rounds[("pyfftw", name)] = fn
+    return rounds
 
 
 def timed_once(fn):
@@ -261,7 +328,7 @@ def load_peers():
 
 
 # ---------------------------------------------------------------------------------------------
-def run_size(n, peer_variants):
+def run_size(n, peer_variants, loaded):
     spacing = 2 * HALF_WINDOW * WAIST / n
     field = lo.Field.gaussian(WAVELENGTH, WAIST, n, spacing)
     critical = n * spacing**2 / WAVELENGTH
@@ -276,11 +343,7 @@ def run_size(n, peer_variants):
             m: timed_once(lambda m=m, z=z: lo.propagate(field, z, method=m))[0]
             for m, z in CASES.items()
         }
-        rounds = {
-            "reference": lambda: _core.fft2d_roundtrip(field.values),
-            "floor_1": lambda: _core._fftw_measured(field.values, 1, THREADS),
-            "floor_2": lambda: _core._fftw_measured(field.values, 2, THREADS),
-        }
+        rounds = floor_rounds(n)
         for m, z in CASES.items():
             rounds[m] = lambda m=m, z=z: lo.propagate(field, z, method=m)
             rounds[m + "_native"] = lambda m=m, z=z: _core.propagate(
@@ -298,12 +361,20 @@ def run_size(n, peer_variants):
         }
         results = {m: lo.propagate(field, z, method=m) for m, z in CASES.items()}
     caught_all += [str(w.message) for w in caught if issubclass(w.category, lo.SamplingWarning)]
-    out["reference_s"] = warm["reference"]
-    out["floor_s"] = {"one_fft": warm["floor_1"], "fft_pair": warm["floor_2"]}
+    floors = {
+        name: {key[0]: t for key, t in warm.items() if isinstance(key, tuple) and key[1] == name}
+        for name in FLOOR_NAMES.values()
+    }
+    out["transforms_s"] = floors  # "one" / "pair" -> source -> least time
     out["load_average_1min"] = load_average()
-
     for m, z in CASES.items():
         g = results[m]
+        transforms = floors[FLOOR_NAMES[FLOOR_TRANSFORMS[m]]]
+        own = transforms["own"]
+        source = min(transforms, key=transforms.get)
+        floor = transforms[source]
+        target_own = TARGET_LOADED if loaded else TARGET_OWN[m]
+        target_floor = TARGET_LOADED if loaded else TARGET_FLOOR
         case = {
             "distance_m": z,
             "inside_angular_spectrum_region": bool(z <= critical),
@@ -311,11 +382,14 @@ def run_size(n, peer_variants):
             "lo_native_s": warm[m + "_native"],
             "lo_cold_s": cold[m],
             "lo_new_distance_s": new_z[m],
-            "floor_s": warm[f"floor_{FLOOR_TRANSFORMS[m]}"],
-            "ratio_to_floor": warm[m] / warm[f"floor_{FLOOR_TRANSFORMS[m]}"],
-            "ratio_to_reference": warm[m] / warm["reference"],
-            "target_ratio": TARGET_RATIO,
-            "target_met": bool(warm[m] / warm[f"floor_{FLOOR_TRANSFORMS[m]}"] <= TARGET_RATIO),
+            "own_s": own,
+            "floor_s": floor,
+            "floor_source": source,
+            "ratio_to_own": warm[m] / own,
+            "ratio_to_floor": warm[m] / floor,
+            "target_own": target_own,
+            "target_floor": target_floor,
+            "target_met": bool(warm[m] / own <= target_own and warm[m] / floor <= target_floor),
             "output_spacing_m": g.spacing,
             "d1_radius_m": float(d1_radius(z)),
             "lo_d1_rel_error": d1_error(g.intensity, g.x, g.y, z),
@@ -355,27 +429,44 @@ def fmt_ms(t):
     return f"{t * 1e3:8.2f}" if t is not None else f"{'-':>8}"
 
 
-def print_tables(rows):
+def print_tables(rows, added):
     print(
-        f"\nlo against its floor, FFTW's measured 2-D plan(s) on {THREADS} threads (ms; x floor = "
-        f"lo / floor, target <= {TARGET_RATIO:g}x; ref = the library's deterministic FFT pair; D1 "
-        "err = |1 - w_D1 / w|)"
+        f"\nlo against its own transforms and the fastest floor, {added} busy processes added "
+        f"(ms, {THREADS} threads; own = the library's FFT pair (AS) or forward FFT (Fresnel), no "
+        "copies; floor = least of own, system FFTW measured, pyFFTW measured; D1 err = "
+        "|1 - w_D1 / w|)"
     )
     header = (
-        f"{'N':>5} {'case':9} {'z (m)':>6} {'floor':>8} {'lo':>8} {'x floor':>7} {'ref':>8} "
-        f"{'native':>8} {'cold':>9} {'new z':>8} {'D1 err':>8}  target"
+        f"{'N':>5} {'case':9} {'own':>8} {'floor':>8} {'from':>6} {'lo':>8} {'x own':>6} "
+        f"{'x floor':>7} {'native':>8} {'cold':>8} {'new z':>8} {'D1 err':>8} {'load':>5}  target"
     )
     print(header)
     print("-" * len(header))
     for r in rows:
         for m, c in r["cases"].items():
             print(
-                f"{r['n']:5d} {m[:9]:9} {c['distance_m']:6g} {fmt_ms(c['floor_s'])} "
-                f"{fmt_ms(c['lo_s'])} {c['ratio_to_floor']:6.2f}x {fmt_ms(r['reference_s'])} "
-                f"{fmt_ms(c['lo_native_s'])} {c['lo_cold_s'] * 1e3:9.1f} "
-                f"{fmt_ms(c['lo_new_distance_s'])} {c['lo_d1_rel_error']:8.1e}  "
-                f"{'met' if c['target_met'] else 'NOT met'}"
+                f"{r['n']:5d} {m[:9]:9} {fmt_ms(c['own_s'])} {fmt_ms(c['floor_s'])} "
+                f"{c['floor_source']:>6} {fmt_ms(c['lo_s'])} {c['ratio_to_own']:5.2f}x "
+                f"{c['ratio_to_floor']:6.2f}x {fmt_ms(c['lo_native_s'])} "
+                f"{c['lo_cold_s'] * 1e3:8.1f} {fmt_ms(c['lo_new_distance_s'])} "
+                f"{c['lo_d1_rel_error']:8.1e} {r['load_average_1min']:5.1f}  "
+                f"{'met' if c['target_met'] else 'NOT met'} (<= {c['target_own']:g}x own, "
+                f"{c['target_floor']:g}x floor)"
             )
+    print(
+        "transforms alone (ms): "
+        + "; ".join(
+            f"{r['n']}: "
+            + ", ".join(
+                f"{name} " + " ".join(f"{src} {t * 1e3:.2f}" for src, t in srcs.items())
+                for name, srcs in r["transforms_s"].items()
+            )
+            for r in rows
+        )
+    )
+
+
+def print_peers(rows):
     print(
         "\npeers (ms; x lo = peer time / lo warm time, x new z = peer time / lo new-z time; D1 err "
         "of the peer and of lo on the same case)"
@@ -400,7 +491,49 @@ def print_tables(rows):
                 )
 
 
+def measure(added, sizes, peer_variants):
+    """Every size with ``added`` busy processes running (pure-Python loops, started here and ended
+    by their process ids)."""
+    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(added)]
+    try:
+        time.sleep(2.0 if busy else 0.0)
+        load_start = load_average()
+        print(f"-- {added} busy processes added | load {load_start:.2f}", flush=True)
+        rows = []
+        for n in sizes:
+            rows.append(run_size(n, peer_variants if not added else [], loaded=added > 0))
+            print(f"N = {n} done (load average {load_average():.2f})", flush=True)
+    finally:
+        for p in busy:
+            p.kill()
+            p.wait()
+    print_tables(rows, added)
+    if not added:
+        print_peers(rows)
+    for r in rows:
+        for message in r["sampling_warnings"]:
+            print(f"SamplingWarning at N = {r['n']}: {message}")
+    return {
+        "added_busy_processes": added,
+        "load_average_1min": load_start,
+        "load_average_1min_end": load_average(),
+        "sizes": rows,
+    }
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument(
+        "--load",
+        type=int,
+        nargs="+",
+        default=list(LOADS),
+        metavar="N",
+        help="busy processes added, one run each (default: 0 4)",
+    )
+    parser.add_argument("--sizes", type=int, nargs="+", default=list(SIZES), metavar="N")
+    parser.add_argument("--no-peers", action="store_true", help="skip the peer libraries")
+    args = parser.parse_args()
     load_start = load_average()
     print(
         f"lidar_overlap {lo.__version__} | numpy {np.__version__} | {os.cpu_count()} cores | load "
@@ -409,27 +542,19 @@ def main():
     print(
         f"TEM00 w0 = {WAIST * 1e3:g} mm, {WAVELENGTH * 1e9:g} nm, window +-{HALF_WINDOW:g} w0; "
         f"angular spectrum over {CASES['angular_spectrum']:g} m, Fresnel over {CASES['fresnel']:g} "
-        f"m; best of {REPEATS_LO} (lo, reference) / {REPEATS_PEER} (peers) warm calls"
+        f"m; least of {REPEATS_LO} interleaved rounds (lo, transforms) / {REPEATS_PEER} (peers)"
     )
     if load_start > 0.5:
         print(
             f"warning: 1-min load average {load_start:.2f} before the run; other processes share "
             f"the {os.cpu_count()} cores and the times below may be inflated"
         )
-    peer_status, peer_variants = load_peers()
+    peer_status, peer_variants = ({}, []) if args.no_peers else load_peers()
     for name, s in peer_status.items():
         print(f"peer {name}: " + (f"{s['version']}" if s["version"] else s["reason"]))
 
-    rows = []
-    for n in SIZES:
-        rows.append(run_size(n, peer_variants))
-        print(f"N = {n} done (load average {load_average():.2f})", flush=True)
-    print_tables(rows)
-    for r in rows:
-        for message in r["sampling_warnings"]:
-            print(f"SamplingWarning at N = {r['n']}: {message}")
+    runs = [measure(added, args.sizes, peer_variants) for added in args.load]
     load_end = load_average()
-
     out = Path(__file__).resolve().parent / "results" / "bench_fo.json"
     out.parent.mkdir(parents=True, exist_ok=True)
     versions = {
@@ -437,7 +562,7 @@ def main():
         "numpy": np.__version__,
         "python": sys.version.split()[0],
     }
-    for module in ("scipy", "astropy", "numexpr"):
+    for module in ("scipy", "astropy", "numexpr", "pyfftw"):
         try:
             versions[module] = __import__(module).__version__
         except ImportError:
@@ -457,22 +582,29 @@ def main():
         },
         "cases": {m: {"distance_m": z} for m, z in CASES.items()},
         "repeats": {
-            "lo_and_reference": REPEATS_LO,
+            "lo_and_transforms": REPEATS_LO,
             "peers": REPEATS_PEER,
             "new_distances": NEW_DISTANCES,
         },
         "threads": THREADS,
         "tolerance": None,
-        "floor": "FFTW_MEASURE 2-D plan(s) of the same size on the same threads "
-        "(_core._fftw_measured): the pair for the angular spectrum, one forward FFT for Fresnel; "
-        "same copies in and out",
-        "timing": "best of the repeats after one untimed call; lo, its native call, the floors and "
-        "the reference in interleaved rounds",
+        "targets": {
+            "ratio_to_own": TARGET_OWN,
+            "ratio_to_floor": TARGET_FLOOR,
+            "with_busy_processes": TARGET_LOADED,
+        },
+        "own": "the library's deterministic 2-D transforms (_core._fft_pair_seconds(n, 1, True, "
+        "k)): the pair for the angular spectrum, one forward FFT for Fresnel; no copies",
+        "floor": "least of own, the system FFTW's FFTW_MEASURE 2-D plan on the same threads "
+        "(_core._fft_pair_seconds(n, 1, False, k, threads)) and pyFFTW's, where installed; no "
+        "copies",
+        "timing": "least of the rounds after one untimed round; lo, its native call and every "
+        "transform in interleaved rounds",
         "accuracy": "|1 - w_D1 / w|, w = second-moment radius of the returned irradiance on its "
         "own grid",
         "peers": peer_status,
     }
-    out.write_text(json.dumps({"meta": meta, "sizes": rows}, indent=2) + "\n")
+    out.write_text(json.dumps({"meta": meta, "runs": runs}, indent=2) + "\n")
     print(f"\nwrote {out}")
 
 

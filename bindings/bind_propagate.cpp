@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <mutex>
 
@@ -63,21 +64,42 @@ void bind_propagate(py::module_& m) {
       // grid_size: 0 keeps the field's grid, -1 lets choose_grid pick it, n > 0 zero-pads to n.
       [](const ComplexArray& values, double spacing, double wavelength, double distance, const std::string& method,
          double output_spacing, long grid_size) {
-        Field in = field_from_array(values, spacing, wavelength);  // a fresh copy: propagated in place
+        if (values.ndim() != 2 || values.shape(0) != values.shape(1))
+          throw std::invalid_argument("values: expected a square (n, n) complex array");
         PropagationMethod pm = method_from(method);
-        Propagated p;
-        {
+        std::size_t n = static_cast<std::size_t>(values.shape(0));
+        Field padded;  // only when the grid changes: the caller's values zero-padded
+        const Complex* in = values.data();
+        if (grid_size != 0) {
+          padded = field_from_array(values, spacing, wavelength);
           Interruptible release;
           if (grid_size == -1) {
-            const GridChoice g = choose_grid(in, distance, pm);
+            const GridChoice g = choose_grid(padded, distance, pm);
             pm = g.method;
-            if (g.n != in.n) in = zero_pad(in, g.n);
-          } else if (grid_size > 0 && static_cast<std::size_t>(grid_size) != in.n) {
-            in = zero_pad(in, static_cast<std::size_t>(grid_size));
+            if (g.n != padded.n) padded = zero_pad(padded, g.n);
+          } else if (static_cast<std::size_t>(grid_size) != padded.n) {
+            padded = zero_pad(padded, static_cast<std::size_t>(grid_size));
           }
-          p = propagate(std::move(in), distance, pm, output_spacing);
+          n = padded.n;
+          in = padded.values.data();
         }
-        return py::make_tuple(array_from_field(p.field), p.field.spacing, p.report);
+        std::shared_ptr<const PropagationPlan> plan;
+        {
+          Interruptible release;  // a new geometry's transfer function: n^2 phasors
+          plan = PropagationPlan::cached(n, spacing, wavelength, distance, pm, output_spacing);
+        }
+        // The passes read the caller's values (or the padded copy) and write the result's array: no copy.
+        ComplexArray out({n, n});
+        Complex* result = out.mutable_data();
+        const bool aligned = fftw_alignment_of(reinterpret_cast<double*>(result)) == 0;
+        ComplexBuffer staging(aligned ? 0 : n * n);  // FFTW's alignment, if NumPy's allocation lacks it
+        PropagationReport report;
+        {
+          Interruptible release;
+          report = plan->execute(in, aligned ? result : staging.data());
+          if (!aligned) std::copy(staging.begin(), staging.end(), result);
+        }
+        return py::make_tuple(out, plan->output_spacing(), report);
       },
       py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"), py::arg("method"),
       py::arg("output_spacing"), py::arg("grid_size"));
@@ -135,25 +157,41 @@ void bind_propagate(py::module_& m) {
       },
       py::arg("values"), py::arg("transforms"), py::arg("threads"));
 
-  // The same floor without the copies, for paths that run many transforms per call (turbulent FO): the
-  // least time (s) of one forward-and-backward pair on an n x n buffer over `repeats` pairs, with FFTW's
-  // measured plan for one thread (`library` false) or the library's deterministic transforms (true).
+  // The same floors without the copies, for timing the library's passes against the transforms alone: the
+  // least time (s) of `transforms` (1: forward; 2: forward and backward) 2-D transforms on an n x n buffer
+  // over `repeats`, with FFTW's measured plan for `threads` threads (`library` false; plans made on first
+  // use and kept) or the library's deterministic transforms (true, on the threads fft_threads gives).
   m.def(
       "_fft_pair_seconds",
-      [](std::size_t n, int repeats, bool library) {
+      [](std::size_t n, int repeats, bool library, int transforms, int threads) {
         if (n < 2 || n > 4096) throw std::invalid_argument("n = " + std::to_string(n) + " is invalid: expected 2 to 4096");
         if (repeats < 1 || repeats > 100000)
           throw std::invalid_argument("repeats = " + std::to_string(repeats) + " is invalid: expected 1 to 100000");
+        if (transforms != 1 && transforms != 2)
+          throw std::invalid_argument("transforms = " + std::to_string(transforms) + " is invalid: expected 1 or 2");
+        if (threads < 1 || threads > 1024)
+          throw std::invalid_argument("threads = " + std::to_string(threads) + " is invalid: expected 1 to 1024");
         ComplexBuffer data(n * n, Complex(1.0, 0.5));
         auto* p = reinterpret_cast<fftw_complex*>(data.data());
         fftw_plan forward = nullptr, backward = nullptr;
         if (!library) {
+          static std::map<std::tuple<std::size_t, int, int>, fftw_plan> plans;
           std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-          ComplexBuffer scratch(n * n);
-          auto* s = reinterpret_cast<fftw_complex*>(scratch.data());
-          fftw_plan_with_nthreads(1);
-          forward = fftw_plan_dft_2d(int(n), int(n), s, s, FFTW_FORWARD, FFTW_MEASURE);
-          backward = fftw_plan_dft_2d(int(n), int(n), s, s, FFTW_BACKWARD, FFTW_MEASURE);
+          auto plan = [&](int sign) {
+            auto& q = plans[{n, threads, sign}];
+            if (!q) {
+              static const bool threads_ready = fftw_init_threads() != 0;
+              if (!threads_ready) throw std::runtime_error("FFTW threads could not be initialised");
+              fftw_plan_with_nthreads(threads);
+              ComplexBuffer scratch(n * n);
+              auto* s = reinterpret_cast<fftw_complex*>(scratch.data());
+              q = fftw_plan_dft_2d(int(n), int(n), s, s, sign, FFTW_MEASURE);
+              fftw_plan_with_nthreads(1);
+            }
+            return q;
+          };
+          forward = plan(FFTW_FORWARD);
+          backward = transforms == 2 ? plan(FFTW_BACKWARD) : nullptr;
         }
         double best = 1e300;
         {
@@ -162,21 +200,17 @@ void bind_propagate(py::module_& m) {
             const auto t0 = std::chrono::steady_clock::now();
             if (library) {
               fft2d(data, n, FftDirection::forward);
-              fft2d(data, n, FftDirection::backward);
+              if (transforms == 2) fft2d(data, n, FftDirection::backward);
             } else {
               fftw_execute_dft(forward, p, p);
-              fftw_execute_dft(backward, p, p);
+              if (backward) fftw_execute_dft(backward, p, p);
             }
             best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-            for (Complex& v : data) v *= 1.0 / double(n * n);  // keep the values bounded
+            const double scale = 1.0 / std::pow(double(n), transforms);
+            for (Complex& v : data) v *= scale;  // keep the values bounded
           }
-        }
-        if (!library) {
-          std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-          fftw_destroy_plan(forward);
-          fftw_destroy_plan(backward);
         }
         return best;
       },
-      py::arg("n"), py::arg("repeats"), py::arg("library"));
+      py::arg("n"), py::arg("repeats"), py::arg("library"), py::arg("transforms") = 2, py::arg("threads") = 1);
 }

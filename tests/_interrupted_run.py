@@ -188,6 +188,19 @@ LONG_CALLS = {
         "lo.propagate(f, 5.0, 'angular_spectrum', grid_size=8192)",
         (WARM_CPU, 3.0),
     ),
+    # a given 8192^2 field (1 GiB): the transfer function, then the passes, which read the caller's
+    # array and write the result's (no copy in or out outside them)
+    "propagate_large_field": (
+        "f = lo.Field.gaussian(355e-9, 2e-3, 8192, 2e-6)",
+        "lo.propagate(f, 1.0, 'angular_spectrum')",
+        (WARM_CPU, 2.0),
+    ),
+    # the same field by single-FFT Fresnel: per-axis chirps, so nearly all of the call is its passes
+    "propagate_large_field_fresnel": (
+        "f = lo.Field.gaussian(355e-9, 2e-3, 8192, 2e-6)",
+        "lo.propagate(f, 1000.0, 'fresnel')",
+        (WARM_CPU, 1.0),
+    ),
     # Fresnel onto another spacing: chirps and the chirp-z transforms of a 4096^2 grid
     "propagate_fresnel_scaled": (
         "f = lo.Field.gaussian(355e-9, 2e-3, 4096, 1e-5)",

@@ -8,7 +8,11 @@ import os
 import subprocess
 import sys
 
+import numpy as np
+import pytest
+
 import lidar_overlap as lo
+from lidar_overlap import _core
 
 # (n, method, distance m, output spacing m or None): the angular spectrum and the single-FFT Fresnel
 # and Fraunhofer paths at the sizes whose measured plans used to differ between processes, and the
@@ -60,3 +64,41 @@ def test_same_bits_in_this_process():
         lo.propagate(field, z, method=method, output_spacing=out).values.tobytes()
     ).hexdigest()
     assert here == digests(2)[1]
+
+
+def _misaligned(values):
+    """A copy of ``values`` 8 bytes off the 16-byte alignment of complex128 (and of FFTW's SIMD
+    plans), so that the core cannot hand it to its transforms as it is."""
+    raw = np.zeros(values.nbytes + 8, dtype=np.uint8)
+    copy = np.frombuffer(raw.data, dtype=np.complex128, count=values.size, offset=8)
+    copy = copy.reshape(values.shape)
+    copy[...] = values
+    return copy
+
+
+@pytest.mark.parametrize("method, z", [("angular_spectrum", 2.0), ("fresnel", 100.0)])
+def test_same_bits_from_any_input_array(method, z):
+    """The first pass reads the caller's array where it lies (transformed straight from its rows
+    when it has FFTW's alignment, copied row by row when not) and never writes it: every route
+    gives the same bits, the zero-padding one (grid_size = n, a copy made by the core) too."""
+    n = 256
+    field = lo.Field.gaussian(355e-9, 5e-3, n, 10 * 5e-3 / n)
+    expected = lo.propagate(field, z, method=method).values
+    unaligned = _misaligned(field.values)
+    assert unaligned.ctypes.data % 16 == 8
+    writable = field.values.copy()
+    for values, grid in ((unaligned, 0), (writable, 0), (writable, n)):
+        out, _, report = _core.propagate(values, field.spacing, 355e-9, z, method, 0.0, grid)
+        assert report.method == method
+        assert out.tobytes() == expected.tobytes(), (values.ctypes.data % 16, grid)
+    assert writable.tobytes() == field.values.tobytes()  # only read
+
+
+def test_transform_timer_refuses_what_it_cannot_time():
+    """The benchmarks' timer of bare transforms names the parameter it refuses."""
+    assert _core._fft_pair_seconds(64, 2, True, 1) > 0.0
+    assert _core._fft_pair_seconds(64, 2, False, 2, 2) > 0.0
+    with pytest.raises(ValueError, match="transforms = 3 is invalid"):
+        _core._fft_pair_seconds(64, 1, True, 3)
+    with pytest.raises(ValueError, match="threads = 0 is invalid"):
+        _core._fft_pair_seconds(64, 1, False, 1, 0)

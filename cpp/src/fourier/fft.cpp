@@ -71,6 +71,10 @@ void execute_blocks(void* block, void* single, const Complex* in, Complex* out, 
 
 }  // namespace
 
+bool fftw_aligned(const Complex* p) {
+  return fftw_alignment_of(reinterpret_cast<double*>(const_cast<Complex*>(p))) == 0;
+}
+
 std::mutex& fftw_planner_mutex() {
   static std::mutex m;
   return m;

@@ -62,6 +62,10 @@ class BlockTransform {
   void* single_;  // fftw_plan of one row
 };
 
+// Whether `p` has the alignment FFTW planned the library's transforms for (any ComplexBuffer has it; memory
+// from elsewhere, a NumPy array, usually does).
+bool fftw_aligned(const Complex* p);
+
 // The lock around every FFTW planner call in the process (FFTW's planner is not thread-safe).
 std::mutex& fftw_planner_mutex();
 

@@ -159,4 +159,31 @@ void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirec
   stop.rethrow();
 }
 
+// Out of place straight from another array: for each block of rows of a rows x length row-major array `in`,
+// read(r, row of in) for each row (sums of the input), then the block's transforms from `in` into the same
+// rows of `out` (no overlap; both with FFTW's alignment, fftw_aligned). The same plans, so the same bits, as
+// row_pass_into filled with copies of the rows of `in`, without the copies.
+template <class Read>
+void row_pass_from(const Complex* in, Complex* out, std::size_t rows, std::size_t length, FftDirection direction,
+                   int threads, Read&& read) {
+  const BlockTransform transform(length, direction, length);
+  const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
+  TeamClock clock;
+  RegionStop stop;
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const TeamClock::Mark mark = clock.started();
+#pragma omp for schedule(dynamic, 1) nowait
+    for (long b = 0; b < blocks; ++b) {
+      if (stop.stopped()) continue;
+      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
+      for (std::size_t r = 0; r < count; ++r) read(r0 + r, in + (r0 + r) * length);
+      transform(in + r0 * length, out + r0 * length, count);
+    }
+    clock.finished(mark);
+  }
+  clock.report(threads);
+  stop.rethrow();
+}
+
 }  // namespace lidar_overlap::detail

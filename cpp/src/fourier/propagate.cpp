@@ -16,6 +16,7 @@
 #include "fourier/fft.hpp"
 #include "fourier/fft_passes.hpp"
 #include "fourier/scaled_dft.hpp"
+#include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
 
@@ -102,13 +103,16 @@ class ExtentSums {
     total_[i] = total;
     edge_[i] = (i < border_ || i >= n_ - border_) ? total : power(v, border_) + power(v + n_ - border_, border_);
     // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
+    // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
     if (radial_.empty() || i % 2) return;
     std::vector<double>& bins = radial_[omp_get_thread_num()];
     const std::size_t last = bins.size() - 1;
     const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half, per_bin = 8.0 / n_;
     for (std::size_t j = 0; j < n_; j += 2) {
       const double w = static_cast<double>(j) - half;
-      bins[std::min(last, static_cast<std::size_t>((w * w + u * u) * per_bin))] += 4.0 * std::norm(v[j]);
+      // a signed conversion (one instruction; the unsigned one branches): the same bin for these sums >= 0
+      const auto bin = static_cast<std::size_t>(static_cast<long>((w * w + u * u) * per_bin));
+      bins[std::min(last, bin)] += 4.0 * (v[j].real() * v[j].real() + v[j].imag() * v[j].imag());
     }
   }
 
@@ -152,6 +156,22 @@ void require_finite(double power, double distance) {
                             " m: its input was not finite, or the distance and sampling leave double precision");
 }
 
+// The Fresnel and Fraunhofer report from the extents of the input and the output.
+void fresnel_report(PropagationReport& r, const Extent& before, const Extent& after, bool scaled_output,
+                    double spacing, double output_spacing, double wavelength, double distance) {
+  require_finite(after.total, distance);
+  r.input_edge_power = before.edge_fraction();
+  r.output_edge_power = after.edge_fraction();
+  r.scaled_output = scaled_output;
+  // Extents about the optical axis, where A3 and A6 measure them.
+  const double a_in = before.radius(kSupportFraction, spacing);
+  const double a_out = after.radius(kSupportFraction, output_spacing);
+  const double k = 2.0 * kPi / wavelength;
+  r.chirp_phase_step = r.method == PropagationMethod::fresnel ? k * a_in * spacing / distance : 0.0;
+  r.fresnel_phase_error = kPi / (4.0 * wavelength) * std::pow(a_in + a_out, 4) / std::pow(distance, 3);
+  r.fraunhofer_phase = kPi * a_in * a_in / (wavelength * distance);
+}
+
 }  // namespace
 
 PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelength, double distance,
@@ -186,7 +206,7 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
     const double df = 1.0 / (n * spacing);
     const double f_limit = 1.0 / (wavelength * std::sqrt(std::pow(2.0 * df * z, 2) + 1.0));
     const Complex carrier = unit_phasor(k * z) / static_cast<double>(n * n);
-    transfer_.assign(n * n, Complex{});
+    transfer_ = detail::zeroed_buffer(n * n);  // zeroed in chunks, each after a cancellation point
     const int threads = fft_threads(n * n);
     detail::RegionStop stop;  // n^2 phasors: seconds for a 16384^2 grid on a busy core
 #pragma omp parallel for num_threads(threads) if (threads > 1)
@@ -236,7 +256,18 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
   auto plan = std::make_shared<const PropagationPlan>(n, spacing, wavelength, distance, method, output_spacing);
   std::lock_guard<std::mutex> lock(mutex);
   recent.emplace_front(key, plan);
-  if (recent.size() > kCapacity) recent.pop_back();
+  // At most kCapacity plans and kCapacityBytes of tables (a transfer function of 8192^2 is 1 GiB): the least
+  // recently used go first, the newest stays.
+  constexpr std::size_t kCapacityBytes = std::size_t{1} << 30;
+  auto bytes = [](const PropagationPlan& p) {
+    return sizeof(Complex) * (p.transfer_.size() + p.chirp_in_.size() + p.chirp_out_.size());
+  };
+  std::size_t total = 0;
+  for (const auto& entry : recent) total += bytes(*entry.second);
+  while (recent.size() > 1 && (recent.size() > kCapacity || total > kCapacityBytes)) {
+    total -= bytes(*recent.back().second);
+    recent.pop_back();
+  }
   return plan;
 }
 
@@ -245,46 +276,60 @@ Propagated PropagationPlan::execute(Field in) const {
   if (in.n != n_ || in.spacing != spacing_ || in.wavelength != wavelength_)
     checks::fail("field.n", static_cast<double>(in.n), "the grid, spacing and wavelength the plan was made for");
   Propagated out;
-  PropagationReport& r = out.report;
+  ComplexBuffer& u = in.values;  // the field is ours: transform it in place
+  out.report = single_fft_ || method_ == PropagationMethod::angular_spectrum ? execute(u.data(), u.data()) : scaled(u);
+  out.field = Field{std::move(u), n_, output_spacing_, wavelength_};
+  return out;
+}
+
+PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) const {
+  PropagationReport r;
   r.method = method_;
   r.critical_distance = critical_distance_;
-  ComplexBuffer& u = in.values;  // the field is ours: transform it in place
-  const int threads = fft_threads(n_ * n_);
+  const std::size_t n = n_;
+  const int threads = fft_threads(n * n);
 
   if (method_ == PropagationMethod::angular_spectrum) {
-    // Three passes over the field: forward rows (the input's sums on the way), then per block of columns
-    // the forward column transforms, the transfer function and the backward column transforms while the
-    // block is in cache, then backward rows (the output's sums). The transfer function is symmetric in
+    // Three passes over the field: forward rows (from `in`, the input's sums on the way), then per block of
+    // columns the forward column transforms, the transfer function and the backward column transforms while
+    // the block is in cache, then backward rows (the output's sums). The transfer function is symmetric in
     // (fx, fy), so column kx reads it contiguously at transfer_[kx * n + ky].
-    ExtentSums input(n_, threads, false), output(n_, threads, false);
-    auto none = [](std::size_t, Complex*) {};
+    ExtentSums input(n, threads, false), output(n, threads, false);
     if (distance_ == 0.0) {
-      for (std::size_t iy = 0; iy < n_; ++iy) input.add(iy, u.data() + iy * n_);
+      for (std::size_t iy = 0; iy < n; ++iy) {
+        detail::cancellation_point_every(iy);
+        input.add(iy, in + iy * n);
+        if (out != in) std::copy(in + iy * n, in + (iy + 1) * n, out + iy * n);
+      }
       output = input;
     } else {
       detail::cancellation_point();
-      std::vector<double> spectrum(n_), removed(n_);
+      std::vector<double> spectrum(n), removed(n);
       // Out of place throughout (FFTW's in-place plans copy through a buffer of their own): rows from a
-      // per-thread block, columns through a one-column buffer.
-      const Complex* field = u.data();
-      detail::row_pass_into(u.data(), n_, n_, FftDirection::forward, threads,
-                            [&](std::size_t iy, Complex* line) {
-                              std::copy(field + iy * n_, field + (iy + 1) * n_, line);
-                              input.add(iy, line);
-                            },
-                            none);
-      const BlockTransform forward(n_, FftDirection::forward, n_), backward(n_, FftDirection::backward, n_);
-      detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
-        const std::size_t stride = detail::column_stride(n_);
-        Complex* k = detail::column_buffer(n_);
+      // per-thread block (or straight from the caller's rows when they are another aligned array), columns
+      // through a one-column buffer.
+      if (in != out && fftw_aligned(in))
+        detail::row_pass_from(in, out, n, n, FftDirection::forward, threads,
+                              [&](std::size_t iy, const Complex* row) { input.add(iy, row); });
+      else
+        detail::row_pass_into(out, n, n, FftDirection::forward, threads,
+                              [&](std::size_t iy, Complex* line) {
+                                std::copy(in + iy * n, in + (iy + 1) * n, line);
+                                input.add(iy, line);
+                              },
+                              [](std::size_t, Complex*) {});
+      const BlockTransform forward(n, FftDirection::forward, n), backward(n, FftDirection::backward, n);
+      detail::column_pass(out, n, n, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
+        const std::size_t stride = detail::column_stride(n);
+        Complex* k = detail::column_buffer(n);
         for (std::size_t c = 0; c < count; ++c) {
           Complex* column = block + c * stride;
           forward(column, k, 1);
-          const Complex* h = transfer_.data() + (x0 + c) * n_;
+          const Complex* h = transfer_.data() + (x0 + c) * n;
           // Only the band edge is zero: the power it removes is summed where h vanishes, the rest multiplied.
           double cut = 0.0;
-          spectrum[x0 + c] = power(k, n_);
-          for (std::size_t ky = 0; ky < n_; ++ky) {
+          spectrum[x0 + c] = power(k, n);
+          for (std::size_t ky = 0; ky < n; ++ky) {
             if (h[ky] == Complex{}) cut += std::norm(k[ky]);
             k[ky] = times(k[ky], h[ky]);
           }
@@ -292,14 +337,14 @@ Propagated PropagationPlan::execute(Field in) const {
           backward(k, column, 1);
         }
       });
-      const Complex* spectrum_rows = u.data();
-      detail::row_pass_into(u.data(), n_, n_, FftDirection::backward, threads,
+      const Complex* spectrum_rows = out;
+      detail::row_pass_into(out, n, n, FftDirection::backward, threads,
                             [&](std::size_t iy, Complex* line) {
-                              std::copy(spectrum_rows + iy * n_, spectrum_rows + (iy + 1) * n_, line);
+                              std::copy(spectrum_rows + iy * n, spectrum_rows + (iy + 1) * n, line);
                             },
                             [&](std::size_t iy, Complex* line) { output.add(iy, line); });
       double spectrum_total = 0.0, removed_total = 0.0;
-      for (std::size_t k = 0; k < n_; ++k) {
+      for (std::size_t k = 0; k < n; ++k) {
         spectrum_total += spectrum[k];
         removed_total += removed[k];
       }
@@ -309,61 +354,56 @@ Propagated PropagationPlan::execute(Field in) const {
     require_finite(after.total, distance_);
     r.input_edge_power = before.edge_fraction();
     r.output_edge_power = after.edge_fraction();
-    out.field = Field{std::move(u), n_, spacing_, wavelength_};
-    return out;
+    return r;
   }
 
-  Extent before(n_), after(n_);
-  if (single_fft_) {
-    // One forward transform: the input chirp applied to each row before its transform, the output chirp
-    // and front factor to each column after its transform, the sums of both on the way.
-    detail::cancellation_point();
-    ExtentSums input(n_, threads, true), output(n_, threads, true);
-    // Both passes out of place (FFTW's in-place plans copy through a buffer of their own): each row, chirped,
-    // into a block that is transformed into the field's rows; each gathered column into a one-column buffer,
-    // chirped on its way back.
-    const Complex* field = u.data();
-    detail::row_pass_into(u.data(), n_, n_, FftDirection::forward, threads,
-                          [&](std::size_t iy, Complex* line) {
-                            const Complex row = chirp_in_[iy];
-                            const Complex* from = field + iy * n_;
-                            for (std::size_t ix = 0; ix < n_; ++ix) line[ix] = times(from[ix], times(row, chirp_in_[ix]));
-                            input.add(iy, line);
-                          },
-                          [](std::size_t, Complex*) {});
-    const BlockTransform columns(n_, FftDirection::forward, n_);
-    detail::column_pass(u.data(), n_, n_, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
-      const std::size_t stride = detail::column_stride(n_);
-      Complex* transformed = detail::column_buffer(n_);
-      for (std::size_t c = 0; c < count; ++c) {
-        Complex* column = block + c * stride;
-        columns(column, transformed, 1);
-        const Complex scale = front_ * chirp_out_[x0 + c];
-        for (std::size_t ky = 0; ky < n_; ++ky) column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
-        output.add(x0 + c, column);
-      }
-    });
-    before = input.result();
-    after = output.result();
-  } else {
-    const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
-    before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
-    u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
-    after = apply_separable(u, n_, chirp_out_, front_);
+  if (!single_fft_) {  // the chirp-z path works on a buffer of its own
+    ComplexBuffer u(in, in + n * n);
+    r = scaled(u);
+    std::copy(u.begin(), u.end(), out);
+    return r;
   }
-  require_finite(after.total, distance_);
-  out.field = Field{std::move(u), n_, output_spacing_, wavelength_};
-  r.input_edge_power = before.edge_fraction();
-  r.output_edge_power = after.edge_fraction();
-  r.scaled_output = !single_fft_;
-  // Extents about the optical axis, where A3 and A6 measure them.
-  const double a_in = before.radius(kSupportFraction, spacing_);
-  const double a_out = after.radius(kSupportFraction, output_spacing_);
-  const double k = 2.0 * kPi / wavelength_;
-  r.chirp_phase_step = method_ == PropagationMethod::fresnel ? k * a_in * spacing_ / distance_ : 0.0;
-  r.fresnel_phase_error = kPi / (4.0 * wavelength_) * std::pow(a_in + a_out, 4) / std::pow(distance_, 3);
-  r.fraunhofer_phase = kPi * a_in * a_in / (wavelength_ * distance_);
-  return out;
+  // One forward transform: the input chirp applied to each row before its transform, the output chirp
+  // and front factor to each column after its transform, the sums of both on the way.
+  detail::cancellation_point();
+  ExtentSums input(n, threads, true), output(n, threads, true);
+  // Both passes out of place (FFTW's in-place plans copy through a buffer of their own): each row of `in`,
+  // chirped, into a block that is transformed into the rows of `out`; each gathered column into a one-column
+  // buffer, chirped on its way back.
+  detail::row_pass_into(out, n, n, FftDirection::forward, threads,
+                        [&](std::size_t iy, Complex* line) {
+                          const Complex row = chirp_in_[iy];
+                          const Complex* from = in + iy * n;
+                          for (std::size_t ix = 0; ix < n; ++ix) line[ix] = times(from[ix], times(row, chirp_in_[ix]));
+                          input.add(iy, line);
+                        },
+                        [](std::size_t, Complex*) {});
+  const BlockTransform columns(n, FftDirection::forward, n);
+  detail::column_pass(out, n, n, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
+    const std::size_t stride = detail::column_stride(n);
+    Complex* transformed = detail::column_buffer(n);
+    for (std::size_t c = 0; c < count; ++c) {
+      Complex* column = block + c * stride;
+      columns(column, transformed, 1);
+      const Complex scale = front_ * chirp_out_[x0 + c];
+      for (std::size_t ky = 0; ky < n; ++ky) column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
+      output.add(x0 + c, column);
+    }
+  });
+  fresnel_report(r, input.result(), output.result(), false, spacing_, output_spacing_, wavelength_, distance_);
+  return r;
+}
+
+PropagationReport PropagationPlan::scaled(ComplexBuffer& u) const {
+  PropagationReport r;
+  r.method = method_;
+  r.critical_distance = critical_distance_;
+  const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
+  const Extent before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
+  u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
+  const Extent after = apply_separable(u, n_, chirp_out_, front_);
+  fresnel_report(r, before, after, true, spacing_, output_spacing_, wavelength_, distance_);
+  return r;
 }
 
 Propagated propagate(Field in, double distance, PropagationMethod method, double output_spacing) {

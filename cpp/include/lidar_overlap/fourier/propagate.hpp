@@ -50,6 +50,11 @@ class PropagationPlan {
   // Works in place on `in` (pass an rvalue to avoid a copy of the field).
   Propagated execute(Field in) const;
 
+  // The n x n row-major values `in` propagated into `out` (n x n, FFTW-aligned like any ComplexBuffer;
+  // `out` may be `in`). `in` is only read, by the first pass, which writes `out`: no copy of the field is
+  // made on the way. The output's spacing is output_spacing().
+  PropagationReport execute(const Complex* in, Complex* out) const;
+
   PropagationMethod method() const { return method_; }
   double output_spacing() const { return output_spacing_; }
   double critical_distance() const { return critical_distance_; }
@@ -63,6 +68,9 @@ class PropagationPlan {
   std::vector<Complex> chirp_out_;      // exp(i k x^2 / 2z) per axis on the output grid, sign folded in
   Complex front_{1.0, 0.0};             // exp(ikz) / (i lambda z) dx^2
   bool single_fft_ = false;             // Fresnel/Fraunhofer at the natural spacing: one FFT
+
+  // The chirp-z path (Fresnel/Fraunhofer to another spacing), in place on u (n x n).
+  PropagationReport scaled(ComplexBuffer& u) const;
 };
 
 // One-shot propagation through a cached plan; see PropagationPlan for the arguments. The field is
