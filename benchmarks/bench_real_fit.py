@@ -1,7 +1,8 @@
 """Global fit and model ladder on a real curve's scale: six parameters of the PollyXT far-range
 preset fitted by lo.fit(search="global") to a 150-point relative curve (synthetic, from a known
-system of that preset, sigma = 0.007 like the NOA 355 nm curve's far-range scatter), normalised over
-800-1200 m; then free="auto" (the model ladder of analysis/model_ladder.py) on the same curve.
+system of that preset, sigma = 0.007 like the far-range scatter of the PollyNET default curve in
+examples/data/), normalised over 800-1200 m; then free="auto" (the model ladder of
+analysis/model_ladder.py) on the same curve.
 
 Counts: candidates of the search (one batched core call per generation), local-fit curves and
 Jacobians, and every model evaluation. One timed run each (a global fit is long and seeded: its cost
@@ -23,7 +24,7 @@ import lidar_overlap as lo
 from lidar_overlap import parameters
 from lidar_overlap.model.instruments import pollyxt
 
-RANGES = np.linspace(150.0, 1200.0, 150)  # m, the NOA curve's spacing is 7.5 m
+RANGES = np.linspace(150.0, 1200.0, 150)  # m, the PollyNET curves' spacing is 7.5 m
 SIGMA = 0.007
 NORMALIZE = (800.0, 1200.0)
 TRUE = {

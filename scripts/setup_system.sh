@@ -3,7 +3,8 @@
 # pkg-config, FFTW3 (double precision, with its threads library), Python's venv module, and an
 # off-screen OpenGL (Mesa's EGL, or OSMesa) for the 3D scenes rendered without a display, and as root
 # Debian's chromium and chromedriver for the browser tests of the interactive view.
-# Without root or apt-get it prints the exact command to run instead and fails.
+# Without root or apt-get it prints the exact command to run instead and fails. apt's output goes to
+# build/setup-system.log: one line says what is installed and where the log is.
 set -euo pipefail
 PYTHON=${PYTHON:-python3}
 
@@ -45,9 +46,18 @@ fi
 
 cmd="apt-get update && apt-get install -y --no-install-recommends ${missing[*]}"
 if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then
-  echo "setup: installing ${missing[*]} from Debian's packages"
+  # apt's progress (a few hundred lines) goes to the log; one line here, the log's tail on failure.
+  log="$(cd "$(dirname "$0")/.." && pwd)/build/setup-system.log"
+  mkdir -p "$(dirname "$log")"
+  printf 'setup: installing %s from Debian'"'"'s packages (log: %s) ... ' "${missing[*]}" "$log"
   export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  if ! { apt-get update && apt-get install -y --no-install-recommends "${missing[@]}"; } >"$log" 2>&1; then
+    echo "failed"
+    echo "setup: apt-get failed; the last lines of $log:" >&2
+    tail -n 30 "$log" >&2
+    exit 1
+  fi
+  echo "done"
 else
   echo "setup: missing ${missing[*]}. Run this as root, then run make again:" >&2
   echo "  sudo sh -c '$cmd'" >&2

@@ -17,13 +17,24 @@ DATA = Path(__file__).resolve().parent.parent / "examples" / "data"
 NOISE_POINTS, NOISE_RELATIVE = 2000, 0.10
 
 
-def test_published_pollyxt_curve_is_read_with_its_header():
-    c = read_overlap_curve(DATA / "pollyxt_noa_overlap_355.txt")
+def test_published_default_curve_is_read_with_its_header():
+    c = read_overlap_curve(DATA / "pollynet_default_overlap.txt")
     assert c.header == ("height(m)   overlap",)
     assert c.ranges[0] == pytest.approx(3.75) and c.overlap[0] == pytest.approx(1.288713e-6)
     assert c.ranges.size == 402 and c.sigma is None
     assert np.all(np.diff(c.ranges) > 0)
     assert np.diff(c.ranges) == pytest.approx(np.full(401, 7.47146), abs=1e-3)  # 6 decimals
+
+
+def test_dushanbe_csv_pair_shares_its_ranges():
+    """The two channels of one measurement: the same 402 heights (7.47 m apart, as the PollyNET
+    text files), converted to the command line's CSV."""
+    a = read_overlap_curve(DATA / "pollyxt_dushanbe_overlap_355.csv")
+    b = read_overlap_curve(DATA / "pollyxt_dushanbe_overlap_532.csv")
+    assert a.header == b.header == ("range_m,overlap",)
+    assert a.ranges.size == 402 and np.array_equal(a.ranges, b.ranges)
+    assert a.ranges[-1] == pytest.approx(2999.805664) and a.overlap[0] == pytest.approx(2.535109e-6)
+    assert np.diff(a.ranges) == pytest.approx(np.full(401, 7.47146), abs=1e-3)
 
 
 def test_curve_with_a_count_line_as_header_and_no_spaces():
