@@ -65,7 +65,7 @@ def fit(
     It describes the retrieval, not the instrument; with ``free="auto"`` every family carries it.
 
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
-    pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
+    pair of parameters whose ``|correlation|`` exceeds 0.95. Returns a :class:`FitResult`.
     """
     search = _checks.choice("search", search, SEARCHES)
     normalize = with_extinction_bias(normalize, extinction_bias)
