@@ -1,5 +1,7 @@
 # make demo: set up everything, run the paper's examples, write their plots to out/.
-# make test: set up everything, run the whole suite (ruff and mypy, pytest, then the C++ tests through ctest).
+# make test: set up everything, run the whole suite (ruff and mypy, pytest, then the C++ tests through ctest),
+# then build the documentation site with warnings as errors (make docs-check).
+# make docs: the documentation site in build/docs/html, its gallery running every example.
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
@@ -8,7 +10,7 @@ OUT    := out
 JOBS   ?= 2
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
-.PHONY: demo test setup lint pytest ctest sanitize bench clean
+.PHONY: demo test setup lint pytest ctest docs docs-check sanitize bench clean
 
 setup: $(VENV)/.installed
 
@@ -20,7 +22,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 	touch $@
 
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask,fit,app]"
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(BIN)/pip install -q ".[test,plot,viz,io,dask,fit,app,docs]"
 	touch $@
 
 demo: setup
@@ -46,12 +48,12 @@ demo: setup
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup
-	$(MAKE) lint pytest ctest
+	$(MAKE) lint pytest ctest docs-check
 
 # ruff (format and lint, 100 columns, import order) and mypy on the package, as configured in pyproject.toml.
 lint:
-	$(BIN)/ruff format --check python tests benchmarks examples scripts
-	$(BIN)/ruff check python tests benchmarks examples scripts
+	$(BIN)/ruff format --check python tests benchmarks examples scripts docs/conf.py docs/_ext
+	$(BIN)/ruff check python tests benchmarks examples scripts docs/conf.py docs/_ext
 	$(PY) -m mypy
 
 pytest:
@@ -64,6 +66,16 @@ ctest:
 	rm -rf build/cpp-install  # a fresh tree: the consumer test proves that no internal header is installed
 	$(BIN)/cmake --install build/cpp --component cpp
 	$(BIN)/ctest --test-dir build/cpp --output-on-failure -j $(JOBS)
+
+# The documentation site (docs/conf.py) in build/docs/html: the user guide, the API reference, the
+# C++ headers, the paper's equations and the gallery, which runs every example. Warnings are errors.
+docs: setup
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs build/docs/html
+	@echo "docs: open build/docs/html/index.html"
+
+# make test's build of the site: the same pages and checks, the gallery's scripts shown unrun.
+docs-check:
+	$(BIN)/sphinx-build -W --keep-going -q -b html -D plot_gallery=0 docs build/docs/html-check
 
 # ASan + UBSan build of the core, the C++ tests and the module; ctest and a pytest subset against it.
 sanitize: setup
