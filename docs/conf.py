@@ -85,6 +85,7 @@ sphinx_gallery_conf = {
     "filename_pattern": r"\.py$",
     "ignore_pattern": r"__init__\.py",
     "image_scrapers": ("gallery_pages.written_pngs",),
+    "reset_argv": "gallery_pages.run_as_script",
     "download_all_examples": False,
     "write_computation_times": True,
     "min_reported_time": 0,

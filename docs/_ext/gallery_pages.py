@@ -4,6 +4,7 @@ The examples save their own figures (``fig.savefig("name.png")``, as ``make demo
 may close them, so matplotlib's open figures are not a reliable record. sphinx-gallery runs each
 script in its own scratch folder (conf.py); after each code block :func:`written_pngs` takes the PNG
 files that appeared there, in the order they were written, into the gallery's image folder.
+:func:`run_as_script` runs each script as ``python script.py`` would, ``__file__`` included.
 
 The scripts open with plain prose, not a reStructuredText title; each page is titled with the
 script's file name, the name ``make demo`` and the README use.
@@ -31,6 +32,14 @@ def written_pngs(block: Any, block_vars: dict[str, Any], gallery_conf: dict[str,
         shutil.move(png, image_path)
         images.append(image_path)
     return figure_rst(images, gallery_conf["src_dir"])
+
+
+def run_as_script(gallery_conf: dict[str, Any], script_vars: dict[str, Any]) -> list[str]:
+    """sphinx-gallery's ``reset_argv`` hook, called just before a script runs: no arguments, and
+    ``__file__`` set as ``python script.py`` sets it (sphinx-gallery leaves it out), so that a
+    script that finds its data beside itself (``Path(__file__).resolve().parent``) runs here too."""
+    script_vars["example_globals"]["__file__"] = script_vars["src_file"]
+    return []
 
 
 def _title(app: Sphinx, docname: str, source: list[str]) -> None:
