@@ -1,7 +1,9 @@
 # make demo: set up everything, run the paper's examples, write their plots to out/.
 # make test: set up everything, build the wheel, run the whole suite (ruff and mypy, pytest with the wheel's
-# install test, then the C++ tests through ctest).
+# install test, then the C++ tests through ctest), then build the documentation site with warnings as
+# errors (make docs-check).
 # make wheel: dist/ gets a self-contained binary wheel and an sdist.
+# make docs: the documentation site in build/docs/html, its gallery running every example.
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
@@ -12,7 +14,7 @@ JOBS   ?= 2
 CPP_SOURCES = $(shell find cpp bindings tests/cpp -type f \( -name "*.cpp" -o -name "*.hpp" \) | sort)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
-.PHONY: demo test setup wheel lint format pytest ctest sanitize bench clean
+.PHONY: demo test setup wheel lint format pytest ctest docs docs-check sanitize bench clean
 
 setup: $(VENV)/.installed
 
@@ -36,7 +38,7 @@ $(VENV)/.system-ok: scripts/setup_system.sh
 $(VENV)/.installed: $(VENV)/.system-ok $(SOURCES)
 	@echo "setup: building the C++ core and installing lidar_overlap with its extras into $(VENV) (log: $(PIP_LOG))"
 	@$(QUIETLY) $(BIN)/pip install $(BUILD_REQUIRES)
-	@CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(QUIETLY) $(BIN)/pip install --no-build-isolation ".[test,plot,viz,io,dask,fit,app]"
+	@CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(QUIETLY) $(BIN)/pip install --no-build-isolation ".[test,plot,viz,io,dask,fit,app,docs]"
 	@touch $@
 
 # A self-contained binary wheel (FFTW and the OpenMP runtime inside, repaired by auditwheel) and an
@@ -71,14 +73,14 @@ demo: setup
 	@echo "demo: plots written to $(OUT)/"
 
 test: setup wheel
-	$(MAKE) lint pytest ctest
+	$(MAKE) lint pytest ctest docs-check
 
 # ruff (format and lint, 100 columns, import order) and mypy on the package, as configured in pyproject.toml;
 # clang-format (.clang-format, the version pinned in pyproject.toml) on the C++ sources.
 lint:
 	$(BIN)/clang-format --dry-run --Werror $(CPP_SOURCES)
-	$(BIN)/ruff format --check python tests benchmarks examples scripts
-	$(BIN)/ruff check python tests benchmarks examples scripts
+	$(BIN)/ruff format --check python tests benchmarks examples scripts docs/conf.py docs/_ext
+	$(BIN)/ruff check python tests benchmarks examples scripts docs/conf.py docs/_ext
 	$(PY) -m mypy
 
 # Rewrite the C++ sources in the style of .clang-format (whitespace only: includes keep their order).
@@ -95,6 +97,16 @@ ctest:
 	rm -rf build/cpp-install  # a fresh tree: the consumer test proves that no internal header is installed
 	$(BIN)/cmake --install build/cpp --component cpp
 	$(BIN)/ctest --test-dir build/cpp --output-on-failure -j $(JOBS)
+
+# The documentation site (docs/conf.py) in build/docs/html: the user guide, the API reference, the
+# C++ headers, the paper's equations and the gallery, which runs every example. Warnings are errors.
+docs: setup
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs build/docs/html
+	@echo "docs: open build/docs/html/index.html"
+
+# make test's build of the site: the same pages and checks, the gallery's scripts shown unrun.
+docs-check:
+	$(BIN)/sphinx-build -W --keep-going -q -b html -D plot_gallery=0 docs build/docs/html-check
 
 # ASan + UBSan build of the core, the C++ tests and the module; ctest and a pytest subset against it.
 sanitize: setup

@@ -8,8 +8,7 @@ pupil's OTF) should agree to RT's diffraction floor of a few 1e-3, and both show
 lidar reaches full overlap.
 
 (a) G(z): RT lines over 5-3000 m, FO markers from 150 m (nearer, the defocus blur needs transforms
-beyond
-    the default cap: the geometric regime, where RT is exact).
+    beyond the default cap: the geometric regime, where RT is exact).
 (b) The point images at 1000 m (log irradiance), with the detector's edge.
 
 Units: SI in the code; plots in m and mm. Writes aberrations_overlap.png to the current directory.

@@ -2,8 +2,7 @@
 Fig. 5).
 
 (a) The paper's Table 1 lidar (f = 1 m, D = 150 mm, full FOV 0.9 mrad, TEM00 beam at 355 nm, w0 = 1
-mm,
-    diffraction-limited divergence) with the detector defocus delta_f = 0, 2, 5 and 8 mm, ranges
+    mm, diffraction-limited divergence) with the detector defocus delta_f = 0, 2, 5 and 8 mm, ranges
     5-1000 m. The vertical lines mark z_opt = f (f + delta_f) / delta_f, the paper's Eq. (5).
 (b) HELIX, the helium resonance-fluorescence lidar of Section 4B: full FOV 61 urad, D = 762 mm,
     f = 1875 mm, w0 = 7.2 mm, delta_f = 0.22 mm and 0 mm, ranges 1-1000 km (the instrument studies

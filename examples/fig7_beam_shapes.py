@@ -3,13 +3,15 @@
 
 System: f = 1 m, D = 150 mm, full FOV 0.9 mrad (``lo.paper_table1()``), 355 nm, ranges 5-1000 m (200
 on a linear grid, as the paper plots). Beams, all from a w0 = 1 mm waist at z = 0:
+
   - flat top: the Gerchberg-Saxton phase plate of ``examples/fig6_flat_top.py`` (far-field disc of
     full angle Psi = 0.36 mrad at half plateau, soft edge), Fourier optics only (FO);
   - Gaussian 0.23 mrad full angle: the diffraction-limited TEM00 (half angle lambda / (pi w0)), ray
     tracing (RT) and FO;
   - Gaussians 0.45 and 0.60 mrad full angle (``divergence`` is the 1/e^2 half angle: 0.225 and 0.30
     mrad), RT.
-Lower panel: eps_G = 100 |1 - G_RT / G_FO| (Eq. 6) of the TEM00 beam, in percent, where G > 0.05.
+
+Lower panel: eps_G = 100 abs(1 - G_RT / G_FO) (Eq. 6) of the TEM00 beam, in percent, where G > 0.05.
 
 Up to about R / alpha = 167 m (R = D / 2, alpha = half FOV) every curve follows the thin-beam limit
 (alpha z / R)^2: the detector sees only the central part of the aperture's defocus blur, whatever

@@ -2,10 +2,10 @@
 difference.
 
 TEM00 beam, w0 = 1 mm at 355 nm (divergence lambda/(pi w0) = 0.113 mrad, 0.23 mrad full angle), f =
-1 m, D = 150 mm, FFOV 0.9 mrad, z = 5-1000 m. eps_G = |1 - G_RT/G_FO| (Eq. 6). The paper calls the
-difference "very small"; the project's target is eps_G <= 0.5 % wherever G > 0.05. Far away FO stays
-below 1 by the Airy tail that diffraction spreads beyond the detector edge, about 2 lambda f / (pi^2
-D r_d). Writes fig7_gaussian_rt_fo.png. SI units.
+1 m, D = 150 mm, FFOV 0.9 mrad, z = 5-1000 m. eps_G = abs(1 - G_RT/G_FO) (Eq. 6). The paper calls
+the difference "very small"; the project's target is eps_G <= 0.5 % wherever G > 0.05. Far away FO
+stays below 1 by the Airy tail that diffraction spreads beyond the detector edge, about 2 lambda f /
+(pi^2 D r_d). Writes fig7_gaussian_rt_fo.png. SI units.
 """
 
 import time

@@ -2,15 +2,13 @@
 signals.
 
 1. The smallest field of view (detector radius, f = 1 m) for full overlap by 150 m: G >= 0.99
-G_limit from
-   150 m to 10 km and a far-range loss below 1 %, with the detector radius free alone, then with the
-   fibre defocus free as well (a defocused detector sees the near range earlier, so a smaller one
-   suffices until the far-range blur costs more than 1 %).
+   G_limit from 150 m to 10 km and a far-range loss below 1 %, with the detector radius free alone,
+   then with the fibre defocus free as well (a defocused detector sees the near range earlier, so a
+   smaller one suffices until the far-range blur costs more than 1 %).
 2. The defocused design, its beam tilted by an unknown (0.3, -0.2) mrad, aligned automatically on
-its 1 km
-   signal (20 µJ pulses, 30 % efficiency, 7.5 m bins, 100 shots per measurement, photon noise), by a
-   raster
-   and by a gradient search: how many shots each needs to bring G within 1 % of its best.
+   its 1 km signal (20 µJ pulses, 30 % efficiency, 7.5 m bins, 100 shots per measurement, photon
+   noise), by a raster and by a gradient search: how many shots each needs to bring G within 1 %
+   of its best.
 
 Units: SI in the code; plots in mm, mrad and km. Writes optimize_design.png to the current
 directory.

@@ -4,6 +4,7 @@ Geometric optics images a point to a point, so RT says a focused scatterer coupl
 into any detector. Fourier optics gives the Airy pattern, whose encircled energy 1 - J0(v)^2 -
 J1(v)^2, v = pi D r_d / (lambda f), is what reaches the detector. This example charts, against r_d /
 r_Airy (r_Airy = 1.22 lambda f / D):
+
 - one on-axis scatterer at 1e9 m (in focus): RT coupling, FO coupling, and the closed form;
 - the relative error of RT for that point, and for the paper's Table 1 lidar (355 nm, f = 1 m, D =
   150 mm, 1 mm Gaussian beam) focused on 1000 m (Eq. 5) with its detector radius varied. The beam
@@ -11,6 +12,7 @@ r_Airy (r_Airy = 1.22 lambda f / D):
   power on the detector is set by the etendue (FOV x aperture), not by the shape of the point image,
   so RT stays within ~1 % of FO even for a detector smaller than the Airy disc. RT fails for narrow
   images.
+
 Writes rt_vs_fo_diffraction.png. SI units.
 """
 

@@ -1,14 +1,13 @@
 """Turbulence on both paths: a 5 cm lidar at 1064 nm (w0 = 5 mm, FFOV 0.28 mrad), coaxial and
-    biaxial (beam
-axis 4 cm off the telescope's), through weak, moderate and strong turbulence (Cn^2 = 1e-15, 1e-14,
-1e-13 m^-2/3 along a horizontal path), Fourier optics through 10 phase screens: the return path
-unperturbed (transmit only, dashed) against the return path through the same screens (both, solid),
-and the backscatter amplification (mean G over G with uncorrelated paths). Near the field stop's
-edge the image of the scattering volume moves and spreads (G falls where the return path is
-uncorrelated); in the coaxial lidar the light that leaves through a bright spot returns through the
-same eddies (G rises, above 1 in strong turbulence). 8 draws per curve, 4 random-phase receiver
-fields, 432^2 grids; dotted, ray tracing on both paths (400 draws: the image's tilt, correlated
-with the beam's wander, and blur; its amplification geometric only). Writes
+biaxial (beam axis 4 cm off the telescope's), through weak, moderate and strong turbulence (Cn^2 =
+1e-15, 1e-14, 1e-13 m^-2/3 along a horizontal path), Fourier optics through 10 phase screens: the
+return path unperturbed (transmit only, dashed) against the return path through the same screens
+(both, solid), and the backscatter amplification (mean G over G with uncorrelated paths). Near the
+field stop's edge the image of the scattering volume moves and spreads (G falls where the return
+path is uncorrelated); in the coaxial lidar the light that leaves through a bright spot returns
+through the same eddies (G rises, above 1 in strong turbulence). 8 draws per curve, 4 random-phase
+receiver fields, 432^2 grids; dotted, ray tracing on both paths (400 draws: the image's tilt,
+correlated with the beam's wander, and blur; its amplification geometric only). Writes
 turbulence_both_paths.png. SI units.
 """
 

@@ -39,6 +39,8 @@ RECEIVER_FIELDS = (1, 1000)
 class RT:
     """Ray tracing.
 
+    Parameters
+    ----------
     tolerance : absolute error allowed on G at each range, in [1e-14, 1); the adaptive beam integral
         stops below it.
     max_segments : cap on adaptive subdivisions per integral; reaching it warns (RuntimeWarning).

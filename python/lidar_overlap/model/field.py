@@ -29,8 +29,8 @@ class Field(ByValue, ByArguments):
     Parameters
     ----------
     values : (n, n) array of numbers (complex, real or integer; not strings, objects or bools), n
-        even from 8 to 65536, finite; row index is y, column index is x; |values|² in W/m², their
-        power Σ|U|² spacing² at most 1e30 W.
+        even from 8 to 65536, finite; row index is y, column index is x; ``|values|²`` in W/m²,
+        their power Σ|U|² spacing² at most 1e30 W.
     spacing : m, grid spacing, 1e-10 to 1e10 m.
     wavelength : m, 1e-10 to 1e10 m.
     """
@@ -106,7 +106,7 @@ class Field(ByValue, ByArguments):
 
     @property
     def intensity(self) -> np.ndarray:
-        """Irradiance |U|² (W/m²)."""
+        """Irradiance ``|U|²`` (W/m²)."""
         return np.abs(self.values) ** 2
 
     def _moments(self):

@@ -41,13 +41,18 @@ class FlatTopBeam(FieldBeam):
 
     Attributes
     ----------
-    phase : (n, n) rad, the plate. target, far_field : (n, n) W/sr, radiant intensity asked for and
-    achieved, on the angles ``angles`` (rad). history : amplitude error per iteration. stop :
-    ``"converged"``, ``"stagnated"`` or ``"max_iterations"``. monotone : the error never rose.
-    efficiency : power fraction inside the nominal disc. uniformity_rms, uniformity_pv : std/mean
-        and
-    (max−min)/mean of the far field where the target is at least 90 % of its plateau. edge_width :
-    achieved 10–90 % width (rad). The beam is immutable and its arrays read-only.
+    phase : (n, n) rad, the plate.
+    target, far_field : (n, n) W/sr, radiant intensity asked for and achieved, on the angles
+        ``angles`` (rad).
+    history : amplitude error per iteration.
+    stop : ``"converged"``, ``"stagnated"`` or ``"max_iterations"``.
+    monotone : the error never rose.
+    efficiency : power fraction inside the nominal disc.
+    uniformity_rms, uniformity_pv : std/mean and (max−min)/mean of the far field where the target
+        is at least 90 % of its plateau.
+    edge_width : achieved 10–90 % width (rad).
+
+    The beam is immutable and its arrays read-only.
     """
 
     def __init__(

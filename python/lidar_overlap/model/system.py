@@ -344,13 +344,13 @@ class LidarSystem(ByArguments):
         return 1.22 * self.diffraction_blur
 
     def confusion_radius(self, z):
-        """R |1 + d/z − d/f| (m) at range(s) z (m): the circle of confusion on the detector plane,
-        the geometric image of a point at range z through the whole aperture R = D/2 (no
+        """R ``|1 + d/z − d/f|`` (m) at range(s) z (m): the circle of confusion on the detector
+        plane, the geometric image of a point at range z through the whole aperture R = D/2 (no
         obstruction, no NA)."""
         return 0.5 * self.telescope.diameter * _defocus_factor(self, z)
 
     def shadow_radius(self, z):
-        """|1 + d/z − d/f| r_obs z / (z − z_obs) (m) at range(s) z (m): the obstruction's shadow
+        """``|1 + d/z − d/f|`` r_obs z / (z − z_obs) (m) at range(s) z (m): the obstruction's shadow
         inside the circle of confusion of an on-axis point; 0 where z <= obstruction_distance."""
         t, z = self.telescope, np.asarray(z, dtype=float)
         behind = z > t.obstruction_distance

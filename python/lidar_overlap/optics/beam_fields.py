@@ -146,7 +146,7 @@ def laguerre_gauss_field(wavelength, waist_radius, l, p=0, *, n, spacing, power=
 
     U ∝ (√2 r / w0)^|l| L_p^|l|(2 r² / w0²) exp(-r² / w0²) exp(i l φ),
 
-    L the generalised Laguerre polynomial; second-moment radius w0 √(2p + |l| + 1).
+    L the generalised Laguerre polynomial; second-moment radius w0 √(2p + ``|l|`` + 1).
 
     Parameters
     ----------

@@ -49,8 +49,8 @@ def propagate(
         one.
     grid_size : ``None`` keeps the field's n; an even int >= n zero-pads to that size; ``"auto"``
         zero-pads to the smallest power of two for which the result neither wraps around nor is
-        clipped (the radius holding all but 1e-7 of the power grows at most as r0 + |z| θ, θ from
-        the field's spectrum), the angular spectrum's band limit keeps the power, and a Fresnel
+        clipped (the radius holding all but 1e-7 of the power grows at most as r0 + ``|z|`` θ, θ
+        from the field's spectrum), the angular spectrum's band limit keeps the power, and a Fresnel
         output samples the irradiance at its Nyquist rate (the window spans twice the field's
         diameter); with ``method="auto"`` the method is then chosen for the padded grid. Raises
         ValueError above 8192 samples per side.

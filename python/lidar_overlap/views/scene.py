@@ -215,6 +215,8 @@ def scene(
       "detector_outline_<z>", the detector. Without obstruction or NA, the image's power inside the
       outline over its total is G(z). Panels are normalised to their peak.
 
+    Parameters
+    ----------
     exaggeration : factor (> 0) on x and y; 1.0 is true scale.
     color_by : "irradiance" or "overlap", the beam's colours.
     planes : ranges (m) in (0, end of the scene] for the panels.

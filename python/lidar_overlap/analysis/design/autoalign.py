@@ -101,12 +101,14 @@ def align(
     """Align ``system``'s beam tilt to maximise its noisy signal at ``range`` (m), within ``box``
     (rad) of its own tilt in x and y (the actuator's travel about where it starts).
 
+    Parameters
+    ----------
     signal : keywords of :func:`lidar_overlap.signal` (pulse_energy, receiver_efficiency,
-        range_resolution,
-    atmosphere, background), required. shots_per_step : shots averaged per measurement. resolution
-    (rad): the raster's last grid step and the gradient's smallest step (and probe); step (rad): the
-    gradient's first
-    step. seed : of the photon noise (measurement k uses seed + k).
+        range_resolution, atmosphere, background), required.
+    shots_per_step : shots averaged per measurement.
+    resolution : rad, the raster's last grid step and the gradient's smallest step (and probe).
+    step : rad, the gradient's first step.
+    seed : of the photon noise (measurement k uses seed + k).
     """
     if not isinstance(system, LidarSystem):
         raise ValueError(f"system = {_checks.shown(system)} is invalid: expected a LidarSystem")

@@ -47,13 +47,14 @@ _PATH_OF_AXIS = {path: name for name, (path, _) in AXES.items()}
 class OptimizeResult(ByValue):
     """The answer of :func:`optimize`.
 
-    values : best value of each free parameter path (SI units). objective : the objective's value
-        there, in
-    ``unit`` (the radius for SmallestFieldOfView, G for MaximumOverlapAt). constraints : each
-    constraint's value there (>= 0: met). system : the optimised system; result : its OverlapResult
-    (at ``ranges``, else the
-    objective's). evaluations : candidate systems ray traced; core_calls : the parallel calls they
-    took.
+    Attributes
+    ----------
+    values : best value of each free parameter path (SI units).
+    objective : the objective's value there, in ``unit`` (the radius for SmallestFieldOfView, G for
+        MaximumOverlapAt).
+    constraints : each constraint's value there (>= 0: met).
+    system : the optimised system; result : its OverlapResult (at ``ranges``, else the objective's).
+    evaluations : candidate systems ray traced; core_calls : the parallel calls they took.
     converged : the search reached its tolerance; message : how it ended.
     """
 
@@ -146,11 +147,13 @@ def optimize(
     ``"beam.tilt"`` stands for both components) within ``bounds`` that answer ``objective``
     (:class:`SmallestFieldOfView`, :class:`MaximumOverlapAt` or :class:`Objective`).
 
+    Parameters
+    ----------
     bounds : one (low, high) per free path in order, or a mapping path -> (low, high) (SI units).
     method : ``"rt"`` or an :class:`lidar_overlap.RT`; tolerance : RT's absolute tolerance on each G
         (None: RT's default).
     ranges : m, where the returned ``result`` is computed (default: the objective's ranges); for an
-    :class:`Objective` without ranges of its own, also where each candidate is evaluated.
+        :class:`Objective` without ranges of its own, also where each candidate is evaluated.
     x0 : the start (mapping or sequence; default the system's values), which must lie within the
         bounds.
     """

@@ -57,7 +57,7 @@ def fit(
     carries it.
 
     Needs scipy (``pip install 'lidar-overlap[fit]'``). Warns :class:`DegeneracyWarning` naming each
-    pair of parameters whose |correlation| exceeds 0.95. Returns a :class:`FitResult`.
+    pair of parameters whose ``|correlation|`` exceeds 0.95. Returns a :class:`FitResult`.
     """
     problem = fit_problem(system, ranges, measured, sigma, free, **options)
     return run_strategy(problem)

@@ -24,7 +24,7 @@ RANK_TOLERANCE = 1e-10
 
 
 class DegeneracyWarning(RuntimeWarning):
-    """The data cannot tell some free parameters apart (|correlation| > 0.95, or a singular
+    """The data cannot tell some free parameters apart (``|correlation|`` > 0.95, or a singular
     Jacobian)."""
 
 
@@ -56,16 +56,18 @@ class Prediction:
 class FitResult:
     """A fit of free parameters of a lidar system to a measured overlap (SI units).
 
+    Attributes
+    ----------
     parameters, uncertainties, start : path -> best value, its 1-sigma uncertainty, the start.
-        covariance,
-    correlation : (k, k) in the order of ``parameters``. residuals : (model - measured) / sigma per
-        range.
-    chi_square, reduced_chi_square, degrees_of_freedom : of those residuals (n - k). result : the
-        fitted
-    :class:`OverlapResult`. measured, sigma : the data (sigma None when unit weights were used; then
-    ``covariance_scaled`` is True: the covariance is scaled by the reduced chi-square).
-    degenerate_pairs : (path, path, correlation) with |correlation| > 0.95. evaluations,
-    jacobian_evaluations : model curves and Jacobians computed (one core call each on ray tracing).
+    covariance, correlation : (k, k) in the order of ``parameters``.
+    residuals : (model - measured) / sigma per range.
+    chi_square, reduced_chi_square, degrees_of_freedom : of those residuals (n - k).
+    result : the fitted :class:`OverlapResult`.
+    measured, sigma : the data (sigma None when unit weights were used; then
+        ``covariance_scaled`` is True: the covariance is scaled by the reduced chi-square).
+    degenerate_pairs : (path, path, correlation) with ``|correlation|`` > 0.95.
+    evaluations, jacobian_evaluations : model curves and Jacobians computed (one core call each on
+        ray tracing).
     status, message, converged : the optimiser's.
     """
 

@@ -37,9 +37,13 @@ SECTOR_SETS = ("quadrants",)
 class TelecoverResult(ByValue):
     """Per-sector overlaps and their normalised deviations.
 
-    ranges : m. names : the sectors' names. sectors : one :class:`OverlapResult` per sector (G
-        normalised to
-    the full aperture), in the order of ``names``. full : the full-aperture :class:`OverlapResult`.
+    Attributes
+    ----------
+    ranges : m.
+    names : the sectors' names.
+    sectors : one :class:`OverlapResult` per sector (G normalised to the full aperture), in the
+        order of ``names``.
+    full : the full-aperture :class:`OverlapResult`.
     """
 
     ranges: np.ndarray

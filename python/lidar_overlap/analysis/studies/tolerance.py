@@ -59,11 +59,14 @@ def tolerance_study(
     """G(z) of ``n`` systems drawn around ``system``, and its percentiles per range (needs ``[io]``;
     ``[dask]`` to run in parallel).
 
+    Parameters
+    ----------
     distributions : parameter path -> distribution of the *offset* from the system's value
         (:mod:`lidar_overlap.analysis.studies.distributions`): ``("normal", mean_offset, sd)``,
         ``("uniform", low, high)`` or an object with ``rvs(size, random_state)`` (a frozen
         ``scipy.stats`` distribution). SI units.
-    n : members, 1 to :data:`MAX_MEMBERS`. ranges : m, as for :func:`lidar_overlap.overlap`.
+    n : members, 1 to :data:`MAX_MEMBERS`.
+    ranges : m, as for :func:`lidar_overlap.overlap`.
     method : ``"rt"``, ``"fo"``, ``"auto"`` or an RT, FO or Auto object; each member gets its own
         plan.
     percentiles : in [0, 100], of G over the members at each range (``numpy.percentile``, linear).

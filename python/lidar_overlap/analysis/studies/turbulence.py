@@ -63,8 +63,11 @@ def turbulent_realizations(
     """The realisations of ``lo.overlap(system, ranges, method)`` and their statistics, computed as
     tasks through Dask (needs ``[io]``; ``[dask]`` to run them in parallel).
 
+    Parameters
+    ----------
     system : a LidarSystem (a Gaussian beam; no aperture mask or receiver aberrations, as for any
-        turbulent overlap). ranges : m, as for :func:`lidar_overlap.overlap`.
+        turbulent overlap).
+    ranges : m, as for :func:`lidar_overlap.overlap`.
     method : a :class:`lidar_overlap.Turbulent`: the turbulence, the model (RT, FO or Auto, planned
         once, as ``lo.overlap`` plans it), realisations K (up to :data:`MAX_REALIZATIONS`), seed and
         screens.
