@@ -260,3 +260,51 @@ def test_first_frame_shows_the_lidar_and_the_cone(tmp_path):
     assert grey.sum() > 20, "no aperture at the lidar's end"
     green = content & (rgb[..., 1] > rgb[..., 2] + 40) & (rgb[..., 1] > rgb[..., 0])
     assert green.sum() > 50, "no beam coloured by G"
+
+
+@pytest.mark.parametrize(
+    "changes, g_error, deviation_error",
+    [
+        ({}, 1e-4, 1e-4),  # a beam on the axis: the shadow's shifts cancel to first order
+        ({"beam.tilt[0]": 2e-4}, 1e-3, 0.02),
+        ({"beam.offset[0]": 0.05}, 1e-3, 0.02),
+    ],
+)
+def test_obstructed_telecover_estimate_against_the_exact_sectors(changes, g_error, deviation_error):
+    """The twin's telecover of an obstructed system (the shadow centred in each sector) against
+    lo.telecover's exact masked ray tracing: G of each sector within ``g_error``, the deviations
+    within ``deviation_error`` where the mean G exceeds 1e-3 (the panel's ±5 % band is 0.05)."""
+    from lidar_overlap.views.twin_telecover import centred_shadow_telecover
+
+    system = lo.parameters.replace(lo.paper_table1(obstruction_radius=0.02), changes)
+    ranges = np.geomspace(1.05, 1000.0, 30)
+    estimate = centred_shadow_telecover(system, ranges, tolerance=TOLERANCE)
+    exact = lo.telecover(system, ranges, tolerance=TOLERANCE)
+    assert estimate.full == exact.full and estimate.names == exact.names
+    np.testing.assert_allclose(estimate.overlap, exact.overlap, rtol=0, atol=g_error)
+    seen = exact.full.overlap > 1e-3
+    np.testing.assert_allclose(
+        estimate.deviation[:, seen], exact.deviation[:, seen], rtol=0, atol=deviation_error
+    )
+    twin = Twin(system, ranges, telecover="quadrants")
+    assert twin.telecover_estimated
+    np.testing.assert_array_equal(twin.deviation.overlap, estimate.overlap)
+
+
+def test_super_gaussian_scenario_is_checked_naming_the_key(tmp_path):
+    text = (SCENARIOS / "super_gaussian.toml").read_text()
+    scenario = load_scenario(SCENARIOS / "super_gaussian.toml")
+    field = lo.super_gaussian_field(355e-9, 1e-3, 4.0, 256, 2.5e-5)
+    np.testing.assert_array_equal(scenario.system.beam.field.values, field.values)
+    for old, new, message in (
+        ("order = 4.0", "order = 0.5", "order = 0.5 is invalid"),
+        ("order = 4.0", "order = nan", "order"),
+        ("grid = 256", "grid = 255", "n = 255 is invalid"),
+        ("grid = 256", "grid = 4294967296", "grid"),
+        ("spacing = 2.5e-5", "spacing = 1e-300", "spacing"),
+        ('method = "auto"', 'method = "rt"', "ray tracing models Gaussian beams only"),
+    ):
+        path = tmp_path / "bad.toml"
+        path.write_text(text.replace(old, new))
+        with pytest.raises(ValueError, match=message):
+            load_scenario(path)

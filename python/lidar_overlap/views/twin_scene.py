@@ -15,7 +15,7 @@ import numpy as np
 
 from ..model.field_beam import FieldBeam
 from .headless import use_headless_gl
-from .scene import _beam_profile
+from .scene import beam_profile
 
 # Fewer samples than lidar_overlap.scene: each update sends the tubes' coordinates to the browser.
 N_PHI = 48  # samples around every circle
@@ -118,7 +118,7 @@ class TwinScene:
         self.z = np.linspace(0.0, self.zmax, N_Z)
         # A field beam's width, from its propagated field (the sliders only move it), else w(z).
         self._field_width = (
-            _beam_profile(twin.system, self.zmax)[0]
+            beam_profile(twin.system, self.zmax)[0]
             if isinstance(twin.system.beam, FieldBeam)
             else None
         )
