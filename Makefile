@@ -131,6 +131,7 @@ bench: setup
 	$(PY) benchmarks/bench_studies.py
 	$(PY) benchmarks/bench_turbulent_study.py
 	$(PY) benchmarks/bench_telecover.py
+	$(PY) benchmarks/bench_view.py
 	$(PY) benchmarks/bench_alignment.py
 	$(PY) benchmarks/bench_fit.py
 	$(PY) benchmarks/bench_real_fit.py

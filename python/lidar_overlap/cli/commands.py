@@ -28,7 +28,9 @@ import numpy as np
 from .._core import __version__
 from ..forward.methods import RT
 from ..io.scenario import METHODS, Scenario, load_scenario, table1_scenarios
+from ..model.system import GaussianBeam
 from ..views.app import view
+from ..views.twin import N_RANGES, N_RANGES_AUTO
 from . import fit as fit_command
 from . import telecover as telecover_command
 from .output import PROG, fail, noted, printed_warnings
@@ -128,11 +130,12 @@ def _parser() -> argparse.ArgumentParser:
         "view",
         help="the scenario's system as an interactive page in the browser",
         description="Serve the scenario's system on localhost: its 3-D scene, sliders for the "
-        "alignment and receiver, G(z) by ray tracing (200 ranges over the scenario's span), the "
-        "detector image; the save button writes <name>.toml and .csv. Needs pip install "
-        "'lidar-overlap[app]'.",
+        "alignment and receiver, G(z) (a Gaussian beam by ray tracing, 200 ranges over the "
+        "scenario's span; another beam by the model auto chooses, 40 ranges, computed in the "
+        "background), the detector image; the save button writes <name>.toml and .csv. Needs pip "
+        "install 'lidar-overlap[app]'.",
     )
-    view.add_argument("scenario", help="scenario file (TOML) with a Gaussian beam")
+    view.add_argument("scenario", help="scenario file (TOML)")
     view.add_argument(
         "--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one, printed)"
     )
@@ -240,7 +243,8 @@ def _view(args) -> int:
     """``lidar-overlap view``: the scenario's system served as the interactive page."""
     scenario = load_scenario(args.scenario)
     z = scenario.ranges
-    ranges = np.geomspace(z[0], z[-1], 200) if z.size > 1 else z
+    count = N_RANGES if isinstance(scenario.system.beam, GaussianBeam) else N_RANGES_AUTO
+    ranges = np.geomspace(z[0], z[-1], count) if z.size > 1 else z
     tolerance = scenario.options.get("tolerance", RT().tolerance)
     try:
         view(

@@ -46,7 +46,9 @@ from ..model.flat_top import FlatTopBeam
 from ..model.presets import paper_table1
 from ..model.system import Detector, GaussianBeam, LidarSystem, Telescope
 from ..model.turbulence import Turbulence
+from ..optics.beam_fields import super_gaussian_field
 from .scenario_schema import (
+    BEAM_TYPES,
     MAX_FILE_BYTES,
     MAX_NAME_LENGTH,
     MAX_RANGES,
@@ -265,7 +267,7 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
 # sections
 def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
     kind = table.get("type", "gaussian") if isinstance(table, dict) else "gaussian"
-    choice(f"{source}: [beam]", "type", kind, ("gaussian", "flat_top"))
+    choice(f"{source}: [beam]", "type", kind, BEAM_TYPES)
     values = dict(checked_keys(source, "beam", table, SCHEMA[kind], REQUIRED[kind]))
     values.pop("type", None)
     for key in ("offset", "tilt"):
@@ -273,6 +275,11 @@ def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
             values[key] = tuple(values[key])
     if kind == "gaussian":
         return build(source, "beam", GaussianBeam, **values)
+    if kind == "super_gaussian":  # a sampled field: the grid it is given on is n x spacing
+        pointing = {key: values.pop(key) for key in ("offset", "tilt") if key in values}
+        values["n"] = values.pop("grid")
+        field = build(source, "beam", super_gaussian_field, **values)
+        return build(source, "beam", FieldBeam, field, **pointing)
     args = [values.pop(key) for key in REQUIRED["flat_top"]]
     return build(source, "beam", FlatTopBeam, *args, **values)
 

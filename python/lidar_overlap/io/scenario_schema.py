@@ -13,6 +13,8 @@ from .. import _checks
 from ..forward.methods import RECEIVER_FIELDS
 
 METHODS = ("rt", "fo", "auto")
+#: [beam] type: a Gaussian beam, a flat-top phase plate's field, a super-Gaussian field.
+BEAM_TYPES = ("gaussian", "flat_top", "super_gaussian")
 OUTPUTS = ("csv", "netcdf", "plot", "scene")
 #: The most ranges one scenario may ask for (``count``, or the length of ``values``).
 MAX_RANGES = 100_000
@@ -45,6 +47,7 @@ INTEGER_LIMITS: Dict[str, IntegerKey] = {
     "run.max_spectrum_grid": IntegerKey(16, 8192, "samples per side of the spectrum's grid"),
     "flat_top.grid": IntegerKey(64, 4096, "samples per side of the phase plate"),
     "flat_top.max_iterations": IntegerKey(1, 10_000, "iterations of the plate's design"),
+    "super_gaussian.grid": IntegerKey(8, 4096, "samples per side of the field, even"),
     "turbulence.realizations": IntegerKey(1, 100_000, "draws of the atmosphere"),
     "turbulence.screens": IntegerKey(1, 1000, "phase screens of the Fourier-optics path"),
     "turbulence.receiver_fields": IntegerKey(
@@ -77,6 +80,17 @@ SCHEMA: Dict[str, Dict[str, Any]] = {
         "tolerance": NUMBER,
         "max_error": NUMBER,
         "power": NUMBER,
+        "type": STRING,
+    },
+    "super_gaussian": {
+        "wavelength": NUMBER,
+        "radius": NUMBER,
+        "order": NUMBER,
+        "grid": INTEGER_LIMITS["super_gaussian.grid"],
+        "spacing": NUMBER,
+        "power": NUMBER,
+        "offset": PAIR,
+        "tilt": PAIR,
         "type": STRING,
     },
     "telescope": {
@@ -161,6 +175,7 @@ TOP_KEYS = {
 REQUIRED = {
     "gaussian": ("wavelength", "waist_radius"),
     "flat_top": ("wavelength", "waist_radius", "angular_diameter"),
+    "super_gaussian": ("wavelength", "radius", "order", "grid", "spacing"),
     "telescope": ("diameter", "focal_length"),
 }
 

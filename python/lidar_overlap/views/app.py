@@ -1,30 +1,30 @@
 """``lo.view(system)``: the lidar's digital twin in the browser, served on localhost with trame.
 
 The page holds the 3-D scene (vtk.js: it turns and zooms in the browser, the server sends only moved
-coordinates), the sliders of the twin's alignment and receiver (:func:`.twin.sliders_for`), G(z) by
-ray tracing, the detector-plane image at a chosen range and, with a telecover mask, the sectors'
-normalised deviations (plotly). A slider move recomputes all of it on the server and pushes it to
-the page. The save button writes the scenario (TOML) and the curve (CSV) as they stand. Needs ``pip
-install 'lidar-overlap[app]'``; trame serves its own client files, nothing is fetched from the
-internet.
+coordinates), the sliders of the twin's alignment and receiver (:func:`.twin.sliders_for`), G(z),
+the detector-plane image at a chosen range and, with a telecover mask, the sectors' normalised
+deviations (plotly). A slider move recomputes all of it on the server and pushes it to the page: at
+once for ray tracing (a Gaussian beam, milliseconds), else in a worker thread (the model auto
+chooses for a field beam or a mixture, seconds), the scene moved and the last curve kept on the
+page, with a progress bar, until the new curve arrives; a newer move stops a computation under way
+at its next chunk of ranges and its result is never shown. The save button writes the scenario
+(TOML) and the curve (CSV) as they stand. Needs ``pip install 'lidar-overlap[app]'``; trame serves
+its own client files, nothing is fetched from the internet.
 """
 
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import itertools
-import math
 import os
 import pathlib
 import time
 
-import numpy as np
-
 from .twin import Twin
-from .twin_scene import MISSING, SECTOR_COLORS, TwinScene
+from .twin_figures import curve_figure, image_figure, telecover_figure
+from .twin_scene import MISSING, TwinScene
 
-#: Deviation band drawn on the telecover panel (the EARLINET ±5 %).
-BAND = 0.05
 _names = itertools.count()
 
 
@@ -39,14 +39,6 @@ def _trame():
     return get_server, SinglePageWithDrawerLayout, html, plotly, vtk, v3
 
 
-def _finite_list(values) -> list:
-    """A list for the page's JSON, NaN (no signal) as null."""
-    return [
-        None if not math.isfinite(v) else v
-        for v in np.asarray(values, dtype=float).ravel().tolist()
-    ]
-
-
 class App:
     """The served page of one :class:`~lidar_overlap.views.twin.Twin`: ``server`` (trame), ``twin``,
     ``scene`` (:class:`~lidar_overlap.views.twin_scene.TwinScene`), ``out`` (where the save button
@@ -59,20 +51,55 @@ class App:
         self.server = get_server(f"lidar_overlap_view_{next(_names)}", client_type="vue3")
         self.state, self.ctrl = self.server.state, self.server.controller
         self._positions = twin.positions()
+        # One worker computes the curves that are not ray traced; ``_generation`` counts the
+        # settings asked for, so a computation for an older one stops or is dropped.
+        self._worker = concurrent.futures.ThreadPoolExecutor(1, "lidar_overlap_view")
+        self._generation = 0
+        self.computed = 0  # curves computed in the worker and shown
         state = self.state
         for key in twin.sliders:
             state[key] = self._positions[key]
-        state.update(dict(probe=twin.probe, error="", saved="", timing="", scene_version=0))
+        state.update(
+            dict(
+                probe=twin.probe,
+                error="",
+                saved="",
+                timing="",
+                scene_version=0,
+                computing=False,
+                progress=0,
+                curve_version=0,
+                trame__title=f"{twin.name} · lidar_overlap",  # the browser tab
+            )
+        )
         self._publish()
         self._show_timing(0.0)
         self.state.change(*twin.sliders, "probe")(self._on_change)
+        if twin.result is None:  # the first curve is computed once the server runs
+            self.ctrl.on_server_ready.add(lambda **_: self._compute_in_background())
 
         with Layout(self.server) as layout:
             self.layout = layout
             layout.title.set_text(f"lidar_overlap: {twin.name}")
             with layout.toolbar:
                 v3.VSpacer()
+                html.Div(
+                    "computing G(z) ({{ progress }} %)",
+                    v_show="computing",
+                    id="status",
+                    classes="text-caption mr-2",
+                )
+                v3.VProgressLinear(
+                    v_show="computing",
+                    model_value=("progress",),
+                    id="progress",
+                    color="primary",
+                    height=6,
+                    style="max-width: 160px",
+                    classes="mr-4",
+                )
                 html.Div("{{ timing }}", id="timing", classes="text-caption mr-4")
+                html.Div("{{ curve_version }}", id="curve-version", style="display: none")
                 html.Div("{{ scene_version }}", id="scene-version", style="display: none")
                 v3.VBtn(
                     "Save scenario and curve",
@@ -154,14 +181,63 @@ class App:
             return
         start = time.perf_counter()
         try:
-            self.twin.update(moved, probe)
-        except (
-            ValueError
-        ) as exc:  # a slider that makes an invalid system goes back; the page says why
+            if self.twin.background:
+                self.twin.move(moved, probe)
+            else:
+                self.twin.update(moved, probe)
+        except ValueError as exc:  # a slider that makes an invalid system goes back; said why
             self.state.error = str(exc)
             self.state.update({k: self._positions[k] for k in moved})
             return
         self._positions.update(moved)
+        if self.twin.background:  # the scene moves now, the curve follows from the worker
+            self._compute_in_background()
+        self._show_update(start)
+
+    def _compute_in_background(self) -> None:
+        """Start computing the twin's current setting in the worker; a computation under way for
+        an older setting stops at its next chunk of ranges, and what it returns is dropped."""
+        self._generation += 1
+        generation = self._generation
+        with self.state:
+            self.state.computing, self.state.progress = True, 0
+        loop = asyncio.get_running_loop()
+
+        def progress(fraction: float) -> None:  # in the worker: the page is updated in the loop
+            loop.call_soon_threadsafe(self._show_progress, generation, fraction)
+
+        def cancelled() -> bool:
+            return generation != self._generation
+
+        async def compute() -> None:
+            start = time.perf_counter()
+            try:
+                outcome = await loop.run_in_executor(
+                    self._worker, lambda: self.twin.compute(cancelled, progress)
+                )
+            except ValueError as exc:  # refused by the library: said on the page
+                if generation == self._generation:
+                    with self.state:
+                        self.state.error, self.state.computing = str(exc), False
+                return
+            if outcome is None or generation != self._generation:
+                return  # a newer setting is under way
+            self.twin.accept(outcome)
+            self.computed += 1
+            self._show_update(start)
+            with self.state:
+                self.state.computing = False
+                self.state.curve_version = self.computed
+
+        asyncio.ensure_future(compute())
+
+    def _show_progress(self, generation: int, fraction: float) -> None:
+        if generation == self._generation:
+            with self.state:
+                self.state.progress = round(100 * fraction)
+
+    def _show_update(self, start: float) -> None:
+        """The twin's current state to the page: scene, figures and the time since ``start``."""
         t0 = time.perf_counter()
         self.scene.update()
         self.twin.timing["scene"] = time.perf_counter() - t0
@@ -177,37 +253,18 @@ class App:
         twin, state = self.twin, self.state
         for key, s in twin.sliders.items():
             state[f"text_{key}"] = s.shown(twin.value(key))
-        z = twin.ranges
-        zp, g = float(z[twin.probe]), twin.result.overlap
+        zp = float(twin.ranges[twin.probe])
+        if twin.result is None:  # the first curve is on its way: empty plots until it arrives
+            state.text_probe = f"{zp:.4g} m"
+            state.curve_figure = state.image_figure = {"data": [], "layout": {}}
+            return
+        g = twin.result.overlap
         state.text_probe = f"{zp:.4g} m, G = {g[twin.probe]:.4f}"
-        state.curve_figure = {
-            "data": [
-                {
-                    "x": z.tolist(),
-                    "y": g.tolist(),
-                    "type": "scatter",
-                    "mode": "lines",
-                    "name": "G(z)",
-                },
-                {
-                    "x": [zp],
-                    "y": [float(g[twin.probe])],
-                    "type": "scatter",
-                    "mode": "markers",
-                    "name": "image range",
-                },
-            ],
-            "layout": {
-                "xaxis": {"type": "log", "title": {"text": "range z (m)"}},
-                "yaxis": {"title": {"text": "overlap G(z)"}, "range": [0, 1.05]},
-                "margin": {"l": 55, "r": 10, "t": 10, "b": 45},
-                "showlegend": False,
-                "uirevision": "keep",
-            },
-        }
-        state.image_figure = self._image_figure()
+        state.curve_figure = curve_figure(twin)
+        state.image_figure = image_figure(twin.image)
         if twin.deviation is not None:
-            state.telecover_figure = self._telecover_figure()
+            note = "estimate: obstruction's shadow centred" if twin.telecover_estimated else ""
+            state.telecover_figure = telecover_figure(twin.deviation, note)
         state.error = " ".join(f"warning: {w}" for w in twin.warnings)
 
     def _show_timing(self, elapsed: float) -> None:
@@ -233,80 +290,6 @@ class App:
         )
         state.scene_version = int(state.scene_version or 0) + 1
 
-    def _image_figure(self) -> dict:
-        im = self.twin.image
-        peak = float(im.image.max()) or 1.0
-        ox, oy, r = (
-            1e3 * im.detector_offset[0],
-            1e3 * im.detector_offset[1],
-            1e3 * im.detector_radius,
-        )
-        return {
-            "data": [
-                {
-                    "z": (im.image / peak).tolist(),
-                    "x": (1e3 * im.u).tolist(),
-                    "y": (1e3 * im.v).tolist(),
-                    "type": "heatmap",
-                    "colorscale": "Viridis",
-                    "showscale": False,
-                }
-            ],
-            "layout": {
-                "xaxis": {"title": {"text": "detector plane u (mm)"}},
-                "yaxis": {"title": {"text": "v (mm)"}, "scaleanchor": "x"},
-                "shapes": [
-                    {
-                        "type": "circle",
-                        "x0": ox - r,
-                        "x1": ox + r,
-                        "y0": oy - r,
-                        "y1": oy + r,
-                        "line": {"color": "cyan", "width": 2},
-                    }
-                ],
-                "title": {
-                    "text": f"z = {im.range:.4g} m: {100 * im.fraction:.1f} % on the detector",
-                    "font": {"size": 12},
-                },
-                "margin": {"l": 55, "r": 10, "t": 30, "b": 45},
-            },
-        }
-
-    def _telecover_figure(self) -> dict:
-        tc, z = self.twin.deviation, self.twin.ranges.tolist()
-        data = [
-            {
-                "x": z,
-                "y": _finite_list(dev),
-                "type": "scatter",
-                "mode": "lines",
-                "name": name,
-                "line": {"color": SECTOR_COLORS[i % len(SECTOR_COLORS)]},
-            }
-            for i, (name, dev) in enumerate(zip(tc.names, tc.deviation))
-        ]
-        data += [
-            {
-                "x": [z[0], z[-1]],
-                "y": [b, b],
-                "type": "scatter",
-                "mode": "lines",
-                "showlegend": False,
-                "line": {"color": "grey", "dash": "dot"},
-            }
-            for b in (-BAND, BAND)
-        ]
-        return {
-            "data": data,
-            "layout": {
-                "xaxis": {"type": "log", "title": {"text": "range z (m)"}},
-                "yaxis": {"title": {"text": "G_i / mean G - 1"}, "range": [-1, 1]},
-                "margin": {"l": 55, "r": 10, "t": 10, "b": 45},
-                "uirevision": "keep",
-            },
-        }
-
     def save(self) -> None:
         """Write ``<name>.toml`` and ``<name>.csv`` of the twin as it stands to ``out``; the page
         says where."""
@@ -315,7 +298,14 @@ class App:
         except OSError as exc:
             self.state.saved = f"not saved: {exc.strerror or exc}"
             return
-        self.state.saved = f"saved {toml} and {csv}"
+        except ValueError as exc:  # no curve yet
+            self.state.saved = f"not saved: {exc}"
+            return
+        self.state.saved = (
+            f"saved {toml} and {csv}"
+            if toml is not None
+            else f"saved {csv} (a scenario file holds a Gaussian beam only)"
+        )
 
     # ------------------------------------------------------------------------------------------
     # serving
@@ -338,7 +328,13 @@ class App:
                 disable_logging=True,
             )
         finally:
-            self.scene.close()
+            self.close()
+
+    def close(self) -> None:
+        """Stop the worker (a computation under way stops at its next chunk) and free the scene."""
+        self._generation += 1
+        self._worker.shutdown(wait=False, cancel_futures=True)
+        self.scene.close()
 
     @property
     def ready(self):
@@ -383,15 +379,20 @@ def view(
     timeout: float = 0,
     block=None,
 ) -> App:
-    """The digital twin of ``system`` in the browser: its 3-D scene, sliders for beam tilt and
-    offset (rad, m), detector offset and defocus (m), field of view and divergence (rad), G(z) by
-    ray tracing at ``ranges`` (m; default 200 log-spaced from 1 m to 1 km), the detector-plane image
-    at a range chosen with a slider and, with ``telecover`` (``"quadrants"`` or an ApertureMask),
-    the sectors' deviations G_i / mean G - 1.
+    """The digital twin of ``system`` in the browser (the tab titled ``name``): its 3-D scene,
+    sliders for beam tilt and offset (rad, m), detector offset and defocus (m), field of view and,
+    for a Gaussian beam, divergence (rad), G(z) at ``ranges`` (m; default 200 log-spaced from 1 m to
+    1 km, 40 for a curve that is not ray traced), the detector-plane image at a range chosen with a
+    slider and, with ``telecover`` (``"quadrants"`` or an ApertureMask), the sectors' deviations
+    G_i / mean G - 1.
 
-    ``system`` needs a GaussianBeam. ``exaggeration``: factor on x and y in the scene (range to
-    scale). ``tolerance``: of ray tracing. The save button writes ``<name>.toml`` (a scenario for
-    ``lidar-overlap run``) and ``<name>.csv`` (the curve) to ``out``. Served on ``host``:``port``
+    A GaussianBeam is ray traced as the sliders move; any other beam the library computes (a
+    FieldBeam, FlatTopBeam, GaussianMixtureBeam) gets the model ``lo.plan(system, ranges, "auto")``
+    chooses, computed in the background with a progress bar, the last curve kept on the page until
+    the new one arrives (:class:`~lidar_overlap.views.twin.Twin`). ``exaggeration``: factor on x
+    and y in the scene (range to scale). ``tolerance``: of ray tracing, and auto's. The save button
+    writes ``<name>.toml`` (a scenario for ``lidar-overlap run``; Gaussian beams) and ``<name>.csv``
+    (the curve) to ``out``. Served on ``host``:``port``
     (0: a free port; the URL is printed), in the system browser if ``open_browser``; ``timeout``
     (s): stop once no page has been connected that long (0: run until Ctrl-C).
 
@@ -406,7 +407,9 @@ def view(
         raise ValueError(
             f"host = {host!r} is invalid: expected a host name or address, e.g. '127.0.0.1'"
         )
-    twin = Twin(system, ranges, telecover=telecover, tolerance=tolerance, name=name)
+    twin = Twin(system, ranges, telecover=telecover, tolerance=tolerance, name=name, compute=False)
+    if not twin.background:  # ray tracing: the first curve at once
+        twin.update({})
     app = App(twin, exaggeration=exaggeration, out=out)
     if block is None:
         try:

@@ -90,7 +90,7 @@ def _image(pv, values, origin, spacing):
     return mesh
 
 
-def _beam_profile(system, zmax):
+def beam_profile(system, zmax):
     """w(z) (m, 1/e²) and on-axis peak irradiance (W/m² for P = 1 W) as functions of z.
 
     Gaussian beam: w(z) of the beam, peak 2/(π w²). Field beam: the second-moment radius and the
@@ -282,7 +282,7 @@ def scene(
     zt = np.unique(
         np.concatenate(([0.0], z[z <= zmax], np.linspace(0.0, zmax, 121), planes, extra))
     )
-    width, peak = _beam_profile(system, zmax)
+    width, peak = beam_profile(system, zmax)
     centers = np.array(system.beam.offset) + np.outer(zt, system.beam.tilt)
     meshes = {"beam": _tube(pv, zt, centers, width(zt), scale)}
     if color_by == "overlap":

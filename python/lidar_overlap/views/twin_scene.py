@@ -9,9 +9,13 @@ changed coordinates. Range z to scale, x and y times ``exaggeration``, as in
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from ..model.field_beam import FieldBeam
 from .headless import use_headless_gl
+from .scene import beam_profile
 
 # Fewer samples than lidar_overlap.scene: each update sends the tubes' coordinates to the browser.
 N_PHI = 48  # samples around every circle
@@ -27,6 +31,11 @@ SECTOR_COLORS = (
     "#999999",
 )
 MISSING = "the interactive view needs its extra: pip install 'lidar-overlap[app]'"
+#: The first camera: its direction from the focal point (z across the page, x up, seen from the
+#: near side, as lidar_overlap.scene), the narrowest page it must fit (width / height: the scene's
+#: column of the page is about 0.8 on a 1500 x 950 window) and the margin left on each side
+#: (fraction of the half-width).
+VIEW, VIEW_UP, ASPECT, MARGIN = (0.5, 1.0, -1.5), (1.0, 0.0, 0.0), 0.75, 0.06
 
 
 def pyvista():
@@ -98,12 +107,21 @@ class TwinScene:
         pv = pyvista()
         use_headless_gl()  # before the plotter makes its render window
         self.twin, self.scale = twin, float(exaggeration)
-        result = twin.result
-        z_full = result.full_overlap_range() if result.reaches_far_range() else float("nan")
-        self.zmax = float(
-            min(2 * z_full, result.ranges[-1]) if np.isfinite(z_full) else result.ranges[-1]
+        result, z = twin.result, twin.ranges
+        # A curve still to come (computed in the background): the scene runs to the last range.
+        z_full = (
+            result.full_overlap_range()
+            if result is not None and result.reaches_far_range()
+            else float("nan")
         )
+        self.zmax = float(min(2 * z_full, z[-1]) if np.isfinite(z_full) else z[-1])
         self.z = np.linspace(0.0, self.zmax, N_Z)
+        # A field beam's width, from its propagated field (the sliders only move it), else w(z).
+        self._field_width = (
+            beam_profile(twin.system, self.zmax)[0]
+            if isinstance(twin.system.beam, FieldBeam)
+            else None
+        )
         self.plotter = pv.Plotter(off_screen=True, window_size=(900, 640))
         faces = _tube_faces(N_Z)
         zeros = np.zeros((N_Z * N_PHI, 3))
@@ -148,9 +166,26 @@ class TwinScene:
                     color=SECTOR_COLORS[i % len(SECTOR_COLORS)],
                     opacity=0.8,
                 )
-        self.plotter.view_vector((0.5, 1.0, -1.2), viewup=(1.0, 0.0, 0.0))  # as lidar_overlap.scene
-        self.plotter.reset_camera()
-        self.plotter.camera.zoom(1.4)
+        self.fit_camera()
+
+    def fit_camera(self) -> None:
+        """Point the camera (from :data:`VIEW`) so that the whole instrument (detector, aperture,
+        obstruction) and the beam and field of view up to the detector image's range fill a page of
+        width / height :data:`ASPECT` or wider, within :data:`MARGIN`."""
+        z_image = min(float(self.twin.ranges[self.twin.probe]), self.zmax)
+        n = int(np.searchsorted(self.z, z_image, side="right")) * N_PHI
+        points = np.vstack(
+            [self.meshes["beam"].points[:n], self.meshes["fov"].points[:n]]
+            + [
+                self.meshes[k].points
+                for k in ("aperture", "obstruction", "detector")
+                if k in self.meshes
+            ]
+        )
+        angle = float(self.plotter.camera.view_angle)
+        # through camera_position: the plotter then keeps it at its first render
+        self.plotter.camera_position = fitted_camera(points, VIEW, VIEW_UP, angle, ASPECT, MARGIN)
+        self.plotter.renderer.reset_camera_clipping_range()
 
     def update(self) -> None:
         """Move the meshes to the twin's current system and colour the beam by its G(z)."""
@@ -162,8 +197,13 @@ class TwinScene:
             0.5 * system.telescope.diameter,
         )
         centers = np.asarray(beam.offset) + np.outer(z, beam.tilt)
-        self.meshes["beam"].points = _tube_points(z, centers, np.asarray(beam.radius(z)), scale)
-        g = np.interp(z, result.ranges, result.overlap, left=np.nan, right=np.nan)
+        width = self._field_width(z) if self._field_width is not None else beam.radius(z)
+        self.meshes["beam"].points = _tube_points(z, centers, np.asarray(width), scale)
+        g = (
+            np.interp(z, result.ranges, result.overlap, left=np.nan, right=np.nan)
+            if result is not None
+            else np.full(z.shape, np.nan)  # grey until the first curve arrives
+        )
         self.meshes["beam"].point_data["G"] = np.repeat(g, N_PHI)
         # The receiver's field of view: scatterers P with |P + o_d z/d| < R|1 + z(1/d - 1/f)| + r_d
         # z/d.
@@ -177,3 +217,34 @@ class TwinScene:
 
     def close(self) -> None:
         self.plotter.close()
+
+
+def fitted_camera(points, direction, up, view_angle: float, aspect: float, margin: float):
+    """(position, focal point, view up) of a perspective camera that looks along ``-direction``
+    (from the focal point to the camera) with vertical ``view_angle`` (deg) and shows every one
+    of ``points`` ((n, 3), scene coordinates) inside ``1 - margin`` of the half-width and
+    half-height of a picture of width / height ``aspect``, the points' picture centred. A point
+    at depth t in front of the camera, a and b off its axis (right and up), is inside when |a|
+    <= t tx and |b| <= t ty: each gives the least distance of the camera from the focal point,
+    the largest of them is taken; then the focal point moves to centre the picture, and again (a
+    few passes converge)."""
+    points = np.asarray(points, dtype=float)
+    v = np.asarray(direction, dtype=float)
+    v = v / np.linalg.norm(v)
+    u = np.asarray(up, dtype=float) - np.dot(up, v) * v
+    u = u / np.linalg.norm(u)
+    r = np.cross(u, v)
+    ty = math.tan(math.radians(view_angle) / 2) * (1.0 - margin)
+    tx = ty * aspect
+    focus = 0.5 * (points.min(axis=0) + points.max(axis=0))
+    for _ in range(40):
+        rel = points - focus
+        c, a, b = rel @ v, rel @ r, rel @ u
+        distance = float(np.max(c + np.maximum(np.abs(a) / tx, np.abs(b) / ty)))
+        depth = distance - c
+        xs, ys = a / depth, b / depth
+        dx, dy = 0.5 * (xs.max() + xs.min()), 0.5 * (ys.max() + ys.min())
+        if max(abs(dx) / tx, abs(dy) / ty) < 1e-4:
+            break
+        focus = focus + distance * (dx * r + dy * u)
+    return tuple(focus + distance * v), tuple(focus), tuple(u)
