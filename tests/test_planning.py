@@ -253,12 +253,18 @@ def test_method_objects_are_immutable():
 def test_run_refuses_what_is_not_a_plan():
     with pytest.raises(ValueError, match="^plan = 'rt' is invalid"):
         lo.run("rt")
-    with pytest.raises(ValueError, match="^plan.backend = 'gpu' is invalid"):
-        lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), backend="gpu"))
-    with pytest.raises(
-        ValueError, match=r"^ranges\[0\] = -1 is invalid"
-    ):  # the core checks what it is given
-        lo.run(dataclasses.replace(lo.plan(TABLE1, Z, "rt"), ranges=np.array([-1.0, 2.0])))
+    p = lo.plan(TABLE1, Z, "rt")
+    for changes, message in (
+        (dict(backend="gpu"), "^backend = 'gpu' is invalid"),
+        (dict(ranges=np.array([-1.0, 2.0])), r"^ranges\[0\] = -1"),
+        (dict(system="x"), "^system = 'x' is invalid: expected a LidarSystem"),
+        (dict(options=None), "^options = None is invalid"),
+        (dict(request="rt"), "^request = 'rt' is invalid"),
+        (dict(tolerance=float("inf")), "^tolerance = inf is invalid"),
+        (dict(reasons=None), "^reasons = None is invalid"),
+    ):  # refused by name when the plan is edited, not inside a backend
+        with pytest.raises(ValueError, match=message):
+            dataclasses.replace(p, **changes)
 
 
 QUADRANT = lo.ApertureMask.quadrants().split()[0]
@@ -344,8 +350,20 @@ def test_a_plan_edited_by_hand_for_a_system_of_another_kind_is_refused_when_run(
     p = lo.plan(TABLE1, Z8, method)
     aberrated = lo.with_aberrations(TABLE1, lo.Aberrations(zernike={11: 2e-6}))
     for system, message in ((MASKED, "telescope.mask"), (aberrated, "aberrations")):
+        for planned_on in (None, system, TABLE1):  # whatever planned_on says
+            edited = dataclasses.replace(p, system=system, planned_on=planned_on)
+            with pytest.raises(ValueError, match="built or edited by hand"):
+                lo.run(edited)
         with pytest.raises(ValueError, match=message):
-            lo.run(dataclasses.replace(p, system=system))
+            p.with_system(system)
+    for request in (lo.FO(), lo.RT(1e-6)):  # another request is refused, not run as the old one
+        with pytest.raises(ValueError, match="built or edited by hand"):
+            lo.run(dataclasses.replace(p, request=request))
+    hand_built = lo.Plan(**{f: getattr(p, f) for f in ("system", "ranges", "request", "backend",
+                                                       "options", "tolerance")})  # fmt: skip
+    with pytest.raises(ValueError, match="built or edited by hand"):
+        lo.run(hand_built)
+    assert np.array_equal(lo.run(p.at(Z8[2:])).overlap, lo.run(p).overlap[2:])
 
 
 @pytest.mark.parametrize("index", [slice(5, 2), slice(10, None), 1, "a"])

@@ -69,14 +69,14 @@ def check(value: Any, fields: Mapping[str, Kind]) -> None:
 
 
 def real(*, low: float = -math.inf, nan: bool = False, inf: bool = False) -> Kind:
-    """A real number >= ``low``; NaN and infinities only where allowed."""
+    """A real number >= ``low``; NaN and +inf (an unbounded value) only where allowed."""
 
     def kind(name: str, value: Any) -> float:
         v = _checks.real(name, value)
         if math.isnan(v):
             if nan:
                 return v
-        elif (math.isfinite(v) or inf) and v >= low:
+        elif (math.isfinite(v) or (inf and v > 0)) and v >= low:
             return v
         allowed = " or NaN" if nan else ""
         bound = "" if low == -math.inf else f" >= {low:g}"
@@ -124,7 +124,7 @@ def array(
     square: bool = False,
 ) -> Kind:
     """A read-only float array of ``ndim`` dimensions (square when asked) whose values are >=
-    ``low``; NaN and infinities only where allowed; None where ``optional``."""
+    ``low``; NaN and +inf only where allowed; None where ``optional``."""
 
     def kind(name: str, value: Any) -> Optional[np.ndarray]:
         if value is None and optional:
@@ -132,7 +132,7 @@ def array(
         a = _checks.real_array(name, value, ndim=ndim)
         if square and a.shape[0] != a.shape[-1]:
             raise ValueError(f"{name} has shape {a.shape}: expected a square matrix")
-        bad = np.isinf(a) if not inf else np.zeros(a.shape, bool)
+        bad = np.isinf(a) if not inf else np.isneginf(a)
         if not nan:
             bad |= np.isnan(a)
         bad |= a < low

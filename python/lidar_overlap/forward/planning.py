@@ -22,7 +22,7 @@ from ..model.system import LidarSystem
 from . import auto
 from .methods import Auto, Turbulent, from_shortcuts
 from .planners import aberrated, fan_options, mixture, mixture_of, plain
-from .plans import Plan, base_fields, check
+from .plans import Plan, base_fields, check, decided
 from .turbulent_planner import turbulent
 
 __all__ = ["Plan", "check", "explain", "plan", "resolve"]
@@ -44,10 +44,10 @@ def plan(system: LidarSystem, ranges, method="rt", *, threads: int = 0, **shortc
             raise ValueError(
                 "turbulence with a GaussianMixtureBeam is not modelled: expected a GaussianBeam"
             )
-        return mixture(system, z, request, threads)
+        return decided(mixture(system, z, request, threads))
     if isinstance(request, Turbulent):
-        return turbulent(system, z, request, threads)
-    return plain(system, z, request, request, threads)
+        return decided(turbulent(system, z, request, threads))
+    return decided(plain(system, z, request, request, threads))
 
 
 def explain(system, ranges, method="auto", *, threads: int = 0, **shortcuts) -> Plan:
@@ -62,9 +62,14 @@ def explain(system, ranges, method="auto", *, threads: int = 0, **shortcuts) -> 
 def resolve(p: Plan) -> Plan:
     """``p`` with every decision made: a plan that decides when it runs (auto with receiver
     aberrations) gets auto's choice, from two coarse RT curves (:func:`auto.decide_aberrated`); any
-    other plan is returned as it is."""
+    other plan is returned as it is. The choice is decided as ``p`` is."""
     if not p.deferred:
         return p
+    q = _resolved(p)
+    return decided(q) if p._decided else q
+
+
+def _resolved(p: Plan) -> Plan:
     if p.parts:
         parts = tuple(resolve(part) for part in p.parts)
         return mixture_of(p.system, p.ranges, p.request, parts, p.options.threads)

@@ -6,17 +6,20 @@ refused)."""
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import Any, Optional, Tuple
 
 import numpy as np
 
 from .. import _checks, _core
+from .._pickling import same_value
+from .._values import frozen
 from ..model.mixture_beam import GaussianMixtureBeam
 from ..model.system import GaussianBeam, LidarSystem
 from . import auto
 from .backends import BACKENDS, Backend, backend
-from .methods import Auto, Method, Turbulent
+from .methods import FO, RT, Auto, Method, Turbulent
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,6 +52,81 @@ class Plan:
     warnings: Tuple[str, ...] = ()
     planned_on: Optional[LidarSystem] = None
     parts: Tuple["Plan", ...] = ()
+    # Set by lidar_overlap.plan and kept by the plan's own methods; dataclasses.replace and
+    # Plan(...) cannot set it (init=False), so a plan edited or built by hand is refused when it
+    # runs.
+    _decided: bool = dataclasses.field(default=False, init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        """Every field checked, so that a plan edited with ``dataclasses.replace`` is refused by
+        name rather than failing inside a backend; the ranges kept read-only."""
+        for name, value in (("system", self.system), ("planned_on", self.planned_on)):
+            if not isinstance(value, LidarSystem) and not (name == "planned_on" and value is None):
+                raise ValueError(
+                    f"{name} = {_checks.shown(value)} is invalid: expected a LidarSystem"
+                )
+        object.__setattr__(self, "ranges", frozen(_checks.ranges("ranges", self.ranges)))
+        self.system._native.validate_ranges(self.ranges)  # > 0, beyond the obstruction distance
+        if not isinstance(self.request, (RT, FO, Auto, Turbulent)):
+            raise ValueError(
+                f"request = {_checks.shown(self.request)} is invalid: expected an RT, FO, Auto or "
+                "Turbulent method"
+            )
+        _checks.choice("backend", self.backend, tuple(BACKENDS))
+        if type(self.options).__module__ != _core.__name__:
+            raise ValueError(
+                f"options = {_checks.shown(self.options)} is invalid: expected the core's options "
+                "of the plan's backend (plans are made by lidar_overlap.plan)"
+            )
+        for name in ("tolerance", "rt_model_error"):
+            v = _checks.real(name, getattr(self, name))
+            if not (math.isnan(v) or (math.isfinite(v) and v >= 0.0)):
+                raise ValueError(f"{name} = {v!r} is invalid: expected a finite value >= 0, or NaN")
+            object.__setattr__(self, name, v)
+        if not isinstance(self.rt_diffraction_warning, bool):
+            raise ValueError(
+                f"rt_diffraction_warning = {_checks.shown(self.rt_diffraction_warning)} is "
+                "invalid: expected True or False"
+            )
+        for name in ("reasons", "warnings"):
+            value = getattr(self, name)
+            if not isinstance(value, tuple) or not all(isinstance(t, str) for t in value):
+                raise ValueError(
+                    f"{name} = {_checks.shown(value)} is invalid: expected a tuple of texts"
+                )
+        if not isinstance(self.parts, tuple) or not all(isinstance(q, Plan) for q in self.parts):
+            raise ValueError(
+                f"parts = {_checks.shown(self.parts)} is invalid: expected a tuple of plans"
+            )
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(
+            _same_options(a, b) if f.name == "options" else same_value(a, b)
+            for f in dataclasses.fields(self)
+            if f.compare
+            for a, b in [(getattr(self, f.name), getattr(other, f.name))]
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # holds arrays
+
+    def __reduce__(self):
+        # The core's option objects do not pickle: they travel as their type and attributes.
+        state = {f.name: getattr(self, f.name) for f in dataclasses.fields(self) if f.init}
+        options = state.pop("options")
+        return _rebuild_plan, (
+            state,
+            type(options).__name__,
+            _option_values(options),
+            self._decided,
+        )
+
+    def _derived(self, **changes) -> "Plan":
+        """A copy with ``changes`` made by one of the plan's own methods: decided if this one is."""
+        q = dataclasses.replace(self, **changes)
+        object.__setattr__(q, "_decided", self._decided)
+        return q
 
     @property
     def method(self) -> str:
@@ -112,8 +190,8 @@ class Plan:
         out = []
         for part, (_, system) in zip(self.parts, self.system.incoherent_parts):
             if not np.array_equal(part.ranges, self.ranges):
-                part = dataclasses.replace(part, ranges=self.ranges)
-            out.append(dataclasses.replace(part, system=system))
+                part = part._derived(ranges=self.ranges)
+            out.append(part._derived(system=system))
         return tuple(out)
 
     def subset(self, index) -> "Plan":
@@ -124,8 +202,7 @@ class Plan:
                 f"index = {_checks.shown(index)} is invalid: expected a slice that selects at "
                 f"least one of the plan's {self.ranges.size} ranges"
             )
-        return dataclasses.replace(
-            self,
+        return self._derived(
             ranges=self.ranges[index],
             parts=tuple(p.subset(index) for p in self.parts),
         )
@@ -144,8 +221,8 @@ class Plan:
         if self.parts:
             parts = tuple(p.at(z) for p in self.parts)
             error = power_weighted(self.system, [p.rt_model_error for p in parts])
-            return dataclasses.replace(self, ranges=z, rt_model_error=error, parts=parts)
-        return dataclasses.replace(self, ranges=z, rt_model_error=error)
+            return self._derived(ranges=z, rt_model_error=error, parts=parts)
+        return self._derived(ranges=z, rt_model_error=error)
 
     def with_system(self, system) -> "Plan":
         """The same decisions for another ``system`` of the same kind (the same beam type and width
@@ -166,8 +243,8 @@ class Plan:
             parts = tuple(
                 p.with_system(s) for p, (_, s) in zip(self.parts, system.incoherent_parts)
             )
-            return dataclasses.replace(self, system=system, parts=parts)
-        return dataclasses.replace(self, system=system)
+            return self._derived(system=system, parts=parts)
+        return self._derived(system=system)
 
     def __str__(self) -> str:
         model = self.request.method if isinstance(self.request, Turbulent) else self.request
@@ -177,12 +254,29 @@ class Plan:
         return "\n".join([head] + [f"  - {r}" for r in self.reasons])
 
 
+def decided(p: Plan) -> Plan:
+    """``p`` marked as made by :func:`lidar_overlap.plan`: its decisions hold for its system and
+    request."""
+    object.__setattr__(p, "_decided", True)
+    return p
+
+
 def check(p: Plan) -> Plan:
-    """``p`` if its system is of the kind its decisions were made for; a ValueError naming what
-    changed otherwise (a plan edited by hand, say with ``dataclasses.replace``)."""
+    """``p`` if it was made by :func:`lidar_overlap.plan` or re-targeted by its own methods
+    (:meth:`Plan.with_system`, :meth:`Plan.at`, :meth:`Plan.subset`); a ValueError otherwise: a
+    plan edited with ``dataclasses.replace`` or built with ``Plan(...)`` may hold a system, ranges
+    or a request its decisions were not made for, whatever its ``planned_on`` says."""
+    if not p._decided:
+        raise ValueError(
+            "plan is invalid: it was built or edited by hand (Plan(...) or dataclasses.replace), "
+            "so "
+            "its decisions may not hold for its system, ranges and request; make it with "
+            "lidar_overlap.plan(system, ranges, method), and move it with Plan.with_system or "
+            "Plan.at"
+        )
     if p.planned_on is not None:
         change = kind_change(p.planned_on, p.system)
-        if change:
+        if change:  # a decided plan always passes; kept as a guard of the methods above
             raise ValueError(
                 f"plan.system: {change}, so the plan ({BACKENDS[p.backend].description}) does not "
                 "describe it; re-target a plan with Plan.with_system, or make one with "
@@ -224,3 +318,26 @@ def kind_change(old: LidarSystem, new: LidarSystem) -> str:
         if new_ab.field_dependent != old_ab.field_dependent:
             return "telescope.aberrations differ in field-dependent Seidel terms from the plan's"
     return ""
+
+
+def _option_values(options) -> dict:
+    """The settable attributes of one of the core's option objects."""
+    return {
+        name: getattr(options, name)
+        for name in dir(options)
+        if not name.startswith("_") and not callable(getattr(options, name))
+    }
+
+
+def _same_options(a, b) -> bool:
+    return type(a) is type(b) and _option_values(a) == _option_values(b)
+
+
+def _rebuild_plan(state: dict, options_type: str, values: dict, was_decided: bool) -> Plan:
+    """A pickled :class:`Plan`: its core options made again from their attributes, the plan
+    checked again by its constructor, decided if the pickled one was."""
+    options = getattr(_core, options_type)()
+    for name, value in values.items():
+        setattr(options, name, value)
+    p = Plan(options=options, **state)
+    return decided(p) if was_decided else p

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 from typing import Any, Dict, Optional, Tuple
 
 from .. import _checks
-
 from ..forward.methods import RECEIVER_FIELDS
 
 METHODS = ("rt", "fo", "auto")

@@ -395,4 +395,3 @@ def _joined(parts, ranges):
         overlap=np.concatenate([q.overlap for q in parts]),
         error_estimate=np.concatenate([q.error_estimate for q in parts]),
     )
-

@@ -20,7 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from ..analysis.telecover import TelecoverResult, sector_curves, sector_mask, with_mask
+from ..analysis.studies.telecover import TelecoverResult, sector_curves, sector_mask, with_mask
 from ..forward.compute import run
 from ..forward.planning import plan
 from ..model.aperture_mask import ApertureMask

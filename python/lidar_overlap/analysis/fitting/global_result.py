@@ -9,6 +9,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Dict, Optional, Tuple
 
+from ... import _values
 from .relative_result import RelativeFitResult
 from .result import FitResult
 
@@ -24,6 +25,9 @@ class SearchMinimum:
     candidate_cost: float
     converged: bool
     evaluations: int
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "parameters", _values.reals()("parameters", self.parameters))
 
 
 @dataclass(frozen=True)
@@ -42,6 +46,11 @@ class SearchReport:
     local_evaluations: int
     minima: Tuple[SearchMinimum, ...]
     bounds: Dict[str, Tuple[float, float]]
+
+    def __post_init__(self) -> None:
+        pairs = {p: _values.pair(f"bounds[{p!r}]", b) for p, b in dict(self.bounds).items()}
+        object.__setattr__(self, "bounds", _values.FrozenMap(pairs))
+        object.__setattr__(self, "minima", tuple(self.minima))
 
     def summary(self) -> str:
         lines = [

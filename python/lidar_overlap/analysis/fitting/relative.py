@@ -100,7 +100,8 @@ def relative_result(problem: FitProblem, raw, norm: Normalization, parts=None) -
             )
         fields.update(
             extinction_bias=bias,
-            extinction_bias_uncertainty=math.sqrt(variance) if variance >= 0 else math.nan,
+            # unbounded (inf) where the covariance is: as the warning of a singular fit says
+            extinction_bias_uncertainty=math.sqrt(variance) if variance >= 0 else math.inf,
             extinction_bias_reference=norm.trend.reference,
             extinction_bias_covariance=cross,
         )

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import Optional, Tuple, Union
+from typing import Any, ClassVar, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
 from ...forward.compute import run
 from ..sensitivity import jacobian
 from .result import FitResult, Prediction
@@ -45,6 +45,50 @@ class RelativeFitResult(FitResult):
     extinction_bias_uncertainty: Optional[float] = None
     extinction_bias_reference: Optional[float] = None
     extinction_bias_covariance: Optional[np.ndarray] = None
+
+    RELATIVE_FIELDS: ClassVar[Dict[str, Any]] = {
+        "normalizing_ranges": _values.array(low=0.0),
+        "model_scale": _values.real(low=0.0),
+        "data_scale": _values.real(low=0.0),
+        "fitted": _values.array(),
+        "extinction_bias_covariance": _values.array(optional=True, inf=True, nan=True),
+    }
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        _values.check(self, self.RELATIVE_FIELDS)
+        if not (
+            self.normalize == "far"
+            or (
+                isinstance(self.normalize, tuple)
+                and len(self.normalize) == 2
+                and all(isinstance(v, float) for v in self.normalize)
+            )
+        ):
+            raise ValueError(
+                f"normalize = {_checks.shown(self.normalize)} is invalid: expected 'far' or "
+                "(z_low, z_high) in m"
+            )
+        if self.fitted.shape != self.measured.shape:
+            raise ValueError(
+                f"fitted has shape {self.fitted.shape}: expected one value per measured value, "
+                f"{self.measured.size}"
+            )
+        bias = (
+            self.extinction_bias,
+            self.extinction_bias_uncertainty,
+            self.extinction_bias_reference,
+        )
+        if any(v is None for v in bias) and not all(v is None for v in bias):
+            raise ValueError(
+                "extinction_bias, its uncertainty and reference are invalid: expected all three "
+                "or none"
+            )
+        if bias[0] is not None:
+            kinds = (_values.real(), _values.real(low=0.0, inf=True), _values.real(low=0.0))
+            names = ("extinction_bias", "extinction_bias_uncertainty", "extinction_bias_reference")
+            for name, kind in zip(names, kinds):
+                object.__setattr__(self, name, kind(name, getattr(self, name)))
 
     @property
     def ranges(self) -> np.ndarray:
@@ -113,7 +157,7 @@ def normalised_prediction(fit: FitResult, ranges, normalizing_ranges, trend=None
     z = _checks.ranges("ranges", ranges)
     fit.system._native.validate_ranges(z)
     both = np.union1d(z, normalizing_ranges)
-    p = dataclasses.replace(fit.plan, system=fit.system, ranges=both)
+    p = fit.plan.with_system(fit.system).at(both)  # at: auto's RT model error for these ranges
     g = run(p).overlap
     j = jacobian(p, fit.system, list(fit.parameters), fit.step_tolerance)
     at, norm = np.searchsorted(both, z), np.searchsorted(both, normalizing_ranges)

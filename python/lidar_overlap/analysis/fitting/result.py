@@ -8,11 +8,12 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Any, Dict, Optional, Tuple, Union
+from typing import Any, ClassVar, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
+from ..._pickling import ByValue, same_value
 from ...forward.compute import run
 from ...forward.planning import plan
 from ...forward.result import OverlapResult
@@ -42,14 +43,30 @@ def step_tolerance(p, tolerance: float) -> float:
     return p.rt_quadrature_tolerance if p.backend in ("rt", "rt_mixture") else tolerance
 
 
-@dataclass(frozen=True)
-class Prediction:
+@dataclass(frozen=True, eq=False)
+class Prediction(ByValue):
     """The fitted model at ``ranges`` (m): ``overlap`` and its 1-sigma band ``sigma`` (from the
-    covariance)."""
+    covariance; inf where it is unbounded, NaN where rounding left no variance to take the root
+    of)."""
 
     ranges: np.ndarray
     overlap: np.ndarray
     sigma: np.ndarray
+
+    def __post_init__(self) -> None:
+        _values.check(
+            self,
+            {
+                "ranges": _values.array(low=0.0),
+                "overlap": _values.array(),
+                "sigma": _values.array(low=0.0, inf=True, nan=True),
+            },
+        )
+        if not self.overlap.shape == self.sigma.shape == self.ranges.shape:
+            raise ValueError(
+                f"overlap and sigma have shapes {self.overlap.shape} and {self.sigma.shape}: "
+                f"expected one value per range, {self.ranges.size}"
+            )
 
 
 @dataclass(frozen=True, eq=False)
@@ -93,6 +110,66 @@ class FitResult:
     loss: str
     plan: Any
     step_tolerance: float
+
+    FIELDS: ClassVar[Dict[str, Any]] = {
+        "parameters": _values.reals(),
+        "uncertainties": _values.reals(inf=True),
+        "start": _values.reals(),
+        "covariance": _values.array(2, square=True, inf=True),
+        "correlation": _values.array(2, square=True, nan=True),
+        "residuals": _values.array(),
+        "chi_square": _values.real(low=0.0),
+        "reduced_chi_square": _values.real(low=0.0, nan=True, inf=True),
+        "degrees_of_freedom": _values.count(0),
+        "measured": _values.array(),
+        "sigma": _values.array(low=0.0, optional=True),
+        "covariance_scaled": _values.flag,
+        "evaluations": _values.count(0),
+        "jacobian_evaluations": _values.count(0),
+        "status": _values.count(-10),
+        "message": _values.text,
+        "converged": _values.flag,
+        "loss": _values.text,
+        "step_tolerance": _values.real(low=0.0),
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
+        k = len(self.parameters)
+        if set(self.uncertainties) != set(self.parameters) or set(self.start) != set(
+            self.parameters
+        ):
+            raise ValueError(
+                "uncertainties and start are invalid: expected one value per fitted parameter"
+            )
+        if self.covariance.shape != (k, k) or self.correlation.shape != (k, k):
+            raise ValueError(
+                f"covariance has shape {self.covariance.shape}: expected ({k}, {k}), one row and "
+                "column per fitted parameter, as correlation"
+            )
+        if self.residuals.shape != self.measured.shape or (
+            self.sigma is not None and self.sigma.shape != self.measured.shape
+        ):
+            raise ValueError(
+                f"residuals has shape {self.residuals.shape}: expected one residual (and sigma) "
+                f"per measured value, {self.measured.size}"
+            )
+        if not isinstance(self.degenerate_pairs, tuple):
+            raise ValueError(
+                f"degenerate_pairs = {_checks.shown(self.degenerate_pairs)} is invalid: expected a "
+                "tuple of (path, path, correlation)"
+            )
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(
+            same_value(getattr(self, f.name), getattr(other, f.name))
+            for f in dataclasses.fields(self)
+            if f.compare
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # holds arrays
 
     def __reduce__(self):
         # The plan holds the core's option objects, which do not pickle: it travels as what made it

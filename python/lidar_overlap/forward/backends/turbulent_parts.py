@@ -1,5 +1,5 @@
-"""A turbulent run in parts (the tasks of :mod:`lidar_overlap.analysis.turbulent_study`): what the
-realisations share, drawn up front; any slice of them, computed bit for bit as the whole run
+"""A turbulent run in parts (the tasks of :mod:`lidar_overlap.analysis.studies.turbulence`): what
+the realisations share, drawn up front; any slice of them, computed bit for bit as the whole run
 computes it; and the result of all the slices, as ``lo.overlap`` makes it. One :class:`Draws` per
 turbulent backend (:data:`RT` and :data:`FO`), named by its :class:`~.Backend`."""
 
