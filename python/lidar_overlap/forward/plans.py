@@ -268,11 +268,10 @@ def check(p: Plan) -> Plan:
     or a request its decisions were not made for, whatever its ``planned_on`` says."""
     if not p._decided:
         raise ValueError(
-            "plan is invalid: it was built or edited by hand (Plan(...) or dataclasses.replace), "
-            "so "
-            "its decisions may not hold for its system, ranges and request; make it with "
-            "lidar_overlap.plan(system, ranges, method), and move it with Plan.with_system or "
-            "Plan.at"
+            "plan is invalid: it was built or edited by hand (Plan(...) or "
+            "dataclasses.replace), so its decisions may not hold for its system, ranges and "
+            "request; make it with lidar_overlap.plan(system, ranges, method), and move it with "
+            "Plan.with_system or Plan.at"
         )
     if p.planned_on is not None:
         change = kind_change(p.planned_on, p.system)
