@@ -6,9 +6,11 @@ PY     := $(VENV)/bin/python
 BIN    := $(VENV)/bin
 OUT    := out
 JOBS   ?= 2
+#: The C++ sources clang-format keeps in the style of .clang-format (make format, make lint).
+CPP_SOURCES = $(shell find cpp bindings tests/cpp -type f \( -name "*.cpp" -o -name "*.hpp" \) | sort)
 SOURCES := CMakeLists.txt pyproject.toml $(shell find cmake cpp bindings python -type f -not -name "*.pyc" 2>/dev/null)
 
-.PHONY: demo test setup lint pytest ctest sanitize bench clean
+.PHONY: demo test setup lint format pytest ctest sanitize bench clean
 
 setup: $(VENV)/.installed
 
@@ -48,11 +50,17 @@ demo: setup
 test: setup
 	$(MAKE) lint pytest ctest
 
-# ruff (format and lint, 100 columns, import order) and mypy on the package, as configured in pyproject.toml.
+# ruff (format and lint, 100 columns, import order) and mypy on the package, as configured in pyproject.toml;
+# clang-format (.clang-format, the version pinned in pyproject.toml) on the C++ sources.
 lint:
+	$(BIN)/clang-format --dry-run --Werror $(CPP_SOURCES)
 	$(BIN)/ruff format --check python tests benchmarks examples scripts
 	$(BIN)/ruff check python tests benchmarks examples scripts
 	$(PY) -m mypy
+
+# Rewrite the C++ sources in the style of .clang-format (whitespace only: includes keep their order).
+format: setup
+	$(BIN)/clang-format -i $(CPP_SOURCES)
 
 pytest:
 	$(PY) -m pytest -q

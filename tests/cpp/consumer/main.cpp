@@ -80,10 +80,10 @@
 #error "installed but not part of the public API: <lidar_overlap/fourier/overlap_fo_detail.hpp>"
 #endif
 #if __has_include(<lidar_overlap/fourier/gaussian_image_overlap.hpp>)
-#error "installed but not part of the public API: <lidar_overlap/fourier/gaussian_image_overlap.hpp>"
+#error "installed, not public API: <lidar_overlap/fourier/gaussian_image_overlap.hpp>"
 #endif
 #if __has_include(<lidar_overlap/pupil/aberrated_pupil_integral.hpp>)
-#error "installed but not part of the public API: <lidar_overlap/pupil/aberrated_pupil_integral.hpp>"
+#error "installed, not public API: <lidar_overlap/pupil/aberrated_pupil_integral.hpp>"
 #endif
 #if __has_include(<lidar_overlap/pupil/sampled_pupil_overlap.hpp>)
 #error "installed but not part of the public API: <lidar_overlap/pupil/sampled_pupil_overlap.hpp>"
