@@ -143,7 +143,9 @@ def names_a_parameter(message: str, names) -> bool:
 def judge_exception(exc: BaseException, names) -> tuple:
     message = str(exc)
     kind = type(exc).__name__
-    if not isinstance(exc, CLEAN_TYPES):
+    if isinstance(exc, CLEAN_TYPES):  # a subclass (lo.ParameterError) is the refusal its base is
+        kind = next(t.__name__ for t in CLEAN_TYPES if isinstance(exc, t))
+    else:
         return (
             BAD_ERROR,
             kind,

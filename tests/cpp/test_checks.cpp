@@ -57,7 +57,7 @@ int main() {
   const ParameterError range = refusal([&] { overlap_rt(s, {10.0, 20.0, -5.0}); });
   test::that("range: parameter names the index", range.parameter() == "ranges[2]" && range.value() == -5.0);
   const ParameterError batch = refusal([&] {
-    overlap_rt_batch({s, with([](LidarSystem& c) { c.detector.radius = nan; })}, {10.0, 20.0});
+    overlap_rt_batch({s, with([&](LidarSystem& c) { c.detector.radius = nan; })}, {10.0, 20.0});
   });
   test::that("batch: parameter names the system", batch.parameter() == "systems[1].detector.radius");
   test::that("batch: message names it", std::string(batch.what()).rfind("systems[1]: detector.radius", 0) == 0);
