@@ -151,3 +151,27 @@ def test_a_zero_residual_fit_of_a_degenerate_parameter_is_warned_not_nan():
         f = lo.fit(TABLE1, Z, y, free=["detector.defocus", "beam.tilt[0]"], **FAST)
     assert not any(math.isnan(v) for v in f.uncertainties.values())
     assert not np.isnan(f.covariance).any() and not np.isnan(f.correlation).any()
+
+
+@pytest.mark.parametrize("where", ["residuals", "jac"])
+def test_values_not_finite_at_the_start_are_refused_in_the_fit_s_words(where):
+    """The driver's guard (the fit's input checks keep real data from reaching it): scipy's own
+    refusal names no parameter; no extra evaluation is made to check."""
+    from scipy import optimize
+
+    calls = []
+
+    def residuals(x):
+        calls.append(x)
+        return np.array([np.inf if where == "residuals" else 1.0, x[0]])
+
+    def jac(x):
+        return np.array([[np.nan if where == "jac" else 0.0], [1.0]])
+
+    with pytest.raises(ValueError, match="not finite at the start: sigma is too small"):
+        fit_verdict.least_squares(optimize, residuals, np.array([0.5]), jac=jac)
+    assert len(calls) == 1
+    fine = fit_verdict.least_squares(
+        optimize, lambda x: x - 2.0, np.array([0.0]), jac=lambda x: [[1]]
+    )
+    assert fine.x[0] == pytest.approx(2.0)

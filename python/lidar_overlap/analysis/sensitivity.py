@@ -62,7 +62,7 @@ def sensitivity(
         "(Fourier optics states none); use method='rt'",
     )
     p = plan(system, ranges, model, threads=threads)
-    if p.backend != "rt":
+    if not p.batched:
         raise ValueError(
             f"sensitivity ray traces the plain receiver; this system needs {p.backend!r} (receiver "
             "aberrations), which has no batch call yet"

@@ -190,8 +190,11 @@ def parse(path) -> Tuple[str, str, str, Optional[int]]:
                 and int(index) in (0, 1)
             ):
                 return "plain", part, name, int(index)
-    raise ValueError(
-        f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}"
+    raise _checks.refused(
+        "parameter",
+        path,
+        f"one of {', '.join(valid_paths())}",
+        f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}",
     )
 
 

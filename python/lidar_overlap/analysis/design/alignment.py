@@ -117,7 +117,7 @@ def alignment_map(
             ),
             threads=threads,
         )
-        if p.backend != "rt":
+        if not p.batched:
             raise ValueError(
                 f"alignment_map ray traces the plain receiver; this system needs {p.backend!r} "
                 "(receiver aberrations): compute lo.overlap per misaligned system instead"

@@ -96,7 +96,7 @@ class Problem:
         self.system, self.objective, self.paths = system, objective, paths
         self.lower, self.upper = lower, upper
         self.plan = plan(system, ranges, model)
-        if self.plan.backend != "rt":
+        if not self.plan.batched:
             raise ValueError(
                 f"optimize ray traces the plain receiver; this system needs {self.plan.backend!r} "
                 "(receiver aberrations or a mask), which has no batched core call yet"

@@ -214,8 +214,8 @@ def free_paths(free):
             "the fit is planned on the start, whose model may not include aberrations; fit the "
             "alignment scalars",
         )
-    except ValueError as exc:
-        if str(exc).startswith("parameter"):
+    except _checks.ParameterError as exc:
+        if exc.parameter == "parameter":  # an unknown path, not a refused value
             raise ValueError(f"free: {exc}; name parameters of the system") from None
         raise
 

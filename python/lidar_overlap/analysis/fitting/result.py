@@ -40,7 +40,7 @@ def covariance(j: np.ndarray, scale: float) -> np.ndarray:
 def step_tolerance(p, tolerance: float) -> float:
     """The tolerance that sets the central-difference steps: RT's quadrature tolerance, else the
     fit's."""
-    return p.rt_quadrature_tolerance if p.backend in ("rt", "rt_mixture") else tolerance
+    return p.rt_quadrature_tolerance if p.plain_rt else tolerance
 
 
 @dataclass(frozen=True, eq=False)

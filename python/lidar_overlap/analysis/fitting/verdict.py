@@ -128,15 +128,29 @@ def _chi2_p_value(chi_square: float, dof: int) -> float:
 
 
 def least_squares(optimize, residuals, start, **options):
-    """``optimize.least_squares`` with its refusals of non-finite residuals or Jacobians (which name
-    no parameter) said in the fit's words."""
-    try:
-        return optimize.least_squares(residuals, start, **options)
-    except ValueError as exc:
-        if "finite" not in str(exc) and "infs or NaNs" not in str(exc):
-            raise
-        raise ValueError(
-            f"fit: the weighted residuals or their Jacobian are not finite at the start ({exc}): "
-            "sigma is too small or measured too large for double precision; give measured G (of "
-            "order 0 to 1) and sigma of the order of its error"
-        ) from None
+    """``optimize.least_squares``, with the residuals and the Jacobian it is given checked at the
+    start, where scipy refuses non-finite values in words that name no parameter: refused in the
+    fit's words instead (no extra evaluation: each function checks its own first result)."""
+    options = dict(options)
+    if callable(options.get("jac")):
+        options["jac"] = _FiniteAtStart(options["jac"], "Jacobian of the weighted residuals")
+    return optimize.least_squares(_FiniteAtStart(residuals, "weighted residuals"), start, **options)
+
+
+class _FiniteAtStart:
+    """``function`` whose first result (at the start) must be finite."""
+
+    def __init__(self, function, what: str) -> None:
+        self.function, self.what, self.first = function, what, True
+
+    def __call__(self, x, *args, **kwargs):
+        values = self.function(x, *args, **kwargs)
+        if self.first:
+            self.first = False
+            if not np.all(np.isfinite(values)):
+                raise ValueError(
+                    f"fit: the {self.what} are not finite at the start: sigma is too small or "
+                    "measured too large for double precision; give measured G (of order 0 to 1) "
+                    "and sigma of the order of its error"
+                )
+        return values

@@ -39,7 +39,7 @@ from typing import cast
 import numpy as np
 
 from ... import _checks
-from ...forward.backends import BACKENDS, many
+from ...forward.backends import many
 from ...forward.compute import run
 from ...forward.methods import Turbulent
 from ...forward.planning import plan
@@ -175,7 +175,7 @@ def turbulent_realizations(
             "paths": method.paths,
             "method": repr(method),
             "model": p.method,
-            "computed_by": BACKENDS[p.backend].description,
+            "computed_by": p.engine.description,
             "turbulence": repr(method.turbulence),
             "error_kind": p.error_kind,
             "engine": kind,
