@@ -39,6 +39,13 @@ HOW = (
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="auditwheel: Linux")
 
 
+def _clean_env() -> dict:
+    """This environment without PYTHON*, PIP_* and VIRTUAL_ENV (other tests' fixtures may set
+    PYTHONPATH to the developer install, which pip would take for an installed package)."""
+    drop = ("PYTHON", "PIP_", "VIRTUAL_ENV", "LD_")
+    return {k: v for k, v in os.environ.items() if not k.startswith(drop)}
+
+
 def _one(pattern: str) -> Path:
     found = sorted(DIST.glob(pattern))
     if len(found) != 1:
@@ -59,13 +66,16 @@ def venv(wheel, tmp_path_factory):
     """A fresh venv with the wheel installed; returns (its python, the install's wall time in s)."""
     root = tmp_path_factory.mktemp("wheel")
     env = root / "venv"
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(env)], check=True, cwd=root)
+    clean = _clean_env()
+    subprocess.run(
+        [sys.executable, "-m", "venv", "--without-pip", str(env)], check=True, cwd=root, env=clean
+    )
     python = env / "bin" / "python"
     t0 = time.perf_counter()
     subprocess.run(
         [sys.executable, "-m", "pip", "--python", str(python), "install", "--no-index",
-         "--no-deps", "--quiet", str(wheel)],
-        check=True, cwd=root,
+         "--no-deps", "--ignore-installed", "--quiet", str(wheel)],
+        check=True, cwd=root, env=clean,
     )  # fmt: skip
     seconds = time.perf_counter() - t0
     deps = root / "deps"
@@ -77,7 +87,7 @@ def venv(wheel, tmp_path_factory):
             (deps / folder.name).symlink_to(folder)
     site = subprocess.run(
         [str(python), "-I", "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-        check=True, capture_output=True, text=True,
+        check=True, capture_output=True, text=True, env=clean,
     ).stdout.strip()  # fmt: skip
     (Path(site) / "numpy_only.pth").write_text(f"{deps}\n")
     return python, seconds
@@ -86,7 +96,7 @@ def venv(wheel, tmp_path_factory):
 def _package_dir(python: Path) -> Path:
     out = subprocess.run(
         [str(python), "-I", "-c", "import lidar_overlap as m; print(m.__file__)"],
-        check=True, capture_output=True, text=True, cwd=python.parent,
+        check=True, capture_output=True, text=True, cwd=python.parent, env=_clean_env(),
     )  # fmt: skip
     return Path(out.stdout.strip()).parent
 
@@ -162,7 +172,7 @@ def test_the_extension_resolves_fftw_and_openmp_inside_the_wheel(venv):
 def test_smoke_run_from_the_wheel_with_the_system_fftw_hidden(venv, tmp_path, record_property):
     python, install_seconds = venv
     argv, hidden = _hidden([str(python), "-I", str(SMOKE), str(tmp_path / "wheel")])
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTHON", "LD_"))}
+    env = _clean_env()
     ran = subprocess.run(argv, capture_output=True, text=True, cwd=tmp_path, env=env, timeout=600)
     assert ran.returncode == 0, ran.stderr
     got = json.loads(ran.stdout.splitlines()[-1])
@@ -198,7 +208,7 @@ def test_import_time_is_measured(venv, record_property):
     for _ in range(5):
         out = subprocess.run(
             [str(python), "-I", "-c", code], capture_output=True, text=True, check=True,
-            cwd=python.parent,
+            cwd=python.parent, env=_clean_env(),
         )  # fmt: skip
         runs.append([float(v) for v in out.stdout.split()])
     wall, cpu = np.median(np.array(runs), axis=0)
