@@ -143,6 +143,27 @@ def test_page_computes_in_the_background_and_keeps_the_last_curve(tmp_path):
     asyncio.run(page())
 
 
+def test_page_says_why_a_background_curve_failed(tmp_path):
+    pytest.importorskip("trame")
+
+    async def page():
+        app = lo.view(_systems()["field"], RANGES, out=tmp_path, block=False)
+        try:
+
+            def refuse(cancelled=None, progress=None):
+                raise RuntimeError("not converged: raise max_segments")
+
+            app.twin.compute = refuse
+            app._compute_in_background()
+            await _until(lambda: not app.state.computing)
+            assert app.state.error == "not converged: raise max_segments"
+            assert app.twin.result is None and app.computed == 0
+        finally:
+            app.close()
+
+    asyncio.run(page())
+
+
 async def _until(condition, timeout=BACKGROUND_WAIT):
     deadline = asyncio.get_running_loop().time() + timeout
     while not condition():

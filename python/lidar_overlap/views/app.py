@@ -215,7 +215,7 @@ class App:
                 outcome = await loop.run_in_executor(
                     self._worker, lambda: self.twin.compute(cancelled, progress)
                 )
-            except ValueError as exc:  # refused by the library: said on the page
+            except (ValueError, RuntimeError) as exc:  # refused, or not converged: said on the page
                 if generation == self._generation:
                     with self.state:
                         self.state.error, self.state.computing = str(exc), False
