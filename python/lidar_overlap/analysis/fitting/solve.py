@@ -12,7 +12,8 @@ Jacobian. Central differences with the step rule of :mod:`lidar_overlap.analysis
 through one ``overlap_rt_batch`` call, so one Jacobian is one core call. The optimiser works on p /
 s, so a tilt (1e-4 rad) and a defocus (1e-3 m) are of one order for it. (One-sided differences, k
 curves instead of 2 k, were tried: the fits then stopped in worse valleys of real curves, the
-PollyXT NOA 355 nm curve at chi²/dof 3.9 instead of 0.89.)
+PollyNET chain's default overlap curve (examples/data/pollynet_default_overlap.txt) at chi²/dof
+3.9 instead of 0.89.)
 
 Covariance. (Jᵀ J)⁻¹ of the sigma-normalised residuals at the solution (Gauss-Newton). With
 ``sigma=None`` the points have unit weights and the covariance is scaled by the reduced chi-square:
