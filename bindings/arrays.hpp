@@ -20,6 +20,7 @@ pybind11::array_t<T> to_array(const std::vector<T>& v) {
 inline pybind11::array_t<double> to_array(const std::vector<std::vector<double>>& rows) {
   const std::size_t n = rows.empty() ? 0 : rows.front().size();
   pybind11::array_t<double> out({rows.size(), n});
-  for (std::size_t k = 0; k < rows.size(); ++k) std::copy(rows[k].begin(), rows[k].end(), out.mutable_data() + k * n);
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    std::copy(rows[k].begin(), rows[k].end(), out.mutable_data() + k * n);
   return out;
 }

@@ -27,32 +27,43 @@ py::array_t<T> shaped(const std::vector<T>& v, const std::vector<std::size_t>& s
 
 void bind_alignment_map(py::module_& m) {
   m.attr("MAX_ALIGNMENT_POINTS") = kMaxAlignmentPoints;
-  py::class_<AlignmentMap>(m, "AlignmentMap", "Result of alignment_map: arrays shaped (axis sizes..., ranges).")
+  py::class_<AlignmentMap>(m, "AlignmentMap",
+                           "Result of alignment_map: arrays shaped (axis sizes..., ranges).")
       .def_property_readonly("shape", [](const AlignmentMap& r) { return r.shape; })
-      .def_property_readonly("overlap", [](const AlignmentMap& r) { return shaped(r.values.overlap, r.shape); })
-      .def_property_readonly("error_estimate",
-                             [](const AlignmentMap& r) { return shaped(r.values.error_estimate, r.shape); })
-      .def_property_readonly("converged", [](const AlignmentMap& r) { return shaped(r.values.converged, r.shape); })
-      .def_property_readonly("evaluations", [](const AlignmentMap& r) { return r.values.evaluations; },
-                             "Scatterer couplings computed, all entries.")
-      .def_property_readonly("axisymmetric", [](const AlignmentMap& r) { return r.values.axisymmetric; },
-                             "Every grid point's system is axisymmetric.");
+      .def_property_readonly(
+          "overlap", [](const AlignmentMap& r) { return shaped(r.values.overlap, r.shape); })
+      .def_property_readonly(
+          "error_estimate",
+          [](const AlignmentMap& r) { return shaped(r.values.error_estimate, r.shape); })
+      .def_property_readonly(
+          "converged", [](const AlignmentMap& r) { return shaped(r.values.converged, r.shape); })
+      .def_property_readonly(
+          "evaluations", [](const AlignmentMap& r) { return r.values.evaluations; },
+          "Scatterer couplings computed, all entries.")
+      .def_property_readonly(
+          "axisymmetric", [](const AlignmentMap& r) { return r.values.axisymmetric; },
+          "Every grid point's system is axisymmetric.");
 
   m.def(
       "alignment_map",
-      [](const LidarSystem& system, const std::vector<std::pair<std::string, std::vector<double>>>& axes,
+      [](const LidarSystem& system,
+         const std::vector<std::pair<std::string, std::vector<double>>>& axes,
          const std::vector<double>& ranges, const RtOptions& options) {
         std::vector<AlignmentAxis> native;
-        for (const auto& [name, values] : axes) native.push_back({alignment_parameter_from_name(name), values});
+        for (const auto& [name, values] : axes)
+          native.push_back({alignment_parameter_from_name(name), values});
         Interruptible release;
         return alignment_map(system, native, ranges, options);
       },
       py::arg("system"), py::arg("axes"), py::arg("ranges"), py::arg("options") = RtOptions{},
       "G over a grid of misalignments: axes are (name, values) pairs, values added to the system's own.");
-  m.def("alignment_parameters", [] {
-    std::vector<std::string> names;
-    for (int p = 0; p <= static_cast<int>(AlignmentParameter::defocus); ++p)
-      names.push_back(alignment_parameter_name(static_cast<AlignmentParameter>(p)));
-    return names;
-  }, "Names of the scalars alignment_map can vary.");
+  m.def(
+      "alignment_parameters",
+      [] {
+        std::vector<std::string> names;
+        for (int p = 0; p <= static_cast<int>(AlignmentParameter::defocus); ++p)
+          names.push_back(alignment_parameter_name(static_cast<AlignmentParameter>(p)));
+        return names;
+      },
+      "Names of the scalars alignment_map can vary.");
 }

@@ -19,12 +19,15 @@ void bind_aperture_mask(py::module_& m) {
   py::class_<ApertureMask>(m, "ApertureMask", "A union of annular sectors of the aperture stop.")
       .def(py::init([](const std::vector<SectorTuple>& sectors) {
              ApertureMask mask;
-             for (const auto& [start, stop, inner, outer] : sectors) mask.sectors.push_back({start, stop, inner, outer});
+             for (const auto& [start, stop, inner, outer] : sectors)
+               mask.sectors.push_back({start, stop, inner, outer});
              return mask;
            }),
-           py::arg("sectors"), "sectors: (start_angle, stop_angle, inner_radius, outer_radius or None) each.")
-      .def("validate", &ApertureMask::validate, py::arg("telescope"),
-           "Raises ValueError naming mask.sectors[i] for a sector outside the aperture or overlapping another.");
+           py::arg("sectors"),
+           "sectors: (start_angle, stop_angle, inner_radius, outer_radius or None) each.")
+      .def(
+          "validate", &ApertureMask::validate, py::arg("telescope"),
+          "Raises ValueError naming mask.sectors[i] for a sector outside the aperture or overlapping another.");
 
   m.def(
       "overlap_rt_masked",
@@ -38,8 +41,8 @@ void bind_aperture_mask(py::module_& m) {
 
   m.def(
       "overlap_rt_masks",
-      [](const LidarSystem& system, const std::vector<double>& ranges, const std::vector<ApertureMask>& masks,
-         const RtOptions& options) {
+      [](const LidarSystem& system, const std::vector<double>& ranges,
+         const std::vector<ApertureMask>& masks, const RtOptions& options) {
         Interruptible release;
         return overlap_rt(system, ranges, masks, options);
       },
@@ -54,12 +57,14 @@ void bind_aperture_mask(py::module_& m) {
         Interruptible release;
         return overlap_fo(system, ranges, mask, options);
       },
-      py::arg("system"), py::arg("ranges"), py::arg("mask"), py::arg("options") = FoAberratedOptions{},
+      py::arg("system"), py::arg("ranges"), py::arg("mask"),
+      py::arg("options") = FoAberratedOptions{},
       "Fourier-optics G through the masked aperture (the sampled pupil), normalised to the full aperture.");
 
   m.def(
       "emitter_coupling_rt_masked",
-      [](const LidarSystem& system, double z, std::array<double, 2> position, const ApertureMask& mask) {
+      [](const LidarSystem& system, double z, std::array<double, 2> position,
+         const ApertureMask& mask) {
         return emitter_coupling_rt(system, z, {position[0], position[1]}, mask);
       },
       py::arg("system"), py::arg("z"), py::arg("position"), py::arg("mask"));

@@ -55,8 +55,8 @@ void bind_field(py::module_& m) {
       py::arg("values"), py::arg("spacing"), py::arg("wavelength"));
   m.def(
       "gaussian_field",
-      [](double wavelength, double waist_radius, std::size_t n, double spacing, std::array<double, 2> center,
-         double power) {
+      [](double wavelength, double waist_radius, std::size_t n, double spacing,
+         std::array<double, 2> center, double power) {
         checks::grid("n", n, sizeof(Complex), 2);  // the core's field and the NumPy copy returned
         Field f;
         {
@@ -65,6 +65,6 @@ void bind_field(py::module_& m) {
         }
         return array_from_field(f);
       },
-      py::arg("wavelength"), py::arg("waist_radius"), py::arg("n"), py::arg("spacing"), py::arg("center"),
-      py::arg("power"));
+      py::arg("wavelength"), py::arg("waist_radius"), py::arg("n"), py::arg("spacing"),
+      py::arg("center"), py::arg("power"));
 }

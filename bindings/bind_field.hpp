@@ -8,9 +8,11 @@
 
 #include "lidar_overlap/fourier/field.hpp"
 
-using ComplexArray = pybind11::array_t<std::complex<double>, pybind11::array::c_style | pybind11::array::forcecast>;
+using ComplexArray =
+    pybind11::array_t<std::complex<double>, pybind11::array::c_style | pybind11::array::forcecast>;
 
-lidar_overlap::Field field_from_array(const ComplexArray& values, double spacing, double wavelength);
+lidar_overlap::Field field_from_array(const ComplexArray& values, double spacing,
+                                      double wavelength);
 ComplexArray array_from_field(const lidar_overlap::Field& f);
 
 // An n x n row-major real image (phase plate, screen, far field) as a NumPy array.

@@ -15,7 +15,8 @@ using namespace lidar_overlap;
 
 void bind_limits(py::module_& m) {
   m.def("max_memory", &max_memory, "Bytes one call may allocate for its grids and tables.");
-  m.def("set_max_memory", &set_max_memory, py::arg("bytes"), "Set that budget in bytes (0 restores the default, a quarter of the physical memory).");
+  m.def("set_max_memory", &set_max_memory, py::arg("bytes"),
+        "Set that budget in bytes (0 restores the default, a quarter of the physical memory).");
   m.def("max_threads", &max_threads, "The largest `threads` option accepted.");
   m.def(
       "_set_interrupt_requested", [](bool on) { interrupt_requested().store(on); }, py::arg("on"),

@@ -16,18 +16,23 @@ namespace py = pybind11;
 using namespace lidar_overlap;
 
 void bind_overlap_rt(py::module_& m) {
-  bind_options(m, "RtOptions", "Options of overlap_rt and overlap_rt_batch.",
-               option("tolerance", &RtOptions::tolerance, "Absolute error allowed on G at each range, in (0, 1)."),
-               option("threads", &RtOptions::threads, "OpenMP threads across ranges; 0: all cores."),
-               option("max_segments", &RtOptions::max_segments,
-                      "Cap on subdivisions per adaptive integral; reaching it clears `converged`."));
+  bind_options(
+      m, "RtOptions", "Options of overlap_rt and overlap_rt_batch.",
+      option("tolerance", &RtOptions::tolerance,
+             "Absolute error allowed on G at each range, in (0, 1)."),
+      option("threads", &RtOptions::threads, "OpenMP threads across ranges; 0: all cores."),
+      option("max_segments", &RtOptions::max_segments,
+             "Cap on subdivisions per adaptive integral; reaching it clears `converged`."));
 
   py::class_<RtOverlap>(m, "RtOverlap", "Result of overlap_rt: one entry per range.")
       .def_property_readonly("overlap", [](const RtOverlap& r) { return to_array(r.overlap); })
-      .def_property_readonly("error_estimate", [](const RtOverlap& r) { return to_array(r.error_estimate); })
+      .def_property_readonly("error_estimate",
+                             [](const RtOverlap& r) { return to_array(r.error_estimate); })
       .def_property_readonly("converged", [](const RtOverlap& r) { return to_array(r.converged); })
-      .def_readonly("evaluations", &RtOverlap::evaluations, "Scatterer couplings computed, all ranges.")
-      .def_readonly("axisymmetric", &RtOverlap::axisymmetric, "Beam and receiver share the telescope axis.");
+      .def_readonly("evaluations", &RtOverlap::evaluations,
+                    "Scatterer couplings computed, all ranges.")
+      .def_readonly("axisymmetric", &RtOverlap::axisymmetric,
+                    "Beam and receiver share the telescope axis.");
 
   m.def(
       "overlap_rt",
@@ -39,7 +44,8 @@ void bind_overlap_rt(py::module_& m) {
 
   m.def(
       "overlap_rt_batch",
-      [](const std::vector<LidarSystem>& systems, const std::vector<double>& ranges, const RtOptions& options) {
+      [](const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
+         const RtOptions& options) {
         Interruptible release;
         return overlap_rt_batch(systems, ranges, options);
       },

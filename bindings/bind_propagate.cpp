@@ -26,30 +26,40 @@ PropagationMethod method_from(const std::string& name) {
   if (name == "angular_spectrum") return PropagationMethod::angular_spectrum;
   if (name == "fresnel") return PropagationMethod::fresnel;
   if (name == "fraunhofer") return PropagationMethod::fraunhofer;
-  throw std::invalid_argument("method = '" + name +
-                              "' is invalid: expected 'auto', 'angular_spectrum', 'fresnel' or 'fraunhofer'");
+  throw std::invalid_argument(
+      "method = '" + name +
+      "' is invalid: expected 'auto', 'angular_spectrum', 'fresnel' or 'fraunhofer'");
 }
 
 const char* method_name(PropagationMethod m) {
   switch (m) {
-    case PropagationMethod::angular_spectrum: return "angular_spectrum";
-    case PropagationMethod::fresnel: return "fresnel";
-    case PropagationMethod::fraunhofer: return "fraunhofer";
-    default: return "auto";
+    case PropagationMethod::angular_spectrum:
+      return "angular_spectrum";
+    case PropagationMethod::fresnel:
+      return "fresnel";
+    case PropagationMethod::fraunhofer:
+      return "fraunhofer";
+    default:
+      return "auto";
   }
 }
 }  // namespace
 
 void bind_propagate(py::module_& m) {
-  py::class_<PropagationReport>(m, "PropagationReport", "How a field was propagated, and its sampling checks.")
-      .def_property_readonly("method", [](const PropagationReport& r) { return method_name(r.method); },
-                             "The method actually used.")
-      .def_readonly("critical_distance", &PropagationReport::critical_distance, "m, n dx^2 / lambda.")
-      .def_readonly("band_limit_loss", &PropagationReport::band_limit_loss,
-                    "Angular spectrum: fraction of power outside the band-limited transfer function.")
+  py::class_<PropagationReport>(m, "PropagationReport",
+                                "How a field was propagated, and its sampling checks.")
+      .def_property_readonly(
+          "method", [](const PropagationReport& r) { return method_name(r.method); },
+          "The method actually used.")
+      .def_readonly("critical_distance", &PropagationReport::critical_distance,
+                    "m, n dx^2 / lambda.")
+      .def_readonly(
+          "band_limit_loss", &PropagationReport::band_limit_loss,
+          "Angular spectrum: fraction of power outside the band-limited transfer function.")
       .def_readonly("input_edge_power", &PropagationReport::input_edge_power,
                     "Fraction of the input power in the outer n/16 of the window.")
-      .def_readonly("output_edge_power", &PropagationReport::output_edge_power, "The same for the output.")
+      .def_readonly("output_edge_power", &PropagationReport::output_edge_power,
+                    "The same for the output.")
       .def_readonly("scaled_output", &PropagationReport::scaled_output,
                     "Fresnel/Fraunhofer by chirp-z to a chosen spacing.")
       .def_readonly("chirp_phase_step", &PropagationReport::chirp_phase_step,
@@ -62,8 +72,8 @@ void bind_propagate(py::module_& m) {
   m.def(
       "propagate",
       // grid_size: 0 keeps the field's grid, -1 lets choose_grid pick it, n > 0 zero-pads to n.
-      [](const ComplexArray& values, double spacing, double wavelength, double distance, const std::string& method,
-         double output_spacing, long grid_size) {
+      [](const ComplexArray& values, double spacing, double wavelength, double distance,
+         const std::string& method, double output_spacing, long grid_size) {
         if (values.ndim() != 2 || values.shape(0) != values.shape(1))
           throw std::invalid_argument("values: expected a square (n, n) complex array");
         PropagationMethod pm = method_from(method);
@@ -92,7 +102,8 @@ void bind_propagate(py::module_& m) {
         ComplexArray out({n, n});
         Complex* result = out.mutable_data();
         const bool aligned = fftw_alignment_of(reinterpret_cast<double*>(result)) == 0;
-        ComplexBuffer staging(aligned ? 0 : n * n);  // FFTW's alignment, if NumPy's allocation lacks it
+        ComplexBuffer staging(aligned ? 0
+                                      : n * n);  // FFTW's alignment, if NumPy's allocation lacks it
         PropagationReport report;
         {
           Interruptible release;
@@ -101,8 +112,8 @@ void bind_propagate(py::module_& m) {
         }
         return py::make_tuple(out, plan->output_spacing(), report);
       },
-      py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"), py::arg("method"),
-      py::arg("output_spacing"), py::arg("grid_size"));
+      py::arg("values"), py::arg("spacing"), py::arg("wavelength"), py::arg("distance"),
+      py::arg("method"), py::arg("output_spacing"), py::arg("grid_size"));
 
   // The reference a propagation is timed against: the same copies in and out, a forward and a backward
   // FFT on the same cached plans, nothing else (unnormalised: the result is n^2 times the input).
@@ -127,9 +138,11 @@ void bind_propagate(py::module_& m) {
       "_fftw_measured",
       [](const ComplexArray& values, int transforms, int threads) {
         if (transforms != 1 && transforms != 2)
-          throw std::invalid_argument("transforms = " + std::to_string(transforms) + " is invalid: expected 1 or 2");
+          throw std::invalid_argument("transforms = " + std::to_string(transforms) +
+                                      " is invalid: expected 1 or 2");
         if (threads < 1 || threads > 1024)
-          throw std::invalid_argument("threads = " + std::to_string(threads) + " is invalid: expected 1 to 1024");
+          throw std::invalid_argument("threads = " + std::to_string(threads) +
+                                      " is invalid: expected 1 to 1024");
         Field f = field_from_array(values, 1.0, 1.0);
         static std::map<std::tuple<std::size_t, int, int>, fftw_plan> plans;
         auto plan = [&](int sign) {
@@ -141,12 +154,14 @@ void bind_propagate(py::module_& m) {
             fftw_plan_with_nthreads(threads);
             ComplexBuffer scratch(f.n * f.n);
             auto* s = reinterpret_cast<fftw_complex*>(scratch.data());
-            p = fftw_plan_dft_2d(static_cast<int>(f.n), static_cast<int>(f.n), s, s, sign, FFTW_MEASURE);
+            p = fftw_plan_dft_2d(static_cast<int>(f.n), static_cast<int>(f.n), s, s, sign,
+                                 FFTW_MEASURE);
             fftw_plan_with_nthreads(1);
           }
           return p;
         };
-        const fftw_plan forward = plan(FFTW_FORWARD), backward = transforms == 2 ? plan(FFTW_BACKWARD) : nullptr;
+        const fftw_plan forward = plan(FFTW_FORWARD),
+                        backward = transforms == 2 ? plan(FFTW_BACKWARD) : nullptr;
         {
           Interruptible release;
           auto* p = reinterpret_cast<fftw_complex*>(f.values.data());
@@ -164,13 +179,18 @@ void bind_propagate(py::module_& m) {
   m.def(
       "_fft_pair_seconds",
       [](std::size_t n, int repeats, bool library, int transforms, int threads) {
-        if (n < 2 || n > 4096) throw std::invalid_argument("n = " + std::to_string(n) + " is invalid: expected 2 to 4096");
+        if (n < 2 || n > 4096)
+          throw std::invalid_argument("n = " + std::to_string(n) +
+                                      " is invalid: expected 2 to 4096");
         if (repeats < 1 || repeats > 100000)
-          throw std::invalid_argument("repeats = " + std::to_string(repeats) + " is invalid: expected 1 to 100000");
+          throw std::invalid_argument("repeats = " + std::to_string(repeats) +
+                                      " is invalid: expected 1 to 100000");
         if (transforms != 1 && transforms != 2)
-          throw std::invalid_argument("transforms = " + std::to_string(transforms) + " is invalid: expected 1 or 2");
+          throw std::invalid_argument("transforms = " + std::to_string(transforms) +
+                                      " is invalid: expected 1 or 2");
         if (threads < 1 || threads > 1024)
-          throw std::invalid_argument("threads = " + std::to_string(threads) + " is invalid: expected 1 to 1024");
+          throw std::invalid_argument("threads = " + std::to_string(threads) +
+                                      " is invalid: expected 1 to 1024");
         ComplexBuffer data(n * n, Complex(1.0, 0.5));
         auto* p = reinterpret_cast<fftw_complex*>(data.data());
         fftw_plan forward = nullptr, backward = nullptr;
@@ -205,12 +225,14 @@ void bind_propagate(py::module_& m) {
               fftw_execute_dft(forward, p, p);
               if (backward) fftw_execute_dft(backward, p, p);
             }
-            best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            best = std::min(
+                best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
             const double scale = 1.0 / std::pow(double(n), transforms);
             for (Complex& v : data) v *= scale;  // keep the values bounded
           }
         }
         return best;
       },
-      py::arg("n"), py::arg("repeats"), py::arg("library"), py::arg("transforms") = 2, py::arg("threads") = 1);
+      py::arg("n"), py::arg("repeats"), py::arg("library"), py::arg("transforms") = 2,
+      py::arg("threads") = 1);
 }

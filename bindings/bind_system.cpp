@@ -21,15 +21,18 @@ Vec2 vec2(const std::array<double, 2>& a) { return {a[0], a[1]}; }
 WidthLaw width_law(const std::string& name) {
   if (name == "gaussian") return WidthLaw::gaussian;
   if (name == "linear") return WidthLaw::linear;
-  throw std::invalid_argument("beam.width_law = '" + name + "' is invalid: expected 'gaussian' or 'linear'");
+  throw std::invalid_argument("beam.width_law = '" + name +
+                              "' is invalid: expected 'gaussian' or 'linear'");
 }
 }  // namespace
 
 void bind_system(py::module_& m) {
   py::class_<GaussianBeam>(m, "GaussianBeam")
       .def(py::init([](double wavelength, double waist_radius, std::optional<double> divergence,
-                       std::array<double, 2> offset, std::array<double, 2> tilt, const std::string& law) {
-             GaussianBeam b{wavelength, waist_radius, divergence, vec2(offset), vec2(tilt), width_law(law)};
+                       std::array<double, 2> offset, std::array<double, 2> tilt,
+                       const std::string& law) {
+             GaussianBeam b{wavelength,   waist_radius, divergence,
+                            vec2(offset), vec2(tilt),   width_law(law)};
              b.validate();
              return b;
            }),
@@ -52,7 +55,8 @@ void bind_system(py::module_& m) {
       .def(py::init([](double radius, double defocus, std::array<double, 2> offset,
                        std::optional<double> numerical_aperture, std::optional<double> stop_radius,
                        double stop_distance) {
-             Detector d{radius, defocus, vec2(offset), numerical_aperture, stop_radius, stop_distance};
+             Detector d{radius,      defocus,      vec2(offset), numerical_aperture,
+                        stop_radius, stop_distance};
              d.validate();
              return d;
            }),
@@ -61,7 +65,9 @@ void bind_system(py::module_& m) {
       .def_static(
           "from_fov",
           [](double fov, double focal_length, double defocus, std::array<double, 2> offset,
-             std::optional<double> na) { return Detector::from_fov(fov, focal_length, defocus, vec2(offset), na); },
+             std::optional<double> na) {
+            return Detector::from_fov(fov, focal_length, defocus, vec2(offset), na);
+          },
           py::arg("fov"), py::arg("focal_length"), py::arg("defocus"), py::arg("offset"),
           py::arg("numerical_aperture"))
       .def_readonly("radius", &Detector::radius);
@@ -77,8 +83,10 @@ void bind_system(py::module_& m) {
       .def(
           "validate_ranges",
           [](const LidarSystem& s, const std::vector<double>& ranges) {
-            for (std::size_t i = 0; i < ranges.size(); ++i) s.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
+            for (std::size_t i = 0; i < ranges.size(); ++i)
+              s.validate_range(ranges[i], "ranges[" + std::to_string(i) + "]");
           },
-          py::arg("ranges"), "Throws ValueError naming ranges[i] for a range out of [1e-10, 1e10] m or inside the "
-                             "obstruction distance.");
+          py::arg("ranges"),
+          "Throws ValueError naming ranges[i] for a range out of [1e-10, 1e10] m or inside the "
+          "obstruction distance.");
 }

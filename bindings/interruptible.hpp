@@ -28,6 +28,6 @@ class Interruptible {
         }) {}
 
  private:
-  lidar_overlap::CancelScope scope_;      // made while the GIL is held, ended after it is back
+  lidar_overlap::CancelScope scope_;  // made while the GIL is held, ended after it is back
   pybind11::gil_scoped_release release_;
 };

@@ -37,7 +37,8 @@ pybind11::class_<T> bind_options(pybind11::module_& m, const char* name, const c
   cls.def("__copy__", [](const T& t) { return t; });
   cls.def("__repr__", [type = std::string(name), fields...](const T& t) {
     std::string s = type + "(", separator;
-    ((s += separator + fields.name + "=" + py::repr(py::cast(t.*(fields.member))).template cast<std::string>(),
+    ((s += separator + fields.name + "=" +
+           py::repr(py::cast(t.*(fields.member))).template cast<std::string>(),
       separator = ", "),
      ...);
     return s + ")";

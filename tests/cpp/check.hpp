@@ -12,7 +12,8 @@ inline void near(const std::string& what, double got, double expected, double to
   if (!(std::abs(got - expected) <= tolerance)) {
     ++failures;
     std::cerr.precision(15);
-    std::cerr << "FAIL " << what << ": got " << got << ", expected " << expected << " +- " << tolerance << "\n";
+    std::cerr << "FAIL " << what << ": got " << got << ", expected " << expected << " +- "
+              << tolerance << "\n";
   }
 }
 
@@ -30,7 +31,8 @@ void throws(const std::string& what, F&& f, const std::string& must_mention) {
   } catch (const std::invalid_argument& e) {
     if (std::string(e.what()).find(must_mention) == std::string::npos) {
       ++failures;
-      std::cerr << "FAIL " << what << ": message '" << e.what() << "' does not name " << must_mention << "\n";
+      std::cerr << "FAIL " << what << ": message '" << e.what() << "' does not name "
+                << must_mention << "\n";
     }
     return;
   }
@@ -39,7 +41,8 @@ void throws(const std::string& what, F&& f, const std::string& must_mention) {
 }
 
 inline int report(const char* name) {
-  std::cout << name << ": " << (failures == 0 ? "ok" : "FAILED") << " (" << failures << " failures)\n";
+  std::cout << name << ": " << (failures == 0 ? "ok" : "FAILED") << " (" << failures
+            << " failures)\n";
   return failures == 0 ? 0 : 1;
 }
 }  // namespace test

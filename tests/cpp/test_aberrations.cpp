@@ -32,7 +32,8 @@ int main() {
           mean += 0.5 * rule.w[k] / angles * zernike(i, p) * zernike(j, p);
         }
       }
-      test::near("<Z" + std::to_string(i) + " Z" + std::to_string(j) + ">", mean, i == j ? 1.0 : 0.0, 1e-12);
+      test::near("<Z" + std::to_string(i) + " Z" + std::to_string(j) + ">", mean,
+                 i == j ? 1.0 : 0.0, 1e-12);
     }
 
   Aberrations ab;

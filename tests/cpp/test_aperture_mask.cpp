@@ -68,11 +68,13 @@ int main() {
     const Disc disc{{d * std::cos(angle), d * std::sin(angle)}, 0.01 + 1.2 * v(small_rng)};
     const double inner = trial % 3 == 0 ? 0.0 : 0.5 * v(small_rng);
     const double span = trial % 7 == 0 ? 2.0 * kPi : 0.05 + (2.0 * kPi - 0.05) * v(small_rng);
-    const AnnularSector s{20.0 * v(small_rng) - 10.0, span, inner, inner + 0.01 + (1.0 - inner) * v(small_rng)};
+    const AnnularSector s{20.0 * v(small_rng) - 10.0, span, inner,
+                          inner + 0.01 + (1.0 - inner) * v(small_rng)};
     worst_green = std::max(worst_green, std::abs(disc_sector_area(disc.center, disc.radius, s) -
                                                  sector_intersection_area(&disc, 1, s)));
   }
-  test::near("Green's-theorem area = angular sweep (20000 random cases, areas up to ~3)", worst_green, 0.0, 1e-13);
+  test::near("Green's-theorem area = angular sweep (20000 random cases, areas up to ~3)",
+             worst_green, 0.0, 1e-13);
   // Several sectors sharing their circles and edge rays (rotated quadrants, a ring and an annular sector): each
   // area as the sweep's.
   double worst_shared = 0.0;
@@ -90,9 +92,11 @@ int main() {
     areas(q, got);
     const Disc disc{mu, q};
     for (std::size_t k = 0; k < shared.size(); ++k)
-      worst_shared = std::max(worst_shared, std::abs(got[k] - sector_intersection_area(&disc, 1, shared[k])));
+      worst_shared =
+          std::max(worst_shared, std::abs(got[k] - sector_intersection_area(&disc, 1, shared[k])));
   }
-  test::near("shared circles and rays: each area = angular sweep (5000 cases)", worst_shared, 0.0, 1e-13);
+  test::near("shared circles and rays: each area = angular sweep (5000 cases)", worst_shared, 0.0,
+             1e-13);
 
   // Random discs and sectors against a grid count (its error ~ perimeter x cell).
   std::mt19937 rng(3);
@@ -136,7 +140,8 @@ int main() {
     for (std::size_t i = 0; i < ranges.size(); ++i) sum[i] += q.overlap[i];
   }
   for (std::size_t i = 0; i < ranges.size(); ++i)
-    test::near("quadrants add up to G at " + std::to_string(ranges[i]), sum[i], full.overlap[i], 4e-4);
+    test::near("quadrants add up to G at " + std::to_string(ranges[i]), sum[i], full.overlap[i],
+               4e-4);
 
   // The 1-D form (moving_disc_integral.hpp) against the beam integral in the scatterer plane (directions x
   // radii, independent of the Marcum kernel), for a term aperture ∩ moving disc through sectors: an off-centre
@@ -152,14 +157,20 @@ int main() {
       {1.0, {}, 0.02, 0.004, {0.003, -0.01}, {{0.3, 0.5 * kPi, 0.0, 0.075}}},
       {1.0, {}, 0.3, 0.2, {0.05, 0.02}, {{-0.4, 0.5 * kPi, 0.0, 0.075}}},
       {-0.8, {0.004, 0.0}, 0.01, 0.01, {0.0, -0.04}, {{1.0, 2.0, 0.02, 0.06}}},
-      {2.0, {0.0, -0.01}, 0.05, 0.003, {0.01, 0.01}, {{0.0, 1.0, 0.0, 0.075}, {3.0, 4.5, 0.03, 0.075}}}};
+      {2.0,
+       {0.0, -0.01},
+       0.05,
+       0.003,
+       {0.01, 0.01},
+       {{0.0, 1.0, 0.0, 0.075}, {3.0, 4.5, 0.03, 0.075}}}};
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const Case& k = cases[c];
     CouplingTerm term;
     term.weight = 1.0 / (kPi * 0.075 * 0.075);
     term.add(MovingDisc{0.0, {}, 0.075});
     term.add(MovingDisc{k.scale, k.shift, k.radius});
-    const auto one_d = beam_integral::moving_disc_integral(term, {k.sectors}, k.center, k.w, 1e-10, 4000);
+    const auto one_d =
+        beam_integral::moving_disc_integral(term, {k.sectors}, k.center, k.w, 1e-10, 4000);
     auto masked = [&](Vec2 p) {
       const Disc at[2] = {term.discs[0].at(p), term.discs[1].at(p)};
       double area = 0.0;
@@ -167,18 +178,19 @@ int main() {
       return term.weight * area;
     };
     const beam_integral::Kinks kinks(term);
-    const auto planar = beam_integral::planar_mean(masked, kinks, k.center, k.w, false, 1e-8, 20000);
+    const auto planar =
+        beam_integral::planar_mean(masked, kinks, k.center, k.w, false, 1e-8, 20000);
     test::that("one moving disc takes the 1-D form, case " + std::to_string(c), one_d.has_value());
     if (one_d)
-      test::near("1-D form = scatterer-plane integral, case " + std::to_string(c), (*one_d)[0].value, planar.value,
-                 1e-8);
+      test::near("1-D form = scatterer-plane integral, case " + std::to_string(c),
+                 (*one_d)[0].value, planar.value, 1e-8);
   }
   CouplingTerm two_moving;
   two_moving.add(MovingDisc{1.0, {}, 0.01});
   two_moving.add(MovingDisc{0.5, {}, 0.01});
   test::that("two moving discs fall back to the scatterer plane",
-             !beam_integral::moving_disc_integral(two_moving, {{AnnularSector{0.0, 1.0, 0.0, 0.075}}}, {}, 0.01, 1e-6,
-                                                  100));
+             !beam_integral::moving_disc_integral(
+                 two_moving, {{AnnularSector{0.0, 1.0, 0.0, 0.075}}}, {}, 0.01, 1e-6, 100));
 
   // Several masks in one call: the quadrants of a tilted Table 1 lidar share the 1-D integral's nodes and agree
   // with one call per quadrant to the tolerance; with an NA each mask is traced alone, bit for bit.
@@ -192,35 +204,45 @@ int main() {
     double parts = 0.0;
     for (int k = 0; k < 4; ++k) {
       const RtOverlap alone = overlap_rt(table1, tele_ranges, quadrants[k], opt);
-      test::near("quadrant " + std::to_string(k) + " together = alone at " + std::to_string(tele_ranges[i]),
+      test::near("quadrant " + std::to_string(k) + " together = alone at " +
+                     std::to_string(tele_ranges[i]),
                  together[k].overlap[i], alone.overlap[i], 2e-4);
       parts += together[k].overlap[i];
     }
     test::near("quadrants together add up to G at " + std::to_string(tele_ranges[i]), parts,
                table1_full.overlap[i], 4e-4);
   }
-  LidarSystem narrow_na = sys;  // an NA cone narrower than the telescope's: a second moving boundary
+  LidarSystem narrow_na =
+      sys;  // an NA cone narrower than the telescope's: a second moving boundary
   narrow_na.detector.numerical_aperture = 0.05;
-  const std::vector<RtOverlap> with_na = overlap_rt(narrow_na, ranges, {quadrant(0), quadrant(2)}, opt);
+  const std::vector<RtOverlap> with_na =
+      overlap_rt(narrow_na, ranges, {quadrant(0), quadrant(2)}, opt);
   const RtOverlap alone_na = overlap_rt(narrow_na, ranges, quadrant(2), opt);
   test::that("narrow NA: each mask traced alone, bit for bit",
-             with_na[1].overlap == alone_na.overlap && with_na[1].error_estimate == alone_na.error_estimate);
+             with_na[1].overlap == alone_na.overlap &&
+                 with_na[1].error_estimate == alone_na.error_estimate);
   // An NA cone wider than the telescope's bounds nothing: left out, it gives the G of the system without an NA.
   LidarSystem wide_na = table1;
   wide_na.detector.numerical_aperture = 0.22;
   const std::vector<RtOverlap> wide = overlap_rt(wide_na, tele_ranges, quadrants, opt);
   for (int k = 0; k < 4; ++k)
     for (std::size_t i = 0; i < tele_ranges.size(); ++i)
-      test::near("wide NA = no NA, quadrant " + std::to_string(k) + " at " + std::to_string(tele_ranges[i]),
+      test::near("wide NA = no NA, quadrant " + std::to_string(k) + " at " +
+                     std::to_string(tele_ranges[i]),
                  wide[k].overlap[i], together[k].overlap[i], 1e-12);
-  test::throws("no masks", [&] { overlap_rt(sys, ranges, std::vector<ApertureMask>{}, opt); }, "masks");
-  test::throws("a bad mask among several", [&] { overlap_rt(sys, ranges, {quadrant(0), ApertureMask{}}, opt); },
-               "masks[1].sectors");
-  test::throws("too many masks",
-               [&] { overlap_rt(sys, ranges, std::vector<ApertureMask>(kMaxMasks + 1, quadrant(0)), opt); }, "masks");
+  test::throws(
+      "no masks", [&] { overlap_rt(sys, ranges, std::vector<ApertureMask>{}, opt); }, "masks");
+  test::throws(
+      "a bad mask among several",
+      [&] { overlap_rt(sys, ranges, {quadrant(0), ApertureMask{}}, opt); }, "masks[1].sectors");
+  test::throws(
+      "too many masks",
+      [&] { overlap_rt(sys, ranges, std::vector<ApertureMask>(kMaxMasks + 1, quadrant(0)), opt); },
+      "masks");
 
   // Rings keep the radial integral and add up too.
-  const ApertureMask inner{{Sector{0.0, 2.0 * kPi, 0.0, 0.04}}}, outer{{Sector{0.0, 2.0 * kPi, 0.04}}};
+  const ApertureMask inner{{Sector{0.0, 2.0 * kPi, 0.0, 0.04}}},
+      outer{{Sector{0.0, 2.0 * kPi, 0.04}}};
   const RtOverlap a = overlap_rt(sys, ranges, inner, opt), b = overlap_rt(sys, ranges, outer, opt);
   for (std::size_t i = 0; i < ranges.size(); ++i)
     test::near("rings add up", a.overlap[i] + b.overlap[i], full.overlap[i], 2e-4);
@@ -229,7 +251,8 @@ int main() {
   // of it by the diffraction at the sectors' edges (~1e-3), and the sector geometry's point tests.
   {
     const LidarSystem table1;
-    const double full_fo = overlap_fo(table1, {1000.0}, ApertureMask{{Sector{0.0, 2.0 * kPi}}}).overlap[0];
+    const double full_fo =
+        overlap_fo(table1, {1000.0}, ApertureMask{{Sector{0.0, 2.0 * kPi}}}).overlap[0];
     double sum_fo = 0.0;
     for (int k = 0; k < 4; ++k) sum_fo += overlap_fo(table1, {1000.0}, quadrant(k, 0.2)).overlap[0];
     test::that("FO quadrants fall short of the full aperture by the edge diffraction",
@@ -243,21 +266,31 @@ int main() {
   // Checks.
   const Telescope& t = sys.telescope;
   test::throws("empty mask", [&] { ApertureMask{}.validate(t); }, "mask.sectors");
-  test::throws("NaN angle", [&] { ApertureMask{{Sector{std::nan(""), 1.0}}}.validate(t); },
-               "mask.sectors[0].start_angle");
-  test::throws("reversed", [&] { ApertureMask{{Sector{1.0, 0.5}}}.validate(t); }, "mask.sectors[0].stop_angle");
-  test::throws("more than a turn", [&] { ApertureMask{{Sector{0.0, 7.0}}}.validate(t); }, "stop_angle");
-  test::throws("beyond the aperture", [&] { ApertureMask{{Sector{0.0, 1.0, 0.0, 0.2}}}.validate(t); },
-               "outer_radius");
-  test::throws("inside the obstruction", [&] { ApertureMask{{Sector{0.0, 1.0, 0.0, 0.01}}}.validate(t); },
-               "obstruction");
-  test::throws("inner beyond outer", [&] { ApertureMask{{Sector{0.0, 1.0, 0.05, 0.04}}}.validate(t); },
-               "inner_radius");
-  test::throws("overlap", [&] { ApertureMask{{Sector{0.0, 2.0}, Sector{1.0, 3.0}}}.validate(t); },
-               "mask.sectors[1]");
-  test::throws("overlap across 2 pi", [&] { ApertureMask{{Sector{-0.5, 0.5}, Sector{6.0, 6.2}}}.validate(t); },
-               "mask.sectors[1]");
-  ApertureMask{{Sector{0.0, 1.0}, Sector{1.0, 2.0}, Sector{2.0, 3.0, 0.0, 0.05}, Sector{2.0, 3.0, 0.05}}}
+  test::throws(
+      "NaN angle", [&] { ApertureMask{{Sector{std::nan(""), 1.0}}}.validate(t); },
+      "mask.sectors[0].start_angle");
+  test::throws(
+      "reversed", [&] { ApertureMask{{Sector{1.0, 0.5}}}.validate(t); },
+      "mask.sectors[0].stop_angle");
+  test::throws(
+      "more than a turn", [&] { ApertureMask{{Sector{0.0, 7.0}}}.validate(t); }, "stop_angle");
+  test::throws(
+      "beyond the aperture", [&] { ApertureMask{{Sector{0.0, 1.0, 0.0, 0.2}}}.validate(t); },
+      "outer_radius");
+  test::throws(
+      "inside the obstruction", [&] { ApertureMask{{Sector{0.0, 1.0, 0.0, 0.01}}}.validate(t); },
+      "obstruction");
+  test::throws(
+      "inner beyond outer", [&] { ApertureMask{{Sector{0.0, 1.0, 0.05, 0.04}}}.validate(t); },
+      "inner_radius");
+  test::throws(
+      "overlap", [&] { ApertureMask{{Sector{0.0, 2.0}, Sector{1.0, 3.0}}}.validate(t); },
+      "mask.sectors[1]");
+  test::throws(
+      "overlap across 2 pi",
+      [&] { ApertureMask{{Sector{-0.5, 0.5}, Sector{6.0, 6.2}}}.validate(t); }, "mask.sectors[1]");
+  ApertureMask{
+      {Sector{0.0, 1.0}, Sector{1.0, 2.0}, Sector{2.0, 3.0, 0.0, 0.05}, Sector{2.0, 3.0, 0.05}}}
       .validate(t);  // touching sectors are fine
   test::throws("bad range", [&] { overlap_rt(sys, {-1.0}, quadrant(0), opt); }, "ranges[0]");
   return test::report("test_aperture_mask");

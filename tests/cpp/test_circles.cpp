@@ -29,7 +29,8 @@ double grid_area(const Disc* d, std::size_t n, int cells) {
 int main() {
   // Two equal unit discs at distance 1: lens area 2 pi/3 - sqrt(3)/2.
   const Disc a{{0, 0}, 1.0}, b{{1, 0}, 1.0};
-  test::near("lens of two unit discs at distance 1", lens_area(a, b), 2 * kPi / 3 - std::sqrt(3.0) / 2, 1e-14);
+  test::near("lens of two unit discs at distance 1", lens_area(a, b),
+             2 * kPi / 3 - std::sqrt(3.0) / 2, 1e-14);
   test::near("disjoint", lens_area(a, {{2.5, 0}, 1.0}), 0.0, 0.0);
   test::near("contained", lens_area(a, {{0.2, 0.1}, 0.3}), kPi * 0.09, 1e-15);
   Disc ab[2] = {a, b};
@@ -46,7 +47,8 @@ int main() {
   // cancellation leaves ~R^2 eps_ld / theta ~ 1e-15 m^2 absolute, so areas are compared to
   // 1e-6 pi r^2 (3e-14). The same acos form in double errs by ~1e-12 and would fail.
   auto lens_ld = [](long double r1, long double r2, long double d) {
-    const long double c1 = (d * d + r1 * r1 - r2 * r2) / (2 * d * r1), c2 = (d * d + r2 * r2 - r1 * r1) / (2 * d * r2);
+    const long double c1 = (d * d + r1 * r1 - r2 * r2) / (2 * d * r1),
+                      c2 = (d * d + r2 * r2 - r1 * r1) / (2 * d * r2);
     return r1 * r1 * std::acos(c1) + r2 * r2 * std::acos(c2) -
            0.5L * std::sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2));
   };
@@ -54,15 +56,15 @@ int main() {
   for (double frac : {0.3, -0.6, 0.99}) {
     const Disc small{{0, 0}, r}, keep_right{{big + frac * r, 0}, big};  // keeps x > frac r, nearly
     const double expected = static_cast<double>(lens_ld(r, big, big + frac * r));
-    test::near("small disc against huge disc, h/r=" + std::to_string(frac), lens_area(small, keep_right), expected,
-               area_tolerance);
+    test::near("small disc against huge disc, h/r=" + std::to_string(frac),
+               lens_area(small, keep_right), expected, area_tolerance);
     // A second huge disc keeping x < 0.7 r: the two removed caps are disjoint, so
     // area(small ∩ both) = lens(small, right) + lens(small, left) - pi r^2 (Green's-theorem path).
     const Disc keep_left{{0.7 * r - big, 0}, big};
     const double both = expected + static_cast<double>(lens_ld(r, big, big - 0.7 * r)) - pi_r2;
     Disc three[3] = {small, keep_right, keep_left};
-    test::near("two huge discs cutting a small one, h/r=" + std::to_string(frac), intersection_area(three, 3),
-               std::max(both, 0.0), area_tolerance);
+    test::near("two huge discs cutting a small one, h/r=" + std::to_string(frac),
+               intersection_area(three, 3), std::max(both, 0.0), area_tolerance);
   }
 
   // Random crossing pairs of comparable discs (segments of every half-angle, through the switch from the series
@@ -72,7 +74,8 @@ int main() {
   double worst_pair = 0.0;
   for (int i = 0; i < 20000; ++i) {
     const double r1 = 0.2 + unit(pair_rng), r2 = 0.2 + unit(pair_rng);
-    const double d = std::abs(r1 - r2) + (0.001 + 0.998 * unit(pair_rng)) * (r1 + r2 - std::abs(r1 - r2));
+    const double d =
+        std::abs(r1 - r2) + (0.001 + 0.998 * unit(pair_rng)) * (r1 + r2 - std::abs(r1 - r2));
     const double expected = static_cast<double>(lens_ld(r1, r2, d));
     worst_pair = std::max(worst_pair, std::abs(lens_area({{0, 0}, r1}, {{d, 0}, r2}) - expected));
   }
@@ -91,6 +94,12 @@ int main() {
     test::near("random discs vs grid, trial " + std::to_string(trial), intersection_area(d, n),
                grid_area(d, n, cells), tolerance);
   }
-  test::throws("too many discs", [] { Disc d[7]{}; intersection_area(d, 7); }, "n must be");
+  test::throws(
+      "too many discs",
+      [] {
+        Disc d[7]{};
+        intersection_area(d, 7);
+      },
+      "n must be");
   return test::report("test_circles");
 }

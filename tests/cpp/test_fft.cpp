@@ -45,18 +45,21 @@ ComplexBuffer transformed(const ComplexBuffer& in, std::size_t n, int threads, F
 
 int main() {
   const int cores = omp_get_num_procs();
-  for (std::size_t n : {8, 12, 64, 250, 256, 512, 1024}) {  // 12 and 250: sizes kFftBlock does not divide
+  for (std::size_t n :
+       {8, 12, 64, 250, 256, 512, 1024}) {  // 12 and 250: sizes kFftBlock does not divide
     const std::string at = " (n = " + std::to_string(n) + ")";
     // A plane wave exp(2 pi i (a x + b y) / n) transforms to n^2 at (a, b) and 0 elsewhere.
     const std::size_t a = 3 % n, b = (n / 2 + 1) % n;
     ComplexBuffer wave(n * n);
     for (std::size_t y = 0; y < n; ++y)
       for (std::size_t x = 0; x < n; ++x)
-        wave[y * n + x] = std::polar(1.0, 2.0 * kPi * static_cast<double>(a * x + b * y) / static_cast<double>(n));
+        wave[y * n + x] = std::polar(
+            1.0, 2.0 * kPi * static_cast<double>(a * x + b * y) / static_cast<double>(n));
     const ComplexBuffer spectrum = transformed(wave, n, 1, FftDirection::forward);
     double worst = 0.0;
     for (std::size_t k = 0; k < n * n; ++k)
-      worst = std::max(worst, std::abs(spectrum[k] - (k == b * n + a ? Complex(double(n * n)) : Complex{})));
+      worst = std::max(
+          worst, std::abs(spectrum[k] - (k == b * n + a ? Complex(double(n * n)) : Complex{})));
     test::near("plane wave -> n^2 delta" + at, worst / double(n * n), 0.0, kRoundOff);
 
     // Forward then backward is n^2 times the input; bits equal for 1, 2 and all cores, and the
@@ -64,7 +67,8 @@ int main() {
     const ComplexBuffer in = pseudo_random(n * n);
     const ComplexBuffer one = transformed(in, n, 1, FftDirection::forward);
     bool same = true;
-    for (int t : {2, cores, 3}) same = same && same_bits(one, transformed(in, n, t, FftDirection::forward));
+    for (int t : {2, cores, 3})
+      same = same && same_bits(one, transformed(in, n, t, FftDirection::forward));
     ComplexBuffer nested;
 #pragma omp parallel num_threads(2)
     {
@@ -79,7 +83,8 @@ int main() {
     ComplexBuffer back = one;
     fft2d(back, n, FftDirection::backward);
     double err = 0.0;
-    for (std::size_t k = 0; k < n * n; ++k) err = std::max(err, std::abs(back[k] / double(n * n) - in[k]));
+    for (std::size_t k = 0; k < n * n; ++k)
+      err = std::max(err, std::abs(back[k] / double(n * n) - in[k]));
     test::near("backward(forward(u)) / n^2 = u" + at, err, 0.0, kRoundOff);
   }
 
@@ -93,7 +98,8 @@ int main() {
     for (std::size_t k = 0; k < length; ++k) {
       Complex sum{};
       for (std::size_t j = 0; j < length; ++j)
-        sum += in[r * length + j] * std::polar(1.0, 2.0 * kPi * double(j * k % length) / double(length));
+        sum += in[r * length + j] *
+               std::polar(1.0, 2.0 * kPi * double(j * k % length) / double(length));
       worst = std::max(worst, std::abs(sum - out[r * length + k]));
     }
   test::near("fft_rows = direct sum, exp(+2 pi i jk/n)", worst, 0.0, kRoundOff);

@@ -16,8 +16,10 @@ int main() {
   const double r_fraction = std::sqrt(std::log(1e7) / 2.0);
   const GridChoice g = choose_grid(beam, 3.0 * zr, PropagationMethod::angular_spectrum);
   test::near("input radius", g.input_radius, r_fraction * w0, dx);
-  test::near("angular radius", g.angular_radius, r_fraction * lambda / (kPi * w0), lambda / (128 * dx));
-  test::near("output radius bound", g.output_radius, g.input_radius + 3.0 * zr * g.angular_radius, 1e-15);
+  test::near("angular radius", g.angular_radius, r_fraction * lambda / (kPi * w0),
+             lambda / (128 * dx));
+  test::near("output radius bound", g.output_radius, g.input_radius + 3.0 * zr * g.angular_radius,
+             1e-15);
   test::near("padded to a power of two", static_cast<double>(g.n & (g.n - 1)), 0.0, 0.0);
 
   const Field padded = zero_pad(beam, g.n);
@@ -27,8 +29,10 @@ int main() {
   test::near("D1 on the chosen grid", p.field.beam_radius() / (w0 * std::sqrt(10.0)), 1.0, 1e-5);
   test::near("no wrap-around on the chosen grid", p.report.output_edge_power, 0.0, 1e-6);
 
-  test::throws("cap on the grid", [&] { choose_grid(beam, 300.0 * zr, PropagationMethod::angular_spectrum, 4096); },
-               "grid_size");
+  test::throws(
+      "cap on the grid",
+      [&] { choose_grid(beam, 300.0 * zr, PropagationMethod::angular_spectrum, 4096); },
+      "grid_size");
   test::throws("padding to a smaller grid", [&] { zero_pad(beam, 64); }, "grid_size");
   return test::report("test_grid_choice");
 }

@@ -11,9 +11,9 @@
 
 #include "check.hpp"
 #include "lidar_overlap/lidar_overlap.hpp"
-#include "core/checks.hpp"     // internal: the shared argument checks
+#include "core/checks.hpp"  // internal: the shared argument checks
 #include "core/constants.hpp"
-#include "core/parallel.hpp"      // internal: parallel_for, cancellation_point
+#include "core/parallel.hpp"       // internal: parallel_for, cancellation_point
 #include "fourier/fft_passes.hpp"  // internal: the passes of a 2-D transform
 
 using namespace lidar_overlap;
@@ -22,7 +22,8 @@ namespace {
 
 std::vector<double> ranges(std::size_t count, double from, double to) {
   std::vector<double> z(count);
-  for (std::size_t i = 0; i < count; ++i) z[i] = from * std::pow(to / from, double(i) / double(count - 1));
+  for (std::size_t i = 0; i < count; ++i)
+    z[i] = from * std::pow(to / from, double(i) / double(count - 1));
   return z;
 }
 
@@ -30,8 +31,10 @@ void error_inside_the_loop_reaches_the_caller() {
   LidarSystem s;
   s.detector.offset = {1e3, 0.0};  // the radial FO path needs millions of panels at every range
   for (int threads : {1, 2, 4})
-    test::throws("radial FO panels, threads " + std::to_string(threads),
-                 [&] { overlap_fo_radial(s, ranges(16, 50.0, 500.0), RadialFoOptions{8.0, threads}); }, "ranges[");
+    test::throws(
+        "radial FO panels, threads " + std::to_string(threads),
+        [&] { overlap_fo_radial(s, ranges(16, 50.0, 500.0), RadialFoOptions{8.0, threads}); },
+        "ranges[");
 }
 
 void cancel_scope_stops_a_call() {
@@ -85,7 +88,8 @@ void a_lone_iteration_on_another_thread_is_cancelled() {
     } catch (const Cancelled&) {
       cancelled = true;
     }
-    test::that("a lone iteration is cancelled, round " + std::to_string(round), cancelled && !ran_out);
+    test::that("a lone iteration is cancelled, round " + std::to_string(round),
+               cancelled && !ran_out);
   }
 }
 
@@ -99,8 +103,11 @@ void a_transform_pass_is_cancelled_between_blocks() {
   try {
     CancelScope scope([&] { return ++asked >= 3; }, std::chrono::milliseconds(0));
     // 1 ms per row, half a second per pass: the calling thread takes blocks even on a loaded machine
-    auto slow = [](std::size_t, Complex*) { std::this_thread::sleep_for(std::chrono::milliseconds(1)); };
-    detail::row_pass(data.data(), n, n, FftDirection::forward, 2, slow, [](std::size_t, Complex*) {});
+    auto slow = [](std::size_t, Complex*) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    };
+    detail::row_pass(data.data(), n, n, FftDirection::forward, 2, slow,
+                     [](std::size_t, Complex*) {});
   } catch (const Cancelled&) {
     cancelled = true;
   }
@@ -125,22 +132,29 @@ void a_transform_pass_is_cancelled_between_blocks() {
 
 void threads_are_bounded() {
   LidarSystem s;
-  test::throws("threads above max_threads", [&] { overlap_rt(s, {100.0}, RtOptions{1e-4, max_threads() + 1, 4000}); },
-               "threads");
-  test::throws("negative threads", [&] { overlap_rt(s, {100.0}, RtOptions{1e-4, -1, 4000}); }, "threads");
+  test::throws(
+      "threads above max_threads",
+      [&] { overlap_rt(s, {100.0}, RtOptions{1e-4, max_threads() + 1, 4000}); }, "threads");
+  test::throws(
+      "negative threads", [&] { overlap_rt(s, {100.0}, RtOptions{1e-4, -1, 4000}); }, "threads");
   test::that("max_threads at least 256", max_threads() >= 256);
 }
 
 void memory_budget() {
   const std::size_t before = max_memory();
   set_max_memory(std::size_t{1} << 20);  // 1 MiB: a 512^2 complex field (4 MiB) no longer fits
-  test::throws("Field::gaussian beyond the budget", [] { Field::gaussian(355e-9, 1e-3, 512, 1e-5); }, "n = 512");
+  test::throws(
+      "Field::gaussian beyond the budget", [] { Field::gaussian(355e-9, 1e-3, 512, 1e-5); },
+      "n = 512");
   LidarSystem s;
-  test::throws("beam_grid beyond the budget", [&] { overlap_fo(s, {100.0}, FoOptions{512, 10.0, 4096, 1}); },
-               "beam_grid");
+  test::throws(
+      "beam_grid beyond the budget", [&] { overlap_fo(s, {100.0}, FoOptions{512, 10.0, 4096, 1}); },
+      "beam_grid");
   set_max_memory(0);
   test::that("0 restores the default", max_memory() == before);
-  test::throws("grid side beyond kMaxGridSide", [] { Field::gaussian(355e-9, 1e-3, kMaxGridSide + 2, 1e-5); }, "n = ");
+  test::throws(
+      "grid side beyond kMaxGridSide",
+      [] { Field::gaussian(355e-9, 1e-3, kMaxGridSide + 2, 1e-5); }, "n = ");
 }
 
 void physical_scales() {
@@ -152,7 +166,8 @@ void physical_scales() {
   };
   test::throws("wavelength 1e300", [&] { beam(1e300, 1e-3).validate(); }, "beam.wavelength");
   test::throws("waist 1e-300", [&] { beam(355e-9, 1e-300).validate(); }, "beam.waist_radius");
-  test::throws("waist below lambda / pi", [&] { beam(355e-9, 1e-7).validate(); }, "beam.waist_radius");
+  test::throws(
+      "waist below lambda / pi", [&] { beam(355e-9, 1e-7).validate(); }, "beam.waist_radius");
   GaussianBeam narrow = beam(355e-9, 1e-3);
   narrow.divergence = 0.5 * 355e-9 / (kPi * 1e-3);
   test::throws("M^2 < 1 with the Gaussian law", [&] { narrow.validate(); }, "beam.divergence");
@@ -167,7 +182,8 @@ void physical_scales() {
 void overlap_values_are_checked() {
   std::vector<double> g{-1e-5, 0.5, 1.0 + 1e-5};
   checks::overlap_values(g, {1.0, 2.0, 3.0}, 1e-4, "test");
-  test::that("round-off within the slack clipped into [0, 1]", g[0] == 0.0 && g[1] == 0.5 && g[2] == 1.0);
+  test::that("round-off within the slack clipped into [0, 1]",
+             g[0] == 0.0 && g[1] == 0.5 && g[2] == 1.0);
   for (double bad : {double(NAN), double(INFINITY), -1e-3, 1.01}) {
     std::vector<double> one{bad};
     bool refused = false;
@@ -178,10 +194,10 @@ void overlap_values_are_checked() {
     }
     test::that("G = " + std::to_string(bad) + " refused, naming the range", refused);
   }
-  test::that("saturate: NaN and huge values do not wrap", checks::saturate(NAN) == (std::size_t{1} << 62) &&
-                                                                checks::saturate(1e300) == (std::size_t{1} << 62) &&
-                                                                checks::saturate(-5.0) == 0 &&
-                                                                checks::saturate(7.9) == 7);
+  test::that("saturate: NaN and huge values do not wrap",
+             checks::saturate(NAN) == (std::size_t{1} << 62) &&
+                 checks::saturate(1e300) == (std::size_t{1} << 62) && checks::saturate(-5.0) == 0 &&
+                 checks::saturate(7.9) == 7);
 }
 
 }  // namespace

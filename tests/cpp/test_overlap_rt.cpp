@@ -5,20 +5,22 @@
 
 #include "check.hpp"
 #include "lidar_overlap/lidar_overlap.hpp"
-#include "core/special_functions.hpp"       // internal: the Rice density's exp(-x) I0(x)
+#include "core/special_functions.hpp"      // internal: the Rice density's exp(-x) I0(x)
 #include "geometry/receiver_coupling.hpp"  // internal: the coupling of single scatterers
 
 using namespace lidar_overlap;
 
 int main() {
   LidarSystem s;  // defaults: the paper's Table 1 system at 355 nm
-  s.telescope.diameter = 1e-7;  // point aperture: G = 1 - exp(-2 (alpha z)^2 / w^2), alpha = r_d / f
+  s.telescope.diameter =
+      1e-7;  // point aperture: G = 1 - exp(-2 (alpha z)^2 / w^2), alpha = r_d / f
   std::vector<double> z;
   for (double r = 1.0; r <= 2000.0; r *= 1.5) z.push_back(r);
   const RtOverlap point = overlap_rt(s, z, {1e-8, 0, 4000});
   for (std::size_t i = 0; i < z.size(); ++i) {
     const double w = s.beam.radius(z[i]), az = s.detector.radius / s.telescope.focal_length * z[i];
-    test::near("point aperture z=" + std::to_string(z[i]), point.overlap[i], -std::expm1(-2 * az * az / (w * w)), 1e-7);
+    test::near("point aperture z=" + std::to_string(z[i]), point.overlap[i],
+               -std::expm1(-2 * az * az / (w * w)), 1e-7);
   }
 
   LidarSystem obs;
@@ -39,11 +41,14 @@ int main() {
   // centre of symmetry, in two dimensions otherwise (an NA cone with a detector offset). An independent Cartesian grid of scatterers
   // over +-4 w, weighted by the irradiance, must agree: the grid rule converges fast on this
   // integrand (measured ~1e-6 at 101 x 101), so 1e-5 at 401 x 401 leaves a wide margin.
-  struct Scene { Vec2 tilt, beam_offset, detector_offset; double r_obs, na; };
-  const Scene scenes[] = {{{0.3e-3, 0}, {0, 0}, {0, 0}, 0.0, 0.0},              // Rice
-                          {{-0.1e-3, 0}, {0.05, 0}, {0, 0}, 0.02, 0.0},         // Rice with obstruction
-                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02, 0.0},     // two Rice terms
-                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02, 0.05}};   // two-dimensional
+  struct Scene {
+    Vec2 tilt, beam_offset, detector_offset;
+    double r_obs, na;
+  };
+  const Scene scenes[] = {{{0.3e-3, 0}, {0, 0}, {0, 0}, 0.0, 0.0},       // Rice
+                          {{-0.1e-3, 0}, {0.05, 0}, {0, 0}, 0.02, 0.0},  // Rice with obstruction
+                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02, 0.0},    // two Rice terms
+                          {{0.1e-3, 0}, {0, 0.01}, {0, 0.1e-3}, 0.02, 0.05}};  // two-dimensional
   for (const Scene& sc : scenes) {
     LidarSystem g;
     g.beam.tilt = sc.tilt;
@@ -67,7 +72,8 @@ int main() {
           weight += e;
         }
       const double engine = overlap_rt(g, {zr}, {1e-8, 1, 100000}).overlap[0];
-      test::near("off-axis scene vs scatterer grid, z=" + std::to_string(zr), engine, sum / weight, 1e-5);
+      test::near("off-axis scene vs scatterer grid, z=" + std::to_string(zr), engine, sum / weight,
+                 1e-5);
     }
   }
 
@@ -102,13 +108,17 @@ int main() {
            one.converged[0] == all.converged[i];
     evaluations += one.evaluations;
   }
-  test::that("batch entries equal single calls bit for bit", same && evaluations == all.evaluations);
+  test::that("batch entries equal single calls bit for bit",
+             same && evaluations == all.evaluations);
   test::that("a batch with tilted beams is not axisymmetric", !all.axisymmetric);
-  test::that("a batch of axisymmetric systems is", overlap_rt_batch({LidarSystem{}}, {300.0}).axisymmetric);
+  test::that("a batch of axisymmetric systems is",
+             overlap_rt_batch({LidarSystem{}}, {300.0}).axisymmetric);
   test::throws("batch sizes differ", [&] { overlap_rt_batch(batch, {100.0}); }, "ranges");
   std::vector<LidarSystem> bad = batch;
   bad[5].telescope.diameter = -1.0;
-  test::throws("invalid batch system", [&] { overlap_rt_batch(bad, batch_ranges); }, "systems[5]: telescope.diameter");
+  test::throws(
+      "invalid batch system", [&] { overlap_rt_batch(bad, batch_ranges); },
+      "systems[5]: telescope.diameter");
   std::vector<double> short_ranges = batch_ranges;
   short_ranges[7] = 0.0;
   test::throws("invalid batch range", [&] { overlap_rt_batch(batch, short_ranges); }, "ranges[7]");
@@ -121,32 +131,41 @@ int main() {
   LidarSystem wide_na = offset_detector;
   wide_na.detector.numerical_aperture = 0.22;
   const std::vector<double> na_ranges{20.0, 150.0, 1000.0, 3000.0};
-  const RtOverlap with_wide_na = overlap_rt(wide_na, na_ranges), without_na = overlap_rt(offset_detector, na_ranges);
+  const RtOverlap with_wide_na = overlap_rt(wide_na, na_ranges),
+                  without_na = overlap_rt(offset_detector, na_ranges);
   test::that("wide NA = no NA, bit for bit and at the same cost",
-             with_wide_na.overlap == without_na.overlap && with_wide_na.evaluations == without_na.evaluations);
+             with_wide_na.overlap == without_na.overlap &&
+                 with_wide_na.evaluations == without_na.evaluations);
   LidarSystem narrow_na = offset_detector;
   narrow_na.detector.numerical_aperture = 0.03;
   const RtOverlap with_narrow_na = overlap_rt(narrow_na, na_ranges);
-  test::that("a narrow NA still cuts the light", with_narrow_na.overlap[3] < 0.9 * without_na.overlap[3]);
+  test::that("a narrow NA still cuts the light",
+             with_narrow_na.overlap[3] < 0.9 * without_na.overlap[3]);
 
   // exp(-x) I0(x) by its Chebyshev series against the standard library (and Hankel's series far out).
   double worst = 0.0;
   for (double x = 0.0; x < 700.0; x += 0.0137)
-    worst = std::max(worst, std::abs(scaled_bessel_i0(x) / (std::cyl_bessel_i(0.0, x) * std::exp(-x)) - 1.0));
+    worst = std::max(
+        worst, std::abs(scaled_bessel_i0(x) / (std::cyl_bessel_i(0.0, x) * std::exp(-x)) - 1.0));
   test::near("scaled_bessel_i0 relative error up to x = 700", worst, 0.0, 4e-15);
   for (double x : {1e4, 1e6, 1e9}) {  // four terms: the fifth is below 1e-16 there
-    const double t = 1.0 / (8.0 * x), hankel = (1.0 + t * (1.0 + t * (4.5 + t * 37.5))) / std::sqrt(2.0 * kPi * x);
-    test::near("scaled_bessel_i0 far out, x=" + std::to_string(x), scaled_bessel_i0(x) / hankel, 1.0, 4e-15);
+    const double t = 1.0 / (8.0 * x),
+                 hankel = (1.0 + t * (1.0 + t * (4.5 + t * 37.5))) / std::sqrt(2.0 * kPi * x);
+    test::near("scaled_bessel_i0 far out, x=" + std::to_string(x), scaled_bessel_i0(x) / hankel,
+               1.0, 4e-15);
   }
   // exp(-x) I1(x) likewise (relative error down to x near 0, where I1 ~ x / 2), Hankel's series far out.
   worst = 0.0;
   for (double x = 1e-6; x < 700.0; x += 0.0137)
-    worst = std::max(worst, std::abs(scaled_bessel_i1(x) / (std::cyl_bessel_i(1.0, x) * std::exp(-x)) - 1.0));
+    worst = std::max(
+        worst, std::abs(scaled_bessel_i1(x) / (std::cyl_bessel_i(1.0, x) * std::exp(-x)) - 1.0));
   test::near("scaled_bessel_i1 relative error from x = 1e-6 to 700", worst, 0.0, 4e-15);
   test::near("scaled_bessel_i1 at 0", scaled_bessel_i1(0.0), 0.0, 0.0);
   for (double x : {1e4, 1e6, 1e9}) {
-    const double t = 1.0 / (8.0 * x), hankel = (1.0 - t * (3.0 + t * (7.5 + t * 52.5))) / std::sqrt(2.0 * kPi * x);
-    test::near("scaled_bessel_i1 far out, x=" + std::to_string(x), scaled_bessel_i1(x) / hankel, 1.0, 4e-15);
+    const double t = 1.0 / (8.0 * x),
+                 hankel = (1.0 - t * (3.0 + t * (7.5 + t * 52.5))) / std::sqrt(2.0 * kPi * x);
+    test::near("scaled_bessel_i1 far out, x=" + std::to_string(x), scaled_bessel_i1(x) / hankel,
+               1.0, 4e-15);
   }
   return test::report("test_overlap_rt");
 }

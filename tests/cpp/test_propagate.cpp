@@ -25,7 +25,8 @@ int main() {
       Complex direct{};
       for (std::size_t ny = 0; ny < n; ++ny)
         for (std::size_t nx = 0; nx < n; ++nx) {
-          const double ph = -2.0 * kPi * alpha * ((mx - m / 2.0) * (nx - n / 2.0) + (my - m / 2.0) * (ny - n / 2.0));
+          const double ph = -2.0 * kPi * alpha *
+                            ((mx - m / 2.0) * (nx - n / 2.0) + (my - m / 2.0) * (ny - n / 2.0));
           direct += in[ny * n + nx] * Complex{std::cos(ph), std::sin(ph)};
         }
       worst = std::max(worst, std::abs(direct - out[my * m + mx]));
@@ -36,9 +37,13 @@ int main() {
   // moments are exact to ~1e-13; the margin covers FFT rounding).
   const double w0 = 5e-3, lambda = 355e-9, zr = kPi * w0 * w0 / lambda;
   const Field beam = Field::gaussian(lambda, w0, 256, 10.0 * w0 / 256);
-  struct Case { PropagationMethod method; double z; };
-  for (const Case c : {Case{PropagationMethod::angular_spectrum, 2.0}, Case{PropagationMethod::fresnel, 300.0},
-                       Case{PropagationMethod::automatic, 5e4}}) {
+  struct Case {
+    PropagationMethod method;
+    double z;
+  };
+  for (const Case c :
+       {Case{PropagationMethod::angular_spectrum, 2.0}, Case{PropagationMethod::fresnel, 300.0},
+        Case{PropagationMethod::automatic, 5e4}}) {
     const Propagated p = propagate(beam, c.z, c.method);
     const double expected = w0 * std::sqrt(1.0 + std::pow(c.z / zr, 2));
     test::near("D1 at z=" + std::to_string(c.z), p.field.beam_radius() / expected, 1.0, 1e-9);
@@ -46,9 +51,11 @@ int main() {
   }
   // Fraunhofer far beyond the Rayleigh range: w = lambda z / (pi w0) to (zr / z)^2 / 2.
   const double zf = 1e3 * zr;
-  test::near("Fraunhofer divergence", propagate(beam, zf, PropagationMethod::fraunhofer).field.beam_radius(),
+  test::near("Fraunhofer divergence",
+             propagate(beam, zf, PropagationMethod::fraunhofer).field.beam_radius(),
              lambda * zf / (kPi * w0), 1e-6 * lambda * zf / (kPi * w0));
-  test::throws("Fresnel needs a positive distance", [&] { propagate(beam, -1.0, PropagationMethod::fresnel); },
-               "distance");
+  test::throws(
+      "Fresnel needs a positive distance",
+      [&] { propagate(beam, -1.0, PropagationMethod::fresnel); }, "distance");
   return test::report("test_propagate");
 }

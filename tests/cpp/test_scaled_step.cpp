@@ -58,7 +58,8 @@ void a_chain_along_the_cone_is_one_step() {
   const detail::Arrival second(n, first.spacing(), dz2, c / m1, lambda);
   second.execute(twice, twice, &twice, none);
   test::near("spacing after two steps", twice.spacing / once.spacing, 1.0, 1e-14);
-  test::near("field after two steps against one (relative)", relative_difference(twice, once), 0.0, 1e-12);
+  test::near("field after two steps against one (relative)", relative_difference(twice, once), 0.0,
+             1e-12);
   // Off the cone the second step is a different operator: the test can tell them apart.
   const detail::Departure off(n, first.spacing(), first.q3_curvature(), 2.0 * c / m1, lambda);
   Field other = u;
@@ -75,23 +76,29 @@ void the_plan_follows_the_cones() {
   // (screen), 300, 400, 500, on cones 0 -> 100, 100 -> 300 and 300 -> 500.
   const double pupil = 0.01;
   const std::vector<double> z{50.0, 100.0, 150.0, 250.0, 300.0, 300.0, 400.0, 500.0};
-  auto cone = [](double za, double sa, double zb, double sb, double zi) { return sa + (sb - sa) * (zi - za) / (zb - za); };
+  auto cone = [](double za, double sa, double zb, double sb, double zi) {
+    return sa + (sb - sa) * (zi - za) / (zb - za);
+  };
   std::vector<double> windows;
   for (double zi : z)
-    windows.push_back(zi <= 100.0 ? cone(0.0, pupil, 100.0, 0.05, zi)
-                                  : zi <= 300.0 ? cone(100.0, 0.05, 300.0, 0.08, zi) : cone(300.0, 0.08, 500.0, 0.2, zi));
+    windows.push_back(zi <= 100.0   ? cone(0.0, pupil, 100.0, 0.05, zi)
+                      : zi <= 300.0 ? cone(100.0, 0.05, 300.0, 0.08, zi)
+                                    : cone(300.0, 0.08, 500.0, 0.2, zi));
   const std::size_t n = 64;
-  const detail::TurbulentPlan plan = detail::plan_propagation(screens, ranges, windows, pupil, n, 355e-9);
+  const detail::TurbulentPlan plan =
+      detail::plan_propagation(screens, ranges, windows, pupil, n, 355e-9);
   test::that("three segments", plan.segments.size() == 3);
   test::that("the segments leave from the transmitter and the two screens",
-             plan.segments.size() == 3 && plan.segments[0].screen == -1 && plan.segments[1].screen == 0 &&
-                 plan.segments[2].screen == 1);
+             plan.segments.size() == 3 && plan.segments[0].screen == -1 &&
+                 plan.segments[1].screen == 0 && plan.segments[2].screen == 1);
   for (std::size_t q = 0; q < z.size(); ++q)
-    test::near("plane " + std::to_string(q) + " spacing on its cone", plan.spacing[q] * double(n) / windows[q], 1.0, 1e-12);
+    test::near("plane " + std::to_string(q) + " spacing on its cone",
+               plan.spacing[q] * double(n) / windows[q], 1.0, 1e-12);
   // Each segment ends with its screen (or the last range); the range at the screen's 300 m is read first.
   const std::vector<std::size_t>& middle = plan.segments[1].targets;
   test::that("the range at a screen's range arrives before the screen",
-             middle.size() == 4 && plan.planes[middle[2]].range == 2 && plan.planes[middle[3]].screen == 1);
+             middle.size() == 4 && plan.planes[middle[2]].range == 2 &&
+                 plan.planes[middle[3]].screen == 1);
 }
 
 bool same_bits(Complex a, Complex b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -101,9 +108,25 @@ void phasors_are_phasor() {
   std::normal_distribution<double> wide(0.0, 40.0);
   std::vector<double> phase(4097);
   for (double& p : phase) p = wide(rng);
-  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  const double hostile[] = {0.0, -0.0, 5e-324, 1e-300, 0.7853981633974483, -0.7853981633974483, 1.5707963267948966,
-                            3.141592653589793, 99999.99, -1e5, 1e5 + 1.0, 1e300, -1e300, 4294967296.0, nan, inf, -inf};
+  const double nan = std::numeric_limits<double>::quiet_NaN(),
+               inf = std::numeric_limits<double>::infinity();
+  const double hostile[] = {0.0,
+                            -0.0,
+                            5e-324,
+                            1e-300,
+                            0.7853981633974483,
+                            -0.7853981633974483,
+                            1.5707963267948966,
+                            3.141592653589793,
+                            99999.99,
+                            -1e5,
+                            1e5 + 1.0,
+                            1e300,
+                            -1e300,
+                            4294967296.0,
+                            nan,
+                            inf,
+                            -inf};
   for (std::size_t i = 0; i < std::size(hostile); ++i) phase[3 * i + 1] = hostile[i];
   std::vector<Complex> table(phase.size());
   detail::phasors(phase.data(), table.data(), phase.size());  // odd count: the last one alone
@@ -111,11 +134,13 @@ void phasors_are_phasor() {
   double worst = 0.0;
   for (std::size_t i = 0; i < phase.size(); ++i) {
     const Complex one = detail::phasor(phase[i]);
-    same = same && (same_bits(one, table[i]) || (std::isnan(one.real()) && std::isnan(table[i].real())));
+    same = same &&
+           (same_bits(one, table[i]) || (std::isnan(one.real()) && std::isnan(table[i].real())));
     if (std::isfinite(phase[i]))
       worst = std::max(worst, std::abs(one - Complex(std::cos(phase[i]), std::sin(phase[i]))));
     else
-      test::that("exp(i " + std::to_string(phase[i]) + ") is NaN", std::isnan(one.real()) && std::isnan(one.imag()));
+      test::that("exp(i " + std::to_string(phase[i]) + ") is NaN",
+                 std::isnan(one.real()) && std::isnan(one.imag()));
   }
   test::that("phasors gives phasor's bits", same);
   test::near("phasor against libm", worst, 0.0, 2.5e-16);

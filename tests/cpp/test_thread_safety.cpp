@@ -18,7 +18,8 @@ struct Results {
 
 Results compute(int variant) {
   LidarSystem s;
-  s.detector.defocus = 1e-3 * variant;  // each thread its own scene, so caches see different keys too
+  s.detector.defocus =
+      1e-3 * variant;  // each thread its own scene, so caches see different keys too
   std::vector<double> ranges;
   for (int i = 0; i < 24; ++i) ranges.push_back(20.0 + 40.0 * i);
   Results r;
@@ -39,7 +40,8 @@ Results compute(int variant) {
   FoAberratedOptions foa;
   foa.threads = 1;
   r.fo_aberrated = overlap_fo_aberrated(s, ab, {1000.0}, foa).overlap;
-  r.rt_masked = overlap_rt(s, {100.0, 300.0}, ApertureMask{{Sector{0.3, 1.8}}}, {1e-4, 1, 4000}).overlap;
+  r.rt_masked =
+      overlap_rt(s, {100.0, 300.0}, ApertureMask{{Sector{0.3, 1.8}}}, {1e-4, 1, 4000}).overlap;
   return r;
 }
 }  // namespace
@@ -53,14 +55,20 @@ int main() {
     for (int v = 0; v < kThreads; ++v) pool.emplace_back([&, v] { together[v] = compute(v); });
     for (auto& t : pool) t.join();
     for (int v = 0; v < kThreads; ++v) {
-      const std::string tag = " (thread " + std::to_string(v) + ", round " + std::to_string(round) + ")";
+      const std::string tag =
+          " (thread " + std::to_string(v) + ", round " + std::to_string(round) + ")";
       test::near("RT identical" + tag, together[v].rt == alone[v].rt ? 0.0 : 1.0, 0.0, 0.0);
       test::near("FO identical" + tag, together[v].fo == alone[v].fo ? 0.0 : 1.0, 0.0, 0.0);
-      test::near("propagation identical" + tag, together[v].propagated == alone[v].propagated ? 0.0 : 1.0, 0.0, 0.0);
-      test::near("flat-top plate identical" + tag, together[v].plate == alone[v].plate ? 0.0 : 1.0, 0.0, 0.0);
-      test::near("aberrated RT identical" + tag, together[v].rt_aberrated == alone[v].rt_aberrated ? 0.0 : 1.0, 0.0, 0.0);
-      test::near("aberrated FO identical" + tag, together[v].fo_aberrated == alone[v].fo_aberrated ? 0.0 : 1.0, 0.0, 0.0);
-      test::near("masked RT identical" + tag, together[v].rt_masked == alone[v].rt_masked ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("propagation identical" + tag,
+                 together[v].propagated == alone[v].propagated ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("flat-top plate identical" + tag, together[v].plate == alone[v].plate ? 0.0 : 1.0,
+                 0.0, 0.0);
+      test::near("aberrated RT identical" + tag,
+                 together[v].rt_aberrated == alone[v].rt_aberrated ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("aberrated FO identical" + tag,
+                 together[v].fo_aberrated == alone[v].fo_aberrated ? 0.0 : 1.0, 0.0, 0.0);
+      test::near("masked RT identical" + tag,
+                 together[v].rt_masked == alone[v].rt_masked ? 0.0 : 1.0, 0.0, 0.0);
     }
   }
   return test::report("test_thread_safety");

@@ -70,7 +70,8 @@ void every_path(int threads) {
   turbulent.realizations = 2;
   turbulent.screens = 2;
   turbulent.beam_grid = 64;
-  overlap_fo_turbulent(LidarSystem{}, ranges(2, 500.0, 1000.0), Cn2Profile::constant(1e-15), turbulent);
+  overlap_fo_turbulent(LidarSystem{}, ranges(2, 500.0, 1000.0), Cn2Profile::constant(1e-15),
+                       turbulent);
   Aberrations ab;
   ab.zernike = {0.0, 0.0, 0.0, 0.0, 0.0, 0.2e-6};
   RtAberratedOptions rta;
@@ -96,8 +97,9 @@ int main() {
   const std::size_t base = process_threads();  // this thread alone: nothing has started a team yet
   // threads = 1 first, before any team exists: OpenMP keeps idle team threads alive after a region.
   const std::size_t one = peak_with_callers(kCallers, 1);
-  test::that("threads = 1: " + std::to_string(kCallers) + " concurrent callers use " + std::to_string(one - base) +
-                 " threads besides this one, expected at most " + std::to_string(kCallers),
+  test::that("threads = 1: " + std::to_string(kCallers) + " concurrent callers use " +
+                 std::to_string(one - base) + " threads besides this one, expected at most " +
+                 std::to_string(kCallers),
              one <= base + kCallers);
 
   // Calls made from inside the caller's own OpenMP team (nested): one thread each as well.
@@ -123,13 +125,16 @@ int main() {
   // moment (seen once in four runs under the sanitizers, which slow every step), so the smallest peak of
   // three runs is judged.
   std::size_t zero = peak_with_callers(kCallers, 0);
-  for (int attempt = 1; attempt < 3 && zero > before + static_cast<std::size_t>(kCallers * cores); ++attempt)
+  for (int attempt = 1; attempt < 3 && zero > before + static_cast<std::size_t>(kCallers * cores);
+       ++attempt)
     zero = std::min(zero, peak_with_callers(kCallers, 0));
-  test::that("threads = 0: " + std::to_string(kCallers) + " callers use at most " + std::to_string(kCallers) +
-                 " teams of all cores (" + std::to_string(zero - before) + " threads)",
+  test::that("threads = 0: " + std::to_string(kCallers) + " callers use at most " +
+                 std::to_string(kCallers) + " teams of all cores (" +
+                 std::to_string(zero - before) + " threads)",
              zero <= before + static_cast<std::size_t>(kCallers * cores));
-  std::cout << "threads besides the main one, " << kCallers << " callers: threads = 1 " << one - base
-            << ", nested with threads = 1 " << nested - base << ", threads = " << cores << " " << all - before
-            << ", threads = 0 " << zero - before << " (omp_get_max_threads() = " << cores << ")\n";
+  std::cout << "threads besides the main one, " << kCallers << " callers: threads = 1 "
+            << one - base << ", nested with threads = 1 " << nested - base
+            << ", threads = " << cores << " " << all - before << ", threads = 0 " << zero - before
+            << " (omp_get_max_threads() = " << cores << ")\n";
   return test::report("test_threading_contract");
 }

@@ -34,8 +34,10 @@ void least_grid_is_the_core_threshold() {
   const Cn2Profile air = Cn2Profile::constant(1e-14);
   const TurbulentGrid g = turbulent_grid(small_lidar(), z, air, both(0));
   const std::size_t n = g.min_beam_grid;
-  test::that("the least grid is even and within [64, 256]: " + std::to_string(n), n % 2 == 0 && n >= 64 && n <= 256);
-  test::that("four planes (two screens, two ranges)", g.window.size() == 4 && g.plane_range.size() == 4);
+  test::that("the least grid is even and within [64, 256]: " + std::to_string(n),
+             n % 2 == 0 && n >= 64 && n <= 256);
+  test::that("four planes (two screens, two ranges)",
+             g.window.size() == 4 && g.plane_range.size() == 4);
   bool grows = g.window.front() >= g.pupil_window;
   for (std::size_t i = 1; i < g.window.size(); ++i) grows = grows && g.window[i] >= g.window[i - 1];
   test::that("the windows never shrink along the path", grows);
@@ -46,11 +48,13 @@ void least_grid_is_the_core_threshold() {
     accepted = false;
   }
   test::that("the least grid runs", accepted);
-  test::throws("two samples fewer", [&] { overlap_fo_turbulent(small_lidar(), z, air, both(n - 2)); },
-               ">= " + std::to_string(n));
+  test::throws(
+      "two samples fewer", [&] { overlap_fo_turbulent(small_lidar(), z, air, both(n - 2)); },
+      ">= " + std::to_string(n));
   TurbulenceOptions transmit = both(0);
   transmit.paths = TurbulencePaths::transmit;
-  test::that("transmit needs the floor only", turbulent_grid(small_lidar(), z, air, transmit).min_beam_grid == 32);
+  test::that("transmit needs the floor only",
+             turbulent_grid(small_lidar(), z, air, transmit).min_beam_grid == 32);
 }
 
 void bad_options() {
@@ -62,7 +66,9 @@ void bad_options() {
   o = both(0);
   o.beam_window = std::numeric_limits<double>::quiet_NaN();
   test::throws("a NaN window", [&] { turbulent_grid(small_lidar(), z, air, o); }, "beam_window");
-  test::throws("a negative range", [&] { turbulent_grid(small_lidar(), {-1.0}, air, both(0)); }, "ranges[0]");
+  test::throws(
+      "a negative range", [&] { turbulent_grid(small_lidar(), {-1.0}, air, both(0)); },
+      "ranges[0]");
 }
 
 }  // namespace

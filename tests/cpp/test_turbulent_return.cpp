@@ -56,12 +56,13 @@ void calm_air_is_the_plain_overlap() {
   const TurbulentOverlap g = overlap_fo_turbulent(small_lidar(), z, calm, both(40, 0));
   for (std::size_t i = 0; i < z.size(); ++i) {
     const double se = standard_error(g.overlap, i);
-    std::cout << "calm air at " << z[i] << " m: both paths " << mean(g.overlap, i) << " +- " << se << ", plain "
-              << plain.overlap[0][i] << "\n";
+    std::cout << "calm air at " << z[i] << " m: both paths " << mean(g.overlap, i) << " +- " << se
+              << ", plain " << plain.overlap[0][i] << "\n";
     test::near("calm air, both paths = plain at " + std::to_string(z[i]) + " m", mean(g.overlap, i),
                plain.overlap[0][i], 4.0 * se + 2e-3);
-    test::near("calm air, uncorrelated = plain at " + std::to_string(z[i]) + " m", mean(g.uncorrelated, i),
-               plain.overlap[0][i], 4.0 * standard_error(g.uncorrelated, i) + 2e-3);
+    test::near("calm air, uncorrelated = plain at " + std::to_string(z[i]) + " m",
+               mean(g.uncorrelated, i), plain.overlap[0][i],
+               4.0 * standard_error(g.uncorrelated, i) + 2e-3);
   }
   test::that("transmit-only leaves uncorrelated empty", plain.uncorrelated.empty());
 }
@@ -74,10 +75,12 @@ void transmit_is_unchanged() {
   o.paths = TurbulencePaths::transmit;
   TurbulenceOptions d;
   d.realizations = 3, d.threads = 1, d.screens = 3, d.beam_grid = 128, d.seed = 7;
-  const TurbulentOverlap a = overlap_fo_turbulent(small_lidar(), z, air, o), b = overlap_fo_turbulent(small_lidar(), z, air, d);
+  const TurbulentOverlap a = overlap_fo_turbulent(small_lidar(), z, air, o),
+                         b = overlap_fo_turbulent(small_lidar(), z, air, d);
   bool ok = true;
   for (std::size_t k = 0; k < 3; ++k)
-    for (std::size_t i = 0; i < z.size(); ++i) ok = ok && same_bits(a.overlap[k][i], b.overlap[k][i]);
+    for (std::size_t i = 0; i < z.size(); ++i)
+      ok = ok && same_bits(a.overlap[k][i], b.overlap[k][i]);
   test::that("paths = transmit is the default run bit for bit", ok);
 }
 
@@ -101,8 +104,8 @@ void parts_equal_the_whole() {
           ok = ok && same_bits(part.overlap[r][i], whole.overlap[first + r][i]) &&
                same_bits(part.uncorrelated[r][i], whole.uncorrelated[first + r][i]) &&
                same_bits(part.wander_x[r], whole.wander_x[first + r]);
-      test::that("both paths: rows from " + std::to_string(first) + " on " + std::to_string(threads) +
-                     " threads equal the whole run's",
+      test::that("both paths: rows from " + std::to_string(first) + " on " +
+                     std::to_string(threads) + " threads equal the whole run's",
                  ok);
     }
   test::that("the draws differ", whole.overlap[0][1] != whole.overlap[1][1]);
@@ -113,17 +116,21 @@ void bad_options() {
   const Cn2Profile air = Cn2Profile::constant(1e-14);
   TurbulenceOptions o = both(1, 1);
   o.receiver_fields = 0;
-  test::throws("no receiver fields", [&] { overlap_fo_turbulent(small_lidar(), z, air, o); }, "receiver_fields");
+  test::throws(
+      "no receiver fields", [&] { overlap_fo_turbulent(small_lidar(), z, air, o); },
+      "receiver_fields");
   o = both(1, 1);
   o.paths = static_cast<TurbulencePaths>(7);
   test::throws("unknown paths", [&] { overlap_fo_turbulent(small_lidar(), z, air, o); }, "paths");
   LidarSystem fibre = small_lidar();
   fibre.detector.numerical_aperture = 0.1;
-  test::throws("a fibre NA", [&] { overlap_fo_turbulent(fibre, z, air, both(1, 1)); }, "numerical_aperture");
+  test::throws(
+      "a fibre NA", [&] { overlap_fo_turbulent(fibre, z, air, both(1, 1)); }, "numerical_aperture");
   // Table 1's 0.9 mrad field of view at 355 nm through a 15 cm aperture needs ~500 samples per side.
   o = both(1, 1);
-  test::throws("a grid too coarse for the field of view", [&] { overlap_fo_turbulent(LidarSystem{}, z, air, o); },
-               "beam_grid");
+  test::throws(
+      "a grid too coarse for the field of view",
+      [&] { overlap_fo_turbulent(LidarSystem{}, z, air, o); }, "beam_grid");
 }
 
 }  // namespace

@@ -12,8 +12,8 @@
 
 namespace lidar_overlap::detail {
 
-CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n,
-                         std::size_t np)
+CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx,
+                         std::size_t n, std::size_t np)
     : n_(n), map_(n * n) {
   if (np == 0) return;  // no light reaches the detector plane (spectrum_grid): a zero map, G = 0
   const double to_image = rx.detector_distance() / z, df = 1.0 / (np * dx);
@@ -21,9 +21,11 @@ CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double
   const double q_max = std::min(rx.cutoff(), df * (0.5 * np * std::sqrt(2.0) + 1.0) / to_image);
   const detail::TransferTable transfer(system, rx, q_max);
   // P: the shift to the detector centre's image and (-1)^(kx+ky), the padded grid's origin at np/2.
-  const detail::ShiftPhases phase(np, df, system.beam.center(z) + (1.0 / to_image) * system.detector.offset);
+  const detail::ShiftPhases phase(
+      np, df, system.beam.center(z) + (1.0 / to_image) * system.detector.offset);
   const std::size_t off = np / 2 - n / 2, half = np / 2;
-  const std::size_t k_max = std::min(half, checks::saturate(q_max * to_image / df));  // beyond: T = 0
+  const std::size_t k_max =
+      std::min(half, checks::saturate(q_max * to_image / df));  // beyond: T = 0
   const std::size_t rows = k_max + 1;
   const RowTransform backward(np, FftDirection::backward);
   ComplexBuffer block(kFftBlock * np);
@@ -103,7 +105,8 @@ CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double
         column[ky] = Complex(ra[ky] * phase.y[ky].real() - rb[ky] * phase.y[ky].imag(),
                              ra[ky] * phase.y[ky].imag() + rb[ky] * phase.y[ky].real());
         const Complex& p = phase.y[np - ky];
-        column[np - ky] = Complex(ra[ky] * p.real() - rb[ky] * p.imag(), ra[ky] * p.imag() + rb[ky] * p.real());
+        column[np - ky] =
+            Complex(ra[ky] * p.real() - rb[ky] * p.imag(), ra[ky] * p.imag() + rb[ky] * p.real());
       }
     }
     backward(block.data(), count);
@@ -127,7 +130,8 @@ CouplingMap::CouplingMap(const LidarSystem& system, const FoReceiver& rx, double
     const Complex px = phase.x[half];
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double sign = (off + ix) % 2 ? -1.0 : 1.0;
-      for (std::size_t iy = 0; iy < n; ++iy) map_[ix * n + iy] += sign * (px * s[off + iy]).real() * scale;
+      for (std::size_t iy = 0; iy < n; ++iy)
+        map_[ix * n + iy] += sign * (px * s[off + iy]).real() * scale;
     }
   }
 }

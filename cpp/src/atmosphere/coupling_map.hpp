@@ -33,9 +33,11 @@ class CouplingMap {
   // Bytes a thread needs to make the map of an np grid: T's table (or two rows), R, and a block of transforms.
   static double workspace(std::size_t n, std::size_t np) {
     const double width = 0.5 * double(np) + 1.0;
-    return 8.0 * std::min(kMapTable, width * width) + 8.0 * double(n) * width + 16.0 * double(kFftBlock) * double(np);
+    return 8.0 * std::min(kMapTable, width * width) + 8.0 * double(n) * width +
+           16.0 * double(kFftBlock) * double(np);
   }
-  CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n, std::size_t np);
+  CouplingMap(const LidarSystem& system, const FoReceiver& rx, double z, double dx, std::size_t n,
+              std::size_t np);
 
   // G from the per-column sums an arrival leaves (scaled_step.hpp, map_column_sums), added in column order.
   double overlap(const std::vector<double>& column_sums) const {

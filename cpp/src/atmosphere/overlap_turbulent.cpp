@@ -60,8 +60,8 @@ TurbulentOverlap zero_rows(std::size_t realizations, std::size_t n_ranges, bool 
 // One task of both_paths: the draws 2 pair and 2 pair + 1, each a beam and `fields` receiver fields carried
 // through the pair's screens, and the buffers their couplings are summed in.
 struct DrawPair {
-  DrawPair(const detail::ReturnPath& rx, std::uint64_t rx_seed, std::size_t pair, std::size_t fields, double lambda,
-           double w0, std::size_t n, double dx0)
+  DrawPair(const detail::ReturnPath& rx, std::uint64_t rx_seed, std::size_t pair,
+           std::size_t fields, double lambda, double w0, std::size_t n, double dx0)
       : beams(2, Field::gaussian(lambda, w0, n, dx0)),
         back(2),
         phasor{ComplexBuffer(n * n), ComplexBuffer(n * n)},
@@ -71,12 +71,14 @@ struct DrawPair {
         es(2 * fields),
         eu(2 * fields) {
     for (std::size_t c = 0; c < 2; ++c)
-      for (std::size_t m = 0; m < fields; ++m) back[c].push_back(rx.pupil_field(rx_seed, 2 * pair + c, m));
+      for (std::size_t m = 0; m < fields; ++m)
+        back[c].push_back(rx.pupil_field(rx_seed, 2 * pair + c, m));
   }
 
   // Every field from the segment's start: through its screen (one exp(i phase) per draw, shared by its beam and
   // receiver fields), or none for the transmitter's.
-  void depart(const Segment& s, const std::vector<std::unique_ptr<PhaseScreenGenerator>>& generators,
+  void depart(const Segment& s,
+              const std::vector<std::unique_ptr<PhaseScreenGenerator>>& generators,
               std::uint64_t seed, std::size_t pair) {
     const std::size_t n2 = irradiance.size() / 2;
     if (s.screen >= 0) {
@@ -139,7 +141,8 @@ struct DrawPair {
   }
 
   // Draw c's G at `range` from couple()'s sums (`factor` = (lambda z)^2 / aperture area) into row `row` of out.
-  void store(TurbulentOverlap& out, std::size_t row, std::size_t c, int range, double factor) const {
+  void store(TurbulentOverlap& out, std::size_t row, std::size_t c, int range,
+             double factor) const {
     const std::size_t fields = es.size() / 2;
     double sum = 0.0, sum2 = 0.0, unc = 0.0;
     for (std::size_t m = 0; m < fields; ++m) {
@@ -152,8 +155,9 @@ struct DrawPair {
     out.overlap[row][range] = mean;
     out.uncorrelated[row][range] = unc / double(fields);
     out.receiver_error[row][range] =
-        fields > 1 ? std::sqrt(std::max(sum2 / double(fields) - mean * mean, 0.0) / double(fields - 1))
-                   : std::numeric_limits<double>::quiet_NaN();  // one field shows no spread
+        fields > 1
+            ? std::sqrt(std::max(sum2 / double(fields) - mean * mean, 0.0) / double(fields - 1))
+            : std::numeric_limits<double>::quiet_NaN();  // one field shows no spread
   }
 
   // Draw c's beam centroid and radius and the receiver's sensitivity centroid (its fields' summed irradiance) at
@@ -189,20 +193,23 @@ void check_both_rows(const TurbulentOverlap& out, const std::vector<double>& ran
     for (const std::vector<double>& g : *rows)
       for (std::size_t i = 0; i < g.size(); ++i)
         if (!(g[i] >= 0.0 && std::isfinite(g[i])))
-          checks::fail(detail::range_name(i), ranges[i], "a range where the turbulent overlap is finite (internal error)");
+          checks::fail(detail::range_name(i), ranges[i],
+                       "a range where the turbulent overlap is finite (internal error)");
 }
 
 // Both paths (TurbulencePaths::both). Each task carries one pair of screen draws (2p, 2p + 1): both beams and
 // both sets of receiver fields through the pair's screens, so that the uncorrelated G (a draw's beam with the
 // other draw's receiver) costs no propagation of its own; the call's rows are taken from it. A draw's G
 // depends on its screens and its receiver fields' seeds alone: the same in any part and on any thread.
-TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>& ranges, const TurbulenceOptions& o,
-                            int threads, const TurbulentPlan& plan,
-                            const std::vector<std::unique_ptr<PhaseScreenGenerator>>& generators, double dx0) {
+TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>& ranges,
+                            const TurbulenceOptions& o, int threads, const TurbulentPlan& plan,
+                            const std::vector<std::unique_ptr<PhaseScreenGenerator>>& generators,
+                            double dx0) {
   const std::size_t n = o.beam_grid, fields = o.receiver_fields;
   const double lambda = system.beam.wavelength, w0 = system.beam.waist_radius;
   const detail::ReturnPath rx(system, n, dx0, fields);
-  checks::memory("beam_grid", static_cast<double>(n), turbulent_both_bytes(n, o.screens, fields, threads),
+  checks::memory("beam_grid", static_cast<double>(n),
+                 turbulent_both_bytes(n, o.screens, fields, threads),
                  "lower beam_grid, receiver_fields or screens");
 
   TurbulentOverlap out = zero_rows(o.realizations, ranges.size(), true);
@@ -217,7 +224,8 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
       draws.depart(s, generators, o.seed, pair);
       for (std::size_t j = 0; j < s.targets.size(); ++j) {
         const Plane& p = plan.planes[s.targets[j]];
-        const bool last = j + 1 == s.targets.size();  // the segment's end: each field arrives in place
+        const bool last =
+            j + 1 == s.targets.size();  // the segment's end: each field arrives in place
         if (p.range < 0) {
           if (last) draws.pass(s.arrivals[j]);
           continue;
@@ -239,17 +247,19 @@ TurbulentOverlap both_paths(const LidarSystem& system, const std::vector<double>
 // through its coupling map, handed to read(range, G); other planes are passed by, but the segment's end,
 // which u itself reaches.
 template <class Read>
-void arrive(const Segment& s, const TurbulentPlan& plan, const std::vector<std::unique_ptr<CouplingMap>>& maps,
-            Field& u, Field& work, std::vector<double>& column_sums, Read&& read) {
+void arrive(const Segment& s, const TurbulentPlan& plan,
+            const std::vector<std::unique_ptr<CouplingMap>>& maps, Field& u, Field& work,
+            std::vector<double>& column_sums, Read&& read) {
   const std::size_t n = u.n;
   for (std::size_t j = 0; j < s.targets.size(); ++j) {
     const Plane& p = plan.planes[s.targets[j]];
     const bool last = j + 1 == s.targets.size();
     if (p.range >= 0) {
       const double* map = maps[p.range]->values();
-      s.arrivals[j].execute(u, last ? u : work, last ? &u : nullptr, [&](std::size_t ix, const Complex* column) {
-        detail::map_column_sums(ix, column, n, map, column_sums.data());
-      });
+      s.arrivals[j].execute(u, last ? u : work, last ? &u : nullptr,
+                            [&](std::size_t ix, const Complex* column) {
+                              detail::map_column_sums(ix, column, n, map, column_sums.data());
+                            });
       read(static_cast<std::size_t>(p.range), maps[p.range]->overlap(column_sums));
     } else if (last) {
       s.arrivals[j].execute(u, u, &u, [](std::size_t, const Complex*) {});
@@ -258,15 +268,17 @@ void arrive(const Segment& s, const TurbulentPlan& plan, const std::vector<std::
 }
 
 // The options, system and profile the turbulent FO path accepts, or an error naming the first that is not.
-void check_turbulent_options(const LidarSystem& system, const Cn2Profile& atmosphere, const TurbulenceOptions& o) {
+void check_turbulent_options(const LidarSystem& system, const Cn2Profile& atmosphere,
+                             const TurbulenceOptions& o) {
   system.validate();
   atmosphere.validate();
   const GaussianBeam& beam = system.beam;
   const double lambda = beam.wavelength, w0 = beam.waist_radius;
   if (beam.width_law != WidthLaw::gaussian ||
       (beam.divergence && std::abs(*beam.divergence * kPi * w0 / lambda - 1.0) > 1e-9))
-    checks::fail("beam.divergence", beam.divergence.value_or(0.0),
-                 "None (a diffraction-limited TEM00 beam with the Gaussian width law) for the turbulent FO path");
+    checks::fail(
+        "beam.divergence", beam.divergence.value_or(0.0),
+        "None (a diffraction-limited TEM00 beam with the Gaussian width law) for the turbulent FO path");
   if (o.realizations < 1 || o.realizations > kMaxRealizations)
     checks::fail("realizations", static_cast<double>(o.realizations), "a count from 1 to 1000000");
   // first + realizations <= kMaxRealizations, written so that no sum can wrap (realizations is checked above).
@@ -274,34 +286,41 @@ void check_turbulent_options(const LidarSystem& system, const Cn2Profile& atmosp
     checks::fail("first_realization", static_cast<double>(o.first_realization),
                  "an index from 0 to " + std::to_string(kMaxRealizations - o.realizations) +
                      " (first_realization + realizations <= 1000000)");
-  if (o.screens < 1 || o.screens > kMaxScreens) checks::fail("screens", static_cast<double>(o.screens), "a count from 1 to 1000");
-  if (o.beam_grid < 32 || o.beam_grid % 2) checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
-  checks::grid("beam_grid", o.beam_grid, sizeof(Complex), 4);  // at least a field, a screen pair and a map
+  if (o.screens < 1 || o.screens > kMaxScreens)
+    checks::fail("screens", static_cast<double>(o.screens), "a count from 1 to 1000");
+  if (o.beam_grid < 32 || o.beam_grid % 2)
+    checks::fail("beam_grid", static_cast<double>(o.beam_grid), "an even size >= 32");
+  checks::grid("beam_grid", o.beam_grid, sizeof(Complex),
+               4);  // at least a field, a screen pair and a map
   if (!(o.beam_window >= 2.0 && o.beam_window <= static_cast<double>(o.beam_grid)))
     checks::fail("beam_window", o.beam_window, "a window from 2 to beam_grid long-term beam radii");
   if (o.max_spectrum_grid < 32 || o.max_spectrum_grid > kMaxGridSide)
-    checks::fail("max_spectrum_grid", static_cast<double>(o.max_spectrum_grid), "a size from 32 to 65536");
+    checks::fail("max_spectrum_grid", static_cast<double>(o.max_spectrum_grid),
+                 "a size from 32 to 65536");
   const bool both = o.paths == TurbulencePaths::both;
-  if (o.paths != TurbulencePaths::transmit && !both) checks::fail("paths", static_cast<double>(o.paths), "transmit or both");
+  if (o.paths != TurbulencePaths::transmit && !both)
+    checks::fail("paths", static_cast<double>(o.paths), "transmit or both");
   if (both && (o.receiver_fields < 1 || o.receiver_fields > kMaxReceiverFields))
-    checks::fail("receiver_fields", static_cast<double>(o.receiver_fields), "a count from 1 to 1000");
+    checks::fail("receiver_fields", static_cast<double>(o.receiver_fields),
+                 "a count from 1 to 1000");
   if (both && system.detector.numerical_aperture)
-    checks::fail("detector.numerical_aperture", *system.detector.numerical_aperture,
-                 "none (a fibre's NA is not modelled on the turbulent return path) for paths = both");
+    checks::fail(
+        "detector.numerical_aperture", *system.detector.numerical_aperture,
+        "none (a fibre's NA is not modelled on the turbulent return path) for paths = both");
 }
 
 // The screens' draws: one generator per screen at its plane's spacing (and each range's spacing, into
 // range_spacing).
-std::vector<std::unique_ptr<PhaseScreenGenerator>> screen_generators(const TurbulentPlan& plan,
-                                                                     const std::vector<ScreenPlacement>& placements,
-                                                                     const Cn2Profile& atmosphere, std::size_t n,
-                                                                     std::vector<double>& range_spacing) {
+std::vector<std::unique_ptr<PhaseScreenGenerator>> screen_generators(
+    const TurbulentPlan& plan, const std::vector<ScreenPlacement>& placements,
+    const Cn2Profile& atmosphere, std::size_t n, std::vector<double>& range_spacing) {
   std::vector<std::unique_ptr<PhaseScreenGenerator>> generators(placements.size());
   for (std::size_t q = 0; q < plan.planes.size(); ++q) {
     const Plane& p = plan.planes[q];
     if (p.screen >= 0)
-      generators[p.screen] = std::make_unique<PhaseScreenGenerator>(n, plan.spacing[q], placements[p.screen].r0,
-                                                                    atmosphere.outer_scale, atmosphere.inner_scale);
+      generators[p.screen] =
+          std::make_unique<PhaseScreenGenerator>(n, plan.spacing[q], placements[p.screen].r0,
+                                                 atmosphere.outer_scale, atmosphere.inner_scale);
     if (p.range >= 0) range_spacing[p.range] = plan.spacing[q];
   }
   return generators;
@@ -310,9 +329,11 @@ std::vector<std::unique_ptr<PhaseScreenGenerator>> screen_generators(const Turbu
 // The coupling map of each range (one n x n table each) for the transmit-only path, after its memory is checked:
 // the maps, the screen generators (a spectrum each), the field at the first screen and per thread two fields, a
 // work field, a screen pair, its spectrum and map-building buffers, before any of it is allocated.
-std::vector<std::unique_ptr<CouplingMap>> coupling_maps(const LidarSystem& system, const std::vector<double>& ranges,
-                                                        const Cn2Profile& atmosphere, const TurbulenceOptions& o,
-                                                        int threads, const std::vector<double>& range_spacing) {
+std::vector<std::unique_ptr<CouplingMap>> coupling_maps(const LidarSystem& system,
+                                                        const std::vector<double>& ranges,
+                                                        const Cn2Profile& atmosphere,
+                                                        const TurbulenceOptions& o, int threads,
+                                                        const std::vector<double>& range_spacing) {
   const GaussianBeam& beam = system.beam;
   const double lambda = beam.wavelength, w0 = beam.waist_radius;
   const std::size_t n = o.beam_grid;
@@ -321,8 +342,9 @@ std::vector<std::unique_ptr<CouplingMap>> coupling_maps(const LidarSystem& syste
   std::vector<std::unique_ptr<CouplingMap>> maps(ranges.size());
   for (std::size_t i = 0; i < ranges.size(); ++i) {
     receivers.emplace_back(system, ranges[i], detail::range_name(i));
-    const double radius = 2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +
-                                  3.0 * std::sqrt(atmosphere.beam_wander_variance(w0, lambda, ranges[i])));
+    const double radius =
+        2.84 * (atmosphere.long_term_radius(w0, lambda, ranges[i]) +
+                3.0 * std::sqrt(atmosphere.beam_wander_variance(w0, lambda, ranges[i])));
     // Tails to 1e-4 of G: far below the spread between realisations, at a quarter of the grid of 1e-6.
     grids[i] = detail::spectrum_grid(system, receivers[i], ranges[i], range_spacing[i], radius, n,
                                      o.max_spectrum_grid, i, 1e-4);
@@ -332,10 +354,12 @@ std::vector<std::unique_ptr<CouplingMap>> coupling_maps(const LidarSystem& syste
   const double n2 = double(n) * double(n);
   checks::memory("beam_grid", static_cast<double>(n),
                  8.0 * n2 * double(ranges.size()) + 16.0 * n2 * double(o.screens + 1) +
-                     double(threads) * (16.0 * 5.0 * n2 + CouplingMap::workspace(n, static_cast<std::size_t>(np_max))),
+                     double(threads) * (16.0 * 5.0 * n2 + CouplingMap::workspace(
+                                                              n, static_cast<std::size_t>(np_max))),
                  "lower beam_grid, screens or the number of ranges");
   detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
-    maps[i] = std::make_unique<CouplingMap>(system, receivers[i], ranges[i], range_spacing[i], n, grids[i]);
+    maps[i] = std::make_unique<CouplingMap>(system, receivers[i], ranges[i], range_spacing[i], n,
+                                            grids[i]);
   });
   return maps;
 }
@@ -376,15 +400,15 @@ TurbulentOverlap transmit_path(const LidarSystem& system, const std::vector<doub
     std::vector<Field> fields(count, start);
     Field work = start;
     std::array<std::vector<double>, 2> screen_pair;  // the pair's screens at one plane
-    ComplexBuffer spectrum;                         // their transform's workspace
+    ComplexBuffer spectrum;                          // their transform's workspace
     std::vector<double> column_sums(2 * n);
     for (std::size_t s = 1; s < plan.segments.size(); ++s) {
       const Segment& segment = plan.segments[s];
-      generators[segment.screen]->generate_pair(screen_stream(o.seed, segment.screen), k0 / 2, screen_pair,
-                                                spectrum);
+      generators[segment.screen]->generate_pair(screen_stream(o.seed, segment.screen), k0 / 2,
+                                                screen_pair, spectrum);
       for (std::size_t c = 0; c < count; ++c) {
-        segment.departure.execute(fields[c], s == 1 ? start.values.data() : nullptr, screen_pair[(k0 + c) % 2].data(),
-                                  nullptr);
+        segment.departure.execute(fields[c], s == 1 ? start.values.data() : nullptr,
+                                  screen_pair[(k0 + c) % 2].data(), nullptr);
         arrive(segment, plan, maps, fields[c], work, column_sums,
                [&](std::size_t range, double g) { out.overlap[k0 - first + c][range] = g; });
       }
@@ -397,7 +421,8 @@ TurbulentOverlap transmit_path(const LidarSystem& system, const std::vector<doub
       out.radius_last[k0 - first + c] = last.beam_radius();
     }
   });
-  for (std::vector<double>& g : out.overlap) checks::overlap_values(g, ranges, detail::kFoOverlapSlack, "overlap_fo_turbulent");
+  for (std::vector<double>& g : out.overlap)
+    checks::overlap_values(g, ranges, detail::kFoOverlapSlack, "overlap_fo_turbulent");
   return out;
 }
 
@@ -417,11 +442,13 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   // light; on both paths every plane's spacing must sample the receiver's light, or it aliases.
   const TurbulentGrid grid = turbulent_grid(system, ranges, atmosphere, o);
   if (both && n < grid.min_beam_grid)
-    checks::fail("beam_grid", static_cast<double>(n),
-                 "an even size >= " + std::to_string(grid.min_beam_grid) +
-                     " for paths = both: every plane's grid must sample the receiver's field of view and the eddies' "
-                     "spread (lambda / r0)");
-  const std::vector<ScreenPlacement> placements = atmosphere.place_screens(lambda, z_max, o.screens);
+    checks::fail(
+        "beam_grid", static_cast<double>(n),
+        "an even size >= " + std::to_string(grid.min_beam_grid) +
+            " for paths = both: every plane's grid must sample the receiver's field of view and the eddies' "
+            "spread (lambda / r0)");
+  const std::vector<ScreenPlacement> placements =
+      atmosphere.place_screens(lambda, z_max, o.screens);
   std::vector<double> screen_ranges;
   for (const ScreenPlacement& p : placements) screen_ranges.push_back(p.range);
   const TurbulentPlan plan =
@@ -433,7 +460,8 @@ TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vect
   TurbulentOverlap out =
       both ? both_paths(system, ranges, o, threads, plan, generators, dx0)
            : transmit_path(system, ranges, o, threads, plan, generators,
-                           coupling_maps(system, ranges, atmosphere, o, threads, range_spacing), dx0);
+                           coupling_maps(system, ranges, atmosphere, o, threads, range_spacing),
+                           dx0);
   for (std::size_t j = 0; j < placements.size(); ++j) {
     out.screen_range.push_back(placements[j].range);
     out.screen_spacing.push_back(generators[j]->spacing());

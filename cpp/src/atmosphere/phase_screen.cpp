@@ -45,7 +45,8 @@ double integral(F&& f, double a, double b) {
 // varies by orders of magnitude across a cell and its centre value misses most of the cell's power.
 double cell_variance(const PhaseScreenGenerator& g, double cx, double cy, double w) {
   auto column = [&](double fx) {
-    return integral([&](double fy) { return g.psd(std::hypot(fx, fy)) * (fx * fx + fy * fy); }, cy - 0.5 * w, cy + 0.5 * w);
+    return integral([&](double fy) { return g.psd(std::hypot(fx, fy)) * (fx * fx + fy * fy); },
+                    cy - 0.5 * w, cy + 0.5 * w);
   };
   return integral(column, cx - 0.5 * w, cx + 0.5 * w) / (cx * cx + cy * cy);
 }
@@ -55,10 +56,12 @@ double cell_variance(const PhaseScreenGenerator& g, double cx, double cy, double
 double centre_gradient_variance(const PhaseScreenGenerator& g, double a) {
   auto ray = [&](double theta) {
     const double rho = a / std::cos(theta);
-    return integral([&](double u) {
-      const double f = rho * u * u * u;
-      return g.psd(f) * f * f * f * 3.0 * rho * u * u;
-    }, 0.0, 1.0);
+    return integral(
+        [&](double u) {
+          const double f = rho * u * u * u;
+          return g.psd(f) * f * f * f * 3.0 * rho * u * u;
+        },
+        0.0, 1.0);
   };
   return 8.0 * integral(ray, 0.0, 0.25 * kPi);
 }
@@ -106,7 +109,8 @@ double normal(detail::Xoshiro256& rng);
   }
   // The wedge of layer i between x[i + 1] and x[i]: accept under the curve, else a new attempt.
   const double v = u * z.x[i], v2 = v * v;
-  const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - v2)), f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - v2));
+  const double f0 = std::exp(-0.5 * (z.x[i] * z.x[i] - v2)),
+               f1 = std::exp(-0.5 * (z.x[i + 1] * z.x[i + 1] - v2));
   if (f1 + uniform(rng) * (f0 - f1) < 1.0) return v;
   return normal(rng);
 }
@@ -129,14 +133,21 @@ Complex complex_normal(detail::Xoshiro256& rng) {
 
 }  // namespace
 
-PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double r0, double outer_scale,
-                                           double inner_scale, SubharmonicWeights weights)
-    : n_(n), spacing_(spacing), r0_(r0), outer_scale_(outer_scale), inner_scale_(inner_scale), weights_(weights) {
+PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double r0,
+                                           double outer_scale, double inner_scale,
+                                           SubharmonicWeights weights)
+    : n_(n),
+      spacing_(spacing),
+      r0_(r0),
+      outer_scale_(outer_scale),
+      inner_scale_(inner_scale),
+      weights_(weights) {
   if (n < 8 || n % 2 != 0) checks::fail("n", static_cast<double>(n), "an even grid size >= 8");
   checks::grid("n", n, sizeof(Complex), 2);  // the spectrum and the screen pair
   checks::length("spacing", spacing);
   if (!(r0 >= kMinLength)) checks::fail("r0", r0, "a value >= 1e-10 m (infinity: no turbulence)");
-  if (!(outer_scale >= kMinLength)) checks::fail("outer_scale", outer_scale, "a value >= 1e-10 m (infinity: Kolmogorov)");
+  if (!(outer_scale >= kMinLength))
+    checks::fail("outer_scale", outer_scale, "a value >= 1e-10 m (infinity: Kolmogorov)");
   if (!(inner_scale >= 0.0 && inner_scale <= kMaxLength))
     checks::fail("inner_scale", inner_scale, "a length from 0 to 1e10 m");
   if (weights != SubharmonicWeights::tilt_matched && weights != SubharmonicWeights::schmidt)
@@ -150,7 +161,8 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
   for (std::size_t ky = 0; ky <= h; ++ky) {
     detail::cancellation_point();  // (n/2)^2 powers: seconds for the largest grids on a busy core
     for (std::size_t kx = 0; kx <= h; ++kx)
-      amplitude_[ky * (h + 1) + kx] = kx + ky == 0 ? 0.0 : std::sqrt(psd(df * std::hypot(double(kx), double(ky)))) * df;
+      amplitude_[ky * (h + 1) + kx] =
+          kx + ky == 0 ? 0.0 : std::sqrt(psd(df * std::hypot(double(kx), double(ky)))) * df;
   }
   const bool tilt = weights == SubharmonicWeights::tilt_matched;
   if (tilt) {  // the FFT grid's own 3 x 3 block around f = 0 (|kx|, |ky| <= 1)
@@ -161,11 +173,13 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
 
   for (int p = 0; p < kLevels; ++p) {
     const double dfp = df / std::pow(3.0, p + 1);
-    double edge = psd(dfp) * dfp * dfp, corner = psd(std::sqrt(2.0) * dfp) * dfp * dfp;  // Schmidt: Phi(centre) area
+    double edge = psd(dfp) * dfp * dfp,
+           corner = psd(std::sqrt(2.0) * dfp) * dfp * dfp;  // Schmidt: Phi(centre) area
     if (tilt) {
       edge = cell_variance(*this, dfp, 0.0, dfp);
       corner = cell_variance(*this, dfp, dfp, dfp);
-      if (p + 1 == kLevels) {  // the centre cell left over, spread as equal gradient variance over the 8
+      if (p + 1 ==
+          kLevels) {  // the centre cell left over, spread as equal gradient variance over the 8
         const double rest = centre_gradient_variance(*this, 0.5 * dfp) / 8.0;
         edge += rest / (dfp * dfp);
         corner += rest / (2.0 * dfp * dfp);
@@ -173,11 +187,13 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
     }
     for (int b = -1; b <= 1; ++b)
       for (int a = -1; a <= 1; ++a)
-        sub_amplitude_[9 * p + 3 * (b + 1) + (a + 1)] = a == 0 && b == 0 ? 0.0 : std::sqrt(a != 0 && b != 0 ? corner : edge);
+        sub_amplitude_[9 * p + 3 * (b + 1) + (a + 1)] =
+            a == 0 && b == 0 ? 0.0 : std::sqrt(a != 0 && b != 0 ? corner : edge);
     sub_cos_[p].resize(n);
     sub_sin_[p].resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const double phase = 2.0 * kPi * dfp * (static_cast<double>(i) - static_cast<double>(h)) * spacing;
+      const double phase =
+          2.0 * kPi * dfp * (static_cast<double>(i) - static_cast<double>(h)) * spacing;
       sub_cos_[p][i] = std::cos(phase);
       sub_sin_[p][i] = std::sin(phase);
       sub_mean_[p] += Complex(sub_cos_[p][i], sub_sin_[p][i]) / static_cast<double>(n);
@@ -187,22 +203,26 @@ PhaseScreenGenerator::PhaseScreenGenerator(std::size_t n, double spacing, double
 
 double PhaseScreenGenerator::psd(double f) const {
   const double f0 = 1.0 / outer_scale_;  // 0 for an infinite outer scale
-  const double inner = inner_scale_ > 0.0 ? std::exp(-std::pow(f * 2.0 * kPi * inner_scale_ / 5.92, 2)) : 1.0;
-  return kPsdCoefficient * std::pow(r0_, -5.0 / 3.0) * inner / std::pow(f * f + f0 * f0, 11.0 / 6.0);
+  const double inner =
+      inner_scale_ > 0.0 ? std::exp(-std::pow(f * 2.0 * kPi * inner_scale_ / 5.92, 2)) : 1.0;
+  return kPsdCoefficient * std::pow(r0_, -5.0 / 3.0) * inner /
+         std::pow(f * f + f0 * f0, 11.0 / 6.0);
 }
 
 std::vector<double> PhaseScreenGenerator::generate(std::uint64_t seed, std::size_t index) const {
   return std::move(generate_pair(seed, index / 2)[index % 2]);
 }
 
-std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair) const {
+std::array<std::vector<double>, 2> PhaseScreenGenerator::generate_pair(std::uint64_t seed,
+                                                                       std::size_t pair) const {
   std::array<std::vector<double>, 2> out;
   ComplexBuffer spectrum;
   generate_pair(seed, pair, out, spectrum);
   return out;
 }
 
-void PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair, std::array<std::vector<double>, 2>& out,
+void PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair,
+                                         std::array<std::vector<double>, 2>& out,
                                          ComplexBuffer& spectrum) const {
   const std::size_t n = n_, h = n / 2;
   detail::Xoshiro256 rng(mix(mix(seed) ^ static_cast<std::uint64_t>(pair)));
@@ -215,11 +235,13 @@ void PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair, s
   for (std::size_t iy = 0; iy < n; ++iy) {
     detail::cancellation_point();  // n^2 normal deviates
     const double* row = &amplitude_[std::min(iy, n - iy) * (h + 1)];
-    for (std::size_t ix = 0; ix < n; ++ix) spectrum[iy * n + ix] = complex_normal(rng) * row[std::min(ix, n - ix)];
+    for (std::size_t ix = 0; ix < n; ++ix)
+      spectrum[iy * n + ix] = complex_normal(rng) * row[std::min(ix, n - ix)];
   }
   std::array<Complex, 27> sub;
   for (std::size_t j = 0; j < sub.size(); ++j) sub[j] = complex_normal(rng) * sub_amplitude_[j];
-  fft2d(spectrum, n, FftDirection::backward);  // unnormalised sum of c exp(+i 2 pi f x): the screen itself
+  fft2d(spectrum, n,
+        FftDirection::backward);  // unnormalised sum of c exp(+i 2 pi f x): the screen itself
 
   // Low frequencies, separably: sum_{a,b} c_ab e_a(x) e_b(y) = sum_a e_a(x) g_a(y) with
   // g_a(y) = sum_b c_ab e_b(y) per row, and e_{+-1} = cos +- i sin. Then per pixel and level,
@@ -265,7 +287,8 @@ void PhaseScreenGenerator::generate_pair(std::uint64_t seed, std::size_t pair, s
 void apply_phase_screen(Field& field, const std::vector<double>& screen) {
   field.validate();
   if (screen.size() != field.n * field.n)
-    checks::fail("screen", static_cast<double>(screen.size()), "n * n = " + std::to_string(field.n * field.n) + " values");
+    checks::fail("screen", static_cast<double>(screen.size()),
+                 "n * n = " + std::to_string(field.n * field.n) + " values");
   for (std::size_t i = 0; i < screen.size(); ++i) {
     detail::cancellation_point_every(i);  // a sine and a cosine per sample
     field.values[i] *= Complex(std::cos(screen[i]), std::sin(screen[i]));

@@ -8,7 +8,8 @@ double inside(double x) { return std::abs(x) <= kPhasorReach ? x : 0.0; }
 
 // Lanes of V at a time; the tail and the phases beyond reach by phasor().
 template <class V, class W, std::size_t L>
-__attribute__((always_inline)) inline void phasors_by(const double* phase, Complex* out, std::size_t count) {
+__attribute__((always_inline)) inline void phasors_by(const double* phase, Complex* out,
+                                                      std::size_t count) {
   std::size_t j = 0;
   for (; j + L <= count; j += L) {
     V x, re, im;
@@ -29,7 +30,8 @@ using Doubles4 = double __attribute__((vector_size(32)));
 using Words4 = std::uint64_t __attribute__((vector_size(32)));
 
 // AVX2 without FMA: the same operations as the two-lane path, twice as many at once.
-__attribute__((target("avx2"))) void phasors_avx2(const double* phase, Complex* out, std::size_t count) {
+__attribute__((target("avx2"))) void phasors_avx2(const double* phase, Complex* out,
+                                                  std::size_t count) {
   phasors_by<Doubles4, Words4, 4>(phase, out, count);
 }
 

@@ -53,7 +53,8 @@ class Departure {
       const Complex a = factor_y_[iy];
       if (screen || phasor) {
         const Complex* p = phasor ? phasor + iy * n : screen_row(screen + iy * n, n);
-        for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(product(in[ix], p[ix]), product(a, factor_x_[ix]));
+        for (std::size_t ix = 0; ix < n; ++ix)
+          row[ix] = product(product(in[ix], p[ix]), product(a, factor_x_[ix]));
       } else {
         for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(in[ix], product(a, factor_x_[ix]));
       }
@@ -61,8 +62,9 @@ class Departure {
     const int threads = fft_threads(n * n);
     row_pass_into(data, n, n, FftDirection::forward, threads, fill, [](std::size_t, Complex*) {});
     const RowTransform forward(n, FftDirection::forward);
-    column_pass(data, n, n, threads,
-                [&](std::size_t, std::size_t count, Complex* block) { forward.columns(block, count, column_stride(n)); });
+    column_pass(data, n, n, threads, [&](std::size_t, std::size_t count, Complex* block) {
+      forward.columns(block, count, column_stride(n));
+    });
   }
 
  private:
@@ -87,7 +89,9 @@ class Arrival {
       : n_(n), m_(1.0 + curvature * dz), q2_y_(n), q2_x_(n) {
     const double k = 2.0 * kPi / lambda;
     for (std::size_t i = 0; i < n; ++i) {
-      const double f = (i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n)) / (n * spacing);
+      const double f =
+          (i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n)) /
+          (n * spacing);
       q2_y_[i] = std::polar(1.0, -2.0 * kPi * kPi * dz * f * f / (m_ * k));
       q2_x_[i] = q2_y_[i] / m_;
     }
@@ -95,7 +99,9 @@ class Arrival {
     q3_curvature_ = curvature / m_;
   }
   double spacing() const { return spacing_; }  // m, of the plane reached
-  double q3_curvature() const { return q3_curvature_; }  // c / m (1/m): Q3 = exp(i k (c / m) r2^2 / 2)
+  double q3_curvature() const {
+    return q3_curvature_;
+  }  // c / m (1/m): Q3 = exp(i k (c / m) r2^2 / 2)
 
   // The field reached, by columns: the rows are transformed first (into `rows`, n x n, which may be the
   // spectrum itself), then each column of the field, contiguous, is handed to read(ix, column) and written
@@ -112,14 +118,16 @@ class Arrival {
       const Complex* from = in + iy * n;
       for (std::size_t ix = 0; ix < n; ++ix) row[ix] = product(from[ix], product(a, q2_x_[ix]));
     };
-    row_pass_into(rows.values.data(), n, n, FftDirection::backward, threads, q2, [](std::size_t, Complex*) {});
+    row_pass_into(rows.values.data(), n, n, FftDirection::backward, threads, q2,
+                  [](std::size_t, Complex*) {});
     const std::size_t stride = column_stride(n);
     if (field) {
       const RowTransform backward(n, FftDirection::backward);
       column_pass(rows.values.data(), field->values.data(), n, n, threads,
                   [&](std::size_t c0, std::size_t count, Complex* block) {
                     backward.columns(block, count, stride);
-                    for (std::size_t c = 0; c < count; ++c) read(c0 + c, static_cast<const Complex*>(block + c * stride));
+                    for (std::size_t c = 0; c < count; ++c)
+                      read(c0 + c, static_cast<const Complex*>(block + c * stride));
                   });
       field->spacing = spacing_;
       return;
@@ -127,13 +135,14 @@ class Arrival {
     // Only read: each column transformed out of place into a buffer of one column, which FFTW's in-place
     // plans would copy through anyway.
     const BlockTransform backward(n, FftDirection::backward, n);
-    column_pass(rows.values.data(), nullptr, n, n, threads, [&](std::size_t c0, std::size_t count, Complex* block) {
-      Complex* column = column_buffer(n);
-      for (std::size_t c = 0; c < count; ++c) {
-        backward(block + c * stride, column, 1);
-        read(c0 + c, static_cast<const Complex*>(column));
-      }
-    });
+    column_pass(rows.values.data(), nullptr, n, n, threads,
+                [&](std::size_t c0, std::size_t count, Complex* block) {
+                  Complex* column = column_buffer(n);
+                  for (std::size_t c = 0; c < count; ++c) {
+                    backward(block + c * stride, column, 1);
+                    read(c0 + c, static_cast<const Complex*>(column));
+                  }
+                });
   }
 
  private:
@@ -144,7 +153,8 @@ class Arrival {
 
 // Sums of one column of a field for a range's coupling map (CouplingMap, by columns): sums[2 ix] = sum
 // |u|^2, sums[2 ix + 1] = sum |u|^2 map over column ix.
-inline void map_column_sums(std::size_t ix, const Complex* column, std::size_t n, const double* map, double* sums) {
+inline void map_column_sums(std::size_t ix, const Complex* column, std::size_t n, const double* map,
+                            double* sums) {
   const double* m = map + ix * n;
   // (re^2, im^2) of each sample as one two-lane vector, in two interleaved partial sums (one chain of
   // additions would wait on each one's latency); the lanes and partial sums are added in a fixed order.

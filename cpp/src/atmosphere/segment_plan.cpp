@@ -7,16 +7,21 @@
 
 namespace lidar_overlap::detail {
 
-TurbulentPlan plan_propagation(const std::vector<double>& screen_ranges, const std::vector<double>& ranges,
-                                 const std::vector<double>& windows, double pupil_window, std::size_t n,
-                                 double lambda) {
+TurbulentPlan plan_propagation(const std::vector<double>& screen_ranges,
+                               const std::vector<double>& ranges,
+                               const std::vector<double>& windows, double pupil_window,
+                               std::size_t n, double lambda) {
   TurbulentPlan plan;
   std::vector<Plane>& planes = plan.planes;
-  for (std::size_t j = 0; j < screen_ranges.size(); ++j) planes.push_back({screen_ranges[j], static_cast<int>(j), -1});
-  for (std::size_t i = 0; i < ranges.size(); ++i) planes.push_back({ranges[i], -1, static_cast<int>(i)});
-  std::stable_sort(planes.begin(), planes.end(), [](const Plane& a, const Plane& b) { return a.z < b.z; });
+  for (std::size_t j = 0; j < screen_ranges.size(); ++j)
+    planes.push_back({screen_ranges[j], static_cast<int>(j), -1});
+  for (std::size_t i = 0; i < ranges.size(); ++i)
+    planes.push_back({ranges[i], -1, static_cast<int>(i)});
+  std::stable_sort(planes.begin(), planes.end(),
+                   [](const Plane& a, const Plane& b) { return a.z < b.z; });
   if (windows.size() != planes.size())
-    checks::fail("windows", static_cast<double>(windows.size()), "one side per plane (internal error)");
+    checks::fail("windows", static_cast<double>(windows.size()),
+                 "one side per plane (internal error)");
   plan.spacing.assign(planes.size(), 0.0);
   double z_a = 0.0, d_a = pupil_window / static_cast<double>(n), incoming = 0.0;
   int screen = -1;
@@ -27,7 +32,8 @@ TurbulentPlan plan_propagation(const std::vector<double>& screen_ranges, const s
     while (e + 1 < planes.size() && planes[e].screen < 0) ++e;
     std::size_t f = e;
     if (planes[e].screen >= 0)
-      while (f + 1 < planes.size() && planes[f + 1].z == planes[e].z && planes[f + 1].screen < 0) ++f;
+      while (f + 1 < planes.size() && planes[f + 1].z == planes[e].z && planes[f + 1].screen < 0)
+        ++f;
     const double span = planes[e].z - z_a, d_b = windows[e] / static_cast<double>(n);
     // The cone through both ends: spacing d_a (1 + c dz).
     const double c = span > 0.0 ? (d_b / d_a - 1.0) / span : 0.0;

@@ -26,15 +26,17 @@ struct Segment {
 };
 
 struct TurbulentPlan {
-  std::vector<Plane> planes;      // screens, then ranges, stably sorted by range (as turbulent_grid orders them)
+  std::vector<Plane>
+      planes;  // screens, then ranges, stably sorted by range (as turbulent_grid orders them)
   std::vector<Segment> segments;  // in propagation order
-  std::vector<double> spacing;    // m, each plane's grid spacing (its side in turbulent_grid over n)
+  std::vector<double> spacing;  // m, each plane's grid spacing (its side in turbulent_grid over n)
 };
 
 // The plan for screens at screen_ranges and the ranges (both m), from turbulent_grid's sides of the same
 // planes (`windows`, in the planes' order) and of the transmitter's plane, on n x n grids.
-TurbulentPlan plan_propagation(const std::vector<double>& screen_ranges, const std::vector<double>& ranges,
-                                 const std::vector<double>& windows, double pupil_window, std::size_t n,
-                                 double lambda);
+TurbulentPlan plan_propagation(const std::vector<double>& screen_ranges,
+                               const std::vector<double>& ranges,
+                               const std::vector<double>& windows, double pupil_window,
+                               std::size_t n, double lambda);
 
 }  // namespace lidar_overlap::detail

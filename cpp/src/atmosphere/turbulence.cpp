@@ -48,7 +48,8 @@ double path_integral(const Cn2Profile& profile, double a, double b, Weight weigh
   auto f = [&](double z) { return profile.cn2_at_range(z) * weight(z); };
   // A first pass over the breakpoints sets the scale for the relative tolerance.
   const double scale = integrate(f, points.data(), points.size(), kInfinity, points.size()).value;
-  return integrate(f, points.data(), points.size(), 1e-12 * std::abs(scale), 50 * points.size()).value;
+  return integrate(f, points.data(), points.size(), 1e-12 * std::abs(scale), 50 * points.size())
+      .value;
 }
 
 void check_path(const Cn2Profile& profile, double path_length) {
@@ -99,7 +100,8 @@ namespace {
 // Cn^2 from 0 to 1e-9 m^-2/3, a thousand times the strongest turbulence measured near the ground.
 constexpr double kMaxCn2 = 1e-9;
 void strength(const std::string& name, double value) {
-  if (!(value >= 0.0 && value <= kMaxCn2)) checks::fail(name, value, "a value from 0 to 1e-9 m^-2/3");
+  if (!(value >= 0.0 && value <= kMaxCn2))
+    checks::fail(name, value, "a value from 0 to 1e-9 m^-2/3");
 }
 }  // namespace
 
@@ -110,17 +112,22 @@ void Cn2Profile::validate() const {
       break;
     case Cn2Model::hufnagel_valley:
       strength("hv_ground", hv_ground);
-      if (!(hv_wind >= 0.0 && hv_wind <= 300.0)) checks::fail("hv_wind", hv_wind, "a wind speed from 0 to 300 m/s");
+      if (!(hv_wind >= 0.0 && hv_wind <= 300.0))
+        checks::fail("hv_wind", hv_wind, "a wind speed from 0 to 300 m/s");
       break;
     case Cn2Model::custom:
-      if (!cn2_of_height) checks::fail("cn2_of_height", 0.0, "a callable giving Cn^2 (m^-2/3) at a height (m)");
+      if (!cn2_of_height)
+        checks::fail("cn2_of_height", 0.0, "a callable giving Cn^2 (m^-2/3) at a height (m)");
       break;
     default:
       checks::fail("model", static_cast<double>(model), "constant, hufnagel_valley or custom");
   }
-  if (!(elevation > 0.0 && elevation <= kPi / 2.0)) checks::fail("elevation", elevation, "a value in (0, pi/2] rad");
-  if (!(altitude >= 0.0 && altitude <= 1e5)) checks::fail("altitude", altitude, "a height from 0 to 1e5 m");
-  if (!(inner_scale >= 0.0 && inner_scale <= 1.0)) checks::fail("inner_scale", inner_scale, "a length from 0 to 1 m");
+  if (!(elevation > 0.0 && elevation <= kPi / 2.0))
+    checks::fail("elevation", elevation, "a value in (0, pi/2] rad");
+  if (!(altitude >= 0.0 && altitude <= 1e5))
+    checks::fail("altitude", altitude, "a height from 0 to 1e5 m");
+  if (!(inner_scale >= 0.0 && inner_scale <= 1.0))
+    checks::fail("inner_scale", inner_scale, "a length from 0 to 1 m");
   if (!(outer_scale > 0.0) || (std::isfinite(outer_scale) && outer_scale < kMinLength))
     checks::fail("outer_scale", outer_scale, "a value >= 1e-10 m (infinity: Kolmogorov)");
 }
@@ -137,43 +144,47 @@ double Cn2Profile::cn2_at_height(double height) const {
     default: {
       const double c = cn2_of_height(height);
       if (!(c >= 0.0 && c <= kMaxCn2))
-        checks::fail("cn2_of_height", c, "a value from 0 to 1e-9 m^-2/3 (at height " + std::to_string(height) + " m)");
+        checks::fail("cn2_of_height", c,
+                     "a value from 0 to 1e-9 m^-2/3 (at height " + std::to_string(height) + " m)");
       return c;
     }
   }
 }
 
 double Cn2Profile::cn2_at_range(double range) const {
-  if (!(range >= 0.0 && range <= kMaxLength)) checks::fail("range", range, "a range from 0 to 1e10 m");
+  if (!(range >= 0.0 && range <= kMaxLength))
+    checks::fail("range", range, "a range from 0 to 1e10 m");
   return cn2_at_height(altitude + range * std::sin(elevation));
 }
 
 double Cn2Profile::fried_parameter_plane(double wavelength, double path_length) const {
   const double k = wavenumber(wavelength);
   check_path(*this, path_length);
-  return minus_three_fifths(0.423, k, path_integral(*this, 0.0, path_length, [](double) { return 1.0; }));
+  return minus_three_fifths(0.423, k,
+                            path_integral(*this, 0.0, path_length, [](double) { return 1.0; }));
 }
 
 double Cn2Profile::fried_parameter_spherical(double wavelength, double path_length) const {
   const double k = wavenumber(wavelength);
   check_path(*this, path_length);
-  const double integral =
-      path_integral(*this, 0.0, path_length, [&](double z) { return std::pow(z / path_length, 5.0 / 3.0); });
+  const double integral = path_integral(
+      *this, 0.0, path_length, [&](double z) { return std::pow(z / path_length, 5.0 / 3.0); });
   return minus_three_fifths(0.423, k, integral);
 }
 
 double Cn2Profile::rytov_variance(double wavelength, double path_length) const {
   const double k = wavenumber(wavelength);
   check_path(*this, path_length);
-  const double integral =
-      path_integral(*this, 0.0, path_length, [&](double z) { return std::pow(path_length - z, 5.0 / 6.0); });
+  const double integral = path_integral(
+      *this, 0.0, path_length, [&](double z) { return std::pow(path_length - z, 5.0 / 6.0); });
   return 2.25 * std::pow(k, 7.0 / 6.0) * integral;
 }
 
 double Cn2Profile::isoplanatic_angle(double wavelength, double path_length) const {
   const double k = wavenumber(wavelength);
   check_path(*this, path_length);
-  const double integral = path_integral(*this, 0.0, path_length, [](double z) { return std::pow(z, 5.0 / 3.0); });
+  const double integral =
+      path_integral(*this, 0.0, path_length, [](double z) { return std::pow(z, 5.0 / 3.0); });
   return minus_three_fifths(2.91, k, integral);
 }
 
@@ -195,9 +206,11 @@ std::vector<ScreenPlacement> Cn2Profile::place_screens(double wavelength, double
   return screens;
 }
 
-double Cn2Profile::beam_wander_variance(double waist_radius, double wavelength, double path_length) const {
+double Cn2Profile::beam_wander_variance(double waist_radius, double wavelength,
+                                        double path_length) const {
   checks::length("waist_radius", waist_radius);
-  wavenumber(wavelength);  // validated for a uniform interface; the geometric-optics wander does not use it
+  wavenumber(
+      wavelength);  // validated for a uniform interface; the geometric-optics wander does not use it
   check_path(*this, path_length);
   const double integral = path_integral(*this, 0.0, path_length, [&](double z) {
     const double lever = path_length - z;
@@ -206,7 +219,8 @@ double Cn2Profile::beam_wander_variance(double waist_radius, double wavelength, 
   return 2.42 * 3.0 * integral * std::pow(waist_radius, -1.0 / 3.0);
 }
 
-double Cn2Profile::long_term_radius(double waist_radius, double wavelength, double path_length) const {
+double Cn2Profile::long_term_radius(double waist_radius, double wavelength,
+                                    double path_length) const {
   checks::length("waist_radius", waist_radius);
   const double k = wavenumber(wavelength);
   check_path(*this, path_length);
@@ -215,11 +229,13 @@ double Cn2Profile::long_term_radius(double waist_radius, double wavelength, doub
     return std::pow(1.0 - z / path_length, 5.0 / 3.0);
   });
   // 16/11 = (6/11) / (3/8): the weighted mean Cn^2 is integral / (3 L / 8).
-  const double sigma2 = 2.25 * std::pow(k, 7.0 / 6.0) * std::pow(path_length, 5.0 / 6.0) * (16.0 / 11.0) * integral;
+  const double sigma2 =
+      2.25 * std::pow(k, 7.0 / 6.0) * std::pow(path_length, 5.0 / 6.0) * (16.0 / 11.0) * integral;
   return std::sqrt(w2 * (1.0 + 1.33 * sigma2 * std::pow(lambda, 5.0 / 6.0)));
 }
 
-double Cn2Profile::short_term_radius(double waist_radius, double wavelength, double path_length) const {
+double Cn2Profile::short_term_radius(double waist_radius, double wavelength,
+                                     double path_length) const {
   const double lt = long_term_radius(waist_radius, wavelength, path_length);
   // Stays above W: since (L - z)^2 <= L^2 (1 - z / L)^(5/3) and L / (k w0 W) <= 1/2, the wander is at
   // most 0.74 of the turbulent spread W_LT^2 - W^2 on any path.

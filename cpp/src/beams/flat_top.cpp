@@ -17,7 +17,8 @@ namespace {
 
 // Angle (rad) of FFT-order index i on n samples of spacing dx.
 double angle_of(std::size_t i, std::size_t n, double dx, double wavelength) {
-  const double k = i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n);
+  const double k =
+      i < n / 2 ? static_cast<double>(i) : static_cast<double>(i) - static_cast<double>(n);
   return wavelength * k / (static_cast<double>(n) * dx);
 }
 
@@ -25,17 +26,20 @@ double angle_of(std::size_t i, std::size_t n, double dx, double wavelength) {
 std::vector<double> centred(const std::vector<double>& fft_order, std::size_t n) {
   std::vector<double> out(n * n);
   for (std::size_t iy = 0; iy < n; ++iy)
-    for (std::size_t ix = 0; ix < n; ++ix) out[((iy + n / 2) % n) * n + (ix + n / 2) % n] = fft_order[iy * n + ix];
+    for (std::size_t ix = 0; ix < n; ++ix)
+      out[((iy + n / 2) % n) * n + (ix + n / 2) % n] = fft_order[iy * n + ix];
   return out;
 }
 
 // 10-90 % width of the azimuthal average of `intensity` (centred) about the centre, normalised to
 // `plateau`; radial bins of one sample.
-double edge_width_of(const std::vector<double>& intensity, std::size_t n, double plateau, double spacing) {
+double edge_width_of(const std::vector<double>& intensity, std::size_t n, double plateau,
+                     double spacing) {
   std::vector<double> sum(n, 0.0), count(n, 0.0);
   for (std::size_t iy = 0; iy < n; ++iy)
     for (std::size_t ix = 0; ix < n; ++ix) {
-      const double r = std::hypot(static_cast<double>(ix) - n / 2.0, static_cast<double>(iy) - n / 2.0);
+      const double r =
+          std::hypot(static_cast<double>(ix) - n / 2.0, static_cast<double>(iy) - n / 2.0);
       const std::size_t b = static_cast<std::size_t>(std::lround(r));
       if (b < n) sum[b] += intensity[iy * n + ix], count[b] += 1.0;
     }
@@ -55,9 +59,12 @@ double edge_width_of(const std::vector<double>& intensity, std::size_t n, double
 
 const char* to_string(FlatTopStop stop) {
   switch (stop) {
-    case FlatTopStop::converged: return "converged";
-    case FlatTopStop::stagnated: return "stagnated";
-    default: return "max_iterations";
+    case FlatTopStop::converged:
+      return "converged";
+    case FlatTopStop::stagnated:
+      return "stagnated";
+    default:
+      return "max_iterations";
   }
 }
 
@@ -73,34 +80,45 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
   checks::positive("max_error", o.max_error);
   checks::positive("power", o.power);
   if (o.max_iterations < 1 || o.max_iterations > 100000)
-    checks::fail("max_iterations", static_cast<double>(o.max_iterations), "a count from 1 to 100000");
+    checks::fail("max_iterations", static_cast<double>(o.max_iterations),
+                 "a count from 1 to 100000");
   const std::size_t n = o.grid;
   if (n < 64 || n % 2) checks::fail("grid", static_cast<double>(n), "an even size >= 64");
-  checks::grid("grid", n, sizeof(double), 12);  // the fields, targets and angle maps of the iteration
+  checks::grid("grid", n, sizeof(double),
+               12);  // the fields, targets and angle maps of the iteration
   const double theta_d = wavelength / (kPi * waist_radius);  // TEM00 half-angle divergence
   if (angular_diameter <= 2.0 * theta_d)
-    checks::fail("angular_diameter", angular_diameter,
-                 "more than the TEM00 beam's own full divergence 2 lambda / (pi w0) = " + std::to_string(2.0 * theta_d) +
-                     " rad: a phase plate can only spread the beam; enlarge waist_radius for a narrower disc");
+    checks::fail(
+        "angular_diameter", angular_diameter,
+        "more than the TEM00 beam's own full divergence 2 lambda / (pi w0) = " +
+            std::to_string(2.0 * theta_d) +
+            " rad: a phase plate can only spread the beam; enlarge waist_radius for a narrower disc");
   const double dx = waist_radius / o.samples_per_waist, dtheta = wavelength / (n * dx);
-  const double edge = o.edge_width > 0.0 ? o.edge_width : 1.5 * theta_d, half = 0.5 * angular_diameter;
+  const double edge = o.edge_width > 0.0 ? o.edge_width : 1.5 * theta_d,
+               half = 0.5 * angular_diameter;
   if (n * dx < 8.0 * waist_radius)
-    checks::fail("grid", static_cast<double>(n), "at least 8 samples_per_waist = " +
-                                                     std::to_string(8.0 * o.samples_per_waist) + " to hold the beam");
+    checks::fail("grid", static_cast<double>(n),
+                 "at least 8 samples_per_waist = " + std::to_string(8.0 * o.samples_per_waist) +
+                     " to hold the beam");
   if (half + 2.0 * edge > 0.5 * wavelength / dx)
-    checks::fail("samples_per_waist", o.samples_per_waist,
-                 "a sampling whose Nyquist angle lambda / (2 dx) exceeds the disc and its edge: at most " +
-                     std::to_string(wavelength * waist_radius / (2.0 * dx) / (half + 2.0 * edge) * o.samples_per_waist));
+    checks::fail(
+        "samples_per_waist", o.samples_per_waist,
+        "a sampling whose Nyquist angle lambda / (2 dx) exceeds the disc and its edge: at most " +
+            std::to_string(wavelength * waist_radius / (2.0 * dx) / (half + 2.0 * edge) *
+                           o.samples_per_waist));
   if (half < 8.0 * dtheta)
-    checks::fail("grid", static_cast<double>(n), "a grid giving at least 8 far-field samples across the disc radius (" +
-                                                     std::to_string(8.0 * n * dtheta / half) + " or more)");
+    checks::fail("grid", static_cast<double>(n),
+                 "a grid giving at least 8 far-field samples across the disc radius (" +
+                     std::to_string(8.0 * n * dtheta / half) + " or more)");
 
   FlatTopDesign d;
   d.angular_spacing = dtheta;
   d.edge_width_target = edge;
   d.transmitted = Field::gaussian(wavelength, waist_radius, n, dx, {}, o.power);
-  std::vector<double> amplitude(n * n), target(n * n), far_angle(n * n);  // far_angle: rad, FFT order
-  for (std::size_t i = 0; i < n * n; ++i) amplitude[i] = d.transmitted.values[i].real();  // real at the waist
+  std::vector<double> amplitude(n * n), target(n * n),
+      far_angle(n * n);  // far_angle: rad, FFT order
+  for (std::size_t i = 0; i < n * n; ++i)
+    amplitude[i] = d.transmitted.values[i].real();  // real at the waist
   // Fermi-Dirac edge: 10-90 % over 2 ln 9 s.
   const double s = edge / (2.0 * std::log(9.0));
   double target_sum = 0.0, field_sum = 0.0;
@@ -134,13 +152,16 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
     const std::size_t m = 4 * n;
     const double r_max = dx * n, dr = r_max / m, k = 2.0 * kPi / wavelength;
     std::vector<double> ray_phase(m + 2, 0.0);
-    auto theta = [&](double r) { return half * std::sqrt(-std::expm1(-2.0 * r * r / (waist_radius * waist_radius))); };
+    auto theta = [&](double r) {
+      return half * std::sqrt(-std::expm1(-2.0 * r * r / (waist_radius * waist_radius)));
+    };
     for (std::size_t i = 1; i < ray_phase.size(); ++i)
       ray_phase[i] = ray_phase[i - 1] + 0.5 * k * dr * (theta((i - 1) * dr) + theta(i * dr));
     for (std::size_t iy = 0; iy < n; ++iy) {
       detail::cancellation_point();
       for (std::size_t ix = 0; ix < n; ++ix) {
-        const double pos = std::hypot(d.transmitted.coordinate(ix), d.transmitted.coordinate(iy)) / dr;
+        const double pos =
+            std::hypot(d.transmitted.coordinate(ix), d.transmitted.coordinate(iy)) / dr;
         const std::size_t i = static_cast<std::size_t>(pos);
         const double phase = ray_phase[i] + (pos - i) * (ray_phase[i + 1] - ray_phase[i]);
         u[iy * n + ix] = std::polar(amplitude[iy * n + ix], std::remainder(phase, 2.0 * kPi));
@@ -166,7 +187,9 @@ FlatTopDesign design_flat_top(double wavelength, double waist_radius, double ang
     if (it > 0 && err > d.history[it - 1] * (1.0 + 1e-12)) d.monotone = false;
     const bool settled = it > 0 && d.history[it - 1] - err <= o.tolerance * err;
     if (settled || it + 1 >= o.max_iterations) {
-      d.stop = !settled ? FlatTopStop::max_iterations : err <= o.max_error ? FlatTopStop::converged : FlatTopStop::stagnated;
+      d.stop = !settled             ? FlatTopStop::max_iterations
+               : err <= o.max_error ? FlatTopStop::converged
+                                    : FlatTopStop::stagnated;
       break;  // u holds the far field of the current plate
     }
     for (std::size_t i = 0; i < n * n; ++i) {

@@ -17,8 +17,8 @@ void GaussianBeam::validate() const {
   const bool diffraction_limited_law = !divergence || width_law == WidthLaw::gaussian;
   if (diffraction_limited_law && !(theta_d <= kMaxAngle))
     checks::fail("beam.waist_radius", waist_radius,
-                 "a waist of at least lambda / (pi x " + checks::number(kMaxAngle) + " rad) = " +
-                     checks::number(wavelength / (kPi * kMaxAngle)) +
+                 "a waist of at least lambda / (pi x " + checks::number(kMaxAngle) +
+                     " rad) = " + checks::number(wavelength / (kPi * kMaxAngle)) +
                      " m: a smaller one diffracts beyond the paraxial model");
   if (divergence) {
     checks::positive("beam.divergence", *divergence);
@@ -26,9 +26,10 @@ void GaussianBeam::validate() const {
     // A Gaussian beam cannot spread less than its diffraction limit (M^2 >= 1). The linear law is the
     // paper's geometric marginal-ray model and takes any divergence (ray tracing only).
     if (width_law == WidthLaw::gaussian && *divergence < theta_d * (1.0 - 1e-9))
-      checks::fail("beam.divergence", *divergence,
-                   "at least the diffraction limit lambda / (pi w0) = " + checks::number(theta_d) +
-                       " rad (M^2 >= 1); width_law 'linear' takes any divergence (ray tracing only)");
+      checks::fail(
+          "beam.divergence", *divergence,
+          "at least the diffraction limit lambda / (pi w0) = " + checks::number(theta_d) +
+              " rad (M^2 >= 1); width_law 'linear' takes any divergence (ray tracing only)");
   }
   checks::coordinate("beam.offset", offset);
   checks::angle("beam.tilt", tilt);
@@ -58,8 +59,9 @@ bool GaussianBeam::on_axis() const {
 
 void GaussianBeam::validate_for_fourier_optics() const {
   if (width_law != WidthLaw::gaussian)
-    throw std::invalid_argument("beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
-                                "(the linear law is the paper's RT marginal-ray model)");
+    throw std::invalid_argument(
+        "beam.width_law = 'linear' is invalid for Fourier optics: expected 'gaussian' "
+        "(the linear law is the paper's RT marginal-ray model)");
 }
 
 }  // namespace lidar_overlap

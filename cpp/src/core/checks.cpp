@@ -40,7 +40,9 @@ void in_open_unit(const std::string& parameter, double value) {
 
 void tolerance(const std::string& parameter, double value) {
   if (!(value >= kMinTolerance && value < 1.0))
-    fail(parameter, value, "a value in [" + number(kMinTolerance) + ", 1) (an absolute error on G; double precision resolves none smaller)");
+    fail(parameter, value,
+         "a value in [" + number(kMinTolerance) +
+             ", 1) (an absolute error on G; double precision resolves none smaller)");
 }
 
 std::string number(double v) {
@@ -59,7 +61,9 @@ std::string gib(double bytes) {
 
 void length(const std::string& parameter, double value) {
   if (!(value >= kMinLength && value <= kMaxLength))
-    fail(parameter, value, "a finite value > 0: a length from " + number(kMinLength) + " m to " + number(kMaxLength) + " m");
+    fail(parameter, value,
+         "a finite value > 0: a length from " + number(kMinLength) + " m to " + number(kMaxLength) +
+             " m");
 }
 
 void coordinate(const std::string& parameter, double value) {
@@ -88,23 +92,27 @@ std::size_t saturate(double x) {
   return x < 0.0 ? 0 : static_cast<std::size_t>(kCap);
 }
 
-std::size_t count_from(double estimate, std::size_t limit, const std::string& parameter, double value,
-                       const std::string& why) {
+std::size_t count_from(double estimate, std::size_t limit, const std::string& parameter,
+                       double value, const std::string& why) {
   if (!(estimate >= 0.0 && estimate <= static_cast<double>(limit))) {
     std::ostringstream msg;
     msg.precision(17);
-    msg << parameter << " = " << value << " asks for " << number(estimate) << " " << why << " (at most "
-        << limit << ")";
-    throw ParameterError(msg.str(), parameter, value, "at most " + std::to_string(limit) + " " + why);
+    msg << parameter << " = " << value << " asks for " << number(estimate) << " " << why
+        << " (at most " << limit << ")";
+    throw ParameterError(msg.str(), parameter, value,
+                         "at most " + std::to_string(limit) + " " + why);
   }
   return static_cast<std::size_t>(estimate);
 }
 
-void grid(const std::string& parameter, std::size_t n, std::size_t bytes_per_point, std::size_t copies) {
+void grid(const std::string& parameter, std::size_t n, std::size_t bytes_per_point,
+          std::size_t copies) {
   if (n > kMaxGridSide)
-    fail(parameter, static_cast<double>(n), "at most " + std::to_string(kMaxGridSide) + " samples per side");
+    fail(parameter, static_cast<double>(n),
+         "at most " + std::to_string(kMaxGridSide) + " samples per side");
   const double bytes = double(n) * double(n) * double(bytes_per_point) * double(copies);
-  memory(parameter, static_cast<double>(n), bytes, "use a smaller grid, or raise the budget with set_max_memory");
+  memory(parameter, static_cast<double>(n), bytes,
+         "use a smaller grid, or raise the budget with set_max_memory");
 }
 
 void memory(const std::string& parameter, double value, double bytes, const std::string& fix) {
@@ -112,19 +120,22 @@ void memory(const std::string& parameter, double value, double bytes, const std:
     std::ostringstream msg;
     msg.precision(17);
     const std::string budget = gib(static_cast<double>(max_memory()));
-    msg << parameter << " = " << value << " needs " << gib(bytes) << " of memory, more than the budget of " << budget
-        << " (max_memory): " << fix;
-    throw ParameterError(msg.str(), parameter, value, "at most " + budget + " of memory (max_memory)");
+    msg << parameter << " = " << value << " needs " << gib(bytes)
+        << " of memory, more than the budget of " << budget << " (max_memory): " << fix;
+    throw ParameterError(msg.str(), parameter, value,
+                         "at most " + budget + " of memory (max_memory)");
   }
 }
 
 void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, double slack,
-                    const std::string& method, const std::function<std::string(std::size_t)>& cause) {
+                    const std::string& method,
+                    const std::function<std::string(std::size_t)>& cause) {
   overlap_values(overlap, ranges, std::vector<double>(overlap.size(), slack), method, cause);
 }
 
-void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, const std::vector<double>& slacks,
-                    const std::string& method, const std::function<std::string(std::size_t)>& cause) {
+void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges,
+                    const std::vector<double>& slacks, const std::string& method,
+                    const std::function<std::string(std::size_t)>& cause) {
   for (std::size_t i = 0; i < overlap.size(); ++i) {
     const double g = overlap[i], slack = slacks[i];
     if (g >= -slack && g <= 1.0 + slack) {
@@ -133,11 +144,14 @@ void overlap_values(std::vector<double>& overlap, const std::vector<double>& ran
     }
     std::ostringstream msg;
     msg.precision(17);
-    msg << method << ": G = " << g << " at ranges[" << i << "] = " << (i < ranges.size() ? ranges[i] : NAN)
-        << " m is outside [0, 1] by more than the method's accuracy " << slack
-        << ": " << (cause ? cause(i) : std::string())
-        << (cause && !cause(i).empty() ? "" : "the inputs reach scales where the computation loses its precision; "
-                                              "check the system's scales");
+    msg << method << ": G = " << g << " at ranges[" << i
+        << "] = " << (i < ranges.size() ? ranges[i] : NAN)
+        << " m is outside [0, 1] by more than the method's accuracy " << slack << ": "
+        << (cause ? cause(i) : std::string())
+        << (cause && !cause(i).empty()
+                ? ""
+                : "the inputs reach scales where the computation loses its precision; "
+                  "check the system's scales");
     throw std::domain_error(msg.str());
   }
 }

@@ -20,10 +20,10 @@ std::string number(double value);
 
 void finite(const std::string& parameter, double value);
 void finite(const std::string& parameter, Vec2 value);
-void positive(const std::string& parameter, double value);        // 0 < value < inf
-void non_negative(const std::string& parameter, double value);    // 0 <= value < inf
-void in_open_unit(const std::string& parameter, double value);    // 0 < value < 1
-void tolerance(const std::string& parameter, double value);       // kMinTolerance <= value < 1 (on G)
+void positive(const std::string& parameter, double value);      // 0 < value < inf
+void non_negative(const std::string& parameter, double value);  // 0 <= value < inf
+void in_open_unit(const std::string& parameter, double value);  // 0 < value < 1
+void tolerance(const std::string& parameter, double value);     // kMinTolerance <= value < 1 (on G)
 
 // Physical scales (lidar_overlap/core/limits.hpp): a length in [kMinLength, kMaxLength] m, a coordinate
 // (offset, defocus) within +-kMaxLength m, an angle within +-kMaxAngle rad.
@@ -40,12 +40,13 @@ std::size_t saturate(double x);
 // A count derived from a floating-point estimate (samples, panels, steps): the estimate must be finite and
 // at most `limit`, else the error names the user's `parameter` and its `value`, and says `why` it leads
 // there and how to stay within the limit.
-std::size_t count_from(double estimate, std::size_t limit, const std::string& parameter, double value,
-                       const std::string& why);
+std::size_t count_from(double estimate, std::size_t limit, const std::string& parameter,
+                       double value, const std::string& why);
 
 // `copies` n x n grids of `bytes_per_point` bytes each: n <= kMaxGridSide and the total within
 // max_memory(), else the error names `parameter` (whose value is n) with the memory needed.
-void grid(const std::string& parameter, std::size_t n, std::size_t bytes_per_point, std::size_t copies = 1);
+void grid(const std::string& parameter, std::size_t n, std::size_t bytes_per_point,
+          std::size_t copies = 1);
 
 // Bytes a call will allocate, against max_memory(); the error names `parameter` and its `value`.
 void memory(const std::string& parameter, double value, double bytes, const std::string& fix);
@@ -54,9 +55,11 @@ void memory(const std::string& parameter, double value, double bytes, const std:
 // engine's stated accuracy), else std::domain_error naming the range; values within the slack are clipped
 // into [0, 1]. `cause`, if given, adds what went wrong at range i (e.g. a sampling loss and its fix).
 void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, double slack,
-                    const std::string& method, const std::function<std::string(std::size_t)>& cause = nullptr);
+                    const std::string& method,
+                    const std::function<std::string(std::size_t)>& cause = nullptr);
 // The same with a slack per value (a batch of independent computations, each with its own accuracy).
-void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges, const std::vector<double>& slack,
-                    const std::string& method, const std::function<std::string(std::size_t)>& cause = nullptr);
+void overlap_values(std::vector<double>& overlap, const std::vector<double>& ranges,
+                    const std::vector<double>& slack, const std::string& method,
+                    const std::function<std::string(std::size_t)>& cause = nullptr);
 
 }  // namespace lidar_overlap::checks

@@ -38,7 +38,8 @@ namespace {
 std::atomic<long long> g_busy_until_ns{0};
 
 long long steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
 
@@ -64,7 +65,8 @@ int all_cores() {
 int thread_count(int requested) {
   if (requested < 0 || requested > max_threads())
     checks::fail("threads", requested,
-                 "0 (all cores) or a count from 1 to " + std::to_string(max_threads()) + " (4 per core, at least 256)");
+                 "0 (all cores) or a count from 1 to " + std::to_string(max_threads()) +
+                     " (4 per core, at least 256)");
   return requested > 0 ? requested : all_cores();
 }
 

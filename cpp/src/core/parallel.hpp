@@ -72,8 +72,8 @@ class TeamClock {
   }
   void note(long long waited) {
     long long seen = waited_.load(std::memory_order_relaxed);
-    while (waited > seen && !waited_.compare_exchange_weak(seen, waited, std::memory_order_relaxed)) {
-    }
+    while (waited > seen &&
+           !waited_.compare_exchange_weak(seen, waited, std::memory_order_relaxed)) {}
   }
   long long start_;
   std::atomic<long long> waited_{0};

@@ -12,9 +12,9 @@ namespace lidar_overlap {
 
 struct QuadratureResult {
   double value = 0.0;
-  double error = 0.0;          // estimated absolute error
+  double error = 0.0;  // estimated absolute error
   std::size_t evaluations = 0;
-  bool converged = true;       // false when max_segments was reached before the tolerance
+  bool converged = true;  // false when max_segments was reached before the tolerance
 };
 
 namespace gauss_kronrod {
@@ -30,10 +30,9 @@ inline constexpr double kWK[8] = {
     0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
     0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
     0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
-inline constexpr double kWG[4] = {0.129484966168869693270611432679082,
-                                  0.279705391489276667901467771423780,
-                                  0.381830050505118944950369775488975,
-                                  0.417959183673469387755102040816327};
+inline constexpr double kWG[4] = {
+    0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+    0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
 
 struct Segment {
   double a, b, value, error;
@@ -52,13 +51,15 @@ inline Segment from_values(double a, double b, double fc, const double* fv1, con
   }
   const double mean = 0.5 * resk;
   double resasc = kWK[7] * std::abs(fc - mean);
-  for (int j = 0; j < 7; ++j) resasc += kWK[j] * (std::abs(fv1[j] - mean) + std::abs(fv2[j] - mean));
+  for (int j = 0; j < 7; ++j)
+    resasc += kWK[j] * (std::abs(fv1[j] - mean) + std::abs(fv2[j] - mean));
   const double ah = std::abs(h);
   resasc *= ah;
   resabs *= ah;
   double err = std::abs((resk - resg) * h);
   if (resasc != 0.0 && err != 0.0) {
-    const double ratio = 200.0 * err / resasc;  // QUADPACK's ratio^1.5, as ratio sqrt(ratio): pow is the slower call
+    const double ratio =
+        200.0 * err / resasc;  // QUADPACK's ratio^1.5, as ratio sqrt(ratio): pow is the slower call
     err = resasc * std::min(1.0, ratio * std::sqrt(ratio));
   }
   err = std::max(err, 50.0 * 2.220446049250313e-16 * resabs);
@@ -115,7 +116,8 @@ QuadratureResult integrate(F&& f, const double* points, std::size_t n, double to
       r.converged = false;
       break;
     }
-    for (const Segment& half : {gauss_kronrod::rule(f, worst.a, mid), gauss_kronrod::rule(f, mid, worst.b)}) {
+    for (const Segment& half :
+         {gauss_kronrod::rule(f, worst.a, mid), gauss_kronrod::rule(f, mid, worst.b)}) {
       heap.push_back(half);
       std::push_heap(heap.begin(), heap.end());
     }
@@ -132,14 +134,17 @@ QuadratureResult integrate(F&& f, const double* points, std::size_t n, double to
 // segment with the largest error in the integral furthest over `tolerance` until each summed error estimate is
 // within it; stops at max_segments. result[k] is integral k; evaluations count the shared calls of f.
 template <class F>
-std::vector<QuadratureResult> integrate_many(F&& f, std::size_t m, const double* points, std::size_t n,
-                                             double tolerance, std::size_t max_segments) {
+std::vector<QuadratureResult> integrate_many(F&& f, std::size_t m, const double* points,
+                                             std::size_t n, double tolerance,
+                                             std::size_t max_segments) {
   using gauss_kronrod::kX;
   if (m == 0) return {};
   std::vector<double> nodes(15 * m);  // node j's m values at nodes[j * m]
-  std::vector<double> ends, value, error;  // segment s: [ends[2s], ends[2s + 1]], its m values and errors at s * m
+  std::vector<double> ends, value,
+      error;  // segment s: [ends[2s], ends[2s + 1]], its m values and errors at s * m
   std::size_t evaluations = 0;
-  auto rule = [&](double a, double b, std::size_t s) {  // writes segment s (appended when s is the count)
+  auto rule = [&](double a, double b,
+                  std::size_t s) {  // writes segment s (appended when s is the count)
     const double c = 0.5 * (a + b), h = 0.5 * (b - a);
     f(c, &nodes[14 * m]);
     for (int j = 0; j < 7; ++j) {
@@ -160,7 +165,8 @@ std::vector<QuadratureResult> integrate_many(F&& f, std::size_t m, const double*
         fv1[j] = nodes[j * m + k];
         fv2[j] = nodes[(7 + j) * m + k];
       }
-      const gauss_kronrod::Segment seg = gauss_kronrod::from_values(a, b, nodes[14 * m + k], fv1, fv2);
+      const gauss_kronrod::Segment seg =
+          gauss_kronrod::from_values(a, b, nodes[14 * m + k], fv1, fv2);
       value[s * m + k] = seg.value;
       error[s * m + k] = seg.error;
     }
@@ -174,13 +180,15 @@ std::vector<QuadratureResult> integrate_many(F&& f, std::size_t m, const double*
     std::fill(total.begin(), total.end(), 0.0);
     for (std::size_t s = 0; s < segments; ++s)
       for (std::size_t k = 0; k < m; ++k) total[k] += error[s * m + k];
-    const std::size_t worst = static_cast<std::size_t>(std::max_element(total.begin(), total.end()) - total.begin());
+    const std::size_t worst =
+        static_cast<std::size_t>(std::max_element(total.begin(), total.end()) - total.begin());
     if (segments == 0 || total[worst] <= tolerance) break;
     std::size_t split = 0;
     for (std::size_t s = 1; s < segments; ++s)
       if (error[s * m + worst] > error[split * m + worst]) split = s;
     const double a = ends[2 * split], b = ends[2 * split + 1], mid = 0.5 * (a + b);
-    if (segments >= max_segments || !(mid > a && mid < b)) {  // out of segments or of double precision
+    if (segments >= max_segments ||
+        !(mid > a && mid < b)) {  // out of segments or of double precision
       for (std::size_t k = 0; k < m; ++k) out[k].converged = total[k] <= tolerance;
       break;
     }

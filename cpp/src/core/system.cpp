@@ -17,8 +17,9 @@ void Telescope::validate() const {
   checks::coordinate("telescope.obstruction_distance", obstruction_distance);
   if (obstruction_radius > 0.0) checks::length("telescope.obstruction_radius", obstruction_radius);
   if (!(obstruction_radius < 0.5 * diameter))
-    checks::fail("telescope.obstruction_radius", obstruction_radius,
-                 "a value smaller than the aperture radius " + checks::number(0.5 * diameter) + " m");
+    checks::fail(
+        "telescope.obstruction_radius", obstruction_radius,
+        "a value smaller than the aperture radius " + checks::number(0.5 * diameter) + " m");
 }
 
 void Detector::validate() const {
@@ -27,13 +28,15 @@ void Detector::validate() const {
   checks::coordinate("detector.offset", offset);
   if (numerical_aperture) {
     const double na = *numerical_aperture;
-    if (!(na > 0.0 && na < 1.0)) checks::fail("detector.numerical_aperture", na, "a value in (0, 1)");
+    if (!(na > 0.0 && na < 1.0))
+      checks::fail("detector.numerical_aperture", na, "a value in (0, 1)");
   }
   if (stop_radius) {
     checks::length("detector.stop_radius", *stop_radius);
     checks::length("detector.stop_distance", stop_distance);
   } else if (stop_distance != 0.0) {
-    checks::fail("detector.stop_distance", stop_distance, "0 without a stop_radius (no second stop)");
+    checks::fail("detector.stop_distance", stop_distance,
+                 "0 without a stop_radius (no second stop)");
   }
 }
 
@@ -49,7 +52,8 @@ Detector Detector::from_fov(double fov, double focal_length, double defocus, Vec
   checks::angle("fov", 0.5 * fov);
   checks::length("focal_length", focal_length);
   if (!(0.5 * fov * focal_length >= kMinLength))
-    checks::fail("fov", fov, "a field of view giving a detector radius fov f / 2 of at least 1e-10 m");
+    checks::fail("fov", fov,
+                 "a field of view giving a detector radius fov f / 2 of at least 1e-10 m");
   Detector d{0.5 * fov * focal_length, defocus, offset, numerical_aperture, std::nullopt, 0.0};
   d.validate();
   return d;
@@ -65,9 +69,10 @@ void LidarSystem::validate() const {
                      " m (the detector plane must lie behind the lens)");
   const double image_distance = telescope.focal_length + detector.defocus;
   if (detector.stop_radius && !(detector.stop_distance < image_distance))
-    checks::fail("detector.stop_distance", detector.stop_distance,
-                 "a distance behind the lens < that of the detector plane, focal_length + defocus = " +
-                     checks::number(image_distance) + " m");
+    checks::fail(
+        "detector.stop_distance", detector.stop_distance,
+        "a distance behind the lens < that of the detector plane, focal_length + defocus = " +
+            checks::number(image_distance) + " m");
 }
 
 void LidarSystem::validate_range(double z, const std::string& parameter) const {

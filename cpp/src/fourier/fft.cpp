@@ -26,7 +26,8 @@ constexpr std::size_t kThreadedPoints = std::size_t{1} << 16;
 fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_t distance = 0,
                      bool out_of_place = false) {
   if (distance == 0) distance = length;
-  static auto& plans = *new std::map<std::tuple<std::size_t, std::size_t, int, std::size_t, bool>, fftw_plan>;
+  static auto& plans =
+      *new std::map<std::tuple<std::size_t, std::size_t, int, std::size_t, bool>, fftw_plan>;
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   const auto key = std::make_tuple(length, count, sign, distance, out_of_place);
   if (auto it = plans.find(key); it != plans.end()) return it->second;
@@ -43,8 +44,8 @@ fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_
   auto* in = reinterpret_cast<fftw_complex*>(scratch.data());
   auto* out = out_of_place ? in + distance * count : in;
   const int n = static_cast<int>(length), dist = static_cast<int>(distance);
-  const fftw_plan plan = fftw_plan_many_dft(1, &n, static_cast<int>(count), in, nullptr, 1, dist, out, nullptr, 1,
-                                            dist, sign, FFTW_ESTIMATE);
+  const fftw_plan plan = fftw_plan_many_dft(1, &n, static_cast<int>(count), in, nullptr, 1, dist,
+                                            out, nullptr, 1, dist, sign, FFTW_ESTIMATE);
   if (!plan) throw std::runtime_error("FFTW could not make a plan");
   plans[key] = plan;
   return plan;
@@ -59,8 +60,10 @@ void execute_blocks(void* block, void* single, const Complex* in, Complex* out, 
                     std::size_t distance, const char* who) {
   auto* i = reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in));
   auto* o = reinterpret_cast<fftw_complex*>(out);
-  if (fftw_alignment_of(reinterpret_cast<double*>(i)) != 0 || fftw_alignment_of(reinterpret_cast<double*>(o)) != 0)
-    throw std::logic_error(std::string(who) + ": a buffer without the alignment of std::complex<double>");
+  if (fftw_alignment_of(reinterpret_cast<double*>(i)) != 0 ||
+      fftw_alignment_of(reinterpret_cast<double*>(o)) != 0)
+    throw std::logic_error(std::string(who) +
+                           ": a buffer without the alignment of std::complex<double>");
   if (count == kFftBlock) {
     fftw_execute_dft(static_cast<fftw_plan>(block), i, o);
     return;
@@ -124,7 +127,8 @@ void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanni
 
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction) {
   detail::cancellation_point();
-  if (data.size() != rows * length) throw std::invalid_argument("fft_rows: buffer size is not rows * length");
+  if (data.size() != rows * length)
+    throw std::invalid_argument("fft_rows: buffer size is not rows * length");
   detail::row_pass(data.data(), rows, length, direction, fft_threads(rows * length));
 }
 

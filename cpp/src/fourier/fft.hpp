@@ -14,7 +14,10 @@
 
 namespace lidar_overlap {
 
-enum class FftDirection { forward, backward };  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
+enum class FftDirection {
+  forward,
+  backward
+};  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
 
 // Kept for callers that state how hard to plan: both now give the same deterministic plans (estimated
 // 1-D plans over blocks), which measure within the time of a measured FFTW 2-D plan (docs/fo_propagation.md).
@@ -25,7 +28,8 @@ enum class FftPlanning { measure, estimate };
 inline constexpr std::size_t kFftBlock = 8;
 
 // In-place 2-D transform of an n x n row-major array.
-void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning planning = FftPlanning::measure);
+void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction,
+           FftPlanning planning = FftPlanning::measure);
 
 // In-place 1-D transforms of `rows` contiguous rows of `length` each.
 void fft_rows(ComplexBuffer& data, std::size_t rows, std::size_t length, FftDirection direction);

@@ -27,8 +27,8 @@ inline Complex product(Complex a, Complex b) {
 
 // For each row r of a rows x length row-major array: before(r, row), its 1-D transform, after(r, row).
 template <class Before, class After>
-void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads,
-              Before&& before, After&& after) {
+void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
+              int threads, Before&& before, After&& after) {
   const RowTransform transform(length, direction);
   const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
@@ -39,7 +39,8 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
 #pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
-      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
+      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
+                        count = std::min(kFftBlock, rows - r0);
       Complex* block = data + r0 * length;
       for (std::size_t r = 0; r < count; ++r) before(r0 + r, block + r * length);
       transform(block, count);
@@ -51,22 +52,27 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
   stop.rethrow();
 }
 
-inline void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads) {
+inline void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
+                     int threads) {
   auto none = [](std::size_t, Complex*) {};
   row_pass(data, rows, length, direction, threads, none, none);
 }
 
 // One complex value as one 16-byte move (a plain assignment copies its two parts one by one).
-inline void copy_one(const Complex* from, Complex* to) { std::memcpy(static_cast<void*>(to), from, sizeof(Complex)); }
+inline void copy_one(const Complex* from, Complex* to) {
+  std::memcpy(static_cast<void*>(to), from, sizeof(Complex));
+}
 
 // Columns [0, K) of a rows x cols array (starting at `first`) into K contiguous columns, and back.
 template <std::size_t K>
-void gather(const Complex* first, std::size_t rows, std::size_t cols, std::size_t stride, Complex* block) {
+void gather(const Complex* first, std::size_t rows, std::size_t cols, std::size_t stride,
+            Complex* block) {
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t c = 0; c < K; ++c) copy_one(first + r * cols + c, block + c * stride + r);
 }
 template <std::size_t K>
-void scatter(const Complex* block, std::size_t rows, std::size_t cols, std::size_t stride, Complex* first) {
+void scatter(const Complex* block, std::size_t rows, std::size_t cols, std::size_t stride,
+             Complex* first) {
   for (std::size_t r = 0; r < rows; ++r)
     for (std::size_t c = 0; c < K; ++c) copy_one(block + c * stride + r, first + r * cols + c);
 }
@@ -81,7 +87,8 @@ inline std::size_t column_stride(std::size_t rows) { return rows + 4; }
 // does not overlap it, or null: the work reads the block and nothing is written back). RowTransform::columns
 // transforms such a block.
 template <class Work>
-void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads, Work&& work) {
+void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads,
+                 Work&& work) {
   const long blocks = static_cast<long>((cols + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
   RegionStop stop;
@@ -89,12 +96,14 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
   {
     const TeamClock::Mark mark = clock.started();
     const std::size_t stride = column_stride(rows);
-    thread_local ComplexBuffer scratch;  // kept from pass to pass: an allocation per pass is measurable
+    thread_local ComplexBuffer
+        scratch;  // kept from pass to pass: an allocation per pass is measurable
     if (scratch.size() < kFftBlock * stride) scratch.resize(kFftBlock * stride);
 #pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
-      const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, cols - c0);
+      const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock,
+                        count = std::min(kFftBlock, cols - c0);
       Complex* s = scratch.data();
       if (count == kFftBlock) {  // the common case, unrolled by the compiler
         gather<kFftBlock>(from + c0, rows, cols, stride, s);
@@ -102,11 +111,13 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
         if (to) scatter<kFftBlock>(s, rows, cols, stride, to + c0);
       } else {
         for (std::size_t r = 0; r < rows; ++r)
-          for (std::size_t c = 0; c < count; ++c) copy_one(from + r * cols + c0 + c, s + c * stride + r);
+          for (std::size_t c = 0; c < count; ++c)
+            copy_one(from + r * cols + c0 + c, s + c * stride + r);
         work(c0, count, s);
         if (to)
           for (std::size_t r = 0; r < rows; ++r)
-            for (std::size_t c = 0; c < count; ++c) copy_one(s + c * stride + r, to + r * cols + c0 + c);
+            for (std::size_t c = 0; c < count; ++c)
+              copy_one(s + c * stride + r, to + r * cols + c0 + c);
       }
     }
     clock.finished(mark);
@@ -126,15 +137,16 @@ inline Complex* column_buffer(std::size_t n) {
 // The same in place.
 template <class Work>
 void column_pass(Complex* data, std::size_t rows, std::size_t cols, int threads, Work&& work) {
-  column_pass(static_cast<const Complex*>(data), data, rows, cols, threads, std::forward<Work>(work));
+  column_pass(static_cast<const Complex*>(data), data, rows, cols, threads,
+              std::forward<Work>(work));
 }
 
 // Out of place, through a per-thread scratch block (BlockTransform): for each row r of a rows x length
 // row-major array, fill(r, scratch_row) writes all `length` values the row's transform starts from (from the
 // row itself or from anywhere else), the transform writes row r of `data`, then after(r, row).
 template <class Fill, class After>
-void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirection direction, int threads,
-                   Fill&& fill, After&& after) {
+void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
+                   int threads, Fill&& fill, After&& after) {
   const BlockTransform transform(length, direction, length);
   const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
@@ -147,7 +159,8 @@ void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirec
 #pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
-      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
+      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
+                        count = std::min(kFftBlock, rows - r0);
       for (std::size_t r = 0; r < count; ++r) fill(r0 + r, scratch.data() + r * length);
       Complex* block = data + r0 * length;
       transform(scratch.data(), block, count);
@@ -164,8 +177,8 @@ void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirec
 // rows of `out` (no overlap; both with FFTW's alignment, fftw_aligned). The same plans, so the same bits, as
 // row_pass_into filled with copies of the rows of `in`, without the copies.
 template <class Read>
-void row_pass_from(const Complex* in, Complex* out, std::size_t rows, std::size_t length, FftDirection direction,
-                   int threads, Read&& read) {
+void row_pass_from(const Complex* in, Complex* out, std::size_t rows, std::size_t length,
+                   FftDirection direction, int threads, Read&& read) {
   const BlockTransform transform(length, direction, length);
   const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
   TeamClock clock;
@@ -176,7 +189,8 @@ void row_pass_from(const Complex* in, Complex* out, std::size_t rows, std::size_
 #pragma omp for schedule(dynamic, 1) nowait
     for (long b = 0; b < blocks; ++b) {
       if (stop.stopped()) continue;
-      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock, count = std::min(kFftBlock, rows - r0);
+      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
+                        count = std::min(kFftBlock, rows - r0);
       for (std::size_t r = 0; r < count; ++r) read(r0 + r, in + (r0 + r) * length);
       transform(in + r0 * length, out + r0 * length, count);
     }

@@ -12,8 +12,10 @@ namespace lidar_overlap {
 
 void Field::validate() const {
   if (n < 8 || n % 2 != 0 || n > kMaxGridSide)
-    checks::fail("field.n", static_cast<double>(n), "an even grid size from 8 to " + std::to_string(kMaxGridSide));
-  if (values.size() != n * n) checks::fail("field.values", static_cast<double>(values.size()), "n * n values");
+    checks::fail("field.n", static_cast<double>(n),
+                 "an even grid size from 8 to " + std::to_string(kMaxGridSide));
+  if (values.size() != n * n)
+    checks::fail("field.values", static_cast<double>(values.size()), "n * n values");
   checks::length("field.spacing", spacing);
   checks::length("field.wavelength", wavelength);
 }
@@ -56,12 +58,13 @@ double Field::beam_radius() const {
   return sum > 0.0 ? std::sqrt(2.0 * s2 / sum) : 0.0;
 }
 
-Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, double spacing, Vec2 center,
-                      double power) {
+Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, double spacing,
+                      Vec2 center, double power) {
   checks::length("wavelength", wavelength);
   checks::length("waist_radius", waist_radius);
   checks::length("spacing", spacing);
-  if (!(power > 0.0 && power <= kMaxPower)) checks::fail("power", power, "a power > 0 and at most 1e30 W");
+  if (!(power > 0.0 && power <= kMaxPower))
+    checks::fail("power", power, "a power > 0 and at most 1e30 W");
   checks::coordinate("center", center);
   if (n < 8 || n % 2 != 0) checks::fail("n", static_cast<double>(n), "an even grid size >= 8");
   checks::grid("n", n, sizeof(Complex));
@@ -72,7 +75,8 @@ Field Field::gaussian(double wavelength, double waist_radius, std::size_t n, dou
     detail::cancellation_point();  // n^2 exponentials
     for (std::size_t ix = 0; ix < n; ++ix) {
       const double dx = f.coordinate(ix) - center.x, dy = f.coordinate(iy) - center.y;
-      f.values[iy * n + ix] = amplitude * std::exp(-(dx * dx + dy * dy) / (waist_radius * waist_radius));
+      f.values[iy * n + ix] =
+          amplitude * std::exp(-(dx * dx + dy * dy) / (waist_radius * waist_radius));
     }
   }
   return f;

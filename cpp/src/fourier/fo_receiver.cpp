@@ -41,16 +41,22 @@ FoReceiver::FoReceiver(const LidarSystem& system, double z, const std::string& p
   if (pupil_.inner >= pupil_.outer) pupil_.outer = pupil_.inner = 0.0;  // nothing passes
   // Spherical wave from the scatterer (1/z), lens (-1/f), propagation to the detector plane (1/d).
   pupil_.psi = kPi / wavelength_ * (1.0 / z - 1.0 / t.focal_length + 1.0 / d_);
-  const double phase = 4.0 * std::abs(pupil_.psi) * pupil_.outer * pupil_.outer;  // bounds every OTF argument
+  const double phase =
+      4.0 * std::abs(pupil_.psi) * pupil_.outer * pupil_.outer;  // bounds every OTF argument
   if (!(phase <= kMaxPupilPhase))
     checks::fail(parameter, z,
-                 "a range where the defocus phase across the pupil (here " + checks::number(phase) + " rad) is at most " +
-                     checks::number(kMaxPupilPhase) + " rad: the image is geometric there, where method 'rt' is exact");
+                 "a range where the defocus phase across the pupil (here " + checks::number(phase) +
+                     " rad) is at most " + checks::number(kMaxPupilPhase) +
+                     " rad: the image is geometric there, where method 'rt' is exact");
 }
 
-double FoReceiver::otf_cost() const { return 4.0 * std::abs(pupil_.psi) * pupil_.outer * pupil_.outer + 50.0; }
+double FoReceiver::otf_cost() const {
+  return 4.0 * std::abs(pupil_.psi) * pupil_.outer * pupil_.outer + 50.0;
+}
 
-double FoReceiver::blur_radius() const { return pupil_.outer * d_ * std::abs(pupil_.psi * wavelength_ / kPi); }
+double FoReceiver::blur_radius() const {
+  return pupil_.outer * d_ * std::abs(pupil_.psi * wavelength_ / kPi);
+}
 
 double FoReceiver::tail_period(double max_error) const {
   // Far from its core a point image falls, averaged over its rings, as lambda d P / (4 pi^3 A s^3) (edge
@@ -58,7 +64,8 @@ double FoReceiver::tail_period(double max_error) const {
   // detector disc at distance s collects r_d^2 lambda d P / (4 pi^2 A s^3). Over the square lattice
   // without its origin, sum |m|^-3 = 9.03.
   const double edge_over_area = 2.0 / (pupil_.outer - pupil_.inner);
-  return std::cbrt(9.03 * r_d_ * r_d_ * wavelength_ * d_ * edge_over_area / (4.0 * kPi * kPi * max_error));
+  return std::cbrt(9.03 * r_d_ * r_d_ * wavelength_ * d_ * edge_over_area /
+                   (4.0 * kPi * kPi * max_error));
 }
 
 double FoReceiver::point_coupling(double offset) const {
@@ -68,10 +75,11 @@ double FoReceiver::point_coupling(double offset) const {
   const double scale = std::max({r_d_, offset, blur_radius(), wavelength_ * d_ / pupil_.outer});
   const std::size_t pieces = std::min<std::size_t>(20000, 2 + checks::saturate(2.0 * qc * scale));
   // ~2 adaptive panels of 21 nodes per piece, each node one OTF evaluation.
-  checks::count_from(42.0 * pieces * otf_cost(), static_cast<std::size_t>(kMaxOtfWork), "z", z_,
-                     "Bessel terms: the point's image spans " + checks::number(scale) +
-                         " m, many resolutions, with a defocus phase of " + checks::number(otf_cost()) +
-                         " rad across the pupil; the image is geometric there, where method 'rt' is exact");
+  checks::count_from(
+      42.0 * pieces * otf_cost(), static_cast<std::size_t>(kMaxOtfWork), "z", z_,
+      "Bessel terms: the point's image spans " + checks::number(scale) +
+          " m, many resolutions, with a defocus phase of " + checks::number(otf_cost()) +
+          " rad across the pupil; the image is geometric there, where method 'rt' is exact");
   std::vector<double> points(pieces + 1);
   for (std::size_t i = 0; i <= pieces; ++i) points[i] = qc * static_cast<double>(i) / pieces;
   auto integrand = [&](double q) {

@@ -14,6 +14,7 @@ namespace lidar_overlap {
 // panels (a detector, blur or offset of very many image resolutions: the geometric regime).
 inline constexpr std::size_t kMaxRadialPanels = std::size_t{1} << 18;
 double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel = 4.0,
-                              std::size_t* evaluations = nullptr, const std::string& parameter = "z");
+                              std::size_t* evaluations = nullptr,
+                              const std::string& parameter = "z");
 
 }  // namespace lidar_overlap

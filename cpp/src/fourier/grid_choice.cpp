@@ -26,8 +26,9 @@ double power_radius(const ComplexBuffer& u, std::size_t n, bool fft_order) {
   std::vector<double> bins(n * n / 2 + 2, 0.0);
   double total = 0.0;
   auto offset = [&](std::size_t i) {
-    const long k = fft_order ? (i < n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n))
-                             : static_cast<long>(i) - static_cast<long>(n / 2);
+    const long k =
+        fft_order ? (i < n / 2 ? static_cast<long>(i) : static_cast<long>(i) - static_cast<long>(n))
+                  : static_cast<long>(i) - static_cast<long>(n / 2);
     return static_cast<double>(k);
   };
   for (std::size_t iy = 0; iy < n; ++iy) {
@@ -49,7 +50,8 @@ double power_radius(const ComplexBuffer& u, std::size_t n, bool fft_order) {
 
 }  // namespace
 
-GridChoice choose_grid(const Field& in, double distance, PropagationMethod method, std::size_t max_n) {
+GridChoice choose_grid(const Field& in, double distance, PropagationMethod method,
+                       std::size_t max_n) {
   in.validate();
   checks::coordinate("distance", distance);
   const std::size_t n = in.n;
@@ -67,37 +69,47 @@ GridChoice choose_grid(const Field& in, double distance, PropagationMethod metho
   // 1 / (lambda sqrt((2 z / (n dx))^2 + 1)) above the spectrum's extent.
   double n_as = 16.0 * g.output_radius / (7.0 * dx);
   const double sin_max = g.angular_radius;
-  if (sin_max > 0.0 && sin_max < 1.0) n_as = std::max(n_as, 2.0 * z / (dx * std::sqrt(1.0 / (sin_max * sin_max) - 1.0)));
-  const std::size_t n_as_fast = next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(n_as))));
+  if (sin_max > 0.0 && sin_max < 1.0)
+    n_as = std::max(n_as, 2.0 * z / (dx * std::sqrt(1.0 / (sin_max * sin_max) - 1.0)));
+  const std::size_t n_as_fast =
+      next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(n_as))));
   // Fresnel and Fraunhofer: the output window lambda z / dx does not depend on n. The output irradiance
   // is |FT(input x chirp)|^2, band-limited to the input's diameter over lambda z, so the output spacing
   // lambda z / (n dx) samples it at Nyquist once the window n dx spans twice that diameter.
   const double n_fr = 4.0 * g.input_radius / dx;
-  const std::size_t n_fr_fast = next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(n_fr))));
+  const std::size_t n_fr_fast =
+      next_power_of_two(std::max<std::size_t>(n, checks::saturate(std::ceil(n_fr))));
 
   // Powers of two: FFTW's fastest sizes, and few of them, so that plans are made once and reused across
   // calls (planning a new size costs far more than one transform).
   if (method == PropagationMethod::automatic)
     // auto: the angular spectrum while the padded grid's critical distance reaches z, as in PropagationPlan.
-    g.method = z <= n_as_fast * dx * dx / lambda ? PropagationMethod::angular_spectrum : PropagationMethod::fresnel;
+    g.method = z <= n_as_fast * dx * dx / lambda ? PropagationMethod::angular_spectrum
+                                                 : PropagationMethod::fresnel;
   g.n = g.method == PropagationMethod::angular_spectrum ? n_as_fast : n_fr_fast;
   if (distance == 0.0) g.n = n;
   if (g.n > max_n)
     checks::fail("grid_size", static_cast<double>(g.n),
-                 "at most " + std::to_string(max_n) + " samples per side: the field spreads to a radius of " +
-                     std::to_string(g.output_radius) + " m at this distance; sample it more coarsely or use "
+                 "at most " + std::to_string(max_n) +
+                     " samples per side: the field spreads to a radius of " +
+                     std::to_string(g.output_radius) +
+                     " m at this distance; sample it more coarsely or use "
                      "method 'fresnel', whose output grid grows with distance");
   return g;
 }
 
 Field zero_pad(const Field& in, std::size_t n) {
   in.validate();
-  if (n < in.n || n % 2) checks::fail("grid_size", static_cast<double>(n), "an even size >= the field's " + std::to_string(in.n));
-  checks::grid("grid_size", n, sizeof(Complex), 3);  // the padded field, the plan's transfer function, a copy
+  if (n < in.n || n % 2)
+    checks::fail("grid_size", static_cast<double>(n),
+                 "an even size >= the field's " + std::to_string(in.n));
+  checks::grid("grid_size", n, sizeof(Complex),
+               3);  // the padded field, the plan's transfer function, a copy
   Field out{detail::zeroed_buffer(n * n), n, in.spacing, in.wavelength};
   const std::size_t off = n / 2 - in.n / 2;  // keeps index n/2 at x = 0
   for (std::size_t iy = 0; iy < in.n; ++iy)
-    std::copy(in.values.begin() + iy * in.n, in.values.begin() + (iy + 1) * in.n, out.values.begin() + (iy + off) * n + off);
+    std::copy(in.values.begin() + iy * in.n, in.values.begin() + (iy + 1) * in.n,
+              out.values.begin() + (iy + off) * n + off);
   return out;
 }
 

@@ -36,7 +36,8 @@ void bessel_sequence(double x, std::vector<double>& j) {
     norm += 2.0 * a;
     j[n - 1] = t_n * a - b;
     j[n - 2] = (t_m * t_n - 1.0) * a - t_m * b;
-    if (std::abs(j[n - 2]) > 1e250) {  // rescale to stay in range (large orders at small x grow fast)
+    if (std::abs(j[n - 2]) >
+        1e250) {  // rescale to stay in range (large orders at small x grow fast)
       for (std::size_t k = n - 2; k <= m; ++k) j[k] *= 1e-250;
       norm *= 1e-250;
     }
@@ -51,7 +52,8 @@ void bessel_sequence(double x, std::vector<double>& j) {
 // int L(x') cos(beta x') dx' where the chord length L is that of the circle (centre c on the axis,
 // radius r), x' = c + r cos(phi). Jacobi-Anger, exp(i x cos phi) = sum eps_n i^n J_n(x) cos(n phi),
 // leaves integrals of sin^2(phi) cos(n phi) in closed form: no quadrature, no oscillation to resolve.
-double arc_part(double r, double beta_c, const std::vector<double>& j, double phi_lo, double phi_hi) {
+double arc_part(double r, double beta_c, const std::vector<double>& j, double phi_lo,
+                double phi_hi) {
   if (!(phi_hi > phi_lo)) return 0.0;
   const std::size_t n_max = j.size() - 1;
   // C_m = int cos(m phi) = (sin(m phi_hi) - sin(m phi_lo)) / m, sines by rotation (error ~ m eps).
@@ -61,10 +63,12 @@ double arc_part(double r, double beta_c, const std::vector<double>& j, double ph
   c[0] = phi_hi - phi_lo;
   const std::complex<double> step_hi = std::polar(1.0, phi_hi), step_lo = std::polar(1.0, phi_lo);
   const std::complex<double> step2_hi = step_hi * step_hi, step2_lo = step_lo * step_lo;
-  std::complex<double> e_hi = step_hi, e_lo = step_lo, f_hi = step2_hi, f_lo = step2_lo;  // odd and even m
+  std::complex<double> e_hi = step_hi, e_lo = step_lo, f_hi = step2_hi,
+                       f_lo = step2_lo;  // odd and even m
   // Products written out: the same bits as std::complex's, without its branch for NaN results.
   auto times = [](std::complex<double> a, std::complex<double> b) {
-    return std::complex<double>(a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real());
+    return std::complex<double>(a.real() * b.real() - a.imag() * b.imag(),
+                                a.real() * b.imag() + a.imag() * b.real());
   };
   for (std::size_t m = 1; m + 1 < c.size(); m += 2) {
     c[m] = (e_hi.imag() - e_lo.imag()) * inverse[m];
@@ -76,7 +80,9 @@ double arc_part(double r, double beta_c, const std::vector<double>& j, double ph
   }
   if (c.size() % 2 == 0) c.back() = (e_hi.imag() - e_lo.imag()) * inverse[c.size() - 1];
   // S_n = int sin^2(phi) cos(n phi) = C_n / 2 - (C_{n+2} + C_{|n-2|}) / 4, weighted by eps_n i^n J_n.
-  auto s_n = [&](std::size_t n) { return 0.5 * c[n] - 0.25 * (c[n + 2] + c[n >= 2 ? n - 2 : 2 - n]); };
+  auto s_n = [&](std::size_t n) {
+    return 0.5 * c[n] - 0.25 * (c[n + 2] + c[n >= 2 ? n - 2 : 2 - n]);
+  };
   double sum[4] = {0.0, 0.0, 0.0, 0.0};  // by n mod 4, for i^n = 1, i, -1, -i
   std::size_t n = 1;
   for (; n + 3 <= n_max; n += 4) {
@@ -92,15 +98,18 @@ double arc_part(double r, double beta_c, const std::vector<double>& j, double ph
 
 // int over the intersection of disc(r1, centre -v/2) and disc(r2, centre +v/2) of cos(beta x) dA,
 // with j1, j2 the Bessel sequences at beta r1 and beta r2.
-double lens_cosine_integral(double r1, double r2, double v, double beta, const std::vector<double>& j1,
-                            const std::vector<double>& j2) {
+double lens_cosine_integral(double r1, double r2, double v, double beta,
+                            const std::vector<double>& j1, const std::vector<double>& j2) {
   const double c1 = -0.5 * v, c2 = 0.5 * v;
   if (v >= r1 + r2) return 0.0;
   const double lo = std::max(c1 - r1, c2 - r2), hi = std::min(c1 + r1, c2 + r2);
   if (!(hi > lo)) return 0.0;
   // The chord is bounded by circle 2 left of x_k and by circle 1 right of it.
-  const double xk = v > 0.0 ? std::clamp((r1 * r1 - r2 * r2) / (2.0 * v), lo, hi) : (r1 <= r2 ? lo : hi);
-  auto angle = [](double x, double c, double r) { return std::acos(std::clamp((x - c) / r, -1.0, 1.0)); };
+  const double xk =
+      v > 0.0 ? std::clamp((r1 * r1 - r2 * r2) / (2.0 * v), lo, hi) : (r1 <= r2 ? lo : hi);
+  auto angle = [](double x, double c, double r) {
+    return std::acos(std::clamp((x - c) / r, -1.0, 1.0));
+  };
   // Two equal discs: the two arcs, each ending on the axis of symmetry x = 0, are mirror images and
   // cos(beta x) is even.
   if (r1 == r2) return 2.0 * arc_part(r1, beta * c1, j1, angle(hi, c1, r1), angle(0.0, c1, r1));

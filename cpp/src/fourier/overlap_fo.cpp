@@ -28,8 +28,9 @@ namespace {
 // The Parseval sum of overlap_from_irradiance over the irradiance sample(iy, ix) (nb x nb samples of
 // spacing dx, centred on index nb/2), of which rows [first, last) hold the power.
 template <class Sample>
-double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, std::size_t np, std::size_t nb,
-                    double dx, std::size_t first, std::size_t last, Sample&& sample) {
+double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, std::size_t np,
+                    std::size_t nb, double dx, std::size_t first, std::size_t last,
+                    Sample&& sample) {
   const double d = rx.detector_distance(), to_image = d / z;
   const Vec2 c = system.beam.center(z), o = system.detector.offset;
   // The irradiance zero-padded to np x np, transformed: only the rows that hold its power are transformed
@@ -44,28 +45,34 @@ double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, s
   const int threads = fft_threads(np * np);
   detail::row_pass(rows.data(), used, np, FftDirection::forward, threads);
   ComplexBuffer spectrum(half * np, Complex{});  // column kx at spectrum[kx * np + ky]
-  for (std::size_t k0 = 0; k0 < half; k0 += kFftBlock) {  // gathered in blocks of columns (cache lines)
+  for (std::size_t k0 = 0; k0 < half;
+       k0 += kFftBlock) {  // gathered in blocks of columns (cache lines)
     const std::size_t count = std::min(kFftBlock, half - k0);
     for (std::size_t iy = 0; iy < used; ++iy)
-      for (std::size_t k = 0; k < count; ++k) spectrum[(k0 + k) * np + iy + first + off] = rows[iy * np + k0 + k];
+      for (std::size_t k = 0; k < count; ++k)
+        spectrum[(k0 + k) * np + iy + first + off] = rows[iy * np + k0 + k];
   }
   detail::row_pass(spectrum.data(), half, np, FftDirection::forward, threads);
   const double e0 = spectrum[0].real();
   const double df = 1.0 / (np * dx);
-  auto signed_index = [np](std::size_t k) { return k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np; };
+  auto signed_index = [np](std::size_t k) {
+    return k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np;
+  };
 
   // Frequencies where the beam spectrum exceeds 1e-13 of its peak bound the table of OTF x disc^
   // (a 1e-10 cut already moves G by 1e-6 at 1000 m); |f| is the same at -f.
   // Each column is searched from its highest |fy| down, and only while it can still raise the maximum.
   double f2_max = 0.0;
   for (std::size_t kx = 0; kx < half; ++kx) {
-    detail::cancellation_point();  // np^2 / 2 samples at most: seconds for the largest grids on a busy core
+    detail::
+        cancellation_point();  // np^2 / 2 samples at most: seconds for the largest grids on a busy core
     const double fx = signed_index(kx);
     const Complex* column = spectrum.data() + kx * np;
     for (std::size_t a = np / 2 + 1; a-- > 0;) {  // |fy| = a, rows a and np - a
       const double f2 = fx * fx + double(a) * double(a);
       if (f2 <= f2_max) break;
-      if (std::norm(column[a]) > 1e-26 * e0 * e0 || (a > 0 && a < np / 2 && std::norm(column[np - a]) > 1e-26 * e0 * e0)) {
+      if (std::norm(column[a]) > 1e-26 * e0 * e0 ||
+          (a > 0 && a < np / 2 && std::norm(column[np - a]) > 1e-26 * e0 * e0)) {
         f2_max = f2;
         break;
       }
@@ -83,13 +90,15 @@ double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, s
   // terms in a loop the compiler vectorises.
   const std::size_t rows_half = np / 2 + 1;
   std::vector<double> fy2(rows_half), t(rows_half);
-  for (std::size_t ky = 0; ky < rows_half; ++ky) fy2[ky] = (df * static_cast<double>(ky)) * (df * static_cast<double>(ky));
+  for (std::size_t ky = 0; ky < rows_half; ++ky)
+    fy2[ky] = (df * static_cast<double>(ky)) * (df * static_cast<double>(ky));
   const double inverse_to_image = 1.0 / to_image;
   double sum = 0.0;
   for (std::size_t kx = 0; kx < half; ++kx) {
     detail::cancellation_point();
     const double fx = df * signed_index(kx), fx2 = fx * fx;
-    if (std::abs(fx) * inverse_to_image >= q_max) continue;  // every q in this column is beyond the table
+    if (std::abs(fx) * inverse_to_image >= q_max)
+      continue;               // every q in this column is beyond the table
     std::size_t rows_in = 0;  // rows ky < rows_in have q < q_max (q grows with ky)
     for (; rows_in < rows_half; ++rows_in) {
       const double q = std::sqrt(fx2 + fy2[rows_in]) * inverse_to_image;
@@ -118,7 +127,8 @@ double parseval_sum(const LidarSystem& system, const FoReceiver& rx, double z, s
 
 }  // namespace
 
-double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z, std::size_t np) {
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z,
+                               double z, std::size_t np) {
   if (np == 0 || !rx.passes_light()) return 0.0;
   const std::size_t nb = at_z.n;
   // Rows below 1e-20 of the total power (together at most nb 1e-20 of G) are left out of the transform.
@@ -131,8 +141,9 @@ double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, 
   std::size_t first = 0, last = nb;
   while (first < last && row_power[first] <= 1e-20 * total) ++first;
   while (last > first && row_power[last - 1] <= 1e-20 * total) --last;
-  return parseval_sum(system, rx, z, np, nb, at_z.spacing, first, last,
-                      [&](std::size_t iy, std::size_t ix) { return std::norm(at_z.values[iy * nb + ix]); });
+  return parseval_sum(
+      system, rx, z, np, nb, at_z.spacing, first, last,
+      [&](std::size_t iy, std::size_t ix) { return std::norm(at_z.values[iy * nb + ix]); });
 }
 
 std::size_t even_fast_fft_size(std::size_t n) {
@@ -143,37 +154,44 @@ std::size_t even_fast_fft_size(std::size_t n) {
 
 ShiftPhases::ShiftPhases(std::size_t np, double df, Vec2 shift) : x(np), y(np) {
   for (std::size_t k = 0; k < np; ++k) {
-    const double sign = (k % 2) ? -1.0 : 1.0, f = df * (k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np);
+    const double sign = (k % 2) ? -1.0 : 1.0,
+                 f = df * (k < np / 2 ? static_cast<double>(k) : static_cast<double>(k) - np);
     x[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.x);
     y[k] = sign * std::polar(1.0, 2.0 * kPi * f * shift.y);
   }
 }
 
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
-                          double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
-                          double tail_error, bool any_fast_size) {
+                          double radius_bound, std::size_t n, std::size_t max_grid,
+                          std::size_t range_index, double tail_error, bool any_fast_size) {
   // The frequency spacing 1/(n dx) sets the period (on the detector plane) of the sum's aliases: it
   // must exceed the reach of the point image plus that of the beam image and the detector. Twice the
   // 1e-7 power radius (5.7 w for TEM00) leaves the beam's tails beyond it below 1e-30 of its power.
   if (!rx.passes_light()) return 0;  // G = 0: no grid
   const double to_image = rx.detector_distance() / z;
   const double reach = rx.blur_radius() + 20.0 / rx.cutoff() +
-                       norm(system.detector.offset + to_image * system.beam.center(z)) + system.detector.radius +
-                       2.0 * radius_bound * to_image;
+                       norm(system.detector.offset + to_image * system.beam.center(z)) +
+                       system.detector.radius + 2.0 * radius_bound * to_image;
   // The aliases also sit in the far diffraction tails of each other's point images: their period must
   // keep those below tail_error of G (1e-6: 4e-7 measured against a direct quadrature).
   const double period = 1.1 * reach + rx.tail_period(tail_error);
-  const std::size_t least = std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image))));
-  const std::size_t np = any_fast_size && least <= max_grid ? even_fast_fft_size(least) : next_power_of_two(least);
+  const std::size_t least =
+      std::max<std::size_t>(n, checks::saturate(std::ceil(period / (spacing * to_image))));
+  const std::size_t np =
+      any_fast_size && least <= max_grid ? even_fast_fft_size(least) : next_power_of_two(least);
   if (np > max_grid)
-    checks::fail(detail::range_name(range_index), z,
-                 "a range needing a beam spectrum grid of at most max_spectrum_grid = " + std::to_string(max_grid) +
-                     " (here " + std::to_string(np) + "): its alias period must hold, on the detector plane, the "
-                     "point image (blur radius " + checks::number(rx.blur_radius()) + " m), the beam image (offset " +
-                     checks::number(norm(system.detector.offset + to_image * system.beam.center(z))) + " m, radius " +
-                     checks::number(radius_bound * to_image) + " m) and the detector (" +
-                     checks::number(system.detector.radius) + " m); where the blur dominates the image is geometric and "
-                     "method 'rt' is exact, otherwise fo_path='radial' needs no grid");
+    checks::fail(
+        detail::range_name(range_index), z,
+        "a range needing a beam spectrum grid of at most max_spectrum_grid = " +
+            std::to_string(max_grid) + " (here " + std::to_string(np) +
+            "): its alias period must hold, on the detector plane, the "
+            "point image (blur radius " +
+            checks::number(rx.blur_radius()) + " m), the beam image (offset " +
+            checks::number(norm(system.detector.offset + to_image * system.beam.center(z))) +
+            " m, radius " + checks::number(radius_bound * to_image) + " m) and the detector (" +
+            checks::number(system.detector.radius) +
+            " m); where the blur dominates the image is geometric and "
+            "method 'rt' is exact, otherwise fo_path='radial' needs no grid");
   return np;
 }
 
@@ -206,15 +224,17 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
     const double z = ranges[i];
     receivers.emplace_back(system, z, detail::range_name(i));
     const FoReceiver& rx = receivers.back();
-    const std::size_t np = detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
-                                                 options.max_spectrum_grid, i, 5e-7, true);
+    const std::size_t np =
+        detail::spectrum_grid(system, rx, z, beam_at.spacing[i], beam_at.radius_bound[i], beam_at.n,
+                              options.max_spectrum_grid, i, 5e-7, true);
     out.spectrum_grid.push_back(np);
     // Each thread holds the beam field and its padded spectrum.
-    checks::memory("max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
-                   16.0 * threads * (double(np) * double(np) + double(beam_at.n) * double(beam_at.n)),
-                   detail::range_name(i) + " needs a " + std::to_string(np) +
-                       "^2 spectrum per thread: lower max_spectrum_grid (that range then raises), use fewer threads, "
-                       "or method 'rt' there");
+    checks::memory(
+        "max_spectrum_grid", static_cast<double>(options.max_spectrum_grid),
+        16.0 * threads * (double(np) * double(np) + double(beam_at.n) * double(beam_at.n)),
+        detail::range_name(i) + " needs a " + std::to_string(np) +
+            "^2 spectrum per thread: lower max_spectrum_grid (that range then raises), use fewer threads, "
+            "or method 'rt' there");
   }
 
   out.overlap.assign(n_ranges, 0.0);
@@ -228,16 +248,19 @@ FoOverlap overlap_over_ranges(const LidarSystem& system, const std::vector<doubl
       return;
     }
     Propagated at_z = beam_at.at(i);  // C1-C2, in the beam's own frame
-    out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i], out.spectrum_grid[i]);
+    out.overlap[i] = detail::overlap_from_irradiance(system, receivers[i], at_z.field, ranges[i],
+                                                     out.spectrum_grid[i]);
     out.beam_reports[i] = at_z.report;
   });
-  checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo", [&](std::size_t i) {
-    const PropagationReport& r = out.beam_reports[i];
-    const double loss = std::max({r.output_edge_power, r.input_edge_power, r.band_limit_loss});
-    return loss > 1e-6 ? "the transmitted field loses " + checks::number(loss) +
-                             " of its power to the window edge or the band limit: enlarge beam_window or beam_grid"
-                       : std::string();
-  });
+  checks::overlap_values(
+      out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo", [&](std::size_t i) {
+        const PropagationReport& r = out.beam_reports[i];
+        const double loss = std::max({r.output_edge_power, r.input_edge_power, r.band_limit_loss});
+        return loss > 1e-6
+                   ? "the transmitted field loses " + checks::number(loss) +
+                         " of its power to the window edge or the band limit: enlarge beam_window or beam_grid"
+                   : std::string();
+      });
   return out;
 }
 
@@ -259,12 +282,14 @@ constexpr double kNegligibleCut = 1e-20;
 // phase is left out), the reports' edge powers in closed form. The sampled field `waist` sets the radius
 // bound as in the general path. Empty where the window cuts or wraps more than kNegligibleCut of the power:
 // there the field is propagated, and its loss is reported.
-std::optional<FoOverlap> tem00_in_closed_form(const LidarSystem& system, const std::vector<double>& ranges,
-                                              const Field& waist, const FoOptions& options) {
+std::optional<FoOverlap> tem00_in_closed_form(const LidarSystem& system,
+                                              const std::vector<double>& ranges, const Field& waist,
+                                              const FoOptions& options) {
   const GaussianBeam& beam = system.beam;
   const std::size_t nb = waist.n;
   const double dx0 = waist.spacing, critical = nb * dx0 * dx0 / beam.wavelength;
-  const double border = static_cast<double>(std::max<std::size_t>(1, nb / 16)), half = 0.5 * static_cast<double>(nb);
+  const double border = static_cast<double>(std::max<std::size_t>(1, nb / 16)),
+               half = 0.5 * static_cast<double>(nb);
   if (outside_square(half * dx0, beam.waist_radius) > kNegligibleCut) return std::nullopt;
   const GridChoice extent = choose_grid(waist, 0.0, PropagationMethod::automatic);
   BeamAtRanges b;
@@ -289,30 +314,35 @@ std::optional<FoOverlap> tem00_in_closed_form(const LidarSystem& system, const s
     std::vector<double> g(nb);
     double sum_g = 0.0;
     for (std::size_t k = 0; k < nb; ++k) {
-      const double x = (static_cast<double>(k) - 0.5 * static_cast<double>(nb)) * dx, v = std::exp(-2.0 * x * x / (w * w));
+      const double x = (static_cast<double>(k) - 0.5 * static_cast<double>(nb)) * dx,
+                   v = std::exp(-2.0 * x * x / (w * w));
       g[k] = v < 1e-40 ? 0.0 : v;
       sum_g += g[k];
     }
-    std::size_t first = 0, last = nb;  // rows below 1e-20 of the power are left out, as for a sampled field
+    std::size_t first = 0,
+                last = nb;  // rows below 1e-20 of the power are left out, as for a sampled field
     while (first < last && g[first] <= 1e-20 * sum_g) ++first;
     while (last > first && g[last - 1] <= 1e-20 * sum_g) --last;
     return detail::parseval_sum(system, rx, ranges[i], np, nb, dx, first, last,
-                        [&](std::size_t iy, std::size_t ix) { return g[iy] * g[ix]; });
+                                [&](std::size_t iy, std::size_t ix) { return g[iy] * g[ix]; });
   };
   return overlap_over_ranges(system, ranges, b, options);
 }
 
 }  // namespace
 
-FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const FoOptions& options) {
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges,
+                     const FoOptions& options) {
   system.validate();
   const GaussianBeam& beam = system.beam;
   beam.validate_for_fourier_optics();
   if (options.beam_grid < 16 || options.beam_grid % 2)
     checks::fail("beam_grid", static_cast<double>(options.beam_grid), "an even grid size >= 16");
-  checks::grid("beam_grid", options.beam_grid, sizeof(Complex), 2 * detail::thread_count(options.threads));
+  checks::grid("beam_grid", options.beam_grid, sizeof(Complex),
+               2 * detail::thread_count(options.threads));
   // A window that holds the waist (+-1 w0), sampled at least once per waist radius.
-  if (!(options.beam_window >= 2.0 && options.beam_window <= static_cast<double>(options.beam_grid)))
+  if (!(options.beam_window >= 2.0 &&
+        options.beam_window <= static_cast<double>(options.beam_grid)))
     checks::fail("beam_window", options.beam_window,
                  "a window from 2 to beam_grid = " + std::to_string(options.beam_grid) +
                      " waist radii, so that the waist is sampled at least once per radius");
@@ -322,7 +352,8 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
   if (!beam.divergence || std::abs(*beam.divergence / theta_d - 1.0) <= 1e-9) {
     const double dx0 = options.beam_window * beam.waist_radius / nb;
     const Field waist = Field::gaussian(beam.wavelength, beam.waist_radius, nb, dx0);
-    if (std::optional<FoOverlap> closed = tem00_in_closed_form(system, ranges, waist, options)) return *closed;
+    if (std::optional<FoOverlap> closed = tem00_in_closed_form(system, ranges, waist, options))
+      return *closed;
     return overlap_fo(system, ranges, waist, options);
   }
   // M^2 > 1: a Gaussian Schell-model beam. Its coherent modes add incoherently to a Gaussian irradiance of
@@ -337,13 +368,14 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
     b.radius_bound.push_back(std::sqrt(std::log(1e7) / 2.0) * beam.radius(z));
   }
   b.at = [&](std::size_t i) {
-    return Propagated{Field::gaussian(beam.wavelength, beam.radius(ranges[i]), nb, b.spacing[i]), {}};
+    return Propagated{Field::gaussian(beam.wavelength, beam.radius(ranges[i]), nb, b.spacing[i]),
+                      {}};
   };
   return overlap_over_ranges(system, ranges, b, options);
 }
 
-FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const Field& given,
-                     const FoOptions& options) {
+FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges,
+                     const Field& given, const FoOptions& options) {
   system.validate();
   given.validate();
   // G does not depend on the field's power: carry it at unit power, so that no weak or strong field
@@ -376,8 +408,10 @@ FoOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& range
 double emitter_coupling_fo(const LidarSystem& system, double z, Vec2 position) {
   checks::coordinate("position", position);
   const FoReceiver rx(system, z);
-  std::vector<double> g{rx.point_coupling(norm(system.detector.offset + (rx.detector_distance() / z) * position))};
-  checks::overlap_values(g, {z}, 1e-6, "emitter_coupling_fo");  // the integral's accuracy, ~1e-10 of the area
+  std::vector<double> g{
+      rx.point_coupling(norm(system.detector.offset + (rx.detector_distance() / z) * position))};
+  checks::overlap_values(g, {z}, 1e-6,
+                         "emitter_coupling_fo");  // the integral's accuracy, ~1e-10 of the area
   return g[0];
 }
 

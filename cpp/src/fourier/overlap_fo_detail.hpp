@@ -17,8 +17,8 @@ inline constexpr double kFoOverlapSlack = 1e-4;
 
 // G at range z (m) from the beam field at_z in the beam's own frame (centred on system.beam.center(z)):
 // Parseval's sum over its irradiance spectrum zero-padded to np x np (see overlap_fo.hpp).
-double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z, double z,
-                               std::size_t np);
+double overlap_from_irradiance(const LidarSystem& system, const FoReceiver& rx, const Field& at_z,
+                               double z, std::size_t np);
 
 // The phase of the Parseval sum per axis, exp(2 pi i f shift) (-1)^k at the frequencies f = df k (k signed,
 // k >= np/2 taken as k - np) of an np-point padded grid: the beam image shifted by `shift` (m, beam plane)
@@ -34,8 +34,9 @@ struct ShiftPhases {
 // power of two, or with `any_fast_size` the least even 2^a 3^b 5^c 7^d that holds the alias period (up to
 // half the work per axis: the period only has to be reached, and FFTW transforms these sizes as fast).
 std::size_t spectrum_grid(const LidarSystem& system, const FoReceiver& rx, double z, double spacing,
-                          double radius_bound, std::size_t n, std::size_t max_grid, std::size_t range_index,
-                          double tail_error = 1e-6, bool any_fast_size = false);
+                          double radius_bound, std::size_t n, std::size_t max_grid,
+                          std::size_t range_index, double tail_error = 1e-6,
+                          bool any_fast_size = false);
 
 // Least even m >= n of the form 2^a 3^b 5^c 7^d.
 std::size_t even_fast_fft_size(std::size_t n);

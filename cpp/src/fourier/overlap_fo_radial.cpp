@@ -18,8 +18,8 @@
 
 namespace lidar_overlap {
 
-double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel, std::size_t* evaluations,
-                              const std::string& parameter) {
+double gaussian_image_overlap(const LidarSystem& system, double z, double periods_per_panel,
+                              std::size_t* evaluations, const std::string& parameter) {
   const FoReceiver rx(system, z, parameter);
   const double q_cut = rx.cutoff();
   if (q_cut == 0.0) return 0.0;
@@ -31,16 +31,21 @@ double gaussian_image_overlap(const LidarSystem& system, double z, double period
   const double frequency = system.detector.radius + rx.blur_radius() + offset + 4.0 / q_cut;
   const std::size_t panels =
       1 + checks::count_from(q_end * frequency / periods_per_panel, kMaxRadialPanels, parameter, z,
-                             "quadrature panels: the detector, blur and image offset span " + checks::number(frequency) +
-                                 " m against an image resolution of " + checks::number(1.0 / q_end) +
+                             "quadrature panels: the detector, blur and image offset span " +
+                                 checks::number(frequency) + " m against an image resolution of " +
+                                 checks::number(1.0 / q_end) +
                                  " m; the image is geometric there, where method 'rt' is exact");
-  checks::count_from(24.0 * double(panels) * rx.otf_cost(), static_cast<std::size_t>(FoReceiver::kMaxOtfWork), parameter, z,
-                     "Bessel terms (" + std::to_string(panels) + " panels of 24 OTF evaluations with a defocus phase of " +
-                         checks::number(rx.otf_cost()) + " rad across the pupil); the image is geometric there, where "
+  checks::count_from(24.0 * double(panels) * rx.otf_cost(),
+                     static_cast<std::size_t>(FoReceiver::kMaxOtfWork), parameter, z,
+                     "Bessel terms (" + std::to_string(panels) +
+                         " panels of 24 OTF evaluations with a defocus phase of " +
+                         checks::number(rx.otf_cost()) +
+                         " rad across the pupil); the image is geometric there, where "
                          "method 'rt' is exact");
   // The annular OTF has kinks where one shifted disc leaves the other: shifts R -+ r_obs and 2 r_obs.
   std::vector<double> edges;
-  for (std::size_t i = 0; i <= panels; ++i) edges.push_back(q_end * static_cast<double>(i) / panels);
+  for (std::size_t i = 0; i <= panels; ++i)
+    edges.push_back(q_end * static_cast<double>(i) / panels);
   const double to_q = 1.0 / (system.beam.wavelength * rx.detector_distance());
   const AnnularPupil& p = rx.pupil();
   for (double v : {p.outer - p.inner, p.outer + p.inner, 2.0 * p.inner})
@@ -78,8 +83,8 @@ RadialFoOverlap overlap_fo_radial(const LidarSystem& system, const std::vector<d
   out.overlap.assign(ranges.size(), 0.0);
   out.evaluations.assign(ranges.size(), 0);
   detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
-    out.overlap[i] = gaussian_image_overlap(system, ranges[i], options.periods_per_panel, &out.evaluations[i],
-                                            detail::range_name(i));
+    out.overlap[i] = gaussian_image_overlap(system, ranges[i], options.periods_per_panel,
+                                            &out.evaluations[i], detail::range_name(i));
   });
   checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, "overlap_fo_radial");
   return out;

@@ -94,20 +94,26 @@ inline Complex times(Complex a, Complex b) {
 class ExtentSums {
  public:
   ExtentSums(std::size_t n, int threads, bool radial)
-      : n_(n), border_(std::max<std::size_t>(1, n / 16)), total_(n), edge_(n),
+      : n_(n),
+        border_(std::max<std::size_t>(1, n / 16)),
+        total_(n),
+        edge_(n),
         radial_(radial ? threads : 0, std::vector<double>(4 * n + 2, 0.0)) {}
 
   // Line i holding its final values v[0..n).
   void add(std::size_t i, const Complex* v) {
     const double total = power(v, n_);
     total_[i] = total;
-    edge_[i] = (i < border_ || i >= n_ - border_) ? total : power(v, border_) + power(v + n_ - border_, border_);
+    edge_[i] = (i < border_ || i >= n_ - border_)
+                   ? total
+                   : power(v, border_) + power(v + n_ - border_, border_);
     // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
     // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
     if (radial_.empty() || i % 2) return;
     std::vector<double>& bins = radial_[omp_get_thread_num()];
     const std::size_t last = bins.size() - 1;
-    const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half, per_bin = 8.0 / n_;
+    const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half,
+                 per_bin = 8.0 / n_;
     for (std::size_t j = 0; j < n_; j += 2) {
       const double w = static_cast<double>(j) - half;
       // a signed conversion (one instruction; the unsigned one branches): the same bin for these sums >= 0
@@ -134,7 +140,8 @@ class ExtentSums {
 };
 
 // u[iy, ix] *= scale * a[iy] * a[ix], and the Extent of the result (the chirp-z path's multiplications).
-Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a, Complex scale) {
+Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a,
+                       Complex scale) {
   const int threads = fft_threads(n * n);
   ExtentSums sums(n, threads, true);
   detail::RegionStop stop;
@@ -152,13 +159,15 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
 
 void require_finite(double power, double distance) {
   if (!std::isfinite(power))
-    throw std::domain_error("propagate: the field holds non-finite values after " + checks::number(distance) +
-                            " m: its input was not finite, or the distance and sampling leave double precision");
+    throw std::domain_error(
+        "propagate: the field holds non-finite values after " + checks::number(distance) +
+        " m: its input was not finite, or the distance and sampling leave double precision");
 }
 
 // The Fresnel and Fraunhofer report from the extents of the input and the output.
-void fresnel_report(PropagationReport& r, const Extent& before, const Extent& after, bool scaled_output,
-                    double spacing, double output_spacing, double wavelength, double distance) {
+void fresnel_report(PropagationReport& r, const Extent& before, const Extent& after,
+                    bool scaled_output, double spacing, double output_spacing, double wavelength,
+                    double distance) {
   require_finite(after.total, distance);
   r.input_edge_power = before.edge_fraction();
   r.output_edge_power = after.edge_fraction();
@@ -168,7 +177,8 @@ void fresnel_report(PropagationReport& r, const Extent& before, const Extent& af
   const double a_out = after.radius(kSupportFraction, output_spacing);
   const double k = 2.0 * kPi / wavelength;
   r.chirp_phase_step = r.method == PropagationMethod::fresnel ? k * a_in * spacing / distance : 0.0;
-  r.fresnel_phase_error = kPi / (4.0 * wavelength) * std::pow(a_in + a_out, 4) / std::pow(distance, 3);
+  r.fresnel_phase_error =
+      kPi / (4.0 * wavelength) * std::pow(a_in + a_out, 4) / std::pow(distance, 3);
   r.fraunhofer_phase = kPi * a_in * a_in / (wavelength * distance);
 }
 
@@ -176,10 +186,16 @@ void fresnel_report(PropagationReport& r, const Extent& before, const Extent& af
 
 PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelength, double distance,
                                  PropagationMethod method, double output_spacing)
-    : n_(n), spacing_(spacing), wavelength_(wavelength), distance_(distance), output_spacing_(output_spacing) {
+    : n_(n),
+      spacing_(spacing),
+      wavelength_(wavelength),
+      distance_(distance),
+      output_spacing_(output_spacing) {
   if (n < 8 || n % 2 != 0 || n > kMaxGridSide)
-    checks::fail("field.n", static_cast<double>(n), "an even grid size from 8 to " + std::to_string(kMaxGridSide));
-  checks::grid("field.n", n, sizeof(Complex), 3);  // the field, the transfer function or chirps, a copy
+    checks::fail("field.n", static_cast<double>(n),
+                 "an even grid size from 8 to " + std::to_string(kMaxGridSide));
+  checks::grid("field.n", n, sizeof(Complex),
+               3);  // the field, the transfer function or chirps, a copy
   checks::length("field.spacing", spacing);
   checks::length("field.wavelength", wavelength);
   checks::coordinate("distance", distance);
@@ -188,8 +204,9 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
   critical_distance_ = n * spacing * spacing / wavelength;
   if (method == PropagationMethod::automatic) {
     const bool natural_as = output_spacing == 0.0 || output_spacing == spacing;
-    method = (natural_as && std::abs(distance) <= critical_distance_) ? PropagationMethod::angular_spectrum
-                                                                      : PropagationMethod::fresnel;
+    method = (natural_as && std::abs(distance) <= critical_distance_)
+                 ? PropagationMethod::angular_spectrum
+                 : PropagationMethod::fresnel;
   }
   if (distance == 0.0) method = PropagationMethod::angular_spectrum;  // the identity
   method_ = method;
@@ -197,8 +214,9 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
 
   if (method == PropagationMethod::angular_spectrum) {
     if (output_spacing != 0.0 && output_spacing != spacing)
-      checks::fail("output_spacing", output_spacing,
-                   "0 or the input spacing for the angular spectrum method (its output grid is the input grid)");
+      checks::fail(
+          "output_spacing", output_spacing,
+          "0 or the input spacing for the angular spectrum method (its output grid is the input grid)");
     output_spacing_ = spacing;
     // A1: exp(i k z sqrt(1 - lambda^2 f^2)), zero for evanescent waves and beyond the band limit
     // 1 / (lambda sqrt((2 df z)^2 + 1)) where its phase would alias on the frequency grid. The FFT
@@ -231,18 +249,22 @@ PropagationPlan::PropagationPlan(std::size_t n, double spacing, double wavelengt
   if (output_spacing_ == 0.0) output_spacing_ = natural;
   single_fft_ = std::abs(output_spacing_ / natural - 1.0) < 1e-12;
   // A5 / A7: U2(x) = exp(ikz)/(i lambda z) exp(ik x^2/2z) dx^2 DFT[U1 (exp(ik xi^2/2z) for A5)].
-  if (method == PropagationMethod::fresnel) chirp_in_ = axis_chirp(n, spacing, k, z, single_fft_);
-  else if (single_fft_) chirp_in_ = axis_chirp(n, spacing, 0.0, z, true);  // the centring sign only
+  if (method == PropagationMethod::fresnel)
+    chirp_in_ = axis_chirp(n, spacing, k, z, single_fft_);
+  else if (single_fft_)
+    chirp_in_ = axis_chirp(n, spacing, 0.0, z, true);  // the centring sign only
   chirp_out_ = axis_chirp(n, output_spacing_, k, z, single_fft_);
   front_ = unit_phasor(k * z) * Complex(0.0, -1.0) * (spacing * spacing / (wavelength * z));
 }
 
-std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, double spacing, double wavelength,
-                                                              double distance, PropagationMethod method,
-                                                              double output_spacing) {
+std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, double spacing,
+                                                               double wavelength, double distance,
+                                                               PropagationMethod method,
+                                                               double output_spacing) {
   using Key = std::tuple<std::size_t, double, double, double, int, double>;
   static std::mutex mutex;
-  static std::list<std::pair<Key, std::shared_ptr<const PropagationPlan>>> recent;  // most recent first
+  static std::list<std::pair<Key, std::shared_ptr<const PropagationPlan>>>
+      recent;  // most recent first
   constexpr std::size_t kCapacity = 16;
   const Key key{n, spacing, wavelength, distance, static_cast<int>(method), output_spacing};
   {
@@ -253,7 +275,8 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
         return recent.front().second;
       }
   }
-  auto plan = std::make_shared<const PropagationPlan>(n, spacing, wavelength, distance, method, output_spacing);
+  auto plan = std::make_shared<const PropagationPlan>(n, spacing, wavelength, distance, method,
+                                                      output_spacing);
   std::lock_guard<std::mutex> lock(mutex);
   recent.emplace_front(key, plan);
   // At most kCapacity plans and kCapacityBytes of tables (a transfer function of 8192^2 is 1 GiB): the least
@@ -274,10 +297,13 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
 Propagated PropagationPlan::execute(Field in) const {
   in.validate();
   if (in.n != n_ || in.spacing != spacing_ || in.wavelength != wavelength_)
-    checks::fail("field.n", static_cast<double>(in.n), "the grid, spacing and wavelength the plan was made for");
+    checks::fail("field.n", static_cast<double>(in.n),
+                 "the grid, spacing and wavelength the plan was made for");
   Propagated out;
   ComplexBuffer& u = in.values;  // the field is ours: transform it in place
-  out.report = single_fft_ || method_ == PropagationMethod::angular_spectrum ? execute(u.data(), u.data()) : scaled(u);
+  out.report = single_fft_ || method_ == PropagationMethod::angular_spectrum
+                   ? execute(u.data(), u.data())
+                   : scaled(u);
   out.field = Field{std::move(u), n_, output_spacing_, wavelength_};
   return out;
 }
@@ -312,37 +338,41 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
         detail::row_pass_from(in, out, n, n, FftDirection::forward, threads,
                               [&](std::size_t iy, const Complex* row) { input.add(iy, row); });
       else
-        detail::row_pass_into(out, n, n, FftDirection::forward, threads,
-                              [&](std::size_t iy, Complex* line) {
-                                std::copy(in + iy * n, in + (iy + 1) * n, line);
-                                input.add(iy, line);
-                              },
-                              [](std::size_t, Complex*) {});
-      const BlockTransform forward(n, FftDirection::forward, n), backward(n, FftDirection::backward, n);
-      detail::column_pass(out, n, n, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
-        const std::size_t stride = detail::column_stride(n);
-        Complex* k = detail::column_buffer(n);
-        for (std::size_t c = 0; c < count; ++c) {
-          Complex* column = block + c * stride;
-          forward(column, k, 1);
-          const Complex* h = transfer_.data() + (x0 + c) * n;
-          // Only the band edge is zero: the power it removes is summed where h vanishes, the rest multiplied.
-          double cut = 0.0;
-          spectrum[x0 + c] = power(k, n);
-          for (std::size_t ky = 0; ky < n; ++ky) {
-            if (h[ky] == Complex{}) cut += std::norm(k[ky]);
-            k[ky] = times(k[ky], h[ky]);
-          }
-          removed[x0 + c] = cut;
-          backward(k, column, 1);
-        }
-      });
+        detail::row_pass_into(
+            out, n, n, FftDirection::forward, threads,
+            [&](std::size_t iy, Complex* line) {
+              std::copy(in + iy * n, in + (iy + 1) * n, line);
+              input.add(iy, line);
+            },
+            [](std::size_t, Complex*) {});
+      const BlockTransform forward(n, FftDirection::forward, n),
+          backward(n, FftDirection::backward, n);
+      detail::column_pass(out, n, n, threads,
+                          [&](std::size_t x0, std::size_t count, Complex* block) {
+                            const std::size_t stride = detail::column_stride(n);
+                            Complex* k = detail::column_buffer(n);
+                            for (std::size_t c = 0; c < count; ++c) {
+                              Complex* column = block + c * stride;
+                              forward(column, k, 1);
+                              const Complex* h = transfer_.data() + (x0 + c) * n;
+                              // Only the band edge is zero: the power it removes is summed where h vanishes, the rest multiplied.
+                              double cut = 0.0;
+                              spectrum[x0 + c] = power(k, n);
+                              for (std::size_t ky = 0; ky < n; ++ky) {
+                                if (h[ky] == Complex{}) cut += std::norm(k[ky]);
+                                k[ky] = times(k[ky], h[ky]);
+                              }
+                              removed[x0 + c] = cut;
+                              backward(k, column, 1);
+                            }
+                          });
       const Complex* spectrum_rows = out;
-      detail::row_pass_into(out, n, n, FftDirection::backward, threads,
-                            [&](std::size_t iy, Complex* line) {
-                              std::copy(spectrum_rows + iy * n, spectrum_rows + (iy + 1) * n, line);
-                            },
-                            [&](std::size_t iy, Complex* line) { output.add(iy, line); });
+      detail::row_pass_into(
+          out, n, n, FftDirection::backward, threads,
+          [&](std::size_t iy, Complex* line) {
+            std::copy(spectrum_rows + iy * n, spectrum_rows + (iy + 1) * n, line);
+          },
+          [&](std::size_t iy, Complex* line) { output.add(iy, line); });
       double spectrum_total = 0.0, removed_total = 0.0;
       for (std::size_t k = 0; k < n; ++k) {
         spectrum_total += spectrum[k];
@@ -370,14 +400,16 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
   // Both passes out of place (FFTW's in-place plans copy through a buffer of their own): each row of `in`,
   // chirped, into a block that is transformed into the rows of `out`; each gathered column into a one-column
   // buffer, chirped on its way back.
-  detail::row_pass_into(out, n, n, FftDirection::forward, threads,
-                        [&](std::size_t iy, Complex* line) {
-                          const Complex row = chirp_in_[iy];
-                          const Complex* from = in + iy * n;
-                          for (std::size_t ix = 0; ix < n; ++ix) line[ix] = times(from[ix], times(row, chirp_in_[ix]));
-                          input.add(iy, line);
-                        },
-                        [](std::size_t, Complex*) {});
+  detail::row_pass_into(
+      out, n, n, FftDirection::forward, threads,
+      [&](std::size_t iy, Complex* line) {
+        const Complex row = chirp_in_[iy];
+        const Complex* from = in + iy * n;
+        for (std::size_t ix = 0; ix < n; ++ix)
+          line[ix] = times(from[ix], times(row, chirp_in_[ix]));
+        input.add(iy, line);
+      },
+      [](std::size_t, Complex*) {});
   const BlockTransform columns(n, FftDirection::forward, n);
   detail::column_pass(out, n, n, threads, [&](std::size_t x0, std::size_t count, Complex* block) {
     const std::size_t stride = detail::column_stride(n);
@@ -386,11 +418,13 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
       Complex* column = block + c * stride;
       columns(column, transformed, 1);
       const Complex scale = front_ * chirp_out_[x0 + c];
-      for (std::size_t ky = 0; ky < n; ++ky) column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
+      for (std::size_t ky = 0; ky < n; ++ky)
+        column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
       output.add(x0 + c, column);
     }
   });
-  fresnel_report(r, input.result(), output.result(), false, spacing_, output_spacing_, wavelength_, distance_);
+  fresnel_report(r, input.result(), output.result(), false, spacing_, output_spacing_, wavelength_,
+                 distance_);
   return r;
 }
 
@@ -407,7 +441,8 @@ PropagationReport PropagationPlan::scaled(ComplexBuffer& u) const {
 }
 
 Propagated propagate(Field in, double distance, PropagationMethod method, double output_spacing) {
-  const auto plan = PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing);
+  const auto plan =
+      PropagationPlan::cached(in.n, in.spacing, in.wavelength, distance, method, output_spacing);
   return plan->execute(std::move(in));  // which checks that the output is finite
 }
 

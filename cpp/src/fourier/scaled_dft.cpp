@@ -37,7 +37,7 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
   // the transforms ask for it themselves.
   ComplexBuffer work = detail::zeroed_buffer(rows * len);
   detail::RegionStop in_stop, out_stop;
-#pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows* len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r) {
     if (in_stop.stopped()) continue;
     for (std::size_t i = 0; i < n; ++i)
@@ -45,18 +45,19 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
   }
   in_stop.rethrow();
   fft_rows(work, rows, len, FftDirection::forward);
-#pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows* len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r)
     for (std::size_t i = 0; i < len; ++i) work[r * len + i] *= kernel[i];
   fft_rows(work, rows, len, FftDirection::backward);
 
   ComplexBuffer out = detail::zeroed_buffer(rows * m);
   const double scale = 1.0 / static_cast<double>(len);
-#pragma omp parallel for num_threads(threads_for(rows * len)) if (rows * len >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows* len)) if (rows * len >= kParallelPoints)
   for (long r = 0; r < static_cast<long>(rows); ++r) {
     if (out_stop.stopped()) continue;
     for (std::size_t j = 0; j < m; ++j)
-      out[r * m + j] = scale * work[r * len + j + n - 1] * std::conj(chirp(alpha, static_cast<double>(j) - half_m));
+      out[r * m + j] = scale * work[r * len + j + n - 1] *
+                       std::conj(chirp(alpha, static_cast<double>(j) - half_m));
   }
   out_stop.rethrow();
   return out;
@@ -64,7 +65,7 @@ ComplexBuffer chirp_z_rows(const ComplexBuffer& in, std::size_t rows, std::size_
 
 ComplexBuffer transpose(const ComplexBuffer& a, std::size_t rows, std::size_t cols) {
   ComplexBuffer t = detail::zeroed_buffer(rows * cols);
-#pragma omp parallel for num_threads(threads_for(rows * cols)) if (rows * cols >= kParallelPoints)
+#pragma omp parallel for num_threads(threads_for(rows* cols)) if (rows * cols >= kParallelPoints)
   for (long c = 0; c < static_cast<long>(cols); ++c)
     for (std::size_t r = 0; r < rows; ++r) t[c * rows + r] = a[r * cols + c];
   return t;
@@ -73,9 +74,11 @@ ComplexBuffer transpose(const ComplexBuffer& a, std::size_t rows, std::size_t co
 }  // namespace
 
 ComplexBuffer scaled_dft2d(const ComplexBuffer& in, std::size_t n, std::size_t m, double alpha) {
-  if (n % 2 || m % 2 || in.size() != n * n) throw std::invalid_argument("scaled_dft2d: n, m even, in n x n");
-  const ComplexBuffer along_x = chirp_z_rows(in, n, n, m, alpha);                 // n rows (y) x m (x)
-  const ComplexBuffer along_y = chirp_z_rows(transpose(along_x, n, m), m, n, m, alpha);  // m (x) x m (y)
+  if (n % 2 || m % 2 || in.size() != n * n)
+    throw std::invalid_argument("scaled_dft2d: n, m even, in n x n");
+  const ComplexBuffer along_x = chirp_z_rows(in, n, n, m, alpha);  // n rows (y) x m (x)
+  const ComplexBuffer along_y =
+      chirp_z_rows(transpose(along_x, n, m), m, n, m, alpha);  // m (x) x m (y)
   return transpose(along_y, m, m);
 }
 

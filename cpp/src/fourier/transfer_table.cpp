@@ -32,28 +32,36 @@ TransferTable::TransferTable(const LidarSystem& system, const FoReceiver& rx, do
   // obstruction r, R -+ r and 2 r) but only algebraic next to them: panels end there, and a panel that
   // touches a kink other than q = 0 is evaluated point by point.
   const AnnularPupil& p = rx.pupil();
-  const double to_q = 1.0 / (system.beam.wavelength * rx.detector_distance()), q_end = (last - 2) * h;
+  const double to_q = 1.0 / (system.beam.wavelength * rx.detector_distance()),
+               q_end = (last - 2) * h;
   std::vector<double> kinks{2.0 * p.outer * to_q};
   if (p.inner > 0.0)
-    for (double v : {p.outer - p.inner, p.outer + p.inner, 2.0 * p.inner}) kinks.push_back(v * to_q);
+    for (double v : {p.outer - p.inner, p.outer + p.inner, 2.0 * p.inner})
+      kinks.push_back(v * to_q);
   std::vector<double> edges{0.0, q_end};
   for (double k : kinks)
     if (k > 0.0 && k < q_end) edges.push_back(k);
   std::sort(edges.begin(), edges.end());
   // Fastest oscillation of T: the detector disc's plus the point image's (blur and diffraction scale).
-  const double bandwidth = r_d + rx.blur_radius() + 4.0 / rx.cutoff(), panel_length = kPanelPeriods / bandwidth;
+  const double bandwidth = r_d + rx.blur_radius() + 4.0 / rx.cutoff(),
+               panel_length = kPanelPeriods / bandwidth;
   std::vector<double> node_q(kPanelNodes), node_t(kPanelNodes), weight(kPanelNodes);
   for (std::size_t k = 0; k < kPanelNodes; ++k)  // barycentric weights of the second-kind nodes
     weight[k] = (k % 2 ? -1.0 : 1.0) * ((k == 0 || k + 1 == kPanelNodes) ? 0.5 : 1.0);
   std::size_t t = 2;  // next table node to fill
   for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
     const double a0 = edges[e], b0 = edges[e + 1];
-    const std::size_t pieces = std::max<std::size_t>(1, checks::saturate(std::ceil((b0 - a0) / panel_length)));
+    const std::size_t pieces =
+        std::max<std::size_t>(1, checks::saturate(std::ceil((b0 - a0) / panel_length)));
     for (std::size_t piece = 0; piece < pieces; ++piece) {
-      const double a = a0 + (b0 - a0) * piece / pieces, b = piece + 1 == pieces ? b0 : a0 + (b0 - a0) * (piece + 1) / pieces;
+      const double a = a0 + (b0 - a0) * piece / pieces,
+                   b = piece + 1 == pieces ? b0 : a0 + (b0 - a0) * (piece + 1) / pieces;
       std::size_t stop = t;  // table nodes in [a, b] (the last panel takes the end)
-      while (stop <= last && ((stop - 2.0) * h <= b || (e + 2 == edges.size() && piece + 1 == pieces))) ++stop;
-      const bool near_kink = (a0 > 0.0 && piece == 0 && e > 0) || (piece + 1 == pieces && e + 2 < edges.size());
+      while (stop <= last &&
+             ((stop - 2.0) * h <= b || (e + 2 == edges.size() && piece + 1 == pieces)))
+        ++stop;
+      const bool near_kink =
+          (a0 > 0.0 && piece == 0 && e > 0) || (piece + 1 == pieces && e + 2 < edges.size());
       if (near_kink || stop - t <= kPanelNodes) {
         for (; t < stop; ++t) table_[t] = exact((t - 2.0) * h);
         continue;

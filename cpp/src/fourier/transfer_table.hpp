@@ -32,7 +32,8 @@ class TransferTable {
     const double x = pos - j, a = x + 2.0, b = x + 1.0, d = x - 1.0, e = x - 2.0, f = x - 3.0;
     const double ab = a * b, de = d * e, xf = x * f;
     return (ab * (de * (x * p[5] - 10.0 * f * p[2]) + xf * (10.0 * e * p[3] - 5.0 * d * p[4])) +
-            de * xf * (5.0 * a * p[1] - b * p[0])) * (1.0 / 120.0);
+            de * xf * (5.0 * a * p[1] - b * p[0])) *
+           (1.0 / 120.0);
   }
 
  private:

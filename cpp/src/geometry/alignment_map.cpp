@@ -19,15 +19,18 @@ namespace lidar_overlap {
 
 namespace {
 
-constexpr AlignmentParameter kParameters[] = {
-    AlignmentParameter::tilt_x,           AlignmentParameter::tilt_y,
-    AlignmentParameter::beam_offset_x,    AlignmentParameter::beam_offset_y,
-    AlignmentParameter::detector_offset_x, AlignmentParameter::detector_offset_y,
-    AlignmentParameter::defocus};
+constexpr AlignmentParameter kParameters[] = {AlignmentParameter::tilt_x,
+                                              AlignmentParameter::tilt_y,
+                                              AlignmentParameter::beam_offset_x,
+                                              AlignmentParameter::beam_offset_y,
+                                              AlignmentParameter::detector_offset_x,
+                                              AlignmentParameter::detector_offset_y,
+                                              AlignmentParameter::defocus};
 
 std::string valid_names() {
   std::string s;
-  for (AlignmentParameter p : kParameters) s += (s.empty() ? "" : ", ") + std::string(alignment_parameter_name(p));
+  for (AlignmentParameter p : kParameters)
+    s += (s.empty() ? "" : ", ") + std::string(alignment_parameter_name(p));
   return s;
 }
 
@@ -41,12 +44,13 @@ void check_axis(const LidarSystem& system, const AlignmentAxis& axis) {
     const std::string item = name + "[" + std::to_string(i) + "]";
     checks::finite(item, axis.values[i]);
     if (i > 0 && !(axis.values[i] > axis.values[i - 1]))
-      checks::fail(item, axis.values[i], "values strictly increasing: above " + checks::number(axis.values[i - 1]));
+      checks::fail(item, axis.values[i],
+                   "values strictly increasing: above " + checks::number(axis.values[i - 1]));
     try {
       misaligned(system, axis.parameter, axis.values[i]).validate();
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(item + " = " + checks::number(axis.values[i]) + " makes an invalid system: " +
-                                  e.what());
+      throw std::invalid_argument(item + " = " + checks::number(axis.values[i]) +
+                                  " makes an invalid system: " + e.what());
     }
   }
 }
@@ -64,9 +68,10 @@ bool moves_beam_only(AlignmentParameter p) {
 // the same distance from S (the mirror images of a symmetric grid: a 41 x 41 tilt map of a coaxial lidar has
 // 231 distinct distances) are traced once.
 template <class PointSystem>
-std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std::vector<AlignmentAxis>& axes,
-                                            const std::vector<double>& ranges, const PointSystem& point_system,
-                                            int threads) {
+std::vector<std::size_t> equivalent_entries(const LidarSystem& system,
+                                            const std::vector<AlignmentAxis>& axes,
+                                            const std::vector<double>& ranges,
+                                            const PointSystem& point_system, int threads) {
   const std::size_t n_ranges = ranges.size(), points = [&] {
     std::size_t p = 1;
     for (const AlignmentAxis& a : axes) p *= a.values.size();
@@ -83,7 +88,8 @@ std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std
     std::memcpy(&b, &x, sizeof b);
     return b;
   };
-  std::vector<Receiver> receivers;  // built before the parallel region (the beam does not enter them)
+  std::vector<Receiver>
+      receivers;  // built before the parallel region (the beam does not enter them)
   for (std::size_t z = 0; z < ranges.size(); ++z) {
     detail::cancellation_point_every(z);
     receivers.emplace_back(system, ranges[z]);
@@ -108,7 +114,8 @@ std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std
       keys[p] = k;
       order[p] = p;
     }
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
     for (std::size_t i = 1; i < points; ++i)
       if (keys[order[i]] == keys[order[i - 1]])
         source[order[i] * n_ranges + z] = source[order[i - 1] * n_ranges + z];
@@ -120,34 +127,56 @@ std::vector<std::size_t> equivalent_entries(const LidarSystem& system, const std
 
 const char* alignment_parameter_name(AlignmentParameter p) {
   switch (p) {
-    case AlignmentParameter::tilt_x: return "tilt_x";
-    case AlignmentParameter::tilt_y: return "tilt_y";
-    case AlignmentParameter::beam_offset_x: return "beam_offset_x";
-    case AlignmentParameter::beam_offset_y: return "beam_offset_y";
-    case AlignmentParameter::detector_offset_x: return "detector_offset_x";
-    case AlignmentParameter::detector_offset_y: return "detector_offset_y";
-    case AlignmentParameter::defocus: return "defocus";
+    case AlignmentParameter::tilt_x:
+      return "tilt_x";
+    case AlignmentParameter::tilt_y:
+      return "tilt_y";
+    case AlignmentParameter::beam_offset_x:
+      return "beam_offset_x";
+    case AlignmentParameter::beam_offset_y:
+      return "beam_offset_y";
+    case AlignmentParameter::detector_offset_x:
+      return "detector_offset_x";
+    case AlignmentParameter::detector_offset_y:
+      return "detector_offset_y";
+    case AlignmentParameter::defocus:
+      return "defocus";
   }
   return "?";
 }
 
-AlignmentParameter alignment_parameter_from_name(const std::string& name, const std::string& parameter) {
+AlignmentParameter alignment_parameter_from_name(const std::string& name,
+                                                 const std::string& parameter) {
   for (AlignmentParameter p : kParameters)
     if (name == alignment_parameter_name(p)) return p;
-  throw std::invalid_argument(parameter + ": '" + name + "' is not an alignment parameter: expected one of " +
-                              valid_names());
+  throw std::invalid_argument(parameter + ": '" + name +
+                              "' is not an alignment parameter: expected one of " + valid_names());
 }
 
 LidarSystem misaligned(const LidarSystem& system, AlignmentParameter p, double delta) {
   LidarSystem s = system;
   switch (p) {
-    case AlignmentParameter::tilt_x: s.beam.tilt.x += delta; break;
-    case AlignmentParameter::tilt_y: s.beam.tilt.y += delta; break;
-    case AlignmentParameter::beam_offset_x: s.beam.offset.x += delta; break;
-    case AlignmentParameter::beam_offset_y: s.beam.offset.y += delta; break;
-    case AlignmentParameter::detector_offset_x: s.detector.offset.x += delta; break;
-    case AlignmentParameter::detector_offset_y: s.detector.offset.y += delta; break;
-    case AlignmentParameter::defocus: s.detector.defocus += delta; break;
+    case AlignmentParameter::tilt_x:
+      s.beam.tilt.x += delta;
+      break;
+    case AlignmentParameter::tilt_y:
+      s.beam.tilt.y += delta;
+      break;
+    case AlignmentParameter::beam_offset_x:
+      s.beam.offset.x += delta;
+      break;
+    case AlignmentParameter::beam_offset_y:
+      s.beam.offset.y += delta;
+      break;
+    case AlignmentParameter::detector_offset_x:
+      s.detector.offset.x += delta;
+      break;
+    case AlignmentParameter::detector_offset_y:
+      s.detector.offset.y += delta;
+      break;
+    case AlignmentParameter::defocus:
+      s.detector.defocus += delta;
+      break;
   }
   return s;
 }
@@ -159,17 +188,21 @@ AlignmentMap alignment_map(const LidarSystem& system, const std::vector<Alignmen
   if (axes.empty() || axes.size() > 2)
     checks::fail("axes", static_cast<double>(axes.size()), "one or two axes");
   if (axes.size() == 2 && axes[0].parameter == axes[1].parameter)
-    checks::fail("axes", 2, std::string("two different parameters: ") + alignment_parameter_name(axes[0].parameter) +
-                                " is given twice");
+    checks::fail("axes", 2,
+                 std::string("two different parameters: ") +
+                     alignment_parameter_name(axes[0].parameter) + " is given twice");
   double points = 1.0;  // in double: sizes from the caller may multiply past size_t
   for (const AlignmentAxis& a : axes) points *= static_cast<double>(a.values.size());
   if (!(points <= static_cast<double>(kMaxAlignmentPoints)))
-    checks::fail("axes", points, "at most " + std::to_string(kMaxAlignmentPoints) + " grid points (the product of "
-                                 "the axis sizes)");
+    checks::fail("axes", points,
+                 "at most " + std::to_string(kMaxAlignmentPoints) +
+                     " grid points (the product of "
+                     "the axis sizes)");
   const double entries = points * static_cast<double>(ranges.size());
   if (!(entries <= static_cast<double>(kMaxAlignmentEntries)))
-    checks::fail("ranges", static_cast<double>(ranges.size()),
-                 "at most " + std::to_string(kMaxAlignmentEntries) + " grid points x ranges in one map");
+    checks::fail(
+        "ranges", static_cast<double>(ranges.size()),
+        "at most " + std::to_string(kMaxAlignmentEntries) + " grid points x ranges in one map");
   for (const AlignmentAxis& a : axes) check_axis(system, a);
   const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
   checks::memory("axes", points, entries * (sizeof(detail::RtEntry) + 4 * sizeof(double) + 1),
@@ -185,7 +218,8 @@ AlignmentMap alignment_map(const LidarSystem& system, const std::vector<Alignmen
     return axes.size() == 2 ? misaligned(s, axes[1].parameter, axes[1].values[point % n1]) : s;
   };
   std::vector<detail::RtEntry> results(n);
-  const std::vector<std::size_t> source = equivalent_entries(system, axes, ranges, point_system, threads);
+  const std::vector<std::size_t> source =
+      equivalent_entries(system, axes, ranges, point_system, threads);
   detail::parallel_for(n, threads, [&](std::size_t e) {
     if (source[e] != e) return;
     const LidarSystem s = point_system(e / n_ranges);
@@ -198,7 +232,8 @@ AlignmentMap alignment_map(const LidarSystem& system, const std::vector<Alignmen
   AlignmentMap out;
   for (const AlignmentAxis& a : axes) out.shape.push_back(a.values.size());
   out.shape.push_back(n_ranges);
-  out.values = detail::collect_rt_entries(results, entry_ranges, options.tolerance, "alignment_map");
+  out.values =
+      detail::collect_rt_entries(results, entry_ranges, options.tolerance, "alignment_map");
   out.values.axisymmetric = true;
   for (std::size_t p = 0; p < n / n_ranges; ++p) {
     detail::cancellation_point_every(p);

@@ -57,7 +57,8 @@ inline std::size_t crossings(const Kinks& k, Vec2 center, Vec2 dir, double* out)
 }
 
 // Sorted breakpoints: lo, the crossings inside (lo, hi), hi.
-inline std::size_t breakpoints(const Kinks& k, Vec2 center, Vec2 dir, double lo, double hi, double* points) {
+inline std::size_t breakpoints(const Kinks& k, Vec2 center, Vec2 dir, double lo, double hi,
+                               double* points) {
   double radii[2 * kMaxKinks];
   const std::size_t nk = crossings(k, center, dir, radii);
   std::size_t n = 0;
@@ -75,8 +76,8 @@ inline std::size_t breakpoints(const Kinks& k, Vec2 center, Vec2 dir, double lo,
 // Rayleigh for nu = 0. For a term symmetric about `origin` this is its beam-weighted mean whatever
 // the beam offset; with nu = 0 and the origin at the beam centre it is the mean along `dir`.
 template <class Term>
-RangeResult radial_integral(const Term& term, const Kinks& kinks, Vec2 origin, double nu, double w, Vec2 dir,
-                            double tolerance, std::size_t max_segments) {
+RangeResult radial_integral(const Term& term, const Kinks& kinks, Vec2 origin, double nu, double w,
+                            Vec2 dir, double tolerance, std::size_t max_segments) {
   const double var = 0.25 * w * w;
   // Beyond 10 sigma = 5 w from nu the density is below exp(-50) of its peak.
   const double lo = std::max(0.0, nu - 5.0 * w), hi = nu + 5.0 * w;
@@ -84,7 +85,8 @@ RangeResult radial_integral(const Term& term, const Kinks& kinks, Vec2 origin, d
   const std::size_t n = breakpoints(kinks, origin, dir, lo, hi, points);
   auto integrand = [&](double rho) {
     const double d = rho - nu;
-    const double density = rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
+    const double density =
+        rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
     return density == 0.0 ? 0.0 : density * term(origin + rho * dir);
   };
   const QuadratureResult q = integrate(integrand, points, n, tolerance, max_segments);
@@ -127,8 +129,10 @@ RangeResult planar_mean(const Term& term, const Kinks& kinks, Vec2 center, doubl
     const double mid = std::atan2(q.y, q.x) - phi0, half = std::asin(rho / d);
     for (double phi : {mid - half, mid + half}) {
       phi = std::remainder(phi, 2.0 * kPi);  // (-pi, pi]
-      if (mirror) phi = std::abs(phi);      // the lower half mirrors the upper one
-      else if (phi < 0.0) phi += 2.0 * kPi;
+      if (mirror)
+        phi = std::abs(phi);  // the lower half mirrors the upper one
+      else if (phi < 0.0)
+        phi += 2.0 * kPi;
       if (phi > 0.0 && phi < span) breaks[nb++] = phi;
     }
   }
@@ -145,7 +149,8 @@ RangeResult planar_mean(const Term& term, const Kinks& kinks, Vec2 center, doubl
     inner_error = std::max(inner_error, r.error);
     return r.value / span;
   };
-  const QuadratureResult q = integrate(mean_over_direction, breaks, nb, 0.75 * tolerance, max_segments);
+  const QuadratureResult q =
+      integrate(mean_over_direction, breaks, nb, 0.75 * tolerance, max_segments);
   return {q.value, q.error + inner_error, inner.evaluations, inner.converged && q.converged};
 }
 

@@ -19,7 +19,8 @@ double x_minus_sin(double x) {
   if (std::abs(x) > 0.25) return x - std::sin(x);
   const double x2 = x * x;
   // Taylor series; the first omitted term is below 1e-17 of the sum for |x| <= 0.25.
-  return x * x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0 * (1.0 - x2 / 110.0))));
+  return x * x2 / 6.0 *
+         (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0 * (1.0 - x2 / 110.0))));
 }
 
 // sin(h / 2) for the half-angle h, seen from its own centre, of the arc of circle (r) inside a circle (r_other)
@@ -31,7 +32,9 @@ double arc_quarter_sine(double r, double r_other, double d) {
   return std::sqrt(std::clamp(t / (2.0 * r), 0.0, 1.0));
 }
 
-double arc_half_angle(double r, double r_other, double d) { return 2.0 * std::asin(arc_quarter_sine(r, r_other, d)); }
+double arc_half_angle(double r, double r_other, double d) {
+  return 2.0 * std::asin(arc_quarter_sine(r, r_other, d));
+}
 
 // The segment of a circle (r) whose arc has half-angle h = 2 asin(s): 1/2 r^2 (2h - sin 2h), with
 // sin 2h = 2 sin h cos h = 4 s c (1 - 2 s^2) (c = sqrt(1 - s^2)) instead of a call to sin (the RT engine's
@@ -143,7 +146,8 @@ double intersection_area(const Disc* discs, std::size_t n) {
       const double t1 = reference + set.lo[s], t2 = reference + set.hi[s];
       const Vec2 p1 = c + di.radius * Vec2{std::cos(t1), std::sin(t1)};
       const Vec2 p2 = c + di.radius * Vec2{std::cos(t2), std::sin(t2)};
-      area += segment_area(di.radius, 0.5 * (set.hi[s] - set.lo[s])) + 0.5 * (p1.x * p2.y - p2.x * p1.y);
+      area += segment_area(di.radius, 0.5 * (set.hi[s] - set.lo[s])) +
+              0.5 * (p1.x * p2.y - p2.x * p1.y);
     }
   }
   return std::max(area, 0.0);

@@ -16,7 +16,8 @@ std::size_t CouplingTerm::kink_circles(Disc* out, std::size_t capacity) const {
   std::size_t written = 0;
   // |alpha P + beta| = rho is a circle of centre -beta/alpha and radius rho/|alpha| in P.
   auto add_circle = [&](double alpha, Vec2 beta, double rho) {
-    if (alpha != 0.0 && written < capacity) out[written++] = {(-1.0 / alpha) * beta, rho / std::abs(alpha)};
+    if (alpha != 0.0 && written < capacity)
+      out[written++] = {(-1.0 / alpha) * beta, rho / std::abs(alpha)};
   };
   for (std::size_t i = 0; i < n_discs; ++i)
     for (std::size_t j = i + 1; j < n_discs; ++j) {
@@ -25,7 +26,8 @@ std::size_t CouplingTerm::kink_circles(Disc* out, std::size_t capacity) const {
       add_circle(alpha, beta, discs[i].radius + discs[j].radius);
       add_circle(alpha, beta, std::abs(discs[i].radius - discs[j].radius));
     }
-  for (std::size_t g = 0; g < n_gates; ++g) add_circle(gates[g].scale, gates[g].shift, gates[g].radius);
+  for (std::size_t g = 0; g < n_gates; ++g)
+    add_circle(gates[g].scale, gates[g].shift, gates[g].radius);
   return written;
 }
 
@@ -41,8 +43,10 @@ std::optional<Vec2> CouplingTerm::symmetry_center() const {
       return;
     }
     const Vec2 c = (-1.0 / alpha) * beta;
-    if (!s) s = c;
-    else ok = ok && norm(c - *s) <= 1e-12 * (norm(c) + scale);
+    if (!s)
+      s = c;
+    else
+      ok = ok && norm(c - *s) <= 1e-12 * (norm(c) + scale);
   };
   for (std::size_t i = 0; i < n_discs; ++i)
     for (std::size_t j = i + 1; j < n_discs; ++j)

@@ -14,7 +14,9 @@ constexpr double kTwoPi = 2.0 * kPi;
 // Length (rad) of the intersection of the arcs [a, a + la] and [b, b + lb] of one circle (la, lb in [0, 2 pi]).
 double arc_overlap(double a, double la, double b, double lb) {
   double d = b - a;
-  d -= kTwoPi * std::floor(d / kTwoPi);  // in [0, 2 pi]: [d, d + lb] and [d - 2 pi, d - 2 pi + lb] against [0, la]
+  d -= kTwoPi *
+       std::floor(
+           d / kTwoPi);  // in [0, 2 pi]: [d, d + lb] and [d - 2 pi, d - 2 pi + lb] against [0, la]
   return std::max(0.0, std::min(la, d + lb) - d) + std::max(0.0, std::min(la, d - kTwoPi + lb));
 }
 
@@ -39,7 +41,8 @@ double arc_cos(double c, double s) {
 }
 
 // The arc [start, start + length] (rad) of the circle of radius rho about the origin inside disc(mu, q).
-void circle_inside_disc(double rho, double m, double phi_mu, double q, double& start, double& length) {
+void circle_inside_disc(double rho, double m, double phi_mu, double q, double& start,
+                        double& length) {
   start = 0.0;
   if (m == 0.0) {
     length = rho <= q ? kTwoPi : 0.0;
@@ -57,7 +60,8 @@ void circle_inside_disc(double rho, double m, double phi_mu, double q, double& s
 
 }  // namespace
 
-DiscSectorAreas::DiscSectorAreas(Vec2 mu, const std::vector<AnnularSector>& sectors) : mu_(mu), m_(norm(mu)) {
+DiscSectorAreas::DiscSectorAreas(Vec2 mu, const std::vector<AnnularSector>& sectors)
+    : mu_(mu), m_(norm(mu)) {
   u_mu_ = m_ > 0.0 ? (1.0 / m_) * mu : Vec2{1.0, 0.0};
   phi_mu_ = m_ > 0.0 ? std::atan2(mu.y, mu.x) : 0.0;
   // Edges within rounding of each other (a quadrant's stop at 5 pi / 4 and the next one's start at -3 pi / 4)
@@ -86,8 +90,10 @@ DiscSectorAreas::DiscSectorAreas(Vec2 mu, const std::vector<AnnularSector>& sect
   sides_.resize(rays_.size());
 }
 
-DiscSectorAreas::OnCircle DiscSectorAreas::on_circle(double delta, double cos_delta, double sin_delta) const {
-  return {delta, {cos_delta * u_mu_.x - sin_delta * u_mu_.y, cos_delta * u_mu_.y + sin_delta * u_mu_.x}};
+DiscSectorAreas::OnCircle DiscSectorAreas::on_circle(double delta, double cos_delta,
+                                                     double sin_delta) const {
+  return {delta,
+          {cos_delta * u_mu_.x - sin_delta * u_mu_.y, cos_delta * u_mu_.y + sin_delta * u_mu_.x}};
 }
 
 // The sign of cross(u, mu + q sum / |sum|) (the side of the ray's line the piece's middle lies on) from |sum|^2:
@@ -99,11 +105,13 @@ double DiscSectorAreas::side(const Ray& r, Vec2 sum, double length2, double q) c
 }
 
 double DiscSectorAreas::arc_term(double q, const OnCircle& a, const OnCircle& b) const {
-  return 0.5 * (q * q * (b.delta - a.delta) + q * (mu_.x * (b.e.y - a.e.y) - mu_.y * (b.e.x - a.e.x)));
+  return 0.5 *
+         (q * q * (b.delta - a.delta) + q * (mu_.x * (b.e.y - a.e.y) - mu_.y * (b.e.x - a.e.x)));
 }
 
 bool DiscSectorAreas::in_wedge(const Wedge& w, double after_start, double before_end) const {
-  return w.span <= kPi ? (after_start >= 0.0 && before_end >= 0.0) : (after_start >= 0.0 || before_end >= 0.0);
+  return w.span <= kPi ? (after_start >= 0.0 && before_end >= 0.0)
+                       : (after_start >= 0.0 || before_end >= 0.0);
 }
 
 void DiscSectorAreas::operator()(double q, double* areas) {
@@ -117,7 +125,8 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     AnnulusState& st = annulus_state_[j];
     circle_inside_disc(an.outer, m_, phi_mu_, q, st.outer_start, st.outer_length);
     st.inner_length = 0.0;
-    if (an.inner > 0.0) circle_inside_disc(an.inner, m_, phi_mu_, q, st.inner_start, st.inner_length);
+    if (an.inner > 0.0)
+      circle_inside_disc(an.inner, m_, phi_mu_, q, st.inner_start, st.inner_length);
     st.arcs = false;
     if (m_ == 0.0) continue;
     const double c_b = (an.outer * an.outer - m_ * m_ - q * q) / (2.0 * m_ * q);
@@ -153,9 +162,11 @@ void DiscSectorAreas::operator()(double q, double* areas) {
     const Wedge& w = wedges_[k];
     const Annulus& an = annuli_[w.annulus];
     const AnnulusState& st = annulus_state_[w.annulus];
-    double area = 0.5 * an.outer * an.outer * arc_overlap(st.outer_start, st.outer_length, w.start, w.span);
+    double area =
+        0.5 * an.outer * an.outer * arc_overlap(st.outer_start, st.outer_length, w.start, w.span);
     if (an.inner > 0.0)
-      area -= 0.5 * an.inner * an.inner * arc_overlap(st.inner_start, st.inner_length, w.start, w.span);
+      area -=
+          0.5 * an.inner * an.inner * arc_overlap(st.inner_start, st.inner_length, w.start, w.span);
     if (m_ == 0.0 && an.inner <= q && q <= an.outer) area += 0.5 * q * q * w.span;
     areas[k] = area;
   }
@@ -180,15 +191,19 @@ void DiscSectorAreas::operator()(double q, double* areas) {
         const Vec2 sum = pieces_[p].e + pieces_[p + 1].e;
         const double length2 = dot(sum, sum);
         if (length2 > 1e-12) {
-          for (std::size_t i = 0; i < rays_.size(); ++i) sides_[i] = side(rays_[i], sum, length2, q);
+          for (std::size_t i = 0; i < rays_.size(); ++i)
+            sides_[i] = side(rays_[i], sum, length2, q);
         } else {
           const double mid = phi_mu_ + 0.5 * (pieces_[p].delta + pieces_[p + 1].delta);
           const Vec2 middle = mu_ + q * Vec2{std::cos(mid), std::sin(mid)};
-          for (std::size_t i = 0; i < rays_.size(); ++i) sides_[i] = rays_[i].u.x * middle.y - rays_[i].u.y * middle.x;
+          for (std::size_t i = 0; i < rays_.size(); ++i)
+            sides_[i] = rays_[i].u.x * middle.y - rays_[i].u.y * middle.x;
         }
         for (std::size_t k = 0; k < wedges_.size(); ++k) {
           const Wedge& w = wedges_[k];
-          if (w.annulus == j && (w.span >= kTwoPi || in_wedge(w, sides_[w.first], -sides_[w.second]))) areas[k] += term;
+          if (w.annulus == j &&
+              (w.span >= kTwoPi || in_wedge(w, sides_[w.first], -sides_[w.second])))
+            areas[k] += term;
         }
       }
     }

@@ -34,7 +34,7 @@ class DiscSectorAreas {
   };
   struct Wedge {
     std::size_t annulus, first, second;  // the sector's annulus and edge rays
-    double start, span;                   // rad; span >= 2 pi: a full turn (no rays)
+    double start, span;                  // rad; span >= 2 pi: a full turn (no rays)
   };
   // A point of the disc's circle at psi = phi_mu + delta, e = (cos psi, sin psi).
   struct OnCircle {
@@ -42,8 +42,9 @@ class DiscSectorAreas {
     Vec2 e;
   };
   struct AnnulusState {  // per node
-    double outer_start, outer_length, inner_start, inner_length;  // the sector circles' arcs inside the disc
-    bool arcs;                                                    // the disc's circle meets the annulus
+    double outer_start, outer_length, inner_start,
+        inner_length;     // the sector circles' arcs inside the disc
+    bool arcs;            // the disc's circle meets the annulus
     OnCircle ends[2][2];  // the disc's circle in the annulus: delta in [-hi, -lo] and [lo, hi]
   };
   struct RayState {

@@ -15,8 +15,8 @@ namespace {
 // Radii q about mu where Lambda(q) has a kink: circle(mu, q) tangent to a fixed disc or to a sector's arc,
 // through a corner of a sector (or of a centred fixed disc's circle with a sector's edge), or tangent to a
 // sector's straight edge (a weaker kink, the area stays C1).
-std::vector<double> kink_radii(const Disc* fixed, std::size_t n_fixed, const std::vector<AnnularSector>& sectors,
-                               Vec2 mu) {
+std::vector<double> kink_radii(const Disc* fixed, std::size_t n_fixed,
+                               const std::vector<AnnularSector>& sectors, Vec2 mu) {
   std::vector<double> q;
   const double m = norm(mu);
   for (std::size_t i = 0; i < n_fixed; ++i) {
@@ -34,7 +34,8 @@ std::vector<double> kink_radii(const Disc* fixed, std::size_t n_fixed, const std
       const Vec2 u{std::cos(angle), std::sin(angle)};
       for (double radius : {s.inner, s.outer}) q.push_back(norm(mu - radius * u));
       for (std::size_t i = 0; i < n_fixed; ++i)
-        if (fixed[i].center.x == 0.0 && fixed[i].center.y == 0.0) q.push_back(norm(mu - fixed[i].radius * u));
+        if (fixed[i].center.x == 0.0 && fixed[i].center.y == 0.0)
+          q.push_back(norm(mu - fixed[i].radius * u));
       const double along = dot(mu, u);
       if (along > s.inner && along < s.outer) q.push_back(std::abs(u.x * mu.y - u.y * mu.x));
     }
@@ -44,10 +45,9 @@ std::vector<double> kink_radii(const Disc* fixed, std::size_t n_fixed, const std
 
 }  // namespace
 
-std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm& term,
-                                                             const std::vector<std::vector<AnnularSector>>& masks,
-                                                             Vec2 center, double w, double tolerance,
-                                                             std::size_t max_segments) {
+std::optional<std::vector<RangeResult>> moving_disc_integral(
+    const CouplingTerm& term, const std::vector<std::vector<AnnularSector>>& masks, Vec2 center,
+    double w, double tolerance, std::size_t max_segments) {
   if (term.n_gates != 0) return std::nullopt;
   Disc discs[kMaxDiscs];
   std::size_t n_fixed = 0;
@@ -71,7 +71,8 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
   const double lo = std::max(0.0, r - 10.0 * sigma), hi = r + 10.0 * sigma;
   // The kernel's bump (width sigma about r when r >> sigma) gets its own pieces: one rule each, no bisection.
   std::vector<double> points{lo, hi, r - 5.0 * sigma, r, r + 5.0 * sigma};
-  points.erase(std::remove_if(points.begin() + 2, points.end(), [&](double q) { return !(q > lo && q < hi); }),
+  points.erase(std::remove_if(points.begin() + 2, points.end(),
+                              [&](double q) { return !(q > lo && q < hi); }),
                points.end());
   for (const std::vector<AnnularSector>& sectors : masks)
     for (double q : kink_radii(discs, n_fixed, sectors, mu))
@@ -88,8 +89,8 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
       mask_area += 0.5 * std::min(s.span, 2.0 * kPi) * (s.outer * s.outer - s.inner * s.inner);
   auto piece_bound = [&](double a, double b) {
     const double d = std::clamp(r, a, b) - r;
-    return std::abs(term.weight) * std::min(kPi * b * b, mask_area) * (r / var) * std::exp(-0.5 * d * d / var) *
-           std::min(1.0, 0.5 * b * r / var) * (b - a);
+    return std::abs(term.weight) * std::min(kPi * b * b, mask_area) * (r / var) *
+           std::exp(-0.5 * d * d / var) * std::min(1.0, 0.5 * b * r / var) * (b - a);
   };
   const double negligible = 0.01 * tolerance / static_cast<double>(points.size());
   double trimmed = 0.0;
@@ -129,14 +130,17 @@ std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm&
       green(q, areas.data());
     } else {
       discs[n_fixed] = {mu, q};
-      for (std::size_t i = 0; i < all.size(); ++i) areas[i] = sector_intersection_area(discs, n_fixed + 1, all[i]);
+      for (std::size_t i = 0; i < all.size(); ++i)
+        areas[i] = sector_intersection_area(discs, n_fixed + 1, all[i]);
     }
     for (std::size_t i = 0; i < all.size(); ++i) out[owner[i]] += k * areas[i];
   };
-  const std::vector<QuadratureResult> results = integrate_many(integrand, masks.size(), points.data() + first,
-                                                              last - first + 1, tolerance - trimmed, max_segments);
+  const std::vector<QuadratureResult> results =
+      integrate_many(integrand, masks.size(), points.data() + first, last - first + 1,
+                     tolerance - trimmed, max_segments);
   std::vector<RangeResult> out;
-  for (const QuadratureResult& q : results) out.push_back({q.value, q.error + trimmed, q.evaluations, q.converged});
+  for (const QuadratureResult& q : results)
+    out.push_back({q.value, q.error + trimmed, q.evaluations, q.converged});
   return out;
 }
 

@@ -26,9 +26,8 @@ namespace lidar_overlap::beam_integral {
 // receiver's terms already leave out a disc that holds the whole aperture, such as a wide NA cone), or has a
 // gate (a boundary that depends on the scatterer only), or more fixed discs than sector_intersection_area
 // takes: the caller then integrates in the scatterer plane.
-std::optional<std::vector<RangeResult>> moving_disc_integral(const CouplingTerm& term,
-                                                             const std::vector<std::vector<AnnularSector>>& masks,
-                                                             Vec2 center, double w, double tolerance,
-                                                             std::size_t max_segments);
+std::optional<std::vector<RangeResult>> moving_disc_integral(
+    const CouplingTerm& term, const std::vector<std::vector<AnnularSector>>& masks, Vec2 center,
+    double w, double tolerance, std::size_t max_segments);
 
 }  // namespace lidar_overlap::beam_integral

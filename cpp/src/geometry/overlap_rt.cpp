@@ -26,14 +26,16 @@ void check_rt_options(const RtOptions& options) {
 }
 
 RtEntry overlap_rt_entry(const LidarSystem& system, const Receiver& rx, const RtOptions& opt) {
-  return sum_over_terms(system, rx, opt.tolerance, [&](const CouplingTerm& term, Vec2 center, double w, double tol) {
-    const beam_integral::Kinks kinks(term);
-    const std::optional<Vec2> s = term.symmetry_center();
-    return s ? beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tol,
-                                              opt.max_segments)
-             : beam_integral::planar_mean(term, kinks, center, w, beam_integral::mirror_symmetric(term, center), tol,
-                                          opt.max_segments);
-  });
+  return sum_over_terms(
+      system, rx, opt.tolerance, [&](const CouplingTerm& term, Vec2 center, double w, double tol) {
+        const beam_integral::Kinks kinks(term);
+        const std::optional<Vec2> s = term.symmetry_center();
+        return s ? beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0},
+                                                  tol, opt.max_segments)
+                 : beam_integral::planar_mean(term, kinks, center, w,
+                                              beam_integral::mirror_symmetric(term, center), tol,
+                                              opt.max_segments);
+      });
 }
 
 RtOverlap collect_rt_entries(const std::vector<RtEntry>& entries, const std::vector<double>& ranges,
@@ -55,8 +57,10 @@ RtOverlap collect_rt_entries(const std::vector<RtEntry>& entries, const std::vec
   return out;
 }
 
-RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& ranges, const RtOptions& options,
-                         const std::function<RtEntry(const Receiver&)>& at, const std::string& name) {
+RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
+                         const RtOptions& options,
+                         const std::function<RtEntry(const Receiver&)>& at,
+                         const std::string& name) {
   system.validate();
   check_rt_options(options);
   const int threads = checked_threads_and_ranges(system, ranges, options.threads);
@@ -94,18 +98,21 @@ RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& r
 RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
                      const RtOptions& options) {
   return detail::rt_over_ranges(
-      system, ranges, options, [&](const Receiver& rx) { return detail::overlap_rt_entry(system, rx, options); },
+      system, ranges, options,
+      [&](const Receiver& rx) { return detail::overlap_rt_entry(system, rx, options); },
       "overlap_rt");
 }
 
-RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
-                           const RtOptions& options) {
+RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems,
+                           const std::vector<double>& ranges, const RtOptions& options) {
   const std::size_t n = systems.size();
   if (ranges.size() != n)
-    checks::fail("ranges", static_cast<double>(ranges.size()),
-                 "one range per system: expected " + std::to_string(n) + " ranges (the size of systems)");
+    checks::fail(
+        "ranges", static_cast<double>(ranges.size()),
+        "one range per system: expected " + std::to_string(n) + " ranges (the size of systems)");
   if (n > kMaxBatchEntries)
-    checks::fail("systems", static_cast<double>(n), "at most " + std::to_string(kMaxBatchEntries) + " entries");
+    checks::fail("systems", static_cast<double>(n),
+                 "at most " + std::to_string(kMaxBatchEntries) + " entries");
   detail::check_rt_options(options);
   const int threads = detail::checked_threads_and_ranges(systems, ranges, options.threads);
   checks::memory("systems", static_cast<double>(n),
@@ -118,9 +125,10 @@ RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::v
   detail::parallel_for(n, threads, [&](std::size_t i) {
     results[i] = detail::overlap_rt_entry(systems[i], Receiver(systems[i], ranges[i]), options);
   });
-  RtOverlap out = detail::collect_rt_entries(results, ranges, options.tolerance, "overlap_rt_batch");
-  out.axisymmetric =
-      std::all_of(systems.begin(), systems.end(), [](const LidarSystem& s) { return s.is_axisymmetric(); });
+  RtOverlap out =
+      detail::collect_rt_entries(results, ranges, options.tolerance, "overlap_rt_batch");
+  out.axisymmetric = std::all_of(systems.begin(), systems.end(),
+                                 [](const LidarSystem& s) { return s.is_axisymmetric(); });
   return out;
 }
 

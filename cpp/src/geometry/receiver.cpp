@@ -17,8 +17,10 @@ double optimal_focus_range(double focal_length, double defocus) {
   if (defocus == 0.0) return std::numeric_limits<double>::infinity();
   const double z = focal_length * (focal_length + defocus) / defocus;
   if (!std::isfinite(z))  // a subnormal defocus: the range exists but no double holds it
-    checks::fail("defocus", defocus, "0 (focus at infinity) or a defocus whose focus range f (f + defocus) / defocus is "
-                 "below 1.8e308 m");
+    checks::fail(
+        "defocus", defocus,
+        "0 (focus at infinity) or a defocus whose focus range f (f + defocus) / defocus is "
+        "below 1.8e308 m");
   return z;
 }
 
@@ -83,12 +85,14 @@ namespace {
 // all |P - center| <= support: it bounds nothing there. A fibre whose NA exceeds the telescope's is such a disc at
 // all but the nearest ranges; kept, its centre moves at another rate than the detector's and takes the term's
 // centre of symmetry away (a detector offset then costs the beam integral 40 times the couplings).
-void drop_discs_holding_the_aperture(CouplingTerm& term, Vec2 center, double support, double aperture_radius) {
+void drop_discs_holding_the_aperture(CouplingTerm& term, Vec2 center, double support,
+                                     double aperture_radius) {
   std::size_t kept = 1;
   for (std::size_t i = 1; i < term.n_discs; ++i) {
     const MovingDisc& d = term.discs[i];
-    const bool holds = d.scale != 0.0 && norm(d.scale * center + d.shift) + std::abs(d.scale) * support +
-                                             aperture_radius <= d.radius;
+    const bool holds = d.scale != 0.0 && norm(d.scale * center + d.shift) +
+                                                 std::abs(d.scale) * support + aperture_radius <=
+                                             d.radius;
     if (!holds) term.discs[kept++] = d;
   }
   term.n_discs = kept;

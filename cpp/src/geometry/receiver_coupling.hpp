@@ -40,8 +40,8 @@ class Receiver {
  private:
   double z_;
   double aperture_radius_;
-  CouplingTerm passing_;        // aperture ∩ detector ∩ NA ∩ second stop
-  CouplingTerm blocked_;        // the same ∩ shadow, negative weight
+  CouplingTerm passing_;  // aperture ∩ detector ∩ NA ∩ second stop
+  CouplingTerm blocked_;  // the same ∩ shadow, negative weight
   bool has_shadow_ = false;
   MovingDisc shadow_{};
 };

@@ -25,8 +25,8 @@ using RtEntry = beam_integral::RangeResult;
 // summed. An obstruction's term cancels the unobstructed one where its shadow covers all the light that passes;
 // integrated on different breakpoints they then differ by round-off of either sign, which means G = 0.
 template <class IntegrateMany>
-std::vector<RtEntry> sum_over_terms_many(const LidarSystem& system, const Receiver& rx, double tolerance,
-                                         std::size_t m, IntegrateMany integrate) {
+std::vector<RtEntry> sum_over_terms_many(const LidarSystem& system, const Receiver& rx,
+                                         double tolerance, std::size_t m, IntegrateMany integrate) {
   const double z = rx.range();
   const double w = system.beam.radius(z);
   const Vec2 center = system.beam.center(z);
@@ -44,24 +44,27 @@ std::vector<RtEntry> sum_over_terms_many(const LidarSystem& system, const Receiv
     }
   }
   for (std::size_t k = 0; k < m; ++k)
-    if (std::abs(total[k].value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude[k]) total[k].value = 0.0;
+    if (std::abs(total[k].value) <= 16.0 * std::numeric_limits<double>::epsilon() * magnitude[k])
+      total[k].value = 0.0;
   return total;
 }
 
 // The same through one aperture: `integrate` returns one RtEntry.
 template <class Integrate>
-RtEntry sum_over_terms(const LidarSystem& system, const Receiver& rx, double tolerance, Integrate integrate) {
-  return sum_over_terms_many(system, rx, tolerance, 1, [&](const CouplingTerm& term, Vec2 center, double w,
-                                                             double tol) {
-    return std::vector<RtEntry>{integrate(term, center, w, tol)};
-  })[0];
+RtEntry sum_over_terms(const LidarSystem& system, const Receiver& rx, double tolerance,
+                       Integrate integrate) {
+  return sum_over_terms_many(system, rx, tolerance, 1,
+                             [&](const CouplingTerm& term, Vec2 center, double w, double tol) {
+                               return std::vector<RtEntry>{integrate(term, center, w, tol)};
+                             })[0];
 }
 
 // Checks the options every RT entry point shares (tolerance, max_segments); throws std::invalid_argument.
 void check_rt_options(const RtOptions& options);
 
 // G of `system` at the receiver's range. Does not throw for a valid system, range and options.
-RtEntry overlap_rt_entry(const LidarSystem& system, const Receiver& receiver, const RtOptions& options);
+RtEntry overlap_rt_entry(const LidarSystem& system, const Receiver& receiver,
+                         const RtOptions& options);
 
 // Entries as an RtOverlap (axisymmetric left false), each checked like a single call: finite, in [0, 1] up
 // to max(tolerance, its own error) (checks::overlap_values, naming `method` and ranges[i]).
@@ -71,7 +74,9 @@ RtOverlap collect_rt_entries(const std::vector<RtEntry>& entries, const std::vec
 // The range loop of the RT entry points over one system (full aperture, masked): the entry checks, the
 // receivers built before the parallel region (nothing throws inside it), `at(receiver)` at every range in
 // parallel, and the result's assembly and value checks; `name` is the engine's name in value errors.
-RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& ranges, const RtOptions& options,
-                         const std::function<RtEntry(const Receiver&)>& at, const std::string& name);
+RtOverlap rt_over_ranges(const LidarSystem& system, const std::vector<double>& ranges,
+                         const RtOptions& options,
+                         const std::function<RtEntry(const Receiver&)>& at,
+                         const std::string& name);
 
 }  // namespace lidar_overlap::detail

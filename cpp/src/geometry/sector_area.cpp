@@ -96,7 +96,8 @@ double sector_intersection_area(const Disc* discs, std::size_t n, const AnnularS
   for (std::size_t i = 0; i < nd; ++i) {
     const double d = norm(circles[i].c);
     if (d > circles[i].r) {
-      const double mid = std::atan2(circles[i].c.y, circles[i].c.x), half = std::asin(circles[i].r / d);
+      const double mid = std::atan2(circles[i].c.y, circles[i].c.x),
+                   half = std::asin(circles[i].r / d);
       add(mid - half);
       add(mid);
       add(mid + half);
@@ -125,7 +126,8 @@ double sector_intersection_area(const Disc* discs, std::size_t n, const AnnularS
     const double m = 0.5 * (a + b);
     const Vec2 u{std::cos(m), std::sin(m)};
     double lo = s.inner, hi = s.outer;
-    std::size_t lo_from = s.inner > 0.0 ? inner_index : nc, hi_from = outer_index;  // nc: the origin
+    std::size_t lo_from = s.inner > 0.0 ? inner_index : nc,
+                hi_from = outer_index;  // nc: the origin
     bool empty = false;
     for (std::size_t i = 0; i < nd && !empty; ++i) {
       double near, far;
@@ -142,7 +144,8 @@ double sector_intersection_area(const Disc* discs, std::size_t n, const AnnularS
     if (lo_from == nc) continue;  // the origin: nothing below
     const Circle& bottom = circles[lo_from];
     const bool centred = lo_from == inner_index;  // the inner arc bulges away from the origin
-    area -= swept(a, b, root_at(bottom, a, centred), root_at(bottom, b, centred), bottom.r, centred);
+    area -=
+        swept(a, b, root_at(bottom, a, centred), root_at(bottom, b, centred), bottom.r, centred);
   }
   return std::max(area, 0.0);
 }
@@ -158,7 +161,8 @@ double sector_boundary_distance(const AnnularSector& s, Vec2 p) {
   double d = std::abs(rho - s.outer);
   if (s.inner > 0.0) d = std::min(d, std::abs(rho - s.inner));
   if (s.span < kTwoPi)
-    for (double t : {s.start, s.start + s.span}) {  // the edge segments from inner to outer along angle t
+    for (double t :
+         {s.start, s.start + s.span}) {  // the edge segments from inner to outer along angle t
       const Vec2 u{std::cos(t), std::sin(t)};
       const double along = std::clamp(dot(p, u), s.inner, s.outer);
       d = std::min(d, norm(p - along * u));

@@ -20,18 +20,21 @@ class ImageOnDetector {
  public:
   ImageOnDetector(double w, double r_d) : h_(w / 32.0), s_max_(r_d + 6.0 * w) {
     const double var = 0.25 * w * w;
-    const std::size_t n = 4 + checks::count_from(std::ceil(s_max_ / h_), std::size_t{1} << 20, "detector.radius", r_d,
-                                                 "table points (32 per beam-image radius " + checks::number(w) +
-                                                     " m): the beam image is too small beside the detector for the "
-                                                     "aberrated ray-tracing table; use method 'fo'");
+    const std::size_t n =
+        4 + checks::count_from(std::ceil(s_max_ / h_), std::size_t{1} << 20, "detector.radius", r_d,
+                               "table points (32 per beam-image radius " + checks::number(w) +
+                                   " m): the beam image is too small beside the detector for the "
+                                   "aberrated ray-tracing table; use method 'fo'");
     table_.resize(n + 1);
     for (std::size_t i = 0; i <= n; ++i) {
-      const double nu = std::abs((static_cast<double>(i) - 1.0) * h_);  // one node before 0: K is even
+      const double nu =
+          std::abs((static_cast<double>(i) - 1.0) * h_);  // one node before 0: K is even
       auto density = [&](double rho) {
         const double d = rho - nu;
         return rho / var * std::exp(-0.5 * d * d / var) * scaled_bessel_i0(rho * nu / var);
       };
-      const double lo = std::max(0.0, std::min(r_d, nu - 6.0 * w)), hi = std::min(r_d, nu + 6.0 * w);
+      const double lo = std::max(0.0, std::min(r_d, nu - 6.0 * w)),
+                   hi = std::min(r_d, nu + 6.0 * w);
       const double points[2] = {lo, hi};
       table_[i] = hi > lo ? integrate(density, points, 2, 1e-13, 2000).value : 0.0;
     }
@@ -42,7 +45,9 @@ class ImageOnDetector {
     const std::size_t j = std::max<std::size_t>(1, checks::saturate(pos));
     const double t = pos - j, *p = &table_[j - 1];
     const double a = t + 1.0, b = t - 1.0, c = t - 2.0;
-    return (-t * b * c * p[0] + 3.0 * a * b * c * p[1] - 3.0 * a * t * c * p[2] + a * t * b * p[3]) * (1.0 / 6.0);
+    return (-t * b * c * p[0] + 3.0 * a * b * c * p[1] - 3.0 * a * t * c * p[2] +
+            a * t * b * p[3]) *
+           (1.0 / 6.0);
   }
 
  private:
@@ -73,7 +78,8 @@ Geometry geometry(const LidarSystem& system, double z) {
 
 }  // namespace
 
-AberratedPupilIntegral::AberratedPupilIntegral(const LidarSystem& system, const Aberrations& aberrations,
+AberratedPupilIntegral::AberratedPupilIntegral(const LidarSystem& system,
+                                               const Aberrations& aberrations,
                                                const std::vector<double>& ranges, bool rotational)
     : system_(system), aberrations_(aberrations), ranges_(ranges) {
   const double radius = 0.5 * system.telescope.diameter;
@@ -82,7 +88,8 @@ AberratedPupilIntegral::AberratedPupilIntegral(const LidarSystem& system, const 
     const Geometry g = geometry(system, z);
     const double sweep = std::abs(g.scale) * radius + g.d * slope;  // m, largest |D(a)|
     // Nodes every w_i / 4 of the sweep (powers of two, so few node sets serve all ranges).
-    const std::size_t steps = next_power_of_two(std::min(kMaxSteps, checks::saturate(4.0 * sweep / g.w) + 1));
+    const std::size_t steps =
+        next_power_of_two(std::min(kMaxSteps, checks::saturate(4.0 * sweep / g.w) + 1));
     const std::size_t panels = std::max<std::size_t>(4, steps / kPanelNodes);
     const bool one_angle = rotational && g.s.x == 0.0 && g.s.y == 0.0;
     keys_.push_back({panels, one_angle ? 1 : std::max<std::size_t>(64, 2 * steps)});
@@ -95,10 +102,12 @@ AberratedPupilIntegral::AberratedPupilIntegral(const LidarSystem& system, const 
     if (coarse_in_rho_[i]) distinct[{keys_[i].first / 2, 1}] = true;
   }
   double bytes = 0.0;
-  for (const auto& [key, unused] : distinct) bytes += 40.0 * kPanelNodes * double(key.first) * double(key.second);
-  checks::memory("aberrations", aberrations.max_gradient(), bytes,
-                 "the pupil nodes resolve the beam image across the aberrated blur; use fewer ranges at the "
-                 "shortest distances or smaller aberrations");
+  for (const auto& [key, unused] : distinct)
+    bytes += 40.0 * kPanelNodes * double(key.first) * double(key.second);
+  checks::memory(
+      "aberrations", aberrations.max_gradient(), bytes,
+      "the pupil nodes resolve the beam image across the aberrated blur; use fewer ranges at the "
+      "shortest distances or smaller aberrations");
   for (std::size_t i = 0; i < keys_.size(); ++i) {
     nodes(keys_[i]);
     if (coarse_in_rho_[i]) nodes({keys_[i].first / 2, 1});
@@ -112,14 +121,17 @@ const AberratedPupilIntegral::Nodes& AberratedPupilIntegral::nodes(Key key) {
   const auto [panels, angles] = key;
   n.angles = angles;
   const Telescope& t = system_.telescope;
-  const double radius = 0.5 * t.diameter, inner = t.obstruction_radius, d = t.focal_length + system_.detector.defocus;
+  const double radius = 0.5 * t.diameter, inner = t.obstruction_radius,
+               d = t.focal_length + system_.detector.defocus;
   const GaussLegendreRule& rule = gauss_legendre<kPanelNodes>();
   for (std::size_t p = 0; p < panels; ++p) {
     cancellation_point();
-    const double lo = inner + (radius - inner) * p / panels, hi = inner + (radius - inner) * (p + 1) / panels;
+    const double lo = inner + (radius - inner) * p / panels,
+                 hi = inner + (radius - inner) * (p + 1) / panels;
     for (std::size_t i = 0; i < kPanelNodes; ++i) {
       const double rho = 0.5 * (lo + hi) + 0.5 * (hi - lo) * rule.x[i];
-      const double ring_weight = 0.5 * (hi - lo) * rule.w[i] * rho * 2.0 / (radius * radius * angles);
+      const double ring_weight =
+          0.5 * (hi - lo) * rule.w[i] * rho * 2.0 / (radius * radius * angles);
       for (std::size_t k = 0; k < angles; ++k) {
         const double theta = 2.0 * kPi * k / angles;
         const Vec2 a{rho * std::cos(theta), rho * std::sin(theta)};
@@ -132,21 +144,24 @@ const AberratedPupilIntegral::Nodes& AberratedPupilIntegral::nodes(Key key) {
   return n;
 }
 
-double AberratedPupilIntegral::sum(const Nodes& n, double scale, Vec2 s, const ImageOnDetector& k_of,
-                                   bool every_other_angle) const {
+double AberratedPupilIntegral::sum(const Nodes& n, double scale, Vec2 s,
+                                   const ImageOnDetector& k_of, bool every_other_angle) const {
   double total = 0.0;
   const std::size_t step = every_other_angle ? 2 : 1;
-  for (std::size_t j = 0; j < n.a.size(); j += step) total += n.weight[j] * k_of(norm(scale * n.a[j] + n.slope[j] + s));
+  for (std::size_t j = 0; j < n.a.size(); j += step)
+    total += n.weight[j] * k_of(norm(scale * n.a[j] + n.slope[j] + s));
   return total * static_cast<double>(step);
 }
 
 std::pair<double, double> AberratedPupilIntegral::at(std::size_t i) const {
   const Geometry g = geometry(system_, ranges_[i]);
   const Nodes& n = node_sets_.at(keys_[i]);
-  const ImageOnDetector k_of(g.w, system_.detector.radius);  // shared by the rule and its coarse twin
+  const ImageOnDetector k_of(g.w,
+                             system_.detector.radius);  // shared by the rule and its coarse twin
   const double value = sum(n, g.scale, g.s, k_of, false);
-  const double coarse = coarse_in_rho_[i] ? sum(node_sets_.at({keys_[i].first / 2, 1}), g.scale, g.s, k_of, false)
-                                          : sum(n, g.scale, g.s, k_of, true);
+  const double coarse = coarse_in_rho_[i]
+                            ? sum(node_sets_.at({keys_[i].first / 2, 1}), g.scale, g.s, k_of, false)
+                            : sum(n, g.scale, g.s, k_of, true);
   return {value, std::abs(value - coarse)};
 }
 

@@ -28,8 +28,8 @@ class ImageOnDetector;
 class AberratedPupilIntegral {
  public:
   // `rotational`: the aberrations and the scene are rotationally symmetric (one angle per ring suffices).
-  AberratedPupilIntegral(const LidarSystem& system, const Aberrations& aberrations, const std::vector<double>& ranges,
-                         bool rotational);
+  AberratedPupilIntegral(const LidarSystem& system, const Aberrations& aberrations,
+                         const std::vector<double>& ranges, bool rotational);
   // G at ranges[i] and its change when the rule is coarsened (every other angle, or half the panels).
   std::pair<double, double> at(std::size_t i) const;
 
@@ -41,7 +41,8 @@ class AberratedPupilIntegral {
   };
   using Key = std::pair<std::size_t, std::size_t>;  // (panels, angles)
   const Nodes& nodes(Key key);
-  double sum(const Nodes& n, double scale, Vec2 s, const ImageOnDetector& k_of, bool every_other_angle) const;
+  double sum(const Nodes& n, double scale, Vec2 s, const ImageOnDetector& k_of,
+             bool every_other_angle) const;
 
   const LidarSystem& system_;
   const Aberrations& aberrations_;

@@ -17,9 +17,12 @@ void Aberrations::validate() const {
                  "at most " + std::to_string(kMaxNollIndex) + " (radial order 20)");
   auto coefficient = [](const std::string& name, double value) {
     if (!(std::abs(value) <= kMaxCoefficient))
-      checks::fail(name, value, "a finite value within +-" + checks::number(kMaxCoefficient) + " m of wavefront");
+      checks::fail(
+          name, value,
+          "a finite value within +-" + checks::number(kMaxCoefficient) + " m of wavefront");
   };
-  for (std::size_t i = 0; i < zernike.size(); ++i) coefficient("aberrations.zernike[" + std::to_string(i + 1) + "]", zernike[i]);
+  for (std::size_t i = 0; i < zernike.size(); ++i)
+    coefficient("aberrations.zernike[" + std::to_string(i + 1) + "]", zernike[i]);
   coefficient("aberrations.w040", w040);
   coefficient("aberrations.w131", w131);
   coefficient("aberrations.w222", w222);
@@ -32,10 +35,13 @@ void Aberrations::validate() const {
                  "a field angle > 0 rad (the field at H = 1) when W131, W222, W220 or W311 is set");
 }
 
-bool Aberrations::field_dependent() const { return w131 != 0.0 || w222 != 0.0 || w220 != 0.0 || w311 != 0.0; }
+bool Aberrations::field_dependent() const {
+  return w131 != 0.0 || w222 != 0.0 || w220 != 0.0 || w311 != 0.0;
+}
 
 bool Aberrations::none() const {
-  return w040 == 0.0 && !field_dependent() && std::all_of(zernike.begin(), zernike.end(), [](double c) { return c == 0.0; });
+  return w040 == 0.0 && !field_dependent() &&
+         std::all_of(zernike.begin(), zernike.end(), [](double c) { return c == 0.0; });
 }
 
 double Aberrations::wavefront(Vec2 p, Vec2 field) const {
@@ -90,7 +96,8 @@ PupilPolynomial Aberrations::pupil_polynomial() const {
   PupilPolynomial poly;
   poly.degree = w040 != 0.0 ? 4 : 0;
   for (std::size_t i = 0; i < zernike.size(); ++i)
-    if (zernike[i] != 0.0) poly.degree = std::max(poly.degree, noll_index(static_cast<int>(i + 1)).n);
+    if (zernike[i] != 0.0)
+      poly.degree = std::max(poly.degree, noll_index(static_cast<int>(i + 1)).n);
   if (poly.degree > kMaxDegree) return {-1, {}};
   const int stride = poly.degree + 1;
   poly.c.assign(stride * stride, 0.0);
@@ -104,7 +111,8 @@ PupilPolynomial Aberrations::pupil_polynomial() const {
     for (int u = 0; u <= s; ++u)
       for (int t = imaginary ? 1 : 0; t <= m; t += 2) {
         const double sign = ((imaginary ? t - 1 : t) / 2) % 2 ? -1.0 : 1.0;
-        poly.c[(2 * u + m - t) * stride + 2 * (s - u) + t] += a * binomial(s, u) * binomial(m, t) * sign;
+        poly.c[(2 * u + m - t) * stride + 2 * (s - u) + t] +=
+            a * binomial(s, u) * binomial(m, t) * sign;
       }
   };
   if (w040 != 0.0) add(w040, 2, 0, false);
@@ -113,7 +121,8 @@ PupilPolynomial Aberrations::pupil_polynomial() const {
     const ZernikeIndex z = noll_index(static_cast<int>(i + 1));
     const int m = std::abs(z.m);
     const double norm_factor = std::sqrt((m == 0 ? 1.0 : 2.0) * (z.n + 1));
-    double coefficient = binomial(z.n, (z.n - m) / 2);  // R_n^m's leading coefficient, then its recurrence
+    double coefficient =
+        binomial(z.n, (z.n - m) / 2);  // R_n^m's leading coefficient, then its recurrence
     for (int k = 0; k <= (z.n - m) / 2; ++k) {
       add(zernike[i] * norm_factor * coefficient, (z.n - 2 * k - m) / 2, m, z.m < 0);
       const double a = (z.n + m) / 2 - k, b = (z.n - m) / 2 - k;

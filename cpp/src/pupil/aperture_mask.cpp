@@ -65,7 +65,8 @@ struct MaskedTerm {
 // The term's kinks plus the mask's: a disc circle tangent to a sector's arcs, or passing through a corner
 // (all circles in the scatterer plane). Tangencies with the straight edges are lines, left to the
 // adaptive subdivision (the area is C1 there).
-beam_integral::Kinks masked_kinks(const CouplingTerm& term, const std::vector<AnnularSector>& sectors) {
+beam_integral::Kinks masked_kinks(const CouplingTerm& term,
+                                  const std::vector<AnnularSector>& sectors) {
   beam_integral::Kinks k(term);
   auto add = [&](Vec2 center, double radius) {
     if (k.n < beam_integral::kMaxKinks) k.circles[k.n++] = {center, radius};
@@ -74,7 +75,8 @@ beam_integral::Kinks masked_kinks(const CouplingTerm& term, const std::vector<An
     const MovingDisc& d = term.discs[i];
     if (d.scale == 0.0) continue;
     const double a = std::abs(d.scale);
-    const Vec2 c = (-1.0 / d.scale) * d.shift;  // |scale P + shift - x| = rho: centre (x - shift)/scale
+    const Vec2 c =
+        (-1.0 / d.scale) * d.shift;  // |scale P + shift - x| = rho: centre (x - shift)/scale
     for (const AnnularSector& s : sectors) {
       for (double arc : {s.outer, s.inner}) {
         if (arc == 0.0) continue;
@@ -85,7 +87,8 @@ beam_integral::Kinks masked_kinks(const CouplingTerm& term, const std::vector<An
       if (s.inner == 0.0) add(c, d.radius / a);
       for (double angle : {s.start, s.start + s.span})
         for (double radius : {s.inner, s.outer})
-          if (radius > 0.0) add(c + (radius / d.scale) * Vec2{std::cos(angle), std::sin(angle)}, d.radius / a);
+          if (radius > 0.0)
+            add(c + (radius / d.scale) * Vec2{std::cos(angle), std::sin(angle)}, d.radius / a);
     }
   }
   return k;
@@ -93,7 +96,8 @@ beam_integral::Kinks masked_kinks(const CouplingTerm& term, const std::vector<An
 
 // Rings (full-turn sectors) keep the rotation about the aperture centre: the term then has a centre of
 // symmetry if it has one together with a disc fixed at that centre.
-std::optional<Vec2> ring_symmetry_center(const CouplingTerm& term, const std::vector<AnnularSector>& sectors) {
+std::optional<Vec2> ring_symmetry_center(const CouplingTerm& term,
+                                         const std::vector<AnnularSector>& sectors) {
   for (const AnnularSector& s : sectors)
     if (s.span < kTwoPi) return std::nullopt;
   if (term.n_discs >= CouplingTerm::kMaxMoving) return std::nullopt;
@@ -104,26 +108,28 @@ std::optional<Vec2> ring_symmetry_center(const CouplingTerm& term, const std::ve
 
 // G through each mask at the receiver's range: the 1-D integral of a term with one moving disc serves all the
 // masks at once; any other term is integrated in the scatterer plane, mask by mask.
-std::vector<detail::RtEntry> masked_overlaps_at(const LidarSystem& system, const Receiver& rx,
-                                                const std::vector<std::vector<AnnularSector>>& masks,
-                                                const RtOptions& opt) {
-  return detail::sum_over_terms_many(system, rx, opt.tolerance, masks.size(),
-                                     [&](const CouplingTerm& plain, Vec2 center, double w, double tol) {
-    if (std::optional<std::vector<detail::RtEntry>> r =
-            beam_integral::moving_disc_integral(plain, masks, center, w, tol, opt.max_segments))
-      return *r;
-    std::vector<detail::RtEntry> out;
-    for (const std::vector<AnnularSector>& sectors : masks) {
-      const MaskedTerm term{plain, sectors};
-      const beam_integral::Kinks kinks = masked_kinks(plain, sectors);
-      if (const std::optional<Vec2> s = ring_symmetry_center(plain, sectors))
-        out.push_back(beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w, {1.0, 0.0}, tol,
-                                                     opt.max_segments));
-      else
-        out.push_back(beam_integral::planar_mean(term, kinks, center, w, false, tol, opt.max_segments));
-    }
-    return out;
-  });
+std::vector<detail::RtEntry> masked_overlaps_at(
+    const LidarSystem& system, const Receiver& rx,
+    const std::vector<std::vector<AnnularSector>>& masks, const RtOptions& opt) {
+  return detail::sum_over_terms_many(
+      system, rx, opt.tolerance, masks.size(),
+      [&](const CouplingTerm& plain, Vec2 center, double w, double tol) {
+        if (std::optional<std::vector<detail::RtEntry>> r =
+                beam_integral::moving_disc_integral(plain, masks, center, w, tol, opt.max_segments))
+          return *r;
+        std::vector<detail::RtEntry> out;
+        for (const std::vector<AnnularSector>& sectors : masks) {
+          const MaskedTerm term{plain, sectors};
+          const beam_integral::Kinks kinks = masked_kinks(plain, sectors);
+          if (const std::optional<Vec2> s = ring_symmetry_center(plain, sectors))
+            out.push_back(beam_integral::radial_integral(term, kinks, *s, norm(center - *s), w,
+                                                         {1.0, 0.0}, tol, opt.max_segments));
+          else
+            out.push_back(
+                beam_integral::planar_mean(term, kinks, center, w, false, tol, opt.max_segments));
+        }
+        return out;
+      });
 }
 
 std::vector<AnnularSector> checked_sectors(const LidarSystem& system, const ApertureMask& mask) {
@@ -137,7 +143,8 @@ std::vector<AnnularSector> checked_sectors(const LidarSystem& system, const Aper
 }  // namespace
 
 void ApertureMask::validate(const Telescope& telescope) const {
-  if (sectors.empty()) checks::fail("mask.sectors", 0, "at least one sector (an empty mask leaves nothing)");
+  if (sectors.empty())
+    checks::fail("mask.sectors", 0, "at least one sector (an empty mask leaves nothing)");
   if (sectors.size() > kMaxMaskSectors)
     checks::fail("mask.sectors", static_cast<double>(sectors.size()),
                  "at most " + std::to_string(kMaxMaskSectors) + " sectors");
@@ -146,20 +153,24 @@ void ApertureMask::validate(const Telescope& telescope) const {
   for (std::size_t i = 0; i < sectors.size(); ++i) {
     const Sector& s = sectors[i];
     const std::string name = sector_name(i);
-    for (auto [what, angle] : {std::pair{".start_angle", s.start_angle}, std::pair{".stop_angle", s.stop_angle}})
+    for (auto [what, angle] :
+         {std::pair{".start_angle", s.start_angle}, std::pair{".stop_angle", s.stop_angle}})
       if (!(std::abs(angle) <= kMaxMaskAngle))
         checks::fail(name + what, angle, "a finite angle (rad) within +-1000");
     const double span = s.stop_angle - s.start_angle;
     if (!(span > 0.0) || span > kTwoPi * (1.0 + 1e-12))
-      checks::fail(name + ".stop_angle", s.stop_angle,
-                   "an angle beyond start_angle = " + checks::number(s.start_angle) + " by at most 2 pi");
+      checks::fail(
+          name + ".stop_angle", s.stop_angle,
+          "an angle beyond start_angle = " + checks::number(s.start_angle) + " by at most 2 pi");
     const double outer = s.outer_radius.value_or(aperture);
     if (!(outer > 0.0) || outer > aperture)
-      checks::fail(name + ".outer_radius", outer,
-                   "a radius in (0, D/2 = " + checks::number(aperture) + "] m (None: the aperture's edge)");
+      checks::fail(
+          name + ".outer_radius", outer,
+          "a radius in (0, D/2 = " + checks::number(aperture) + "] m (None: the aperture's edge)");
     if (!(outer > telescope.obstruction_radius))
       checks::fail(name + ".outer_radius", outer,
-                   "a radius beyond the obstruction's radius " + checks::number(telescope.obstruction_radius) +
+                   "a radius beyond the obstruction's radius " +
+                       checks::number(telescope.obstruction_radius) +
                        " m (a sector inside the obstruction leaves nothing)");
     if (!(s.inner_radius >= 0.0) || !(s.inner_radius < outer))
       checks::fail(name + ".inner_radius", s.inner_radius,
@@ -169,26 +180,30 @@ void ApertureMask::validate(const Telescope& telescope) const {
       const AnnularSector& b = checked[j];
       const double radial = std::min(a.outer, b.outer) - std::max(a.inner, b.inner);
       if (radial > kTouch * aperture && angular_overlap(a, b) > kTouch)
-        checks::fail(name, static_cast<double>(i),
-                     "a sector that does not overlap " + sector_name(j) +
-                         " (a mask is a union of disjoint sectors; merge them or split the angles)");
+        checks::fail(
+            name, static_cast<double>(i),
+            "a sector that does not overlap " + sector_name(j) +
+                " (a mask is a union of disjoint sectors; merge them or split the angles)");
     }
     checked.push_back(a);
   }
 }
 
-RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
-                     const RtOptions& options) {
+RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
+                     const ApertureMask& mask, const RtOptions& options) {
   const std::vector<std::vector<AnnularSector>> masks{checked_sectors(system, mask)};
   return detail::rt_over_ranges(
-      system, ranges, options, [&](const Receiver& rx) { return masked_overlaps_at(system, rx, masks, options)[0]; },
+      system, ranges, options,
+      [&](const Receiver& rx) { return masked_overlaps_at(system, rx, masks, options)[0]; },
       "overlap_rt (masked)");
 }
 
 std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
-                                  const std::vector<ApertureMask>& masks, const RtOptions& options) {
+                                  const std::vector<ApertureMask>& masks,
+                                  const RtOptions& options) {
   if (masks.empty() || masks.size() > kMaxMasks)
-    checks::fail("masks", static_cast<double>(masks.size()), "from 1 to " + std::to_string(kMaxMasks) + " masks");
+    checks::fail("masks", static_cast<double>(masks.size()),
+                 "from 1 to " + std::to_string(kMaxMasks) + " masks");
   std::vector<std::vector<AnnularSector>> sectors;
   for (std::size_t i = 0; i < masks.size(); ++i) {
     try {
@@ -197,8 +212,8 @@ std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<d
       if (e.parameter().rfind("mask.", 0) != 0) throw;  // the system's own error
       // "mask.sectors[0]..." becomes "masks[i].sectors[0]...", in the message that begins with it too
       const std::string parameter = "masks[" + std::to_string(i) + "]" + e.parameter().substr(4);
-      throw ParameterError(parameter + std::string(e.what()).substr(e.parameter().size()), parameter, e.value(),
-                           e.expected());
+      throw ParameterError(parameter + std::string(e.what()).substr(e.parameter().size()),
+                           parameter, e.value(), e.expected());
     }
   }
   detail::check_rt_options(options);
@@ -207,8 +222,9 @@ std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<d
   receivers.reserve(ranges.size());
   for (double z : ranges) receivers.emplace_back(system, z);
   std::vector<std::vector<detail::RtEntry>> at(ranges.size());
-  detail::parallel_for(ranges.size(), threads,
-                       [&](std::size_t i) { at[i] = masked_overlaps_at(system, receivers[i], sectors, options); });
+  detail::parallel_for(ranges.size(), threads, [&](std::size_t i) {
+    at[i] = masked_overlaps_at(system, receivers[i], sectors, options);
+  });
   std::vector<RtOverlap> out;
   for (std::size_t k = 0; k < masks.size(); ++k) {
     std::vector<detail::RtEntry> entries(ranges.size());
@@ -220,13 +236,14 @@ std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<d
   return out;
 }
 
-FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
-                              const FoAberratedOptions& options) {
-  return detail::overlap_fo_sampled(system, Aberrations{}, checked_sectors(system, mask), ranges, options,
-                                    "overlap_fo (masked)");
+FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges,
+                              const ApertureMask& mask, const FoAberratedOptions& options) {
+  return detail::overlap_fo_sampled(system, Aberrations{}, checked_sectors(system, mask), ranges,
+                                    options, "overlap_fo (masked)");
 }
 
-double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position, const ApertureMask& mask) {
+double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position,
+                           const ApertureMask& mask) {
   checks::coordinate("position", position);
   const std::vector<AnnularSector> sectors = checked_sectors(system, mask);
   const Receiver rx(system, z);
@@ -235,7 +252,8 @@ double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position, c
   double c = 0.0;
   for (std::size_t t = 0; t < n_terms; ++t) c += MaskedTerm{terms[t], sectors}(position);
   std::vector<double> g{std::max(0.0, c)};
-  checks::overlap_values(g, {z}, 1e-9, "emitter_coupling_rt (masked)");  // exact geometry: round-off only
+  checks::overlap_values(g, {z}, 1e-9,
+                         "emitter_coupling_rt (masked)");  // exact geometry: round-off only
   return g[0];
 }
 

@@ -45,7 +45,8 @@ void sample_pupil(const FoReceiver& rx, const Aberrations& aberrations, const Pu
   out.assign(n * n, Complex{});
   const AnnularPupil& pupil = rx.pupil();
   const double k = 2.0 * kPi / wavelength, half_diagonal = 0.7072 * delta;
-  const long half = static_cast<long>(std::ceil(pupil.outer / delta)) + 1, centre = static_cast<long>(n / 2);
+  const long half = static_cast<long>(std::ceil(pupil.outer / delta)) + 1,
+             centre = static_cast<long>(n / 2);
   std::vector<double> row(std::max(poly.degree, 0) + 1);
   for (long iy = -half; iy <= half; ++iy) {
     const double y = iy * delta;
@@ -61,7 +62,8 @@ void sample_pupil(const FoReceiver& rx, const Aberrations& aberrations, const Pu
         for (int sy = 0; sy < 8; ++sy)
           for (int sx = 0; sx < 8; ++sx) {
             const Vec2 a{x + (sx - 3.5) / 8.0 * delta, y + (sy - 3.5) / 8.0 * delta};
-            const double rs = std::hypot(a.x, a.y);  // as before masks: the same pixels for every pupil
+            const double rs =
+                std::hypot(a.x, a.y);  // as before masks: the same pixels for every pupil
             inside += rs < pupil.outer && rs >= pupil.inner && (!mask_edge || in_mask(a));
           }
         area = inside / 64.0;
@@ -103,14 +105,16 @@ RangePlan plan_range(const LidarSystem& system, const FoReceiver& rx, double blu
   const double lags = std::ceil(kImageSpectrumReach * period / w) + 1.0;
   const double needed = 2.0 * std::ceil(rx.pupil().outer / p.delta) + 4.0 + lags;
   p.lags = static_cast<long>(std::min(lags, 1e9));
-  p.n = needed <= static_cast<double>(options.max_grid) ? fast_fft_size(static_cast<std::size_t>(needed))
-                                                        : checks::saturate(needed);
+  p.n = needed <= static_cast<double>(options.max_grid)
+            ? fast_fft_size(static_cast<std::size_t>(needed))
+            : checks::saturate(needed);
   if (p.n > options.max_grid)
-    checks::fail(detail::range_name(index), z,
-                 "a range whose point image (blur radius " + std::to_string(blur) +
-                     " m on the detector plane) fits a pupil transform of at most max_grid = " +
-                     std::to_string(options.max_grid) + " (here " + std::to_string(p.n) +
-                     "); the defocus blur is geometric there, where method 'rt' traces the aberrations exactly");
+    checks::fail(
+        detail::range_name(index), z,
+        "a range whose point image (blur radius " + std::to_string(blur) +
+            " m on the detector plane) fits a pupil transform of at most max_grid = " +
+            std::to_string(options.max_grid) + " (here " + std::to_string(p.n) +
+            "); the defocus blur is geometric there, where method 'rt' traces the aberrations exactly");
   return p;
 }
 
@@ -119,27 +123,32 @@ double telescope_radius(const LidarSystem& system) { return 0.5 * system.telesco
 }  // namespace
 
 FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrations& aberrations,
-                                        const std::vector<double>& ranges, const FoAberratedOptions& options) {
+                                        const std::vector<double>& ranges,
+                                        const FoAberratedOptions& options) {
   system.validate();
   aberrations.validate();
   if (aberrations.field_dependent())
-    throw std::invalid_argument("aberrations with W131, W222, W220 or W311 vary across the field, which the Fourier-"
-                                "optics path (one point image for every scatterer) cannot model: use method 'rt', "
-                                "or their Zernike form at one field point");
-  return detail::overlap_fo_sampled(system, aberrations, {}, ranges, options, "overlap_fo_aberrated");
+    throw std::invalid_argument(
+        "aberrations with W131, W222, W220 or W311 vary across the field, which the Fourier-"
+        "optics path (one point image for every scatterer) cannot model: use method 'rt', "
+        "or their Zernike form at one field point");
+  return detail::overlap_fo_sampled(system, aberrations, {}, ranges, options,
+                                    "overlap_fo_aberrated");
 }
 
 namespace detail {
 
 FoAberratedOverlap overlap_fo_sampled(const LidarSystem& system, const Aberrations& aberrations,
-                                      const std::vector<AnnularSector>& mask, const std::vector<double>& ranges,
+                                      const std::vector<AnnularSector>& mask,
+                                      const std::vector<double>& ranges,
                                       const FoAberratedOptions& options, const std::string& name) {
   system.validate();
   system.beam.validate_for_fourier_optics();
   if (aberrations.pupil_polynomial().degree < 0)
-    checks::fail("aberrations.zernike (highest Noll index)", static_cast<double>(aberrations.zernike.size()),
-                 "at most 153 (radial order 16) for Fourier optics, which samples the pupil as one polynomial "
-                 "(higher orders lose digits to cancellation and cost O(order) per sample): use method 'rt'");
+    checks::fail(
+        "aberrations.zernike (highest Noll index)", static_cast<double>(aberrations.zernike.size()),
+        "at most 153 (radial order 16) for Fourier optics, which samples the pupil as one polynomial "
+        "(higher orders lose digits to cancellation and cost O(order) per sample): use method 'rt'");
   const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
   checks::in_open_unit("tail_error", options.tail_error);
   const double radius = telescope_radius(system);
@@ -167,9 +176,10 @@ FoAberratedOverlap overlap_fo_sampled(const LidarSystem& system, const Aberratio
     // m delta), two transforms each. Their difference carries the aberrations; the sampling's own errors (edge
     // pixels, the aliases' tails) are nearly the same in both and cancel, and the aberration-free G is exact.
     ComplexBuffer aberrated, plain;
-    sample_pupil(rx, aberrations, poly, radius, system.beam.wavelength, p.delta, p.n, mask, aberrated);
-    sample_pupil(rx, Aberrations{}, Aberrations{}.pupil_polynomial(), radius, system.beam.wavelength, p.delta, p.n,
-                 {}, plain);
+    sample_pupil(rx, aberrations, poly, radius, system.beam.wavelength, p.delta, p.n, mask,
+                 aberrated);
+    sample_pupil(rx, Aberrations{}, Aberrations{}.pupil_polynomial(), radius,
+                 system.beam.wavelength, p.delta, p.n, {}, plain);
     for (ComplexBuffer* b : {&aberrated, &plain}) {
       fft2d(*b, p.n, FftDirection::forward, FftPlanning::estimate);
       for (Complex& v : *b) v = std::norm(v);
@@ -197,7 +207,8 @@ FoAberratedOverlap overlap_fo_sampled(const LidarSystem& system, const Aberratio
       }
     }
     const double n2 = static_cast<double>(p.n) * static_cast<double>(p.n);
-    out.overlap[i] = gaussian_image_overlap(system, z, 4.0, nullptr, detail::range_name(i)) + sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
+    out.overlap[i] = gaussian_image_overlap(system, z, 4.0, nullptr, detail::range_name(i)) +
+                     sum * p.delta * p.delta * dq * dq / (n2 * kPi * radius * radius);
   });
   checks::overlap_values(out.overlap, ranges, detail::kFoOverlapSlack, name);
   return out;
@@ -205,12 +216,13 @@ FoAberratedOverlap overlap_fo_sampled(const LidarSystem& system, const Aberratio
 
 }  // namespace detail
 
-Field point_image(const LidarSystem& system, const Aberrations& aberrations, double z, std::size_t n,
-                  double spacing) {
+Field point_image(const LidarSystem& system, const Aberrations& aberrations, double z,
+                  std::size_t n, double spacing) {
   system.validate();
   aberrations.validate();
   if (aberrations.field_dependent())
-    throw std::invalid_argument("point_image takes field-independent aberrations (Zernike terms and W040)");
+    throw std::invalid_argument(
+        "point_image takes field-independent aberrations (Zernike terms and W040)");
   if (n < 8 || n % 2) checks::fail("n", static_cast<double>(n), "an even size >= 8");
   checks::grid("n", n, sizeof(Complex), 3);  // the pupil, the image and the caller's copy
   checks::length("spacing", spacing);
@@ -219,10 +231,12 @@ Field point_image(const LidarSystem& system, const Aberrations& aberrations, dou
   const double delta = lambda * d / (n * spacing), radius = telescope_radius(system);
   if (2 * (static_cast<std::size_t>(std::ceil(rx.pupil().outer / delta)) + 2) > n)
     checks::fail("spacing", spacing,
-                 "at most lambda d / D (1 - 8/n) = " + std::to_string(lambda * d / (2.0 * rx.pupil().outer) * (1.0 - 8.0 / n)) +
+                 "at most lambda d / D (1 - 8/n) = " +
+                     std::to_string(lambda * d / (2.0 * rx.pupil().outer) * (1.0 - 8.0 / n)) +
                      " m, so that the pupil fits the n x n transform");
   ComplexBuffer buffer;
-  sample_pupil(rx, aberrations, aberrations.pupil_polynomial(), radius, lambda, delta, n, {}, buffer);
+  sample_pupil(rx, aberrations, aberrations.pupil_polynomial(), radius, lambda, delta, n, {},
+               buffer);
   fft2d(buffer, n, FftDirection::forward);  // a size users call again: FFTW_MEASURE pays off
   Field f;
   f.n = n;

@@ -23,7 +23,8 @@ namespace {
 // The ray fan through the pupil, with the field-independent wavefront slope of every ray computed once.
 class RayFan {
  public:
-  RayFan(const LidarSystem& system, const Aberrations& aberrations, const RtAberratedOptions& options)
+  RayFan(const LidarSystem& system, const Aberrations& aberrations,
+         const RtAberratedOptions& options)
       : system_(system), ab_(aberrations), rings_(options.rings), per_ring_(options.ring_rays) {
     radius_ = 0.5 * system.telescope.diameter;
     Aberrations fixed = aberrations;  // the part that is the same for every scatterer
@@ -45,7 +46,8 @@ class RayFan {
     const Detector& det = system_.detector;
     const double d = t.focal_length + det.defocus, k = 1.0 / z - 1.0 / t.focal_length;
     const double max_slope = det.max_ray_slope();
-    const Vec2 field = (1.0 / z) * position, h = ab_.field_dependent() ? (1.0 / ab_.field_radius) * field : Vec2{};
+    const Vec2 field = (1.0 / z) * position,
+               h = ab_.field_dependent() ? (1.0 / ab_.field_radius) * field : Vec2{};
     const double s_obs = t.obstruction_distance / z;
     std::vector<double> margin(per_ring_);
     double total = 0.0;
@@ -60,7 +62,8 @@ class RayFan {
           slope = slope + (1.0 / radius_) * (g.along_pupil * p + g.along_field * h);
         }
         double m = det.radius - norm(a + d * slope - det.offset);
-        if (t.obstruction_radius > 0.0) m = std::min(m, norm(a + s_obs * (position - a)) - t.obstruction_radius);
+        if (t.obstruction_radius > 0.0)
+          m = std::min(m, norm(a + s_obs * (position - a)) - t.obstruction_radius);
         if (det.numerical_aperture) m = std::min(m, max_slope - norm(slope));
         margin[j] = m;
       }
@@ -68,8 +71,10 @@ class RayFan {
       double inside = 0.0;
       for (std::size_t j = 0; j < per_ring_; ++j) {
         const double m0 = margin[j], m1 = margin[(j + 1) % per_ring_];
-        if (m0 > 0.0 && m1 > 0.0) inside += 1.0;
-        else if (m0 > 0.0 || m1 > 0.0) inside += std::max(m0, m1) / std::abs(m1 - m0);
+        if (m0 > 0.0 && m1 > 0.0)
+          inside += 1.0;
+        else if (m0 > 0.0 || m1 > 0.0)
+          inside += std::max(m0, m1) / std::abs(m1 - m0);
       }
       total += inside;
     }
@@ -91,7 +96,8 @@ bool rotationally_symmetric(const LidarSystem& system, const Aberrations& ab) {
   return true;  // Seidel terms turn with the field direction: the coupling depends on |P| only
 }
 
-void validate(const LidarSystem& system, const Aberrations& aberrations, const RtAberratedOptions& o) {
+void validate(const LidarSystem& system, const Aberrations& aberrations,
+              const RtAberratedOptions& o) {
   system.validate();
   aberrations.validate();
   if (o.rings < 4) checks::fail("rings", static_cast<double>(o.rings), "at least 4");
@@ -105,7 +111,8 @@ void validate(const LidarSystem& system, const Aberrations& aberrations, const R
 }  // namespace
 
 RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
-                                        const std::vector<double>& ranges, const RtAberratedOptions& options) {
+                                        const std::vector<double>& ranges,
+                                        const RtAberratedOptions& options) {
   validate(system, aberrations, options);
   const int threads = detail::checked_threads_and_ranges(system, ranges, options.threads);
   const RayFan fan(system, aberrations, options);
@@ -119,9 +126,11 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
   const std::size_t directions = out.rotationally_symmetric ? 1 : options.directions;
   // Each coupling traces rings x ring_rays rays. The radial integrals of one range may trace kMaxFanRays in all
   // (a few seconds); past that they stop short of the tolerance, which clears `converged` (and warns in Python).
-  const double rays_per_segment = 21.0 * double(options.rings) * double(options.ring_rays) * double(directions);
-  const std::size_t fan_segments =
-      std::min<std::size_t>(options.max_segments, std::max<std::size_t>(8, checks::saturate(kMaxFanRays / rays_per_segment)));
+  const double rays_per_segment =
+      21.0 * double(options.rings) * double(options.ring_rays) * double(directions);
+  const std::size_t fan_segments = std::min<std::size_t>(
+      options.max_segments,
+      std::max<std::size_t>(8, checks::saturate(kMaxFanRays / rays_per_segment)));
   const Telescope& t = system.telescope;
   const bool dual = !aberrations.field_dependent() && !system.detector.numerical_aperture &&
                     (t.obstruction_radius == 0.0 || t.obstruction_distance == 0.0);
@@ -155,7 +164,8 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
     for (std::size_t j = 0; j < count; ++j) add_direction(2.0 * kPi * j / count);
     value = sum / count;
     while (count < directions) {
-      for (std::size_t j = 0; j < count; ++j) add_direction(2.0 * kPi * (j + 0.5) / count);  // the midpoints
+      for (std::size_t j = 0; j < count; ++j)
+        add_direction(2.0 * kPi * (j + 0.5) / count);  // the midpoints
       count *= 2;
       change = std::abs(sum / count - value);
       value = sum / count;
@@ -172,8 +182,8 @@ RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrat
   return out;
 }
 
-double emitter_coupling_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations, double z,
-                                     Vec2 position, const RtAberratedOptions& options) {
+double emitter_coupling_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
+                                     double z, Vec2 position, const RtAberratedOptions& options) {
   validate(system, aberrations, options);
   system.validate_range(z, "z");
   checks::coordinate("position", position);

@@ -14,7 +14,8 @@ namespace lidar_overlap::detail {
 // G at every range for the pupil with `aberrations` (field-independent, validated) cut to `mask` (sectors in the
 // aperture plane; empty: none). `name` names the engine in value errors.
 FoAberratedOverlap overlap_fo_sampled(const LidarSystem& system, const Aberrations& aberrations,
-                                      const std::vector<AnnularSector>& mask, const std::vector<double>& ranges,
+                                      const std::vector<AnnularSector>& mask,
+                                      const std::vector<double>& ranges,
                                       const FoAberratedOptions& options, const std::string& name);
 
 }  // namespace lidar_overlap::detail

@@ -16,7 +16,8 @@ struct SeidelFieldGradient {
 
 inline SeidelFieldGradient seidel_field_gradient(const Aberrations& ab, Vec2 p, Vec2 h) {
   const double hp = dot(h, p), h2 = dot(h, h), r2 = dot(p, p);
-  return {2.0 * ab.w131 * hp + 2.0 * ab.w220 * h2, ab.w131 * r2 + 2.0 * ab.w222 * hp + ab.w311 * h2};
+  return {2.0 * ab.w131 * hp + 2.0 * ab.w220 * h2,
+          ab.w131 * r2 + 2.0 * ab.w222 * hp + ab.w311 * h2};
 }
 
 }  // namespace lidar_overlap::detail

@@ -38,7 +38,8 @@ Radial radial(int n, int abs_m, double rho) {
       r.derivative += coefficient * power * std::pow(rho, power - 1);
       r.over_rho += coefficient * std::pow(rho, power - 1);
     }
-    if (2 * (k + 1) > n - abs_m) break;  // the last term (its update would divide by n - k = 0 for n = 0)
+    if (2 * (k + 1) > n - abs_m)
+      break;  // the last term (its update would divide by n - k = 0 for n = 0)
     // Next coefficient: k -> k+1.
     const double a = (n + abs_m) / 2 - k, b = (n - abs_m) / 2 - k;
     coefficient *= -(a * b) / ((k + 1.0) * (n - k));
@@ -54,7 +55,9 @@ double zernike(int j, Vec2 p) {
   const ZernikeIndex z = noll_index(j);
   const int abs_m = std::abs(z.m);
   const double rho = norm(p), theta = std::atan2(p.y, p.x);
-  const double angular = z.m > 0 ? std::cos(abs_m * theta) : z.m < 0 ? std::sin(abs_m * theta) : 1.0;
+  const double angular = z.m > 0   ? std::cos(abs_m * theta)
+                         : z.m < 0 ? std::sin(abs_m * theta)
+                                   : 1.0;
   return normalisation(z) * radial(z.n, abs_m, rho).value * angular;
 }
 

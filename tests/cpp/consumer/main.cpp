@@ -114,6 +114,7 @@ int main() {
   const double g = overlap_rt(system, {z}, {1e-9, 1, 4000}).overlap[0];
   const double w = system.beam.radius(z), az = system.detector.radius * z;
   const double expected = -std::expm1(-2.0 * az * az / (w * w));
-  std::cout << "lidar_overlap " << kVersion << ": G(" << z << " m) = " << g << " (closed form " << expected << ")\n";
+  std::cout << "lidar_overlap " << kVersion << ": G(" << z << " m) = " << g << " (closed form "
+            << expected << ")\n";
   return std::abs(g - expected) < 1e-7 ? 0 : 1;
 }

@@ -47,27 +47,32 @@ inline std::uint64_t screen_stream(std::uint64_t seed, int screen) {
 enum class TurbulencePaths { transmit, both };
 
 struct TurbulenceOptions {
-  std::size_t realizations = 20;        // realisations computed: first_realization, first_realization + 1, ...
-  std::size_t screens = 10;             // phase screens over [0, last range]
-  std::uint64_t seed = 0;               // same seed, same screens, whatever the thread count
-  std::size_t beam_grid = 256;          // samples per side of the propagated field
-  double beam_window = 8.0;             // window in long-term radii (plus 8 rms wander) at every plane
+  std::size_t realizations =
+      20;                    // realisations computed: first_realization, first_realization + 1, ...
+  std::size_t screens = 10;  // phase screens over [0, last range]
+  std::uint64_t seed = 0;    // same seed, same screens, whatever the thread count
+  std::size_t beam_grid = 256;  // samples per side of the propagated field
+  double beam_window = 8.0;     // window in long-term radii (plus 8 rms wander) at every plane
   std::size_t max_spectrum_grid = 4096;
-  int threads = 0;                      // OpenMP threads across realisations; 0: all cores, per call. Callers that run
-                                        // calls from several threads pass 1 (or their share): core/limits.hpp
-  std::size_t first_realization = 0;    // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
-                                        // (last, so that braced initialisers of the fields above keep their meaning)
-  TurbulencePaths paths = TurbulencePaths::transmit;  // both: the return path through the same screens
-  std::size_t receiver_fields = 1;      // both: random-phase fields standing for the incoherent detector (below)
+  int threads = 0;  // OpenMP threads across realisations; 0: all cores, per call. Callers that run
+                    // calls from several threads pass 1 (or their share): core/limits.hpp
+  std::size_t first_realization =
+      0;  // index of the first in the run of `seed`; first + realizations <= kMaxRealizations
+          // (last, so that braced initialisers of the fields above keep their meaning)
+  TurbulencePaths paths =
+      TurbulencePaths::transmit;  // both: the return path through the same screens
+  std::size_t receiver_fields =
+      1;  // both: random-phase fields standing for the incoherent detector (below)
 };
 
 struct TurbulentOverlap {
   std::vector<std::vector<double>> overlap;  // [realisation - first_realization][range]
   std::vector<double> wander_x, wander_y;    // m, beam centroid at the last range, per realisation
-  std::vector<double> radius_last;           // m, second-moment radius at the last range, per realisation
+  std::vector<double> radius_last;  // m, second-moment radius at the last range, per realisation
   // paths = both: G of each draw's beam with the receiver's sensitivity through the other draw of its screen
   // pair (an independent atmosphere): the uncorrelated paths, whose mean the amplification divides by.
-  std::vector<std::vector<double>> uncorrelated;  // [realisation - first_realization][range]; empty for transmit
+  std::vector<std::vector<double>>
+      uncorrelated;  // [realisation - first_realization][range]; empty for transmit
   // paths = both: standard error of each draw's G from its receiver_fields random-phase fields (their spread over
   // sqrt(receiver_fields)); NaN with one field (no spread to measure); empty for transmit.
   std::vector<std::vector<double>> receiver_error;
@@ -84,6 +89,7 @@ struct TurbulentOverlap {
 // Throws std::invalid_argument for a system or profile that is not valid, a beam that is not a
 // diffraction-limited Gaussian, or options out of range (naming them).
 TurbulentOverlap overlap_fo_turbulent(const LidarSystem& system, const std::vector<double>& ranges,
-                                      const Cn2Profile& atmosphere, const TurbulenceOptions& options = {});
+                                      const Cn2Profile& atmosphere,
+                                      const TurbulenceOptions& options = {});
 
 }  // namespace lidar_overlap

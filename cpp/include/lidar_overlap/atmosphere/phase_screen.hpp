@@ -47,7 +47,8 @@ class PhaseScreenGenerator {
   // n x n samples (n even >= 8) of `spacing` (m); Fried parameter `r0` (m; infinity gives zero
   // screens), outer scale (m; infinity: Kolmogorov), inner scale (m; 0: none).
   PhaseScreenGenerator(std::size_t n, double spacing, double r0,
-                       double outer_scale = std::numeric_limits<double>::infinity(), double inner_scale = 0.0,
+                       double outer_scale = std::numeric_limits<double>::infinity(),
+                       double inner_scale = 0.0,
                        SubharmonicWeights weights = SubharmonicWeights::tilt_matched);
 
   // Screen `index` of the stream `seed`: rad, n x n row-major (screen[iy * n + ix]), sample (ix, iy) at
@@ -75,10 +76,13 @@ class PhaseScreenGenerator {
   std::size_t n_;
   double spacing_, r0_, outer_scale_, inner_scale_;
   SubharmonicWeights weights_;
-  std::vector<double> amplitude_;         // sqrt(Phi) df on |fx|, |fy| in 0..n/2: (n/2 + 1)^2, [|ky| (n/2+1) + |kx|]
-  std::array<double, 27> sub_amplitude_;  // sqrt(Phi) df_p of subharmonic (p, b, a) at [9 p + 3 (b + 1) + (a + 1)]
-  std::array<std::vector<double>, 3> sub_cos_, sub_sin_;  // exp(i 2 pi df_p x_i) per axis, per level
-  std::array<Complex, 3> sub_mean_{};                     // their means over the grid
+  std::vector<double>
+      amplitude_;  // sqrt(Phi) df on |fx|, |fy| in 0..n/2: (n/2 + 1)^2, [|ky| (n/2+1) + |kx|]
+  std::array<double, 27>
+      sub_amplitude_;  // sqrt(Phi) df_p of subharmonic (p, b, a) at [9 p + 3 (b + 1) + (a + 1)]
+  std::array<std::vector<double>, 3> sub_cos_,
+      sub_sin_;                        // exp(i 2 pi df_p x_i) per axis, per level
+  std::array<Complex, 3> sub_mean_{};  // their means over the grid
 };
 
 // Multiplies `field` by exp(i screen) (screen in rad, n x n like the field).

@@ -21,18 +21,18 @@ struct ScreenPlacement {
   double start = 0.0;         // m, the segment [start, end)
   double end = 0.0;           // m
   double cn2_integral = 0.0;  // m^(1/3), integral of Cn^2 over the segment
-  double r0 = 0.0;            // m, the segment's plane-wave Fried parameter (infinite where Cn^2 = 0)
+  double r0 = 0.0;  // m, the segment's plane-wave Fried parameter (infinite where Cn^2 = 0)
 };
 
 struct Cn2Profile {
   Cn2Model model = Cn2Model::constant;
-  double cn2 = 0.0;                                 // m^(-2/3), Cn2Model::constant
-  double hv_ground = 1.7e-14;                       // m^(-2/3), Hufnagel-Valley ground term A (HV5/7)
-  double hv_wind = 21.0;                            // m/s, Hufnagel-Valley rms upper wind speed (HV5/7)
-  std::function<double(double)> cn2_of_height;      // m^(-2/3) at a height above ground (m), custom
-  double elevation = 1.57079632679489661923;        // rad, in (0, pi/2]; pi/2 (the default) is the zenith
-  double altitude = 0.0;                            // m, the lidar's height above ground (>= 0)
-  double inner_scale = 0.0;                         // m, l0 of the phase screens; 0: none
+  double cn2 = 0.0;                             // m^(-2/3), Cn2Model::constant
+  double hv_ground = 1.7e-14;                   // m^(-2/3), Hufnagel-Valley ground term A (HV5/7)
+  double hv_wind = 21.0;                        // m/s, Hufnagel-Valley rms upper wind speed (HV5/7)
+  std::function<double(double)> cn2_of_height;  // m^(-2/3) at a height above ground (m), custom
+  double elevation = 1.57079632679489661923;  // rad, in (0, pi/2]; pi/2 (the default) is the zenith
+  double altitude = 0.0;                      // m, the lidar's height above ground (>= 0)
+  double inner_scale = 0.0;                   // m, l0 of the phase screens; 0: none
   double outer_scale = std::numeric_limits<double>::infinity();  // m, L0; infinity: Kolmogorov
 
   static Cn2Profile constant(double cn2);
@@ -46,7 +46,8 @@ struct Cn2Profile {
   void validate() const;
 
   double cn2_at_height(double height) const;  // m^(-2/3) at `height` (m) above ground
-  double cn2_at_range(double range) const;    // m^(-2/3) at `range` (m): height altitude + range sin(elevation)
+  double cn2_at_range(
+      double range) const;  // m^(-2/3) at `range` (m): height altitude + range sin(elevation)
 
   // Fried parameter (m) at `wavelength` (m) over the path [0, path_length] (m):
   // plane wave r0 = [0.423 k^2 int Cn^2(z) dz]^(-3/5); spherical wave from a point source at the lidar
@@ -63,7 +64,8 @@ struct Cn2Profile {
 
   // `count` equal segments of [0, path_length], each a screen at its middle whose r0 is the plane-wave
   // one of its segment, so that the sum of r0_i^(-5/3) is fried_parameter_plane^(-5/3).
-  std::vector<ScreenPlacement> place_screens(double wavelength, double path_length, std::size_t count) const;
+  std::vector<ScreenPlacement> place_screens(double wavelength, double path_length,
+                                             std::size_t count) const;
 
   // Collimated TEM00 beam of waist radius `waist_radius` (m) at range 0, weak fluctuations (Rytov
   // variance below ~1), infinite outer scale, waist much larger than the inner scale; after Andrews &

@@ -37,10 +37,12 @@ double turbulent_window(const LidarSystem& system, const Cn2Profile& atmosphere,
                         TurbulencePaths paths, double z);
 
 struct TurbulentGrid {
-  std::vector<double> plane_range;  // m, the planes in propagation order: screens, then ranges at equal range
-  std::vector<double> window;       // m, each plane's grid side (spacing x beam_grid), linear in range between screens
-  double pupil_window = 0.0;        // m, the transmitter plane's (z = 0)
-  std::size_t min_beam_grid = 32;   // least (even) beam_grid the call accepts for these paths
+  std::vector<double>
+      plane_range;  // m, the planes in propagation order: screens, then ranges at equal range
+  std::vector<double>
+      window;  // m, each plane's grid side (spacing x beam_grid), linear in range between screens
+  double pupil_window = 0.0;       // m, the transmitter plane's (z = 0)
+  std::size_t min_beam_grid = 32;  // least (even) beam_grid the call accepts for these paths
 };
 
 // The grids overlap_fo_turbulent would use for (system, ranges, atmosphere, options): options.beam_grid is
@@ -50,6 +52,7 @@ TurbulentGrid turbulent_grid(const LidarSystem& system, const std::vector<double
 
 // Bytes a paths = both call allocates: the screens' spectra and, per thread, the pair's two beams and
 // 2 x receiver_fields fields plus working buffers.
-double turbulent_both_bytes(std::size_t beam_grid, std::size_t screens, std::size_t receiver_fields, int threads);
+double turbulent_both_bytes(std::size_t beam_grid, std::size_t screens, std::size_t receiver_fields,
+                            int threads);
 
 }  // namespace lidar_overlap

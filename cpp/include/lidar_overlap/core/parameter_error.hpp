@@ -11,7 +11,8 @@ namespace lidar_overlap {
 
 class ParameterError : public std::invalid_argument {
  public:
-  ParameterError(const std::string& message, std::string parameter, double value, std::string expected)
+  ParameterError(const std::string& message, std::string parameter, double value,
+                 std::string expected)
       : std::invalid_argument(message),
         parameter_(std::move(parameter)),
         value_(value),

@@ -29,9 +29,13 @@ struct FftwAllocator {
   }
   void deallocate(T* p, std::size_t) noexcept { fftw_aligned_free(p); }
   template <class U>
-  bool operator==(const FftwAllocator<U>&) const { return true; }
+  bool operator==(const FftwAllocator<U>&) const {
+    return true;
+  }
   template <class U>
-  bool operator!=(const FftwAllocator<U>&) const { return false; }
+  bool operator!=(const FftwAllocator<U>&) const {
+    return false;
+  }
 };
 
 using ComplexBuffer = std::vector<Complex, FftwAllocator<Complex>>;

@@ -20,9 +20,9 @@ struct Field {
   void validate() const;
 
   double coordinate(std::size_t i) const { return (static_cast<double>(i) - 0.5 * n) * spacing; }
-  double power() const;                      // W
-  Vec2 centroid() const;                     // m, irradiance-weighted centre
-  double beam_radius() const;                // m, sqrt(2 (var_x + var_y)) about the centroid (D4sigma/2)
+  double power() const;        // W
+  Vec2 centroid() const;       // m, irradiance-weighted centre
+  double beam_radius() const;  // m, sqrt(2 (var_x + var_y)) about the centroid (D4sigma/2)
 
   // TEM00 beam at its waist, flat phase, total power `power` (W), centred at `center` (m).
   static Field gaussian(double wavelength, double waist_radius, std::size_t n, double spacing,

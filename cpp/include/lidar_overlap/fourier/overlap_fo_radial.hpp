@@ -17,14 +17,15 @@
 namespace lidar_overlap {
 
 struct RadialFoOptions {
-  double periods_per_panel = 8.0;  // panel length in periods of the fastest oscillation (24 nodes each)
-  int threads = 0;                 // OpenMP threads across ranges; 0: all cores, per call. Callers that run
-                                   // calls from several threads pass 1 (or their share): core/limits.hpp
+  double periods_per_panel =
+      8.0;          // panel length in periods of the fastest oscillation (24 nodes each)
+  int threads = 0;  // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                    // calls from several threads pass 1 (or their share): core/limits.hpp
 };
 
 struct RadialFoOverlap {
-  std::vector<double> overlap;          // G(z)
-  std::vector<std::size_t> evaluations; // OTF evaluations per range
+  std::vector<double> overlap;           // G(z)
+  std::vector<std::size_t> evaluations;  // OTF evaluations per range
 };
 
 // Throws std::invalid_argument unless the beam follows the Gaussian width law with a divergence at or above

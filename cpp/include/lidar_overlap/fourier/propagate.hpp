@@ -15,14 +15,17 @@ enum class PropagationMethod { automatic, angular_spectrum, fresnel, fraunhofer 
 
 struct PropagationReport {
   PropagationMethod method = PropagationMethod::automatic;  // the method actually used
-  double critical_distance = 0.0;    // m, n dx^2 / lambda: AS below it, single-FFT Fresnel above
-  double band_limit_loss = 0.0;      // AS: fraction of power outside the band-limited transfer function
-  double input_edge_power = 0.0;     // fraction of the input power in the outer n/16 of the window
-  double output_edge_power = 0.0;    // the same for the output (wrap-around, aliasing; clipping if scaled)
-  bool scaled_output = false;        // Fresnel/Fraunhofer by chirp-z to a chosen spacing (no wrap-around)
-  double chirp_phase_step = 0.0;     // rad, Fresnel: phase step of the input chirp at the field's edge (<= pi)
-  double fresnel_phase_error = 0.0;  // rad, Fresnel: (pi / (4 lambda)) rho^4 / z^3 over the fields (A3)
-  double fraunhofer_phase = 0.0;     // rad, Fraunhofer: neglected input phase pi a^2 / (lambda z) (A6)
+  double critical_distance = 0.0;  // m, n dx^2 / lambda: AS below it, single-FFT Fresnel above
+  double band_limit_loss = 0.0;  // AS: fraction of power outside the band-limited transfer function
+  double input_edge_power = 0.0;  // fraction of the input power in the outer n/16 of the window
+  double output_edge_power =
+      0.0;  // the same for the output (wrap-around, aliasing; clipping if scaled)
+  bool scaled_output = false;  // Fresnel/Fraunhofer by chirp-z to a chosen spacing (no wrap-around)
+  double chirp_phase_step =
+      0.0;  // rad, Fresnel: phase step of the input chirp at the field's edge (<= pi)
+  double fresnel_phase_error =
+      0.0;  // rad, Fresnel: (pi / (4 lambda)) rho^4 / z^3 over the fields (A3)
+  double fraunhofer_phase = 0.0;  // rad, Fraunhofer: neglected input phase pi a^2 / (lambda z) (A6)
 };
 
 struct Propagated {
@@ -40,11 +43,13 @@ class PropagationPlan {
   // AS, lambda z / (n dx) otherwise. automatic: AS when distance <= the critical distance n dx^2 / lambda
   // and no other output spacing is asked for, else Fresnel.
   PropagationPlan(std::size_t n, double spacing, double wavelength, double distance,
-                  PropagationMethod method = PropagationMethod::automatic, double output_spacing = 0.0);
+                  PropagationMethod method = PropagationMethod::automatic,
+                  double output_spacing = 0.0);
 
   // A plan for these parameters from a small process-wide cache (made on first use).
-  static std::shared_ptr<const PropagationPlan> cached(std::size_t n, double spacing, double wavelength,
-                                                       double distance, PropagationMethod method,
+  static std::shared_ptr<const PropagationPlan> cached(std::size_t n, double spacing,
+                                                       double wavelength, double distance,
+                                                       PropagationMethod method,
                                                        double output_spacing);
 
   // Works in place on `in` (pass an rvalue to avoid a copy of the field).
@@ -63,11 +68,11 @@ class PropagationPlan {
   std::size_t n_;
   double spacing_, wavelength_, distance_, output_spacing_, critical_distance_;
   PropagationMethod method_;
-  ComplexBuffer transfer_;              // AS: n x n, zero outside the band limit
-  std::vector<Complex> chirp_in_;       // Fresnel: exp(i k x^2 / 2z) per axis, centring sign folded in
-  std::vector<Complex> chirp_out_;      // exp(i k x^2 / 2z) per axis on the output grid, sign folded in
-  Complex front_{1.0, 0.0};             // exp(ikz) / (i lambda z) dx^2
-  bool single_fft_ = false;             // Fresnel/Fraunhofer at the natural spacing: one FFT
+  ComplexBuffer transfer_;          // AS: n x n, zero outside the band limit
+  std::vector<Complex> chirp_in_;   // Fresnel: exp(i k x^2 / 2z) per axis, centring sign folded in
+  std::vector<Complex> chirp_out_;  // exp(i k x^2 / 2z) per axis on the output grid, sign folded in
+  Complex front_{1.0, 0.0};         // exp(ikz) / (i lambda z) dx^2
+  bool single_fft_ = false;         // Fresnel/Fraunhofer at the natural spacing: one FFT
 
   // The chirp-z path (Fresnel/Fraunhofer to another spacing), in place on u (n x n).
   PropagationReport scaled(ComplexBuffer& u) const;
@@ -75,7 +80,8 @@ class PropagationPlan {
 
 // One-shot propagation through a cached plan; see PropagationPlan for the arguments. The field is
 // copied; pass an rvalue to let the propagation reuse its memory.
-Propagated propagate(Field in, double distance, PropagationMethod method = PropagationMethod::automatic,
+Propagated propagate(Field in, double distance,
+                     PropagationMethod method = PropagationMethod::automatic,
                      double output_spacing = 0.0);
 
 }  // namespace lidar_overlap

@@ -25,7 +25,8 @@ enum class AlignmentParameter {
 // "tilt_x", "beam_offset_y", ...; and back (throws std::invalid_argument naming `parameter` for a name
 // that is none of them).
 const char* alignment_parameter_name(AlignmentParameter p);
-AlignmentParameter alignment_parameter_from_name(const std::string& name, const std::string& parameter = "axes");
+AlignmentParameter alignment_parameter_from_name(const std::string& name,
+                                                 const std::string& parameter = "axes");
 
 // One axis of a map: values (rad or m, finite, strictly increasing) added to the system's own value.
 struct AlignmentAxis {

@@ -11,9 +11,9 @@
 namespace lidar_overlap {
 
 struct RtOptions {
-  double tolerance = 1e-4;          // absolute error allowed on G at each range, in (0, 1)
-  int threads = 0;                  // OpenMP threads across ranges; 0: all cores, per call. Callers that run
-                                    // calls from several threads pass 1 (or their share): core/limits.hpp
+  double tolerance = 1e-4;  // absolute error allowed on G at each range, in (0, 1)
+  int threads = 0;  // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                    // calls from several threads pass 1 (or their share): core/limits.hpp
   std::size_t max_segments = 4000;  // per adaptive integral; reaching it clears `converged`
 };
 
@@ -37,8 +37,8 @@ inline constexpr std::size_t kMaxBatchEntries = 10000000;
 // gives, computed in parallel over entries: many systems (e.g. wandering beams) in one call. `axisymmetric`
 // is true when every system is. Throws std::invalid_argument for sizes that differ or exceed
 // kMaxBatchEntries, and for an invalid system (naming systems[i]), range (ranges[i]) or option.
-RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems, const std::vector<double>& ranges,
-                           const RtOptions& options = {});
+RtOverlap overlap_rt_batch(const std::vector<LidarSystem>& systems,
+                           const std::vector<double>& ranges, const RtOptions& options = {});
 
 // Coupling of one point scatterer at (position, z) (m): power reaching the detector over the power
 // it sends into the full, unobstructed aperture.

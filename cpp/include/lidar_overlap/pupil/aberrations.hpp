@@ -21,8 +21,10 @@ struct PupilPolynomial {
 };
 
 struct Aberrations {
-  static constexpr std::size_t kMaxNollIndex = 231;  // radial order 20: max_gradient samples finely enough
-  static constexpr double kMaxCoefficient = 1e-2;    // m: a wavefront error of 1 cm is far beyond any receiver
+  static constexpr std::size_t kMaxNollIndex =
+      231;  // radial order 20: max_gradient samples finely enough
+  static constexpr double kMaxCoefficient =
+      1e-2;                     // m: a wavefront error of 1 cm is far beyond any receiver
   std::vector<double> zernike;  // m RMS; zernike[j - 1] is Noll term j (pupil/zernike.hpp)
   // Seidel coefficients (m) at the pupil edge and the field edge H = 1: W040 rho^4 + W131 H rho^3 cos +
   // W222 H^2 rho^2 cos^2 + W220 H^2 rho^2 + W311 H^3 rho cos, with cos the angle between pupil point and field.

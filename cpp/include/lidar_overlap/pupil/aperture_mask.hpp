@@ -17,9 +17,9 @@ namespace lidar_overlap {
 // aperture plane, the frame of the beam's offset and tilt) and radius in [inner_radius, outer_radius] (m).
 struct Sector {
   double start_angle = 0.0;
-  double stop_angle = 0.0;                  // > start_angle, at most 2 pi beyond it
-  double inner_radius = 0.0;                // m, >= 0
-  std::optional<double> outer_radius;       // m, at most D/2; empty: the aperture's edge D/2
+  double stop_angle = 0.0;             // > start_angle, at most 2 pi beyond it
+  double inner_radius = 0.0;           // m, >= 0
+  std::optional<double> outer_radius;  // m, at most D/2; empty: the aperture's edge D/2
 };
 
 struct ApertureMask {
@@ -42,8 +42,8 @@ inline constexpr std::size_t kMaxMaskSectors = 64;
 // (docs/telecover.md); otherwise the beam integral of overlap_rt, radial for full rings about a centre of
 // symmetry, over directions too for sectors (tens of times the couplings). Thread-safe; throws
 // std::invalid_argument for an invalid system, range, mask or option.
-RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
-                     const RtOptions& options = {});
+RtOverlap overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
+                     const ApertureMask& mask, const RtOptions& options = {});
 
 // Most masks one call of the many-mask overlap_rt may hold.
 inline constexpr std::size_t kMaxMasks = 64;
@@ -54,17 +54,19 @@ inline constexpr std::size_t kMaxMasks = 64;
 // masks[i]'s G to the same tolerance (not bit for bit the one-mask call: the nodes differ). Throws
 // std::invalid_argument as above, naming masks[i], and for 0 or more than kMaxMasks masks.
 std::vector<RtOverlap> overlap_rt(const LidarSystem& system, const std::vector<double>& ranges,
-                                  const std::vector<ApertureMask>& masks, const RtOptions& options = {});
+                                  const std::vector<ApertureMask>& masks,
+                                  const RtOptions& options = {});
 
 // The Fourier-optics G through the mask (Gaussian beams): the sampled pupil of overlap_fo_aberrated cut to the
 // mask, its OTF by FFT, and G = G_0 + sum_q [OTF_masked(q) - OTF_full(q)] K^(q) dq^2 / (pi R^2) with G_0 the exact
 // radial full-aperture G. Diffraction couples the sectors: the parts of a partition add up to the full G only
 // to the diffraction at their edges. Throws std::invalid_argument as overlap_fo_aberrated, and for the mask.
-FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges, const ApertureMask& mask,
-                              const FoAberratedOptions& options = {});
+FoAberratedOverlap overlap_fo(const LidarSystem& system, const std::vector<double>& ranges,
+                              const ApertureMask& mask, const FoAberratedOptions& options = {});
 
 // Coupling of one point scatterer at (position, z) (m) through the mask, over the power it sends into the
 // full, unobstructed aperture.
-double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position, const ApertureMask& mask);
+double emitter_coupling_rt(const LidarSystem& system, double z, Vec2 position,
+                           const ApertureMask& mask);
 
 }  // namespace lidar_overlap

@@ -24,9 +24,10 @@ namespace lidar_overlap {
 
 struct FoAberratedOptions {
   std::size_t max_grid = 4096;  // cap on the pupil transform's size per side
-  double tail_error = 1e-4;     // sets the alias period: the aliases' tails put this on G before they cancel
-  int threads = 0;              // OpenMP threads across ranges; 0: all cores, per call. Callers that run
-                                // calls from several threads pass 1 (or their share): core/limits.hpp
+  double tail_error =
+      1e-4;         // sets the alias period: the aliases' tails put this on G before they cancel
+  int threads = 0;  // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                    // calls from several threads pass 1 (or their share): core/limits.hpp
 };
 
 struct FoAberratedOverlap {
@@ -38,12 +39,13 @@ struct FoAberratedOverlap {
 // std::invalid_argument for field-dependent Seidel terms (they break shift invariance: trace rays),
 // for an invalid system or range, and for a range that needs more than max_grid, naming it.
 FoAberratedOverlap overlap_fo_aberrated(const LidarSystem& system, const Aberrations& aberrations,
-                                        const std::vector<double>& ranges, const FoAberratedOptions& options = {});
+                                        const std::vector<double>& ranges,
+                                        const FoAberratedOptions& options = {});
 
 // The point image (complex amplitude, detector plane) of an on-axis scatterer at range z (m): n x n samples at
 // `spacing` (m), normalised so that sum |h|^2 spacing^2 is the fraction of the full aperture's power the pupil
 // passes. The pupil is sampled at lambda d / (n spacing), which must resolve it: spacing <= lambda d / D.
-Field point_image(const LidarSystem& system, const Aberrations& aberrations, double z, std::size_t n,
-                  double spacing);
+Field point_image(const LidarSystem& system, const Aberrations& aberrations, double z,
+                  std::size_t n, double spacing);
 
 }  // namespace lidar_overlap

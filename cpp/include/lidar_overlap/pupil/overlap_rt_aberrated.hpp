@@ -26,19 +26,22 @@ namespace lidar_overlap {
 inline constexpr double kMaxFanRays = 3e8;
 
 struct RtAberratedOptions {
-  std::size_t rings = 48;         // rays per scatterer: rings equally spaced in rho^2 ...
-  std::size_t ring_rays = 128;    // ... times rays per ring
-  double tolerance = 1e-4;        // absolute, on G, for the beam integral
-  std::size_t directions = 64;    // cap on the directions of the beam integral (from 8, doubled until it
-                                  // converges) when the scene is not rotationally symmetric
-  int threads = 0;                // OpenMP threads across ranges; 0: all cores, per call. Callers that run
-                                  // calls from several threads pass 1 (or their share): core/limits.hpp
-  std::size_t max_segments = 4000;  // per adaptive integral, as overlap_rt; reaching it clears `converged`
+  std::size_t rings = 48;       // rays per scatterer: rings equally spaced in rho^2 ...
+  std::size_t ring_rays = 128;  // ... times rays per ring
+  double tolerance = 1e-4;      // absolute, on G, for the beam integral
+  std::size_t directions =
+      64;           // cap on the directions of the beam integral (from 8, doubled until it
+                    // converges) when the scene is not rotationally symmetric
+  int threads = 0;  // OpenMP threads across ranges; 0: all cores, per call. Callers that run
+                    // calls from several threads pass 1 (or their share): core/limits.hpp
+  std::size_t max_segments =
+      4000;  // per adaptive integral, as overlap_rt; reaching it clears `converged`
 };
 
 struct RtAberratedOverlap {
-  std::vector<double> overlap;         // G(z)
-  std::vector<double> error_estimate;  // of the beam integral (the ray fan's own error is ~(1/rays)^2)
+  std::vector<double> overlap;  // G(z)
+  std::vector<double>
+      error_estimate;  // of the beam integral (the ray fan's own error is ~(1/rays)^2)
   std::vector<bool> converged;
   bool rotationally_symmetric = false;  // one radial integral per range
   bool pupil_form = false;              // computed as one pupil integral per range (see below)
@@ -46,7 +49,8 @@ struct RtAberratedOverlap {
 
 // Throws std::invalid_argument for an invalid system, aberration set, range or option, naming it.
 RtAberratedOverlap overlap_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
-                                        const std::vector<double>& ranges, const RtAberratedOptions& options = {});
+                                        const std::vector<double>& ranges,
+                                        const RtAberratedOptions& options = {});
 
 // One scatterer costs one fan, not a beam integral of them: 96 x 256 rays buy ~10x its accuracy (docs/aberrations.md).
 inline RtAberratedOptions point_coupling_options() {
@@ -57,7 +61,8 @@ inline RtAberratedOptions point_coupling_options() {
 }
 
 // Coupling of one point scatterer at (position, z): the fraction of its rays into the full aperture that count.
-double emitter_coupling_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations, double z,
-                                     Vec2 position, const RtAberratedOptions& options = point_coupling_options());
+double emitter_coupling_rt_aberrated(const LidarSystem& system, const Aberrations& aberrations,
+                                     double z, Vec2 position,
+                                     const RtAberratedOptions& options = point_coupling_options());
 
 }  // namespace lidar_overlap
