@@ -50,7 +50,14 @@ TRUE_BIAXIAL = {"beam.tilt[0]": -2.5e-4, "beam.offset[0]": 0.13}
 #: Examples' real-curve settings (examples/fit_real_overlap.py).
 REAL_BOUNDS = {"detector.numerical_aperture": (0.05, 0.5), "detector.defocus": (-0.01, 0.01)}
 REAL_CURVES = [
-    ("pollynet_default", "pollynet_default_overlap.txt", 355e-9, (150, 1200), (600, 1200), (800, 1190)),
+    (
+        "pollynet_default",
+        "pollynet_default_overlap.txt",
+        355e-9,
+        (150, 1200),
+        (600, 1200),
+        (800, 1190),
+    ),
     ("ift_532", "pollyxt_ift_overlap_532.txt", 532e-9, (100, 2500), (600, 2500), (1500, 2480)),
 ]
 

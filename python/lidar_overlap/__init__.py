@@ -54,7 +54,6 @@ from .optics.imaging import point_image
 from .optics.phase_screen import phase_screen
 from .optics.propagation import SamplingWarning, propagate
 from .views import plotting
-from .views.app import view
 from .views.scene import save_scene, scene
 
 __all__ = [
@@ -141,3 +140,14 @@ __all__ = [
     "correct",
     "signal",
 ]
+
+
+def __getattr__(name: str):
+    """``view`` is imported when first used: the browser view loads asyncio and trame's pieces,
+    which ``import lidar_overlap`` alone should not pay for."""
+    if name == "view":
+        from .views.app import view
+
+        globals()["view"] = view
+        return view
+    raise AttributeError(f"module 'lidar_overlap' has no attribute {name!r}")
