@@ -15,9 +15,10 @@ import pytest
 import lidar_overlap
 
 PACKAGE = pathlib.Path(lidar_overlap.__file__).parent
-#: Bottom to top; the private foundation modules (_core, _checks, _pickling, _files) are below all.
+#: Bottom to top; the private foundation modules (_core, _checks, _pickling, _files, _reading,
+#: _interrupts, _values) are below all.
 LAYERS = ("model", "optics", "forward", "analysis", "io", "views", "cli")
-FOUNDATION = ("_core", "_checks", "_pickling", "_files", "_reading", "_interrupts")
+FOUNDATION = ("_core", "_checks", "_pickling", "_files", "_reading", "_interrupts", "_values")
 #: The rooms of ``analysis``, bottom to top, above its shared modules (analysis/*.py).
 ROOMS = ("fitting", "studies", "design")
 #: Packages the library may import only inside the functions that need them.
@@ -33,9 +34,10 @@ OPTIONAL = (
     "tqdm",
     "trame",
 )
-#: Package modules that exist for an optional dependency (matplotlib): the results' .plot() methods
-#: import them when called, the one reference that runs up the layers (docs/architecture.md).
-LATE = ("views.plotting",)
+#: Package modules imported when first used: the results' .plot() methods import views.plotting
+#: (matplotlib is optional), the one reference that runs up the layers (docs/architecture.md); the
+#: package's own namespace loads views.app for lo.view (its asyncio and twin modules).
+LATE = ("views.plotting", "views.app")
 
 
 def _modules():

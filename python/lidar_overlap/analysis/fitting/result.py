@@ -13,7 +13,7 @@ from typing import Any, ClassVar, Dict, Optional, Tuple, Union
 import numpy as np
 
 from ... import _checks, _values
-from ..._pickling import ByValue, same_value
+from ..._pickling import ByValue
 from ...forward.compute import run
 from ...forward.planning import plan
 from ...forward.result import OverlapResult
@@ -70,7 +70,7 @@ class Prediction(ByValue):
 
 
 @dataclass(frozen=True, eq=False)
-class FitResult:
+class FitResult(ByValue):
     """A fit of free parameters of a lidar system to a measured overlap (SI units).
 
     Attributes
@@ -160,16 +160,6 @@ class FitResult:
                 "tuple of (path, path, correlation)"
             )
 
-    def __eq__(self, other: object) -> bool:
-        if type(other) is not type(self):
-            return NotImplemented
-        return all(
-            same_value(getattr(self, f.name), getattr(other, f.name))
-            for f in dataclasses.fields(self)
-            if f.compare
-        )
-
-    __hash__ = None  # type: ignore[assignment]  # holds arrays
 
     def __reduce__(self):
         # The plan holds the core's option objects, which do not pickle: it travels as what made it
