@@ -19,12 +19,14 @@ are printed, one line each, once the scenario has succeeded.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from pathlib import Path
 from typing import List, Optional
 
 import numpy as np
 
+from .. import _reading
 from .._core import __version__
 from ..forward.methods import RT
 from ..io.scenario import METHODS, Scenario, load_scenario, table1_scenarios
@@ -90,7 +92,7 @@ def _parser() -> argparse.ArgumentParser:
     fit.add_argument(
         "--normalize",
         nargs=2,
-        type=float,
+        type=_decimal,
         metavar=("Z_LOW", "Z_HIGH"),
         help="relative data: divide the model and the data each by their mean over Z_LOW..Z_HIGH "
         "(m), e.g. an overlap curve normalised to 1 in the far range",
@@ -137,7 +139,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     view.add_argument("scenario", help="scenario file (TOML)")
     view.add_argument(
-        "--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one, printed)"
+        "--port", type=_port, default=0, help="port on 127.0.0.1 (default: a free one, printed)"
     )
     view.add_argument(
         "--telecover", action="store_true", help="show the quadrants' telecover deviations"
@@ -145,9 +147,9 @@ def _parser() -> argparse.ArgumentParser:
     view.add_argument("--no-browser", action="store_true", help="do not open the system browser")
     view.add_argument(
         "--timeout",
-        type=float,
-        default=0.0,
-        help="stop when no page has been connected for this many seconds (default 0: never)",
+        type=_whole_seconds,
+        default=0,
+        help="stop when no page has been connected for this many whole seconds (default 0: never)",
     )
     view.add_argument("--out", type=Path, help="where the save button writes (default: ./<name>/)")
     for p, default in (
@@ -242,6 +244,9 @@ def _fit(scenario: Scenario, args) -> int:
 def _view(args) -> int:
     """``lidar-overlap view``: the scenario's system served as the interactive page."""
     scenario = load_scenario(args.scenario)
+    out = args.out or Path(scenario.name)
+    if out.exists() and not out.is_dir():  # checked before serving, not when saving
+        return fail(f"view: --out {out} is invalid: expected a directory (it is a file)", 2)
     z = scenario.ranges
     count = N_RANGES if isinstance(scenario.system.beam, GaussianBeam) else N_RANGES_AUTO
     ranges = np.geomspace(z[0], z[-1], count) if z.size > 1 else z
@@ -252,7 +257,7 @@ def _view(args) -> int:
             ranges,
             telecover="quadrants" if args.telecover else None,
             name=scenario.name,
-            out=args.out or Path(scenario.name),
+            out=out,
             port=args.port,
             open_browser=not args.no_browser,
             timeout=args.timeout,
@@ -262,6 +267,35 @@ def _view(args) -> int:
     except ImportError as exc:
         return fail(str(exc), 1)
     return 0
+
+
+def _decimal(text: str) -> float:
+    """A finite number as the project's files write it (ASCII digits, '.' as decimal point)."""
+    value = _reading.number(text)
+    if value is None or not math.isfinite(value):
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is invalid: expected a finite number in ASCII digits with '.' as the "
+            "decimal point"
+        )
+    return value
+
+
+def _integer_from(text: str, low: int, high: int, what: str) -> int:
+    value = _reading.integer(text)
+    if value is None or not low <= value <= high:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is invalid: expected {what}, an integer from {low} to {high} in ASCII digits"
+        )
+    return value
+
+
+def _whole_seconds(text: str) -> int:
+    """``view --timeout``: whole seconds (a fraction of a second was never honoured)."""
+    return _integer_from(text, 0, 10**7, "whole seconds")
+
+
+def _port(text: str) -> int:
+    return _integer_from(text, 0, 65535, "a port")
 
 
 def _sectors(text: str):

@@ -160,7 +160,6 @@ class FitResult(ByValue):
                 "tuple of (path, path, correlation)"
             )
 
-
     def __reduce__(self):
         # The plan holds the core's option objects, which do not pickle: it travels as what made it
         # (start system, ranges, request, threads) and is made again, with the same decisions.
