@@ -293,8 +293,10 @@ def test_cli_view_refuses_bad_options_naming_them(tmp_path, capsys):
     path = tmp_path / "twin.toml"
     path.write_text(TABLE1_TOML)
     assert main(["view", str(path), "--port", "x"]) == 2
-    assert main(["view", str(path), "--port", "70000", "--no-browser"]) == 1
-    assert "port = 70000 is invalid" in capsys.readouterr().err
+    assert main(["view", str(path), "--port", "70000", "--no-browser"]) == 2  # a usage error
+    assert "'70000' is invalid: expected a port, an integer from 0 to 65535" in (
+        capsys.readouterr().err
+    )
 
 
 # -----------------------------------------------------------------------------------------------
