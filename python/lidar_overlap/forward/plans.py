@@ -6,13 +6,12 @@ refused)."""
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 from typing import Any, Optional, Tuple
 
 import numpy as np
 
-from .. import _checks, _core
+from .. import _checks, _core, _values
 from .._pickling import same_value
 from .._values import frozen
 from ..model.mixture_beam import GaussianMixtureBeam
@@ -20,6 +19,13 @@ from ..model.system import GaussianBeam, LidarSystem
 from . import auto
 from .backends import BACKENDS, Backend, backend
 from .methods import FO, RT, Auto, Method, Turbulent
+
+#: The plan's scalar fields and their kinds (NaN: no tolerance stated, or no model error estimate).
+_SCALARS = {
+    "tolerance": _values.real(low=0.0, nan=True),
+    "rt_model_error": _values.real(low=0.0, nan=True),
+    "rt_diffraction_warning": _values.flag,
+}
 
 
 @dataclass(frozen=True, eq=False)
@@ -78,16 +84,7 @@ class Plan:
                 f"options = {_checks.shown(self.options)} is invalid: expected the core's options "
                 "of the plan's backend (plans are made by lidar_overlap.plan)"
             )
-        for name in ("tolerance", "rt_model_error"):
-            v = _checks.real(name, getattr(self, name))
-            if not (math.isnan(v) or (math.isfinite(v) and v >= 0.0)):
-                raise ValueError(f"{name} = {v!r} is invalid: expected a finite value >= 0, or NaN")
-            object.__setattr__(self, name, v)
-        if not isinstance(self.rt_diffraction_warning, bool):
-            raise ValueError(
-                f"rt_diffraction_warning = {_checks.shown(self.rt_diffraction_warning)} is "
-                "invalid: expected True or False"
-            )
+        _values.check(self, _SCALARS)
         for name in ("reasons", "warnings"):
             value = getattr(self, name)
             if not isinstance(value, tuple) or not all(isinstance(t, str) for t in value):
