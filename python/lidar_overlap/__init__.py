@@ -20,6 +20,8 @@ from .analysis.fitting.relative_result import RelativeFitResult
 from .analysis.fitting.result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fitting.verdict import FitQualityWarning
 from .analysis.sensitivity import sensitivity
+from .analysis.studies.empirical_drift import EmpiricalDrift, empirical_drift
+from .analysis.studies.series import fit_series
 from .analysis.studies.signals import CorrectedSignal, LidarSignal, correct, signal
 from .analysis.studies.telecover import TelecoverResult, telecover
 from .analysis.studies.telecover_fit import fit_telecover
@@ -30,6 +32,7 @@ from .forward.coupling import emitter_coupling, optimal_focus_range
 from .forward.methods import FO, RT, Auto, Turbulent
 from .forward.planning import Plan, explain, plan
 from .forward.result import OverlapResult, TurbulentOverlapResult
+from .io.overlap_series import OverlapSeries, read_overlap_series
 from .model import instruments, parameters
 from .model.aberrations import (
     Aberrations,
@@ -132,6 +135,11 @@ __all__ = [
     "set_max_memory",
     "telecover",
     "tolerance_study",
+    "EmpiricalDrift",
+    "empirical_drift",
+    "fit_series",
+    "OverlapSeries",
+    "read_overlap_series",
     "turbulent_realizations",
     "view",
     "propagate",
