@@ -98,7 +98,7 @@ class EmpiricalDrift(ByValue):
         if off.any():
             i = int(np.argmax(off))
             raise ValueError(
-                f"ranges[{i}] = {z[i]!r} m is invalid: expected one of the model's "
+                f"ranges[{i}] = {float(z[i])!r} m is invalid: expected one of the model's "
                 f"{self.ranges.size} gates ({self.ranges[0]:g} to {self.ranges[-1]:g} m); the "
                 "per-gate model is not interpolated"
             )
@@ -131,7 +131,7 @@ def empirical_drift(ranges, curves, covariate, reference) -> EmpiricalDrift:
         )
     if not np.all(np.isfinite(x)):
         i = int(np.argmax(~np.isfinite(x)))
-        raise ValueError(f"covariate[{i}] = {x[i]!r} is invalid: expected a finite value")
+        raise ValueError(f"covariate[{i}] = {float(x[i])!r} is invalid: expected a finite value")
     reference = _checks.real_array("reference", reference, ndim=1)
     if reference.size != z.size:
         raise ValueError(
@@ -147,12 +147,15 @@ def empirical_drift(ranges, curves, covariate, reference) -> EmpiricalDrift:
                 "invalid: expected finite values > 0 (the model is in ln G: leave out the ranges "
                 "where a curve is 0 or negative)"
             )
-    center = float(np.mean(x))
-    dx = x - center
-    sxx = float(dx @ dx)
-    if not sxx > 0 or not math.isfinite(sxx):
+    with np.errstate(over="ignore", invalid="ignore"):
+        center = float(np.mean(x))
+        dx = x - center
+        sxx = float(dx @ dx)
+    if not (sxx > 0 and math.isfinite(sxx) and math.isfinite(center)):
+        why = "all values are equal" if sxx == 0 else "its spread overflows"
         raise ValueError(
-            "covariate is invalid: all values are equal; expected a spread to fit a slope on"
+            f"covariate is invalid: {why}; expected values that spread (and whose squares stay "
+            "below 1e308) to fit a slope on"
         )
     y = np.log(g / reference)
     intercept = y.mean(axis=0)

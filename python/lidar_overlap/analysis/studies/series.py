@@ -124,6 +124,7 @@ def fit_series(
             "unit": ("parameter", [parameters.unit(p) for p in paths]),
         },
         attrs={
+            "engine": kind,
             "normalize": repr(normalize),
             "chunk": chunk,
             "warm_start": "each curve from the previous converged fit of its chunk; each chunk "
