@@ -121,3 +121,24 @@ def test_bad_input_is_refused_by_name(change, match):
     arguments.update(change)
     with pytest.raises(ValueError, match=match):
         _fit(**arguments)
+
+
+def test_plot_series_draws_each_parameter_against_time_and_a_covariate():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from lidar_overlap.views.plotting import plot_series
+
+    ds = _fit(_series(seed=1))
+    (by_date,) = plot_series(ds)
+    assert by_date.get_ylabel() == "beam.tilt[0] (µrad)" and by_date.get_xlabel() == "date"
+    (by_t,) = plot_series(ds, against="internal_temperature_K")
+    y, dy = ds.value.values[:, 0] * 1e6, ds.uncertainty.values[:, 0] * 1e6
+    slope = np.polyfit(TEMPERATURE, y, 1, w=1 / dy)[0]
+    assert by_t.get_legend().get_texts()[0].get_text() == f"slope {slope:.3g} µrad/K"
+    with pytest.raises(ValueError, match="against = 'nothing'"):
+        plot_series(ds, against="nothing")
+    plt.close("all")
