@@ -142,3 +142,19 @@ def test_plot_series_draws_each_parameter_against_time_and_a_covariate():
     with pytest.raises(ValueError, match="against = 'nothing'"):
         plot_series(ds, against="nothing")
     plt.close("all")
+
+
+def test_the_warm_start_is_the_previous_fit_of_the_chunk_and_each_chunk_starts_cold():
+    """chunk=1: every curve from the given system, as lo.fit alone; one chunk: the second curve
+    from the first one's fitted system. Both bit for bit those independent calls."""
+    g = _series(seed=3)[:2]
+    options = dict(free=["beam.tilt[0]"], method="rt", tolerance=1e-4, threads=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", lo.FitQualityWarning)
+        first = lo.fit(START, Z, g[0], SIGMA, **options)
+        cold = lo.fit(START, Z, g[1], SIGMA, **options)
+        warm = lo.fit(parameters.replace(START, first.parameters), Z, g[1], SIGMA, **options)
+    one_each = _fit(g, coords=None, chunk=1).value.values[:, 0]
+    together = _fit(g, coords=None, chunk=2).value.values[:, 0]
+    assert one_each.tolist() == [first.parameters["beam.tilt[0]"], cold.parameters["beam.tilt[0]"]]
+    assert together.tolist() == [first.parameters["beam.tilt[0]"], warm.parameters["beam.tilt[0]"]]
