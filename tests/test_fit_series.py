@@ -110,6 +110,7 @@ def test_without_coords_the_series_is_numbered():
         (dict(free="auto"), "free = 'auto'"),
         (dict(free=["beam.nothing"]), "beam.nothing"),
         (dict(threads=2), "threads is set by fit_series"),
+        (dict(search="global"), "search is set by fit_series"),
         (dict(chunk=0), "chunk"),
         (dict(chunk=2**70), "chunk"),
         (dict(client="localhost"), "client"),

@@ -26,8 +26,9 @@ from ..fitting.relative import polish
 #: Curves per task (and per warm-started run): 8 daily fits of a few tenths of a second each keep
 #: the task overhead small and leave 153 days 20 tasks to spread.
 CHUNK = 8
-#: lo.fit keywords fit_series sets itself.
-_OWN = ("free", "threads", "allow_unconverged", "search", "seed", "normalize", "sigma")
+#: lo.fit keywords fit_series sets itself (one thread per task, an unconverged fit kept and
+#: flagged) or leaves out (the global search's: every curve is a local fit from its warm start).
+_OWN = ("threads", "allow_unconverged", "search", "seed", "population", "generations", "minima")
 
 
 def fit_series(
@@ -104,8 +105,8 @@ def fit_series(
     fits = [row for part in rows for row in part]
     along = (dimension,)
     table = {
-        "value": np.array([f["value"] for f in fits]),
-        "uncertainty": np.array([f["uncertainty"] for f in fits]),
+        key: np.array([[f[key][p] for p in paths] for f in fits])
+        for key in ("value", "uncertainty")
     }
     scalar = {key: np.array([f[key] for f in fits]) for key in _SCALARS}
     return xr.Dataset(
@@ -155,8 +156,8 @@ def _fit_chunk(system, z, curves, sigmas, settings, first) -> List[Dict[str, Any
         residual = np.asarray(result.residuals) * np.asarray(result.sigma)
         out.append(
             {
-                "value": [result.parameters[p] for p in result.parameters],
-                "uncertainty": [result.uncertainties[p] for p in result.parameters],
+                "value": dict(result.parameters),
+                "uncertainty": dict(result.uncertainties),
                 "rms": float(np.sqrt(np.mean(residual**2))),
                 "noise": float(np.sqrt(np.mean(np.asarray(result.sigma) ** 2))),
                 "reduced_chi_square": result.reduced_chi_square,
@@ -186,9 +187,7 @@ def _curves(curves, n_ranges: int) -> np.ndarray:
 def _sigma(sigma, n: int, n_ranges: int) -> np.ndarray:
     """sigma as one row per curve (each row is checked by lo.fit's own rules)."""
     s = _checks.real_array("sigma", sigma)
-    if s.ndim == 0:
-        return np.full((n, n_ranges), float(s))
-    if s.shape == (n_ranges,):
+    if s.ndim == 0 or s.shape == (n_ranges,):
         return np.broadcast_to(s, (n, n_ranges))
     if s.shape == (n, n_ranges):
         return s
