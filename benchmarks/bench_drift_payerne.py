@@ -183,9 +183,8 @@ def main():
         raise SystemExit("the factory curve's ranges differ from the series'")
     series = everything.select(everything.covariates["quality"] >= 1)
     held_out = splits(series, factory.overlap)
-    print(
-        f"held-out RMS over {INTERVAL[0]:g}-{INTERVAL[1]:g} m ({int(np.count_nonzero(_gates(series)))} gates):"
-    )
+    gates = int(np.count_nonzero(_gates(series)))
+    print(f"held-out RMS over {INTERVAL[0]:g}-{INTERVAL[1]:g} m ({gates} gates):")
     print(f"  {'model':32s} {'coefficients':>12s} {'warmest 40 %':>13s} {'random 40 %':>17s}")
     for name in MODELS:
         a, b = held_out["warmest"][name], held_out["random"][name]
