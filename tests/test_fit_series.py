@@ -96,10 +96,13 @@ def test_without_coords_the_series_is_numbered():
     [
         (
             dict(coords={"date": DATES, "t": np.r_[TEMPERATURE[:5], math.nan]}),
-            r"coords\['t'\]\[5\]",
+            r"coords\['t'\]\[5\] = nan is invalid",
         ),
         (dict(coords={"date": DATES[:5]}), r"coords\['date'\] has shape \(5,\)"),
-        (dict(coords={"date": np.r_[DATES[:5], np.datetime64("NaT")]}), r"coords\['date'\]\[5\]"),
+        (
+            dict(coords={"date": np.r_[DATES[:5], np.datetime64("NaT")]}),
+            r"coords\['date'\]\[5\] = NaT is invalid",
+        ),
         (dict(coords=[1, 2]), "coords"),
         (dict(curves=np.ones(Z.size)), "one curve alone: lo.fit"),
         (dict(curves=np.ones((6, Z.size - 1))), r"curves has shape \(6, 29\)"),

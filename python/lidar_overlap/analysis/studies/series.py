@@ -225,7 +225,7 @@ def _coordinates(coords, n: int):
         if bad.any():
             i = int(np.argmax(bad))
             raise ValueError(
-                f"coords[{name!r}][{i}] = {values[i]!r} is invalid: expected a finite value for "
+                f"coords[{name!r}][{i}] = {values[i]} is invalid: expected a finite value for "
                 "every curve (select the curves that have one)"
             )
         out[name] = (names[0], values)
