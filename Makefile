@@ -65,6 +65,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/aberrations_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/signal_correction.py
 	cd $(OUT) && ../$(PY) ../examples/tolerance_study.py
+	cd $(OUT) && ../$(PY) ../examples/payerne_series.py
 	cd $(OUT) && ../$(PY) ../examples/telecover.py
 	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
 	cd $(OUT) && ../$(PY) ../examples/fit_overlap.py

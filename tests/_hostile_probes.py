@@ -40,7 +40,7 @@ from _hostile_values import (
     telescope,
 )
 
-#: Every entry point's probe strategy, and its examples in a run of the test suite (2,660 in all; a
+#: Every entry point's probe strategy, and its examples in a run of the test suite (2,700 in all; a
 #: campaign shares its probes in the same proportions). Paths that draw valid Fourier-optics work
 #: get fewer.
 PROBES = {
@@ -81,4 +81,5 @@ PROBES = {
     "telecover": (analysis.telecover(), 60),
     "sensitivity": (analysis.sensitivity(), 40),
     "correct": (analysis.correct(), 40),
+    "empirical_drift": (analysis.empirical_drift(), 40),
 }

@@ -15,7 +15,7 @@ from _hostile_values import (
     system,
     tolerance,
 )
-from _probe_worker import call
+from _probe_worker import Attr, call
 from hypothesis import strategies as st
 
 _explain_where = st.sampled_from(("system", "ranges", "tolerance"))
@@ -137,3 +137,23 @@ def correct(draw):
         signal[r.randrange(len(signal))] = draw(hostile_real)
     kwargs = corrupt(draw, {"min_overlap": r.real(0.01, 0.9)}, CORRECT_HOSTILITY, count)
     return call("correct", z, signal, overlap, **kwargs)
+
+
+# ------------------------------------------------------------------------------------------
+# the empirical drift model of a series of curves
+@st.composite
+def empirical_drift(draw):
+    """lo.empirical_drift of 3-5 sane positive curves, with a hostile value in one curve, the
+    covariate or the reference, then its predict at a sane or hostile covariate."""
+    count, r = draw(corruptions), draw(sanes)
+    z = r.ranges(max_size=5)
+    n = r.randrange(3, 6)
+    curves = [[r.real(0.01, 1.0) for _ in z] for _ in range(n)]
+    covariate = [r.real(250.0, 320.0) for _ in range(n)]
+    reference = [r.real(0.01, 1.0) for _ in z]
+    for _ in range(count):
+        target = r.choice((curves[r.randrange(n)], covariate, reference))
+        target[r.randrange(len(target))] = draw(hostile_real)
+    model = call("empirical_drift", z, curves, covariate, reference)
+    x = draw(hostile_real) if count and r.random() < 0.3 else r.real(250.0, 320.0)
+    return call(Attr(model, "predict"), z, [x])

@@ -142,6 +142,23 @@ REGISTRY: Dict[type, Entry] = {
         lambda: OverlapCurve(Z, [0.1, 0.5, 0.9, 1.0], [0.01] * 4, ("h",), "m"),
         none_ok=frozenset({"sigma"}),
     ),
+    lo.OverlapSeries: Entry(
+        lambda: lo.OverlapSeries(
+            Z,
+            [[0.1, 0.5, 0.9, 1.0], [0.12, 0.52, 0.92, 1.0]],
+            np.array(["2014-01-01", "2014-01-02"], dtype="datetime64[D]"),
+            {"temperature_K": [290.0, math.nan]},
+            "s",
+        )
+    ),
+    lo.EmpiricalDrift: Entry(
+        lambda: lo.empirical_drift(
+            Z,
+            [[0.1, 0.5, 0.9, 1.0], [0.12, 0.52, 0.92, 1.0], [0.13, 0.5, 0.95, 1.0]],
+            [280.0, 290.0, 300.0],
+            [0.11, 0.5, 0.9, 1.0],
+        )
+    ),
     lo.FitResult: _fit_entry(_fit),
     lo.Prediction: Entry(
         lambda: _fit().predict(Z), nan_ok=frozenset({"sigma"}), inf_ok=frozenset({"sigma"})

@@ -28,6 +28,8 @@ _EXPORTS = {
     "analysis.fitting.result": ("DegeneracyWarning", "FitResult", "Prediction"),
     "analysis.fitting.verdict": ("FitQualityWarning",),
     "analysis.sensitivity": ("sensitivity",),
+    "analysis.studies.empirical_drift": ("EmpiricalDrift", "empirical_drift"),
+    "analysis.studies.series": ("fit_series",),
     "analysis.studies.signals": ("CorrectedSignal", "LidarSignal", "correct", "signal"),
     "analysis.studies.telecover": ("TelecoverResult", "telecover"),
     "analysis.studies.telecover_fit": ("fit_telecover",),
@@ -38,6 +40,7 @@ _EXPORTS = {
     "forward.methods": ("FO", "RT", "Auto", "Turbulent"),
     "forward.planning": ("Plan", "explain", "plan"),
     "forward.result": ("OverlapResult", "TurbulentOverlapResult"),
+    "io.overlap_series": ("OverlapSeries", "read_overlap_series"),
     "model.aberrations": (
         "Aberrations",
         "noll_index",
@@ -87,6 +90,8 @@ if TYPE_CHECKING:
     from .analysis.fitting.result import DegeneracyWarning, FitResult, Prediction
     from .analysis.fitting.verdict import FitQualityWarning
     from .analysis.sensitivity import sensitivity
+    from .analysis.studies.empirical_drift import EmpiricalDrift, empirical_drift
+    from .analysis.studies.series import fit_series
     from .analysis.studies.signals import CorrectedSignal, LidarSignal, correct, signal
     from .analysis.studies.telecover import TelecoverResult, telecover
     from .analysis.studies.telecover_fit import fit_telecover
@@ -97,6 +102,7 @@ if TYPE_CHECKING:
     from .forward.methods import FO, RT, Auto, Turbulent
     from .forward.planning import Plan, explain, plan
     from .forward.result import OverlapResult, TurbulentOverlapResult
+    from .io.overlap_series import OverlapSeries, read_overlap_series
     from .model import instruments, parameters
     from .model.aberrations import (
         Aberrations,

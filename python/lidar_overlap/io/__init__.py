@@ -1,6 +1,6 @@
-"""Files: scenario TOML files (a system, ranges and a method) and measured curves.
+"""Files: scenario TOML files (a system, ranges and a method), measured curves and series of them.
 
-Files: overlap_curves.py, scenario.py, scenario_schema.py.
+Files: overlap_curves.py, overlap_series.py, scenario.py, scenario_schema.py.
 """
 
-__all__ = ["overlap_curves", "scenario", "scenario_schema"]
+__all__ = ["overlap_curves", "overlap_series", "scenario", "scenario_schema"]

@@ -183,3 +183,59 @@ def plot_alignment_map(ds, range=None, ax=None, cmap="viridis"):
         axes[0].legend()
         return axes[0]
     return axes[0] if axes.size == 1 else axes
+
+
+#: Angles of a series in µrad (a day's tilt moves by µrad), lengths in mm.
+_SERIES_UNITS = {"rad": (1e6, "µrad"), "m": (1e3, "mm")}
+
+
+def plot_series(ds, against=None, axes=None):
+    """Draw each fitted parameter of a :func:`lidar_overlap.fit_series` dataset with its 1-sigma
+    bars, one panel per parameter, against the series' dimension (``against=None``: the date, say)
+    or a numeric coordinate named by ``against`` (e.g. ``"internal_temperature_K"``), the latter
+    with the straight line weighted by the uncertainties and its slope in the legend (angles in
+    µrad, lengths in mm). Unconverged fits are drawn hollow. Returns the array of Axes."""
+    plt = _pyplot()
+    dimension = ds["value"].dims[0]
+    name = dimension if against is None else against
+    if name not in ds.coords or ds[name].dims != (dimension,):
+        raise ValueError(
+            f"against = {against!r} is invalid: expected None or a coordinate along "
+            f"{dimension!r}: {[c for c in ds.coords if ds[c].dims == (dimension,)]}"
+        )
+    x = ds[name].values
+    paths = [str(p) for p in ds["parameter"].values]
+    if axes is None:
+        _, axes = plt.subplots(
+            len(paths), 1, figsize=(6.4, 2.6 * len(paths)), constrained_layout=True, squeeze=False
+        )
+        axes = axes[:, 0]
+    axes = np.atleast_1d(axes)
+    converged = ds["converged"].values.astype(bool)
+    for ax, path, unit in zip(axes, paths, ds["unit"].values):
+        factor, shown = _SERIES_UNITS.get(str(unit), (1.0, str(unit)))
+        y = ds["value"].sel(parameter=path).values * factor
+        dy = ds["uncertainty"].sel(parameter=path).values * factor
+        for keep, face in ((converged, None), (~converged, "none")):
+            if keep.any():
+                ax.errorbar(x[keep], y[keep], dy[keep], fmt="o", ms=3, mfc=face, color="C0", lw=0.8)
+        if against is not None and converged.sum() > 2 and np.all(dy[converged] > 0):
+            slope, intercept = np.polyfit(x[converged], y[converged], 1, w=1 / dy[converged])
+            line = np.linspace(x.min(), x.max(), 2)
+            ax.plot(
+                line,
+                slope * line + intercept,
+                color="C1",
+                label=f"slope {slope:.3g} {shown}/{_unit_of(name)}",
+            )
+            ax.legend()
+        ax.set_ylabel(f"{path} ({shown})")
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel(name)
+    return axes
+
+
+def _unit_of(name: str) -> str:
+    """The unit a coordinate's name ends with (``internal_temperature_K``: K), else 'unit'."""
+    tail = name.rsplit("_", 1)[-1]
+    return tail if "_" in name and tail in ("K", "C", "s", "m", "Pa", "hPa") else "unit"
