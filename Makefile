@@ -88,8 +88,10 @@ lint:
 format: setup
 	$(BIN)/clang-format -i $(CPP_SOURCES)
 
+# The suite in JOBS worker processes (pytest-xdist): most tests run one thread of Python and C++, so
+# two workers keep both cores busy. No test depends on another's order or on the machine being idle.
 pytest:
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -n $(JOBS)
 
 ctest:
 	$(BIN)/cmake -S . -B build/cpp -G Ninja -DLIDAR_OVERLAP_TESTS=ON -DLIDAR_OVERLAP_PYTHON=OFF \
