@@ -13,6 +13,7 @@
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
+#include "result_array.hpp"
 #include "fourier/fft.hpp"
 #include "lidar_overlap/fourier/grid_choice.hpp"
 #include "lidar_overlap/fourier/propagate.hpp"
@@ -99,16 +100,11 @@ void bind_propagate(py::module_& m) {
           plan = PropagationPlan::cached(n, spacing, wavelength, distance, pm, output_spacing);
         }
         // The passes read the caller's values (or the padded copy) and write the result's array: no copy.
-        ComplexArray out({n, n});
-        Complex* result = out.mutable_data();
-        const bool aligned = fftw_alignment_of(reinterpret_cast<double*>(result)) == 0;
-        ComplexBuffer staging(aligned ? 0
-                                      : n * n);  // FFTW's alignment, if NumPy's allocation lacks it
+        ComplexArray out = result_array(n);
         PropagationReport report;
         {
           Interruptible release;
-          report = plan->execute(in, aligned ? result : staging.data());
-          if (!aligned) std::copy(staging.begin(), staging.end(), result);
+          report = plan->execute(in, out.mutable_data());
         }
         return py::make_tuple(out, plan->output_spacing(), report);
       },

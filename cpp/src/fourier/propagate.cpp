@@ -15,6 +15,7 @@
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
 #include "fourier/fft_passes.hpp"
+#include "fourier/line_products.hpp"
 #include "fourier/scaled_dft.hpp"
 #include "fourier/zeroed_buffer.hpp"
 
@@ -69,24 +70,6 @@ struct Extent {
   }
 };
 
-// sum |v_j|^2 over count values, in four interleaved partial sums (one dependent add per four samples);
-// the order is fixed, so the bits are.
-double power(const Complex* v, std::size_t count) {
-  const double* d = reinterpret_cast<const double*>(v);
-  double a[4] = {0.0, 0.0, 0.0, 0.0};
-  std::size_t j = 0;
-  for (; j + 4 <= 2 * count; j += 4)
-    for (int k = 0; k < 4; ++k) a[k] += d[j + k] * d[j + k];
-  for (; j < 2 * count; ++j) a[0] += d[j] * d[j];
-  return (a[0] + a[1]) + (a[2] + a[3]);
-}
-
-// a b for finite values, as std::complex's operator* computes it but without its NaN recovery branch,
-// so that loops of it vectorise (non-finite outputs are caught by the output's total power).
-inline Complex times(Complex a, Complex b) {
-  return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
-}
-
 // Gathers an Extent from the lines (rows, or columns: the window is square and the checks symmetric) of a
 // field as a pass finishes each of them, on any thread and in any order. Totals are kept per line and
 // added in line order, so they are the same bits for any schedule; the radial profile is kept per thread
@@ -102,11 +85,11 @@ class ExtentSums {
 
   // Line i holding its final values v[0..n).
   void add(std::size_t i, const Complex* v) {
-    const double total = power(v, n_);
+    const double total = detail::power(v, n_);
     total_[i] = total;
     edge_[i] = (i < border_ || i >= n_ - border_)
                    ? total
-                   : power(v, border_) + power(v + n_ - border_, border_);
+                   : detail::power(v, border_) + detail::power(v + n_ - border_, border_);
     // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
     // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
     if (radial_.empty() || i % 2) return;
@@ -148,9 +131,8 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16) if (threads > 1)
   for (long iy = 0; iy < static_cast<long>(n); ++iy) {
     if (stop.stopped()) continue;
-    const Complex row = scale * a[iy];
     Complex* line = u.data() + iy * n;
-    for (std::size_t ix = 0; ix < n; ++ix) line[ix] = times(line[ix], times(row, a[ix]));
+    detail::chirp_product(line, scale * a[iy], a.data(), line, n);
     sums.add(static_cast<std::size_t>(iy), line);
   }
   stop.rethrow();
@@ -357,10 +339,10 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
                               const Complex* h = transfer_.data() + (x0 + c) * n;
                               // Only the band edge is zero: the power it removes is summed where h vanishes, the rest multiplied.
                               double cut = 0.0;
-                              spectrum[x0 + c] = power(k, n);
+                              spectrum[x0 + c] = detail::power(k, n);
                               for (std::size_t ky = 0; ky < n; ++ky) {
                                 if (h[ky] == Complex{}) cut += std::norm(k[ky]);
-                                k[ky] = times(k[ky], h[ky]);
+                                k[ky] = detail::product(k[ky], h[ky]);
                               }
                               removed[x0 + c] = cut;
                               backward(k, column, 1);
@@ -403,10 +385,7 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
   detail::row_pass_into(
       out, n, n, FftDirection::forward, threads,
       [&](std::size_t iy, Complex* line) {
-        const Complex row = chirp_in_[iy];
-        const Complex* from = in + iy * n;
-        for (std::size_t ix = 0; ix < n; ++ix)
-          line[ix] = times(from[ix], times(row, chirp_in_[ix]));
+        detail::chirp_product(in + iy * n, chirp_in_[iy], chirp_in_.data(), line, n);
         input.add(iy, line);
       },
       [](std::size_t, Complex*) {});
@@ -417,9 +396,7 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
     for (std::size_t c = 0; c < count; ++c) {
       Complex* column = block + c * stride;
       columns(column, transformed, 1);
-      const Complex scale = front_ * chirp_out_[x0 + c];
-      for (std::size_t ky = 0; ky < n; ++ky)
-        column[ky] = times(transformed[ky], times(scale, chirp_out_[ky]));
+      detail::chirp_product(transformed, front_ * chirp_out_[x0 + c], chirp_out_.data(), column, n);
       output.add(x0 + c, column);
     }
   });
