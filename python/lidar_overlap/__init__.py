@@ -14,8 +14,12 @@ from .analysis.design.autoalign import AlignResult, align
 from .analysis.design.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
 from .analysis.design.optimize import OptimizeResult, optimize
 from .analysis.design.realign import Realignment, realign
+from .analysis.fitting.drift import fit_drift
+from .analysis.fitting.drift_result import DriftFitResult
 from .analysis.fitting.fit import fit
 from .analysis.fitting.global_result import GlobalFitResult, GlobalRelativeFitResult
+from .analysis.fitting.joint import fit_joint
+from .analysis.fitting.joint_result import JointFitResult
 from .analysis.fitting.relative_result import RelativeFitResult
 from .analysis.fitting.result import DegeneracyWarning, FitResult, Prediction
 from .analysis.fitting.verdict import FitQualityWarning
@@ -73,7 +77,11 @@ __all__ = [
     "alignment_map",
     "alignment_maps",
     "fit",
+    "fit_drift",
+    "fit_joint",
     "fit_telecover",
+    "DriftFitResult",
+    "JointFitResult",
     "DegeneracyWarning",
     "FitQualityWarning",
     "FitResult",
