@@ -161,6 +161,11 @@ def _covariate(covariate, n: int) -> np.ndarray:
     if bad.any():
         i = int(np.argmax(bad))
         raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
+    if not np.isfinite(np.ptp(c)):
+        raise ValueError(
+            f"covariate spans {np.ptp(c)!r}: expected a spread that is a finite number (center "
+            "or rescale the covariate)"
+        )
     if not np.ptp(c) > 0:
         raise ValueError(
             f"covariate is constant ({c[0]:g}): expected at least two different values, a drift "

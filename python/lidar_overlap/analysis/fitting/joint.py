@@ -98,8 +98,8 @@ def fit_joint(
         return fit_joint_auto(settings, systems, checked_bounds_any(bounds))
     if shared is None:
         raise ValueError("shared is missing: give the paths all curves share, or free='auto'")
-    shared_paths = checked_paths("shared", shared, systems)
     own = checked_paths("per_curve", per_curve, systems, allow_empty=True)
+    shared_paths = checked_paths("shared", shared, systems, allow_empty=bool(own))
     both = set(shared_paths) & set(own)
     if both:
         raise ValueError(
