@@ -238,7 +238,7 @@ def _bic(fit: MultiCurveFit) -> float:
 def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
     """Forward selection of the drifting paths by BIC (module docstring)."""
     moving: List[str] = []
-    best, best_bic = fit, _bic(fit)
+    best, best_bic, said = fit, _bic(fit), []
     choices.append(f"no drift: chi-square {fit.chi_square:.4g}, BIC {best_bic:.2f}")
     local = settings.derived(allow_unconverged=True)
     while len(moving) < len(paths):
@@ -248,23 +248,28 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
             if p in moving:
                 continue
             problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")  # each trial's verdicts: its BIC here
+            with warnings.catch_warnings(record=True) as record:
+                warnings.simplefilter("always")  # said below for the chosen one only
                 trial = solve_curves(problem)
-            trials.append((_bic(trial), p, trial))
+            trials.append((_bic(trial), p, trial, record))
             choices.append(
                 f"drifting {', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC "
                 f"{trials[-1][0]:.2f}"
             )
-        bic, p, trial = min(trials, key=lambda t: t[0])
+        bic, p, trial, record = min(trials, key=lambda t: t[0])
         if not bic < best_bic - BIC_TIE:
             break
         moving.append(p)
-        best, best_bic = trial, bic
+        best, best_bic, said = trial, bic, record
     choices.append(f"chosen: {', '.join(moving) if moving else 'no drift'} (BIC {best_bic:.2f})")
-    if moving:  # the chosen model once more, with its warnings and convergence said
-        start = dict(zip(best.problem.names, best.values.tolist()))
-        best = solve_curves(drift_problem(settings, system, paths, moving, c, bounds, start))
+    if moving:  # the chosen model's verdicts and convergence, said once
+        for item in said:
+            warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
+        if not best.converged and not settings.allow_unconverged:
+            raise RuntimeError(
+                f"fit did not converge: the drift fit with {', '.join(moving)} drifting stopped "
+                f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
+            )
     return best
 
 
