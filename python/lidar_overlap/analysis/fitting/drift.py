@@ -5,9 +5,11 @@ mean and a and b are nearly uncorrelated). One fit of all curves
 (:mod:`lidar_overlap.analysis.fitting.multi_curve`), one covariance.
 
 ``drifting="auto"``: forward selection by BIC = chi² + K ln n (n independent points of all curves):
-from no drift, each free path not yet drifting is tried as drifting (a local fit from the current
-solution, its slope starting at 0) and the one of lowest BIC is taken when it lowers the BIC by
-more than ``BIC_TIE``; until none does. At most k (k + 1) / 2 local fits for k free paths.
+from no drift, the free paths not yet drifting are ranked by the chi-square drop of one
+Gauss-Newton step from the current solution with that path's slope freed as well (one Jacobian
+ranks them all), the best is fitted (a local fit from the current solution, its slope starting at
+0) and taken when it lowers the BIC by more than ``BIC_TIE``; until it does not. At most k + 1
+local fits and k Jacobians for k free paths.
 ``free="auto"``: the model ladder (``lo.fit(..., free="auto")``) on the series' median curve
 chooses the family (its paths become ``free``) and its fit the start.
 """
@@ -25,7 +27,7 @@ from ...model import parameters as _parameters
 from .drift_result import SLOPE, DriftFitResult, reduced
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
-from .multi_curve import CurveMap, MultiCurveFit, MultiCurveProblem, solve_curves
+from .multi_curve import CurveMap, CurveSet, MultiCurveFit, MultiCurveProblem, solve_curves
 from .multi_inputs import (
     checked_bounds,
     checked_curve,
@@ -161,9 +163,11 @@ def _covariate(covariate, n: int) -> np.ndarray:
     if bad.any():
         i = int(np.argmax(bad))
         raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
-    if not np.isfinite(np.ptp(c)):
+    with np.errstate(over="ignore", invalid="ignore"):
+        spread = np.ptp(c)
+    if not np.isfinite(spread):
         raise ValueError(
-            f"covariate spans {np.ptp(c)!r}: expected a spread that is a finite number (center "
+            f"covariate spans {spread!r}: expected a spread that is a finite number (center "
             "or rescale the covariate)"
         )
     if not np.ptp(c) > 0:
@@ -243,20 +247,18 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
     local = settings.derived(allow_unconverged=True)
     while len(moving) < len(paths):
         start = dict(zip(best.problem.names, best.values.tolist()))
-        trials = []
-        for p in paths:
-            if p in moving:
-                continue
-            problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
-            with warnings.catch_warnings(record=True) as record:
-                warnings.simplefilter("always")  # said below for the chosen one only
-                trial = solve_curves(problem)
-            trials.append((_bic(trial), p, trial, record))
-            choices.append(
-                f"drifting {', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC "
-                f"{trials[-1][0]:.2f}"
-            )
-        bic, p, trial, record = min(trials, key=lambda t: t[0])
+        drops = _linear_drops(local, system, paths, moving, c, bounds, start)
+        p = max(drops, key=lambda q: drops[q])
+        problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")  # said below for the chosen one only
+            trial = solve_curves(problem)
+        bic = _bic(trial)
+        ranked = ", ".join(f"{q} {v:.4g}" for q, v in sorted(drops.items(), key=lambda i: -i[1]))
+        choices.append(
+            f"one step's chi-square drop per candidate: {ranked}; drifting "
+            f"{', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC {bic:.2f}"
+        )
         if not bic < best_bic - BIC_TIE:
             break
         moving.append(p)
@@ -271,6 +273,24 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
                 f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
             )
     return best
+
+
+def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
+    """{candidate: the chi-square drop of one Gauss-Newton step from the current solution with its
+    slope freed as well}: one Jacobian (all candidates' slope columns at once) ranks them."""
+    candidates = [p for p in paths if p not in moving]
+    problem = drift_problem(settings, system, paths, moving + candidates, c, bounds, start)
+    model = CurveSet(problem)
+    r = model.residuals(problem.start)
+    j = model.jacobian(problem.start)
+    current = len(paths) + len(moving)
+    drops = {}
+    for d, p in enumerate(candidates):
+        a = j[:, list(range(current)) + [current + d]]
+        step = np.linalg.lstsq(a, -r, rcond=None)[0]
+        after = r + a @ step
+        drops[p] = float(r @ r - after @ after)
+    return drops
 
 
 def drift_result(fit: MultiCurveFit, c, unit: str, choices) -> DriftFitResult:
