@@ -169,9 +169,10 @@ class CurveSet:
     def residuals(self, theta) -> np.ndarray:
         """The whitened residuals of all curves, stacked."""
         _, g = self.at(theta)
-        return np.concatenate(
-            [n.whitening @ (n.model(gi) - n.data) for n, gi in zip(self.norms, g)]
-        )
+        with np.errstate(invalid="ignore"):  # a model that vanishes where it is normalised
+            return np.concatenate(
+                [n.whitening @ (n.model(gi) - n.data) for n, gi in zip(self.norms, g)]
+            )
 
     def jacobian(self, theta, keep: Optional[list] = None) -> np.ndarray:
         """d(whitened residuals)/dθ (rows, K); ``keep`` receives each curve's own Jacobian
