@@ -1,16 +1,28 @@
 """Starting systems of widespread lidar classes, from their published designs, for fits of measured
 overlap curves (SI units). Each states which values its sources give and which are assumptions:
 the assumed ones (axis separation, expanded beam size, obstruction) differ between units and are
-what a fit of the unit's overlap curve should free.
+what a fit of the unit's overlap curve should free. Where the sources bound an assumed value, the
+preset's ``*_bounds`` function gives those bounds ({path: (low, high)}, SI units) for a fit's
+``bounds=`` argument; a fitted value that ends on one is named in the result's ``at_bounds``.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Optional
 
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 _CHANNELS = ("far", "near")
+#: PollyXT: a divergence of "a few tenths of a mrad" (the sources), taken as 0.05-1 mrad (1/e²
+#: half-angle), a factor of two beyond either end of that phrase.
+POLLYXT_DIVERGENCE = (0.05e-3, 1.0e-3)
+#: CHM15k: the laser's divergence below 0.3 mrad full angle (the manual), 0.15 mrad half-angle.
+CHM15K_MAX_DIVERGENCE = 0.15e-3
+#: CHM15k: the 90 mm expanded beam (45 mm radius) beside the 0.1 m lens (0.05 m radius): their
+#: axes at least 0.095 m apart (the beam cannot leave through the lens), at most 0.5 m (one
+#: housing).
+CHM15K_OFFSET = (0.095, 0.5)
 
 
 def pollyxt(
@@ -95,3 +107,21 @@ def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
     return LidarSystem(
         beam=beam, telescope=telescope, detector=Detector.from_fov(fov=0.45e-3, focal_length=0.5)
     )
+
+
+def pollyxt_bounds() -> dict:
+    """Default fit bounds of a :func:`pollyxt` system that its sources allow: the divergence
+    (rad)."""
+    return {"beam.divergence": POLLYXT_DIVERGENCE}
+
+
+def chm15k_bounds(system: Optional[LidarSystem] = None) -> dict:
+    """Default fit bounds of a :func:`chm15k` system that its sources allow: the divergence (rad;
+    from 1.05 times the diffraction limit of ``system``'s expanded beam, default the preset's, to
+    the manual's upper value) and the axis separation beside the expanded beam (m)."""
+    beam = (system or chm15k()).beam
+    limit = 1.05 * beam.wavelength / (math.pi * beam.waist_radius)
+    return {
+        "beam.divergence": (limit, CHM15K_MAX_DIVERGENCE),
+        "beam.offset[0]": CHM15K_OFFSET,
+    }
