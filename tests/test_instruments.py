@@ -51,7 +51,7 @@ def test_preset_bounds_hold_the_presets_and_the_sources_ranges():
     low, high = pollyxt_bounds()["beam.divergence"]
     assert low < pollyxt().beam.divergence < high
     c = chm15k()
-    bounds = chm15k_bounds(c)
+    bounds = chm15k_bounds()
     low, high = bounds["beam.divergence"]
     # from just above the 90 mm beam's diffraction limit, 1064 nm / (pi 45 mm) = 7.53 µrad, to the
     # manual's 0.3 mrad full angle

@@ -23,6 +23,8 @@ CHM15K_MAX_DIVERGENCE = 0.15e-3
 #: axes at least 0.095 m apart (the beam cannot leave through the lens), at most 0.5 m (one
 #: housing).
 CHM15K_OFFSET = (0.095, 0.5)
+#: CHM15k: 1064 nm, the expanded beam's 1/e² radius (m).
+CHM15K_WAVELENGTH, CHM15K_BEAM_RADIUS = 1064e-9, 45e-3
 
 
 def pollyxt(
@@ -97,8 +99,8 @@ def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
     (rad, along x).
     """
     beam = GaussianBeam(
-        wavelength=1064e-9,
-        waist_radius=45e-3,
+        wavelength=CHM15K_WAVELENGTH,
+        waist_radius=CHM15K_BEAM_RADIUS,
         divergence=0.15e-3,
         offset=(beam_offset, 0.0),
         tilt=(beam_tilt, 0.0),
@@ -115,12 +117,11 @@ def pollyxt_bounds() -> dict:
     return {"beam.divergence": POLLYXT_DIVERGENCE}
 
 
-def chm15k_bounds(system: Optional[LidarSystem] = None) -> dict:
+def chm15k_bounds() -> dict:
     """Default fit bounds of a :func:`chm15k` system that its sources allow: the divergence (rad;
-    from 1.05 times the diffraction limit of ``system``'s expanded beam, default the preset's, to
-    the manual's upper value) and the axis separation beside the expanded beam (m)."""
-    beam = (system or chm15k()).beam
-    limit = 1.05 * beam.wavelength / (math.pi * beam.waist_radius)
+    from 1.05 times the diffraction limit of the 90 mm expanded beam to the manual's upper value)
+    and the axis separation beside the expanded beam (m)."""
+    limit = 1.05 * CHM15K_WAVELENGTH / (math.pi * CHM15K_BEAM_RADIUS)
     return {
         "beam.divergence": (limit, CHM15K_MAX_DIVERGENCE),
         "beam.offset[0]": CHM15K_OFFSET,
