@@ -187,3 +187,22 @@ def test_a_shared_parameter_absent_from_one_system_is_named():
             systems, [Z, Z], _curves(7), sigma=list(SIGMA), normalize=INTERVAL,
             shared=["detector.numerical_aperture"], **FAST,
         )  # fmt: skip
+
+
+def test_auto_chooses_the_family_and_splits_the_divergence_per_channel():
+    # the channels differ in divergence only (0.15 and 0.25 mrad): the choice on the joint data is
+    # the beam family with a per-curve divergence (seed 8; the focus family with a per-curve
+    # defocus ends within the BIC tie, and the simpler family is preferred)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        joint = lo.fit_joint(
+            _systems(False), [Z, Z], _curves(8), sigma=list(SIGMA), free="auto",
+            normalize=INTERVAL, seed=1, population=10, generations=4, **FAST,
+        )  # fmt: skip
+    assert joint.family == "alignment + beam"
+    assert joint.per_curve == ("beam.divergence",)
+    assert set(joint.shared) == {"beam.offset[0]", "beam.tilt[0]", "detector.radius"}
+    assert any(line.startswith("chosen") for line in joint.choices)
+    for i, d in enumerate(DIVERGENCE):
+        name = f"beam.divergence@{i}"
+        assert abs(joint.parameters[name] - d) < PULL * joint.uncertainties[name]

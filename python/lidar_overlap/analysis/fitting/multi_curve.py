@@ -138,6 +138,7 @@ class CurveSet:
             groups.setdefault((id(m.system), p.ranges.tobytes()), []).append(i)
         self.groups = list(groups.values())
         self.last: list = [None, None]
+        self.rows = sum(n.whitening.shape[0] for n in self.norms)
 
     def curves(self, systems, shifted=None):
         """G of each curve's system (and, with ``shifted``, of each curve's shifted systems): one
@@ -167,8 +168,15 @@ class CurveSet:
         return self.last[1]
 
     def residuals(self, theta) -> np.ndarray:
-        """The whitened residuals of all curves, stacked."""
-        _, g = self.at(theta)
+        """The whitened residuals of all curves, stacked; NaN where θ makes some curve's system
+        invalid (a drifting divergence below zero at one end of the covariate): the optimiser
+        then shortens its step, as it does for any non-finite residual."""
+        try:
+            _, g = self.at(theta)
+        except ValueError:
+            if self.last[0] is None:  # the start itself: the caller's error
+                raise
+            return np.full(self.rows, np.nan)
         with np.errstate(invalid="ignore"):  # a model that vanishes where it is normalised
             return np.concatenate(
                 [n.whitening @ (n.model(gi) - n.data) for n, gi in zip(self.norms, g)]
