@@ -62,8 +62,9 @@ def fitted_gates(z):
 
 
 def empirical(z, t_train, g_train, factory, t_test):
-    """Hervo et al.'s model: per gate ln(G / G_factory) = a + b T (least squares), gates to 1 km."""
-    gates = z <= SCORED[1]
+    """Hervo et al.'s model: per gate ln(G / G_factory) = a + b T (least squares), gates to 1 km
+    where every training day's G is positive (the others, below 100 m, keep the factory's G)."""
+    gates = (z <= SCORED[1]) & (factory > 0) & np.all(g_train > 0, axis=0)
     y = np.log(g_train[:, gates] / factory[gates])
     design = np.column_stack([np.ones_like(t_train), t_train])
     coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
