@@ -7,9 +7,11 @@ mean and a and b are nearly uncorrelated). One fit of all curves
 ``drifting="auto"``: forward selection by BIC = chi² + K ln n (n independent points of all curves):
 from no drift, the free paths not yet drifting are ranked by the chi-square drop of one
 Gauss-Newton step from the current solution with that path's slope freed as well (one Jacobian
-ranks them all), the best is fitted (a local fit from the current solution, its slope starting at
-0) and taken when it lowers the BIC by more than ``BIC_TIE``; until it does not. At most k + 1
-local fits and k Jacobians for k free paths.
+ranks them all; a path held by its bound is not a candidate), the best is fitted (a local fit from
+the current solution, its slope starting at 0) and taken when it lowers the BIC by more than
+``BIC_TIE``, else the next best (``TRIED`` per round at most, and only while the one step's drop
+exceeds the BIC's penalty); until none is taken. At most ``TRIED`` k local fits and k Jacobians for
+k free paths.
 ``free="auto"``: the model ladder (``lo.fit(..., free="auto")``) on the series' median curve
 chooses the family (its paths become ``free``) and its fit the start.
 """
@@ -38,6 +40,9 @@ from .multi_inputs import (
 )
 from .multi_search import fit_curves
 from .problem import GENERATIONS, MINIMA, checked_search, fit_settings, measured_values
+
+#: drifting="auto" fits at most this many of the best-ranked candidates per round.
+TRIED = 2
 
 
 def fit_drift(
@@ -247,20 +252,31 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
     local = settings.derived(allow_unconverged=True)
     while len(moving) < len(paths):
         start = dict(zip(best.problem.names, best.values.tolist()))
+        pinned = set(best.at_bounds)  # a value held by its bound cannot follow a drift
         drops = _linear_drops(local, system, paths, moving, c, bounds, start)
-        p = max(drops, key=lambda q: drops[q])
-        problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
-        with warnings.catch_warnings(record=True) as record:
-            warnings.simplefilter("always")  # said below for the chosen one only
-            trial = solve_curves(problem)
-        bic = _bic(trial)
-        ranked = ", ".join(f"{q} {v:.4g}" for q, v in sorted(drops.items(), key=lambda i: -i[1]))
-        choices.append(
-            f"one step's chi-square drop per candidate: {ranked}; drifting "
-            f"{', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC {bic:.2f}"
-        )
-        if not bic < best_bic - BIC_TIE:
+        ranked = sorted((q for q in drops if q not in pinned), key=lambda q: -drops[q])
+        shown = ", ".join(f"{q} {drops[q]:.4g}" for q in ranked)
+        choices.append(f"one step's chi-square drop per candidate (not on a bound): {shown}")
+        penalty = math.log(best.degrees_of_freedom + len(best.values)) + BIC_TIE
+        taken = None
+        for p in ranked[:TRIED]:
+            if not drops[p] > penalty:  # not even its linear step pays for the parameter
+                break
+            problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
+            with warnings.catch_warnings(record=True) as record:
+                warnings.simplefilter("always")  # said below for the chosen one only
+                trial = solve_curves(problem)
+            bic = _bic(trial)
+            choices.append(
+                f"drifting {', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC "
+                f"{bic:.2f}"
+            )
+            if bic < best_bic - BIC_TIE:
+                taken = (p, trial, bic, record)
+                break
+        if taken is None:
             break
+        p, trial, bic, record = taken
         moving.append(p)
         best, best_bic, said = trial, bic, record
     choices.append(f"chosen: {', '.join(moving) if moving else 'no drift'} (BIC {best_bic:.2f})")
