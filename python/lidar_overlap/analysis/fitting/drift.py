@@ -293,20 +293,28 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
 
 def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
     """{candidate: the chi-square drop of one Gauss-Newton step from the current solution with its
-    slope freed as well}: one Jacobian (all candidates' slope columns at once) ranks them."""
+    slope freed as well, beyond the step's without it}: one Jacobian (all candidates' slope
+    columns at once) ranks them."""
     candidates = [p for p in paths if p not in moving]
     problem = drift_problem(settings, system, paths, moving + candidates, c, bounds, start)
     model = CurveSet(problem)
     r = model.residuals(problem.start)
     j = model.jacobian(problem.start)
-    current = len(paths) + len(moving)
-    drops = {}
-    for d, p in enumerate(candidates):
-        a = j[:, list(range(current)) + [current + d]]
-        step = np.linalg.lstsq(a, -r, rcond=None)[0]
-        after = r + a @ step
-        drops[p] = float(r @ r - after @ after)
-    return drops
+    current = list(range(len(paths) + len(moving)))
+    # the step without a new slope: what the current solution, short of its minimum along a
+    # degenerate valley, would gain anyway (every candidate's drop counts from it)
+    base = _step_drop(j[:, current], r)
+    return {
+        p: _step_drop(j[:, current + [len(current) + d]], r) - base
+        for d, p in enumerate(candidates)
+    }
+
+
+def _step_drop(a, r) -> float:
+    """The chi-square drop of the Gauss-Newton step in the columns ``a`` from residuals ``r``."""
+    step = np.linalg.lstsq(a, -r, rcond=None)[0]
+    after = r + a @ step
+    return float(r @ r - after @ after)
 
 
 def drift_result(fit: MultiCurveFit, c, unit: str, choices) -> DriftFitResult:

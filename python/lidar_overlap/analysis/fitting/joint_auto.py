@@ -5,9 +5,9 @@ What it tries (bounded cost): each family of the ladder that does not extend the
 + beam; + focus), first with every parameter shared (the first family by the joint global search,
 each next one from the one before's solution); then, within that family, forward selection of the
 per-curve parameters: the shared paths are ranked by the chi-square drop of one Gauss-Newton step
-from the current solution with that path split into one value per curve (one Jacobian ranks them
-all), the best is fitted and taken when it lowers the BIC by more than ``BIC_TIE``, until it does
-not. The family of lowest BIC after its selection is chosen (a simpler one within ``BIC_TIE``
+from the current solution with that path split into one value per curve, beyond the step's with it
+shared (one Jacobian ranks them all); the best is fitted and taken when it lowers the BIC by more
+than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is chosen (a simpler one within ``BIC_TIE``
 preferred). Cost: one search, and per family at most k + 1 local fits and k Jacobians (k paths).
 """
 
@@ -119,6 +119,13 @@ def _linear_drops(settings, systems, paths, own, candidates, given, fit) -> dict
     r = model.residuals(problem.start)
     j = model.jacobian(problem.start)
     drops = {}
+    fixed = [a for a, name in enumerate(names) if name.split("@")[0] not in candidates]
+    summed = [
+        j[:, [a for a, name in enumerate(names) if name.split("@")[0] == q]].sum(axis=1)
+        for q in candidates
+    ]
+    # the step with every candidate still shared: what the current solution would gain anyway
+    base = _step_drop(np.column_stack([j[:, fixed], *summed]), r)
     for p in candidates:
         keep = [a for a, name in enumerate(names) if name.split("@")[0] not in candidates]
         keep += [a for a, name in enumerate(names) if name.split("@")[0] == p]
@@ -129,7 +136,12 @@ def _linear_drops(settings, systems, paths, own, candidates, given, fit) -> dict
             if q != p
         ]
         a = np.column_stack([j[:, keep], *others]) if others else j[:, keep]
-        step = np.linalg.lstsq(a, -r, rcond=None)[0]
-        after = r + a @ step
-        drops[p] = float(r @ r - after @ after)
+        drops[p] = _step_drop(a, r) - base
     return drops
+
+
+def _step_drop(a, r) -> float:
+    """The chi-square drop of the Gauss-Newton step in the columns ``a`` from residuals ``r``."""
+    step = np.linalg.lstsq(a, -r, rcond=None)[0]
+    after = r + a @ step
+    return float(r @ r - after @ after)
