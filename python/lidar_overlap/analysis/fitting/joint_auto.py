@@ -7,8 +7,9 @@ each next one from the one before's solution); then, within that family, forward
 per-curve parameters: the shared paths are ranked by the chi-square drop of one Gauss-Newton step
 from the current solution with that path split into one value per curve, beyond the step's with it
 shared (one Jacobian ranks them all); the best is fitted and taken when it lowers the BIC by more
-than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is chosen (a simpler one within ``BIC_TIE``
-preferred). Cost: one search, and per family at most k + 1 local fits and k Jacobians (k paths).
+than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is chosen (a
+simpler one within ``BIC_TIE`` preferred). Cost: one search, and per family at most k + 1 local
+fits and k Jacobians (k paths).
 """
 
 from __future__ import annotations
