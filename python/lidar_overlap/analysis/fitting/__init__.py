@@ -3,8 +3,8 @@ search, model ladder), their results and verdicts.
 
 Files: correction.py, drift.py, drift_result.py, families.py, fit.py, global_result.py,
 global_search.py, inputs.py, joint.py, joint_auto.py, joint_result.py, ladder.py, multi_curve.py,
-multi_inputs.py, multi_search.py, normalization.py, problem.py, relative.py, relative_result.py,
-result.py, solve.py, verdict.py.
+multi_inputs.py, multi_result.py, multi_search.py, normalization.py, problem.py, relative.py,
+relative_result.py, result.py, solve.py, verdict.py.
 """
 
 __all__ = [
@@ -22,6 +22,7 @@ __all__ = [
     "ladder",
     "multi_curve",
     "multi_inputs",
+    "multi_result",
     "multi_search",
     "normalization",
     "problem",

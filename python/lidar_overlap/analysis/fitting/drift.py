@@ -26,7 +26,7 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
-from .drift_result import SLOPE, DriftFitResult, reduced
+from .drift_result import SLOPE, DriftFitResult
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
 from .multi_curve import CurveMap, CurveSet, MultiCurveFit, MultiCurveProblem, solve_curves
@@ -38,6 +38,7 @@ from .multi_inputs import (
     path_bounds,
     search_box,
 )
+from .multi_result import bic_of, reduced
 from .multi_search import fit_curves
 from .problem import GENERATIONS, MINIMA, checked_search, fit_settings, measured_values
 
@@ -239,15 +240,10 @@ def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
     return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
 
 
-def _bic(fit: MultiCurveFit) -> float:
-    n = fit.degrees_of_freedom + len(fit.values)
-    return fit.chi_square + len(fit.values) * math.log(n)
-
-
 def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
     """Forward selection of the drifting paths by BIC (module docstring)."""
     moving: List[str] = []
-    best, best_bic, said = fit, _bic(fit), []
+    best, best_bic, said = fit, bic_of(fit), []
     choices.append(f"no drift: chi-square {fit.chi_square:.4g}, BIC {best_bic:.2f}")
     local = settings.derived(allow_unconverged=True)
     while len(moving) < len(paths):
@@ -266,7 +262,7 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
             with warnings.catch_warnings(record=True) as record:
                 warnings.simplefilter("always")  # said below for the chosen one only
                 trial = solve_curves(problem)
-            bic = _bic(trial)
+            bic = bic_of(trial)
             choices.append(
                 f"drifting {', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC "
                 f"{bic:.2f}"

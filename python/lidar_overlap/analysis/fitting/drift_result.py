@@ -4,7 +4,6 @@ covariate value, and the drift in physical units."""
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, ClassVar, Dict, Optional, Tuple
 
@@ -15,7 +14,9 @@ from ..._pickling import ByValue
 from ...model import parameters as _parameters
 from ..batch_curves import curves as batch
 from ..sensitivity import jacobian
+from . import multi_result
 from .global_result import SearchReport
+from .multi_result import verdict_lines
 from .relative_result import RelativeFitResult
 from .result import FitResult
 
@@ -69,21 +70,10 @@ class DriftFitResult(ByValue):
     choices: Tuple[str, ...] = ()
 
     FIELDS: ClassVar[Dict[str, Any]] = {
-        "parameters": _values.reals(),
-        "uncertainties": _values.reals(inf=True),
-        "start": _values.reals(),
-        "covariance": _values.array(2, square=True, inf=True),
-        "correlation": _values.array(2, square=True, nan=True),
-        "chi_square": _values.real(low=0.0),
-        "reduced_chi_square": _values.real(low=0.0, nan=True, inf=True),
-        "degrees_of_freedom": _values.count(0),
+        **multi_result.FIELDS,
         "covariate": _values.array(),
         "covariate_reference": _values.real(),
         "covariate_unit": _values.text,
-        "evaluations": _values.count(0),
-        "jacobian_evaluations": _values.count(0),
-        "converged": _values.flag,
-        "message": _values.text,
     }
 
     def __post_init__(self) -> None:
@@ -197,20 +187,7 @@ class DriftFitResult(ByValue):
             )
         if not self.drifting:
             lines.append("  no parameter drifts")
-        lines.append(
-            f"  chi-square {self.chi_square:.4g} for {self.degrees_of_freedom} degrees of freedom, "
-            f"reduced {self.reduced_chi_square:.4g}"
-        )
-        for a, b, c in self.degenerate_pairs:
-            lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
-        if self.at_bounds:
-            lines.append(f"  on a bound (set by it, not by the data): {', '.join(self.at_bounds)}")
-        lines.extend(f"  {line}" for line in self.choices)
+        lines.extend(verdict_lines(self))
         return "\n".join(lines)
 
     __str__ = summary
-
-
-def reduced(chi_square: float, dof: int) -> float:
-    """chi²/dof, NaN without degrees of freedom."""
-    return chi_square / dof if dof else math.nan

@@ -15,7 +15,6 @@ fits and k Jacobians (k paths).
 from __future__ import annotations
 
 import dataclasses
-import math
 import warnings
 from typing import List
 
@@ -27,15 +26,11 @@ from .joint_result import JointFitResult, joint_result
 from .ladder import BIC_TIE
 from .multi_curve import CurveSet, MultiCurveFit, solve_curves
 from .multi_inputs import checked_bounds, has_path, joint_problem
+from .multi_result import bic_of
 from .multi_search import fit_curves
 
 #: The families tried: those of the ladder that do not extend the model.
 FAMILIES = tuple(f for f in LADDER if f.extend is None)[:3]
-
-
-def _bic(fit: MultiCurveFit) -> float:
-    n = fit.degrees_of_freedom + len(fit.values)
-    return fit.chi_square + len(fit.values) * math.log(n)
 
 
 def _names(shared, own, n: int) -> List[str]:
@@ -68,10 +63,10 @@ def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
             shared_fit = fit_curves(joint_problem(local, systems, paths, (), given, start))
         choices.append(
             f"family '{family.name}', all shared: chi-square {shared_fit.chi_square:.4g}, BIC "
-            f"{_bic(shared_fit):.2f}"
+            f"{bic_of(shared_fit):.2f}"
         )
         fit, own = _per_curve(quiet, systems, paths, given, shared_fit, choices)
-        scored.append((_bic(fit), family, paths, own, given, fit))
+        scored.append((bic_of(fit), family, paths, own, given, fit))
         previous = shared_fit
     lowest = min(s[0] for s in scored)
     bic, family, paths, own, given, best = next(s for s in scored if s[0] <= lowest + BIC_TIE)
@@ -89,7 +84,7 @@ def _per_curve(settings, systems, paths, given, fit, choices):
     """(the fit, the per-curve paths) of the forward selection within one family."""
     n = len(systems)
     own: List[str] = []
-    best, best_bic = fit, _bic(fit)
+    best, best_bic = fit, bic_of(fit)
     while len(own) < len(paths):
         candidates = [p for p in paths if p not in own]
         drops = _linear_drops(settings, systems, paths, own, candidates, given, best)
@@ -99,7 +94,7 @@ def _per_curve(settings, systems, paths, given, fit, choices):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             trial = solve_curves(joint_problem(settings, systems, shared, own + [p], given, start))
-        bic = _bic(trial)
+        bic = bic_of(trial)
         choices.append(f"  per-curve {', '.join(own + [p])}: chi-square {trial.chi_square:.4g}, "
                        f"BIC {bic:.2f}")  # fmt: skip
         if not bic < best_bic - BIC_TIE:

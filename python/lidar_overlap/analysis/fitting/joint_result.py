@@ -3,7 +3,6 @@ per-curve parameters with one covariance, one fit result per curve and the joint
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, ClassVar, Dict, Optional, Tuple
 
@@ -12,9 +11,11 @@ import numpy as np
 from ... import _checks, _values
 from ..._pickling import ByValue
 from ...model import parameters as _parameters
+from . import multi_result
 from .global_result import SearchReport
 from .ladder import runs_p_value
 from .multi_curve import MultiCurveFit
+from .multi_result import reduced, verdict_lines
 from .result import FitResult
 
 
@@ -62,20 +63,7 @@ class JointFitResult(ByValue):
     family: Optional[str] = None
     choices: Tuple[str, ...] = ()
 
-    FIELDS: ClassVar[Dict[str, Any]] = {
-        "parameters": _values.reals(),
-        "uncertainties": _values.reals(inf=True),
-        "start": _values.reals(),
-        "covariance": _values.array(2, square=True, inf=True),
-        "correlation": _values.array(2, square=True, nan=True),
-        "chi_square": _values.real(low=0.0),
-        "reduced_chi_square": _values.real(low=0.0, nan=True, inf=True),
-        "degrees_of_freedom": _values.count(0),
-        "evaluations": _values.count(0),
-        "jacobian_evaluations": _values.count(0),
-        "converged": _values.flag,
-        "message": _values.text,
-    }
+    FIELDS: ClassVar[Dict[str, Any]] = multi_result.FIELDS
 
     def __post_init__(self) -> None:
         _values.check(self, self.FIELDS)
@@ -125,20 +113,12 @@ class JointFitResult(ByValue):
                 f"  {name:<24} {value:+.6g} ± {self.uncertainties[name]:.3g} {unit}  (start "
                 f"{self.start[name]:+.6g})"
             )
-        lines.append(
-            f"  chi-square {self.chi_square:.4g} for {self.degrees_of_freedom} degrees of freedom, "
-            f"reduced {self.reduced_chi_square:.4g}"
-        )
         for i, (fit, p) in enumerate(zip(self.curves, self.runs_p)):
             lines.append(
                 f"  curve {i}: chi-square {fit.chi_square:.4g}, reduced "
                 f"{fit.reduced_chi_square:.4g}, runs test p {p:.3g}"
             )
-        for a, b, c in self.degenerate_pairs:
-            lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
-        if self.at_bounds:
-            lines.append(f"  on a bound (set by it, not by the data): {', '.join(self.at_bounds)}")
-        lines.extend(f"  {line}" for line in self.choices)
+        lines.extend(verdict_lines(self))
         return "\n".join(lines)
 
     __str__ = summary
@@ -158,7 +138,7 @@ def joint_result(fit: MultiCurveFit, family=None, choices=()) -> JointFitResult:
         covariance=fit.covariance,
         correlation=fit.correlation,
         chi_square=fit.chi_square,
-        reduced_chi_square=fit.chi_square / dof if dof else math.nan,
+        reduced_chi_square=reduced(fit.chi_square, dof),
         degrees_of_freedom=dof,
         shared=shared,
         per_curve=own,
