@@ -70,6 +70,7 @@ demo: setup
 	cd $(OUT) && ../$(PY) ../examples/alignment_map.py
 	cd $(OUT) && ../$(PY) ../examples/fit_overlap.py
 	cd $(OUT) && ../$(PY) ../examples/fit_real_overlap.py
+	cd $(OUT) && ../$(PY) ../examples/fit_joint_channels.py
 	cd $(OUT) && ../$(PY) ../examples/optimize_design.py
 	@echo "demo: plots written to $(OUT)/"
 

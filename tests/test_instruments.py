@@ -2,6 +2,8 @@
 wavelength, expanded beam) and a biaxial overlap curve that reaches full overlap in the range the
 instruments' papers report."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -41,3 +43,35 @@ def test_full_overlap_where_the_papers_place_it(system, window):
 def test_bad_channel_is_a_clear_error():
     with pytest.raises(ValueError, match="channel = 'mid' is invalid: expected 'far' or 'near'"):
         pollyxt("mid")
+
+
+def test_preset_bounds_hold_the_presets_and_the_sources_ranges():
+    from lidar_overlap.model.instruments import chm15k_bounds, pollyxt_bounds
+
+    low, high = pollyxt_bounds()["beam.divergence"]
+    assert low < pollyxt().beam.divergence < high
+    c = chm15k()
+    bounds = chm15k_bounds()
+    low, high = bounds["beam.divergence"]
+    # from just above the 90 mm beam's diffraction limit, 1064 nm / (pi 45 mm) = 7.53 µrad, to the
+    # manual's 0.3 mrad full angle
+    assert low == pytest.approx(1.05 * 7.526e-6, rel=1e-3) and high == 0.15e-3
+    assert low < c.beam.divergence <= high
+    low, high = bounds["beam.offset[0]"]
+    assert low == pytest.approx(c.beam.waist_radius + c.telescope.diameter / 2)
+    assert low <= c.beam.offset[0] <= high
+
+
+def test_a_fit_names_the_parameter_that_ends_on_a_preset_bound():
+    from lidar_overlap.model.instruments import chm15k_bounds
+
+    z = np.linspace(150.0, 1200.0, 12)
+    truth = lo.parameters.replace(chm15k(), {"beam.offset[0]": 0.09})  # closer than allowed
+    g = lo.overlap(truth, z, "rt", tolerance=1e-6).overlap
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fit = lo.fit(chm15k(), z, g, 1e-3, free=["beam.offset[0]"], method="rt",
+                     bounds={"beam.offset[0]": chm15k_bounds()["beam.offset[0]"]})  # fmt: skip
+    assert fit.at_bounds == ("beam.offset[0]",)
+    assert fit.parameters["beam.offset[0]"] == pytest.approx(0.095)
+    assert "on a bound" in fit.summary()

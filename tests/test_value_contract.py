@@ -168,6 +168,30 @@ REGISTRY: Dict[type, Entry] = {
     lo.GlobalRelativeFitResult: _fit_entry(
         lambda: _fit(search="global", seed=1, max_evaluations=40, normalize=(1000.0, 3000.0))
     ),
+    lo.JointFitResult: _fit_entry(
+        lambda: lo.fit_joint(
+            [SYSTEM, SYSTEM],
+            [Z, Z],
+            [_measured()[0]] * 2,
+            sigma=[1e-3, 1e-3],
+            shared=["detector.defocus"],
+            method="rt",
+            tolerance=1e-6,
+        )  # fmt: skip
+    ),
+    lo.DriftFitResult: _fit_entry(
+        lambda: lo.fit_drift(
+            SYSTEM,
+            Z,
+            [_measured()[0]] * 2,
+            [290.0, 300.0],
+            sigma=1e-3,
+            free=["detector.defocus"],
+            drifting=["detector.defocus"],
+            method="rt",
+            tolerance=1e-6,
+        )  # fmt: skip
+    ),
     lo.TelecoverResult: Entry(_telecover),
     lo.LidarSignal: Entry(_signal),
     lo.CorrectedSignal: Entry(

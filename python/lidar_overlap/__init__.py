@@ -22,8 +22,12 @@ _EXPORTS = {
     "analysis.design.objectives": ("MaximumOverlapAt", "Objective", "SmallestFieldOfView"),
     "analysis.design.optimize": ("OptimizeResult", "optimize"),
     "analysis.design.realign": ("Realignment", "realign"),
+    "analysis.fitting.drift": ("fit_drift",),
+    "analysis.fitting.drift_result": ("DriftFitResult",),
     "analysis.fitting.fit": ("fit",),
     "analysis.fitting.global_result": ("GlobalFitResult", "GlobalRelativeFitResult"),
+    "analysis.fitting.joint": ("fit_joint",),
+    "analysis.fitting.joint_result": ("JointFitResult",),
     "analysis.fitting.relative_result": ("RelativeFitResult",),
     "analysis.fitting.result": ("DegeneracyWarning", "FitResult", "Prediction"),
     "analysis.fitting.verdict": ("FitQualityWarning",),
@@ -84,8 +88,12 @@ if TYPE_CHECKING:
     from .analysis.design.objectives import MaximumOverlapAt, Objective, SmallestFieldOfView
     from .analysis.design.optimize import OptimizeResult, optimize
     from .analysis.design.realign import Realignment, realign
+    from .analysis.fitting.drift import fit_drift
+    from .analysis.fitting.drift_result import DriftFitResult
     from .analysis.fitting.fit import fit
     from .analysis.fitting.global_result import GlobalFitResult, GlobalRelativeFitResult
+    from .analysis.fitting.joint import fit_joint
+    from .analysis.fitting.joint_result import JointFitResult
     from .analysis.fitting.relative_result import RelativeFitResult
     from .analysis.fitting.result import DegeneracyWarning, FitResult, Prediction
     from .analysis.fitting.verdict import FitQualityWarning

@@ -138,10 +138,18 @@ def jacobian(p, system, paths, tolerance: float) -> np.ndarray:
     A path one step from the edge of the model's range (a divergence within a step of the
     diffraction limit, a weight within a step of 1) gets the one-sided difference on the side that
     stays inside: first order, where the central one has no second point."""
+    shifted, widths = difference_systems(system, paths, tolerance)
+    g, _ = _curves(p, system, paths, shifted)
+    return ((g[:, 0] - g[:, 1]) / widths[:, None]).T
+
+
+def difference_systems(system, paths, tolerance: float):
+    """(the 2 k shifted systems of :func:`jacobian`'s differences, path by path: above, then below;
+    their distances (k,) in each path's unit): what a caller batching several systems' Jacobians
+    into one core call runs itself."""
     steps = _steps(system, paths, tolerance)
     pairs, widths = zip(*(_difference(system, path, h) for path, h in zip(paths, steps)))
-    g, _ = _curves(p, system, paths, [s for pair in pairs for s in pair])
-    return ((g[:, 0] - g[:, 1]) / np.array(widths)[:, None]).T
+    return [s for pair in pairs for s in pair], np.array(widths)
 
 
 def _steps(system, paths, tolerance: float) -> np.ndarray:

@@ -1,16 +1,30 @@
 """Starting systems of widespread lidar classes, from their published designs, for fits of measured
 overlap curves (SI units). Each states which values its sources give and which are assumptions:
 the assumed ones (axis separation, expanded beam size, obstruction) differ between units and are
-what a fit of the unit's overlap curve should free.
+what a fit of the unit's overlap curve should free. Where the sources bound an assumed value, the
+preset's ``*_bounds`` function gives those bounds ({path: (low, high)}, SI units) for a fit's
+``bounds=`` argument; a fitted value that ends on one is named in the result's ``at_bounds``.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Optional
 
 from .system import Detector, GaussianBeam, LidarSystem, Telescope
 
 _CHANNELS = ("far", "near")
+#: PollyXT: a divergence of "a few tenths of a mrad" (the sources), taken as 0.05-1 mrad (1/e²
+#: half-angle), a factor of two beyond either end of that phrase.
+POLLYXT_DIVERGENCE = (0.05e-3, 1.0e-3)
+#: CHM15k: the laser's divergence below 0.3 mrad full angle (the manual), 0.15 mrad half-angle.
+CHM15K_MAX_DIVERGENCE = 0.15e-3
+#: CHM15k: the 90 mm expanded beam (45 mm radius) beside the 0.1 m lens (0.05 m radius): their
+#: axes at least 0.095 m apart (the beam cannot leave through the lens), at most 0.5 m (one
+#: housing).
+CHM15K_OFFSET = (0.095, 0.5)
+#: CHM15k: 1064 nm, the expanded beam's 1/e² radius (m).
+CHM15K_WAVELENGTH, CHM15K_BEAM_RADIUS = 1064e-9, 45e-3
 
 
 def pollyxt(
@@ -85,8 +99,8 @@ def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
     (rad, along x).
     """
     beam = GaussianBeam(
-        wavelength=1064e-9,
-        waist_radius=45e-3,
+        wavelength=CHM15K_WAVELENGTH,
+        waist_radius=CHM15K_BEAM_RADIUS,
         divergence=0.15e-3,
         offset=(beam_offset, 0.0),
         tilt=(beam_tilt, 0.0),
@@ -95,3 +109,20 @@ def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
     return LidarSystem(
         beam=beam, telescope=telescope, detector=Detector.from_fov(fov=0.45e-3, focal_length=0.5)
     )
+
+
+def pollyxt_bounds() -> dict:
+    """Default fit bounds of a :func:`pollyxt` system that its sources allow: the divergence
+    (rad)."""
+    return {"beam.divergence": POLLYXT_DIVERGENCE}
+
+
+def chm15k_bounds() -> dict:
+    """Default fit bounds of a :func:`chm15k` system that its sources allow: the divergence (rad;
+    from 1.05 times the diffraction limit of the 90 mm expanded beam to the manual's upper value)
+    and the axis separation beside the expanded beam (m)."""
+    limit = 1.05 * CHM15K_WAVELENGTH / (math.pi * CHM15K_BEAM_RADIUS)
+    return {
+        "beam.divergence": (limit, CHM15K_MAX_DIVERGENCE),
+        "beam.offset[0]": CHM15K_OFFSET,
+    }

@@ -26,6 +26,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
+from dataclasses import dataclass
 from typing import Any, Dict, List, Tuple
 
 import numpy as np
@@ -34,7 +35,7 @@ from ...model import parameters as _parameters
 from ..batch_curves import curves, variants
 from .global_result import SearchMinimum, SearchReport, with_search
 from .normalization import extended_plan, normalization
-from .problem import Curve, FitProblem
+from .problem import Curve, FitProblem, Search
 from .relative import polish
 from .solve import fit_plan, parameter_bounds
 
@@ -57,50 +58,20 @@ def fit_global(problem: FitProblem):
     ``GlobalFitResult`` (or ``GlobalRelativeFitResult`` with a normalised curve): the best local fit
     and its ``search`` report (candidates, generations, core calls, and every distinct polished
     minimum with its chi-square)."""
-    optimize = _scipy()
     system, paths, curve, settings = problem.start, problem.paths, problem.curve, problem.search
-    k = len(paths)
-    population = settings.population or max(MIN_POPULATION, POPULATION_PER_PARAMETER * k)
     p0 = fit_plan(problem, system, curve.ranges)
     norm, p = thinned(p0, curve)
     start = np.array([_parameters.get(system, path) for path in paths])
     box = search_bounds(system, paths, start, problem.bounds)
     low, high = parameter_bounds(system, paths, start, box)
     logs = np.array([_parameters.searched_in_log(path, lo) for path, lo in zip(paths, low)])
-    a = np.where(logs, np.log(np.where(logs, low, 1.0)), low)
-    b = np.where(logs, np.log(np.where(logs, high, 1.0)), high)
+    cube = UnitCube(low, high, logs)
 
-    def values(u):  # unit cube (S, k) -> parameter values
-        x = a + u * (b - a)
-        return np.where(logs, np.exp(np.where(logs, x, 0.0)), x)
+    def cost(x):  # parameter values (S, k) -> each candidate's cost
+        return norm.whitened_cost(curves(p, variants(system, paths, x)))
 
-    seen_u, seen_cost, calls = [], [], [0]
-
-    def cost(u_columns):  # scipy passes (k, S)
-        u = np.atleast_2d(np.asarray(u_columns, dtype=float).T)
-        g = curves(p, variants(system, paths, values(u)))
-        calls[0] += 1
-        c = norm.whitened_cost(g)
-        seen_u.append(u)
-        seen_cost.append(c)
-        return c
-
-    solution = optimize.differential_evolution(
-        cost,
-        [(0.0, 1.0)] * k,
-        popsize=max(1, math.ceil(population / k)),
-        maxiter=settings.generations,
-        tol=TOLERANCE,
-        seed=settings.seed,
-        polish=False,
-        init="latinhypercube",
-        x0=np.clip(
-            (np.where(logs, np.log(np.abs(start) + (start == 0)), start) - a) / (b - a), 0, 1
-        ),
-        updating="deferred",
-        vectorized=True,
-    )
-    u_all, c_all = np.vstack(seen_u), np.concatenate(seen_cost)
+    solution, u_all, c_all, calls = population_search(cost, cube, start, settings)
+    a, b, values = cube.a, cube.b, cube.values
     starts = distinct_minima(u_all, c_all, settings.minima)
     given = {path: (float(lo), float(hi)) for path, lo, hi in zip(paths, low, high)}
     fits, caught = [], []
@@ -126,7 +97,7 @@ def fit_global(problem: FitProblem):
         population=int(np.asarray(solution.population).shape[0]),
         generations=int(solution.nit),
         candidates=int(c_all.size),
-        core_calls=calls[0],
+        core_calls=calls,
         local_evaluations=sum(f.evaluations for f, _ in fits),
         minima=tuple(
             SearchMinimum(f.parameters, f.chi_square, candidate, f.converged, f.evaluations)
@@ -136,6 +107,69 @@ def fit_global(problem: FitProblem):
     )
     evaluations = int(c_all.size) + sum(f.evaluations for f, _ in fits)
     return with_search(best, report, evaluations)
+
+
+@dataclass(frozen=True, eq=False)
+class UnitCube:
+    """The search space as the unit cube: parameter bounds ``low``, ``high`` (k,), each taken in its
+    logarithm where ``logs`` (module docstring); ``a``, ``b`` the ends of each axis (a value or its
+    logarithm)."""
+
+    low: np.ndarray
+    high: np.ndarray
+    logs: np.ndarray
+
+    @property
+    def a(self) -> np.ndarray:
+        return np.where(self.logs, np.log(np.where(self.logs, self.low, 1.0)), self.low)
+
+    @property
+    def b(self) -> np.ndarray:
+        return np.where(self.logs, np.log(np.where(self.logs, self.high, 1.0)), self.high)
+
+    def values(self, u):
+        """Unit-cube points (S, k) -> parameter values."""
+        x = self.a + u * (self.b - self.a)
+        return np.where(self.logs, np.exp(np.where(self.logs, x, 0.0)), x)
+
+    def unit(self, x):
+        """Parameter values (k,) -> their unit-cube point, clipped to the cube."""
+        a, b = self.a, self.b
+        return np.clip((np.where(self.logs, np.log(np.abs(x) + (x == 0)), x) - a) / (b - a), 0, 1)
+
+
+def population_search(cost, cube: UnitCube, start, settings: Search):
+    """Differential evolution over ``cube`` (module docstring) with the candidates' ``cost(values)``
+    ((S, k) parameter values -> (S,) costs, one batched evaluation per generation), ``start`` one
+    member of the first population. Returns (scipy's solution, every candidate evaluated (unit
+    cube), their costs, the number of cost calls)."""
+    optimize = _scipy()
+    k = cube.low.size
+    population = settings.population or max(MIN_POPULATION, POPULATION_PER_PARAMETER * k)
+    seen_u, seen_cost, calls = [], [], [0]
+
+    def unit_cost(u_columns):  # scipy passes (k, S)
+        u = np.atleast_2d(np.asarray(u_columns, dtype=float).T)
+        c = cost(cube.values(u))
+        calls[0] += 1
+        seen_u.append(u)
+        seen_cost.append(c)
+        return c
+
+    solution = optimize.differential_evolution(
+        unit_cost,
+        [(0.0, 1.0)] * k,
+        popsize=max(1, math.ceil(population / k)),
+        maxiter=settings.generations,
+        tol=TOLERANCE,
+        seed=settings.seed,
+        polish=False,
+        init="latinhypercube",
+        x0=cube.unit(np.asarray(start, dtype=float)),
+        updating="deferred",
+        vectorized=True,
+    )
+    return solution, np.vstack(seen_u), np.concatenate(seen_cost), calls[0]
 
 
 def thinned(p0, curve: Curve):

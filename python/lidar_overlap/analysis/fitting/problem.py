@@ -132,7 +132,7 @@ def fit_problem(
     """The :class:`FitProblem` of ``lo.fit``'s arguments (as documented there), every one checked
     here: a bad value is a ValueError naming it."""
     search = _checks.choice("search", search, SEARCHES)
-    extinction_bias = _extinction_bias(normalize, extinction_bias)
+    extinction_bias = checked_extinction_bias(normalize, extinction_bias)
     auto = isinstance(free, str) and free == "auto"
     paths = "auto" if auto else tuple(free_paths(free))
     if auto and sigma is None:
@@ -156,8 +156,15 @@ def fit_problem(
     w = sigma_weights(sigma, y)
     normalization(normalize, z, y, w, extinction_bias)  # its errors name normalize
     curve = Curve(z, y, w, sigma is not None, normalize, extinction_bias)
-    the_search = Search(
-        kind=search,
+    the_search = checked_search(search, seed, population, generations, minima)
+    return dataclasses.replace(settings, curves=(curve,), search=the_search)
+
+
+def checked_search(search, seed, population, generations, minima) -> Search:
+    """The :class:`Search` of a fit's ``search``, ``seed``, ``population``, ``generations`` and
+    ``minima`` arguments, each checked."""
+    return Search(
+        kind=_checks.choice("search", search, SEARCHES),
         seed=0 if seed is None else _checks.count("seed", seed, 0, 2**32 - 1),
         population=(
             _checks.count("population", population, MIN_POPULATION_GIVEN) if population else None
@@ -165,7 +172,6 @@ def fit_problem(
         generations=_checks.count("generations", generations, 1),
         minima=_checks.count("minima", minima, 1),
     )
-    return dataclasses.replace(settings, curves=(curve,), search=the_search)
 
 
 def fit_settings(
@@ -253,7 +259,7 @@ def sigma_weights(sigma, y):
     return w
 
 
-def _extinction_bias(normalize, extinction_bias) -> bool:
+def checked_extinction_bias(normalize, extinction_bias) -> bool:
     """``extinction_bias`` checked: a bool, True only with ``normalize`` an interval."""
     if not isinstance(extinction_bias, (bool, np.bool_)):
         raise ValueError(

@@ -86,6 +86,8 @@ class FitResult(ByValue):
     evaluations, jacobian_evaluations : model curves and Jacobians computed (one core call each on
         ray tracing).
     status, message, converged : the optimiser's.
+    at_bounds : the parameters that end on a bound of the fit (the bound, not the data, set them;
+        a divergence's default lower bound is just above the diffraction limit).
     """
 
     parameters: Dict[str, float]
@@ -110,6 +112,7 @@ class FitResult(ByValue):
     loss: str
     plan: Any
     step_tolerance: float
+    at_bounds: Tuple[str, ...] = ()
 
     FIELDS: ClassVar[Dict[str, Any]] = {
         "parameters": _values.reals(),
@@ -153,6 +156,14 @@ class FitResult(ByValue):
             raise ValueError(
                 f"residuals has shape {self.residuals.shape}: expected one residual (and sigma) "
                 f"per measured value, {self.measured.size}"
+            )
+        if not (
+            isinstance(self.at_bounds, tuple)
+            and all(path in self.parameters for path in self.at_bounds)
+        ):
+            raise ValueError(
+                f"at_bounds = {_checks.shown(self.at_bounds)} is invalid: expected a tuple of "
+                "fitted parameters"
             )
         if not isinstance(self.degenerate_pairs, tuple):
             raise ValueError(
@@ -217,6 +228,8 @@ class FitResult(ByValue):
         )
         for a, b, c in self.degenerate_pairs:
             lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
+        if self.at_bounds:
+            lines.append(f"  on a bound (set by it, not by the data): {', '.join(self.at_bounds)}")
         return "\n".join(lines)
 
     __str__ = summary

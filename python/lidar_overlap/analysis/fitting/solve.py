@@ -55,6 +55,8 @@ DEGENERATE_CORRELATION = 0.95
 #: fits crawl along degenerate valleys (a tilt against a detector radius) for 100-180 Jacobians to
 #: gain 0.1-0.5 in chi².
 COST_TOLERANCE = 1e-5
+#: A fitted value within this fraction of its bounds' width from one of them ends on that bound.
+ON_BOUND = 1e-6
 #: The model's tolerance must stay below this fraction of the median sigma (else it adds to the
 #: noise).
 TOLERANCE_FRACTION = 0.1
@@ -185,9 +187,9 @@ def solve(problem: FitProblem, model: Model) -> FitResult:
     j = normalised_jacobian(solution.x) / scale  # per SI unit of each parameter
     with np.errstate(over="ignore", invalid="ignore"):
         chi_square, dof = float(r @ r), n - k
-    cov, corr = _covariance(j, chi_square, dof, sigma_given)
+    cov, corr = parameter_covariance(j, chi_square, dof, sigma_given)
     sd = np.sqrt(np.diag(cov))
-    pairs = _degeneracies(paths, corr, sd)
+    pairs = degeneracies(paths, corr, sd)
     # A robust loss expects outliers, which the chi-square and the runs test would count as misfit.
     exact = loss == "linear" and verdict.check_quality("fit", r, y, w, dof, sigma_given, tolerance)
     noise = math.sqrt(chi_square / dof)
@@ -224,10 +226,20 @@ def solve(problem: FitProblem, model: Model) -> FitResult:
         loss=loss,
         plan=model.plan,
         step_tolerance=model.step_tolerance,
+        at_bounds=on_bounds(paths, solution.x * scale, low, high),
     )
 
 
-def _covariance(j, chi_square: float, dof: int, sigma_given: bool):
+def on_bounds(names, values, low, high) -> Tuple[str, ...]:
+    """The ``names`` whose fitted ``values`` end on their bound (within ``ON_BOUND`` of the
+    interval's width): the data would take them further, so the bound, not the data, set them."""
+    width = np.asarray(high) - np.asarray(low)
+    x = np.asarray(values)
+    near = (x - low <= ON_BOUND * width) | (high - x <= ON_BOUND * width)
+    return tuple(name for name, hit in zip(names, near) if hit)
+
+
+def parameter_covariance(j, chi_square: float, dof: int, sigma_given: bool):
     """(covariance, correlation) of the parameters from J (point, parameter) per SI unit at the
     solution: Gauss-Newton, scaled by chi²/dof without sigma (module docstring)."""
     with np.errstate(over="ignore", invalid="ignore"):
@@ -248,7 +260,7 @@ def _covariance(j, chi_square: float, dof: int, sigma_given: bool):
     return cov, corr
 
 
-def _degeneracies(paths, corr, sd) -> tuple:
+def degeneracies(paths, corr, sd) -> tuple:
     """The pairs (path, path, correlation) the data cannot tell apart, warned (with a singular
     Jacobian's infinite uncertainties) as a DegeneracyWarning."""
     k = len(paths)

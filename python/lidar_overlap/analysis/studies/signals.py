@@ -258,7 +258,14 @@ def _upto(name: str, value, maximum: float, unit: str) -> float:
 
 
 def correct(
-    ranges, signal, overlap, *, min_overlap: float = 0.1, signal_std=None, overlap_std=None
+    ranges,
+    signal,
+    overlap,
+    *,
+    min_overlap: float = 0.1,
+    signal_std=None,
+    overlap_std=None,
+    covariate=None,
 ) -> CorrectedSignal:
     """Overlap-corrected signal S/G and its uncertainty sqrt((σ_S/G)² + (S σ_G/G²)²) (first-order
     propagation of independent errors).
@@ -270,7 +277,8 @@ def correct(
         ...): finite.
     overlap : G at each range: an :class:`OverlapResult` at the same ranges, an array of values in
         [0, 1], or a fit result (``lo.fit``): its curve at the ranges (a relative fit's divided by
-        its far-range limit) with its 1-sigma band as ``overlap_std`` unless that is given.
+        its far-range limit) with its 1-sigma band as ``overlap_std`` unless that is given; a drift
+        fit (``lo.fit_drift``): its curve at ``covariate``, the same way.
     min_overlap : (0, 1]: where G < min_overlap the signal is not corrected (too little of it
         reaches the detector, and S/G would amplify every error): ``values`` and ``std`` are NaN
         there and ``mask`` True.
@@ -281,12 +289,19 @@ def correct(
         "bound", RT's quadrature bound, that is a bound on the error, not a standard deviation, so
         ``std`` is then a conservative bound too; for "nominal" and "standard_error" it is used as a
         standard deviation), and 0 for an array.
+    covariate : with a drift fit as ``overlap``, the signal's covariate value (e.g. the day's
+        internal temperature, in the fit's covariate unit); refused with any other overlap.
     """
     z = _checks.ranges("ranges", ranges)
     s = _profile("signal", signal, z.size)
     if is_fit(overlap):  # a fitted curve: G and its band from the fit (fitting/correction.py)
-        overlap, band = fitted_overlap(overlap, z)
+        overlap, band = fitted_overlap(overlap, z, covariate)
         overlap_std = band if overlap_std is None else overlap_std
+    elif covariate is not None:
+        raise ValueError(
+            f"covariate = {_checks.shown(covariate)} is invalid here: only a drift fit's overlap "
+            "(lo.fit_drift) depends on a covariate; leave it out"
+        )
     if isinstance(overlap, OverlapResult):
         if not np.array_equal(overlap.ranges, z):
             raise ValueError(

@@ -1,0 +1,359 @@
+"""``lo.fit_drift``: a series of curves of one instrument with a covariate per curve (its internal
+temperature, the time): the fixed parameters shared by all curves, each drifting one linear in the
+covariate, a + b (c - c_ref), with c_ref the covariate's mean (so a is the value at the series'
+mean and a and b are nearly uncorrelated). One fit of all curves
+(:mod:`lidar_overlap.analysis.fitting.multi_curve`), one covariance.
+
+``drifting="auto"``: forward selection by BIC = chi² + K ln n (n independent points of all curves):
+from no drift, the free paths not yet drifting are ranked by the chi-square drop of one
+Gauss-Newton step from the current solution with that path's slope freed as well (one Jacobian
+ranks them all; a path held by its bound is not a candidate), the best is fitted (a local fit from
+the current solution, its slope starting at 0) and taken when it lowers the BIC by more than
+``BIC_TIE``, else the next best (``TRIED`` per round at most, and only while the one step's drop
+exceeds the BIC's penalty); until none is taken. At most ``TRIED`` k local fits and k Jacobians for
+k free paths.
+``free="auto"``: the model ladder (``lo.fit(..., free="auto")``) on the series' median curve
+chooses the family (its paths become ``free``) and its fit the start.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import List, Optional
+
+import numpy as np
+
+from ... import _checks
+from ...model import parameters as _parameters
+from .drift_result import SLOPE, DriftFitResult
+from .fit import fit as single_fit
+from .ladder import BIC_TIE
+from .multi_curve import CurveMap, CurveSet, MultiCurveFit, MultiCurveProblem, solve_curves
+from .multi_inputs import (
+    checked_bounds,
+    checked_curve,
+    checked_paths,
+    is_interval,
+    path_bounds,
+    search_box,
+)
+from .multi_result import bic_of, reduced
+from .multi_search import fit_curves
+from .problem import GENERATIONS, MINIMA, checked_search, fit_settings, measured_values
+
+#: drifting="auto" fits at most this many of the best-ranked candidates per round.
+TRIED = 2
+
+
+def fit_drift(
+    system,
+    ranges,
+    curves,
+    covariate,
+    *,
+    sigma,
+    free,
+    drifting,
+    normalize=None,
+    extinction_bias=False,
+    method="auto",
+    tolerance: Optional[float] = None,
+    search: Optional[str] = None,
+    seed: Optional[int] = None,
+    bounds=None,
+    covariate_unit: str = "K",
+    loss: str = "linear",
+    max_evaluations: int = 200,
+    allow_unconverged: bool = False,
+    threads: int = 0,
+    population: Optional[int] = None,
+    generations: int = GENERATIONS,
+    minima: int = MINIMA,
+) -> DriftFitResult:
+    """Fit a series of curves with parameters that drift linearly with a covariate (module
+    docstring).
+
+    system : the start (its values start every curve). ranges : m, strictly increasing, shared by
+    the curves. curves : (n_curves, n_ranges), G or relative G, at least two. covariate : one
+    finite value per curve, not all equal (in ``covariate_unit``, e.g. K). sigma : 1-sigma error:
+    a scalar, one per range, or (n_curves, n_ranges); required. free : paths fitted (a list, or
+    ``"auto"``); drifting : those of them that drift (a list, possibly empty, or ``"auto"``).
+    normalize : None, "far" or (z_low, z_high) in m, for every curve; extinction_bias : each
+    curve's retrieval extinction bias profiled (with an interval). bounds : {path: (low, high)}
+    for the paths' values (the slopes' bounds: ± that width per covariate span). method,
+    tolerance, loss, max_evaluations, allow_unconverged, threads, search, seed, population,
+    generations, minima : as in :func:`lidar_overlap.fit`. Returns a :class:`DriftFitResult`.
+    """
+    if not isinstance(covariate_unit, str):
+        raise ValueError(f"covariate_unit = {_checks.shown(covariate_unit)}: expected a text")
+    z = _checks.ranges("ranges", ranges)
+    y = _series(curves, z)
+    c = _covariate(covariate, y.shape[0])
+    w = _sigma(sigma, y.shape)
+    if not is_interval(normalize):
+        raise ValueError(
+            f"normalize = {_checks.shown(normalize)} is invalid: expected None, 'far' or (z_low, "
+            "z_high) in m, one for every curve"
+        )
+    data = tuple(
+        checked_curve(i, z, y[i], w[i], normalize, extinction_bias) for i in range(y.shape[0])
+    )
+    the_search = checked_search(search or "local", seed, population, generations, minima)
+    choices: List[str] = []
+    if isinstance(free, str) and free == "auto":
+        system, free, line = _ladder_start(system, z, y, w, normalize, extinction_bias, method,
+                                           tolerance, bounds, seed)  # fmt: skip
+        choices.append(line)
+    paths = checked_paths("free", free, [system])
+    auto = isinstance(drifting, str) and drifting == "auto"
+    moving = () if auto else checked_paths("drifting", drifting, [system], allow_empty=True)
+    outside = [p for p in moving if p not in paths]
+    if outside:
+        raise ValueError(
+            f"drifting: {', '.join(outside)} is not free: expected drifting paths among free "
+            f"({', '.join(paths)})"
+        )
+    given = checked_bounds(bounds, paths)
+    settings = fit_settings(
+        system,
+        free=paths,
+        bounds=None,
+        method=method,
+        tolerance=tolerance,
+        loss=loss,
+        max_evaluations=max_evaluations,
+        allow_unconverged=allow_unconverged,
+        threads=threads,
+    ).derived(curves=data, search=the_search)
+    problem = drift_problem(settings, system, paths, moving, c, given)
+    if auto:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the model without drift: its BIC is its verdict
+            fit = fit_curves(_quiet(problem))
+        fit = _select(fit, settings, system, paths, c, given, choices)
+    else:
+        fit = fit_curves(problem)
+    return drift_result(fit, c, covariate_unit, choices)
+
+
+def _series(curves, z) -> np.ndarray:
+    try:
+        y = _checks.real_array("curves", curves, ndim=2)
+    except ValueError as exc:
+        raise ValueError(
+            f"{exc}: expected (n_curves, n_ranges), curves of equal length (one G per range)"
+        ) from None
+    if y.shape[1] != z.size:
+        raise ValueError(
+            f"curves has shape {y.shape}: expected (n_curves, {z.size}), one G per range"
+        )
+    if y.shape[0] < 2:
+        raise ValueError(
+            f"curves holds {y.shape[0]} curve: a drift fit needs at least two; fit one curve with "
+            "lo.fit"
+        )
+    for i in range(y.shape[0]):
+        try:
+            measured_values(y[i], z)
+        except ValueError as exc:
+            raise ValueError(f"curves[{i}]: {exc}") from None
+    return y
+
+
+def _covariate(covariate, n: int) -> np.ndarray:
+    c = _checks.real_array("covariate", covariate, ndim=1)
+    if c.size != n:
+        raise ValueError(f"covariate has {c.size} values: expected one per curve ({n})")
+    bad = ~np.isfinite(c)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
+    with np.errstate(over="ignore", invalid="ignore"):
+        spread = np.ptp(c)
+    if not np.isfinite(spread):
+        raise ValueError(
+            f"covariate spans {spread!r}: expected a spread that is a finite number (center "
+            "or rescale the covariate)"
+        )
+    if not np.ptp(c) > 0:
+        raise ValueError(
+            f"covariate is constant ({c[0]:g}): expected at least two different values, a drift "
+            "needs a spread"
+        )
+    return c
+
+
+def _sigma(sigma, shape) -> np.ndarray:
+    if sigma is None:
+        raise ValueError(
+            "sigma = None is invalid: a drift fit weighs the curves by their noise; give the "
+            "1-sigma error (a scalar, one per range or one per curve and range)"
+        )
+    try:
+        return np.broadcast_to(_checks.real_array("sigma", sigma), shape).copy()
+    except ValueError as exc:
+        raise ValueError(
+            f"sigma = {_checks.shown(sigma)} is invalid: expected a scalar, one per range or "
+            f"{shape} ({exc})"
+        ) from None
+
+
+def drift_problem(settings, system, paths, moving, c, bounds, start=None) -> MultiCurveProblem:
+    """The multi-curve problem of free ``paths``, ``moving`` of them linear in ``c`` (module
+    docstring); ``start`` {name: value} overrides the system's values (slopes: 0)."""
+    k = len(paths)
+    names = list(paths) + [p + SLOPE for p in moving]
+    dc = c - c.mean()
+    span = float(np.ptp(c))
+    maps = []
+    for ci in dc:
+        m = np.zeros((k, len(names)))
+        m[:, :k] = np.eye(k)
+        for d, p in enumerate(moving):
+            m[paths.index(p), k + d] = ci
+        maps.append(CurveMap(system, tuple(paths), m))
+    x0, low, high, scale, s_low, s_high, logs = (np.zeros(len(names)) for _ in range(7))
+    for a, path in enumerate(paths):
+        x0[a] = _parameters.get(system, path)
+        low[a], high[a] = path_bounds([system], path, bounds)
+        scale[a] = _parameters.step_scale(system, path)
+        s_low[a], s_high[a] = search_box(system, path, x0[a], low[a], high[a])
+        logs[a] = _parameters.searched_in_log(path, s_low[a])
+    for d, p in enumerate(moving):
+        a, b = paths.index(p), k + d
+        low[b], high[b] = -(high[a] - low[a]) / span, (high[a] - low[a]) / span
+        s_low[b], s_high[b] = (
+            -(s_high[a] - s_low[a]) / (2 * span),
+            (s_high[a] - s_low[a]) / (2 * span),
+        )
+        scale[b] = scale[a] / span
+    if start is not None:
+        x0 = np.array([start.get(name, 0.0) for name in names])
+    return MultiCurveProblem(
+        settings, tuple(names), tuple(maps), x0, low, high, scale, s_low, s_high, logs.astype(bool)
+    )
+
+
+def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
+    settings = problem.settings.derived(allow_unconverged=True)
+    return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
+
+
+def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
+    """Forward selection of the drifting paths by BIC (module docstring)."""
+    moving: List[str] = []
+    best, best_bic, said = fit, bic_of(fit), []
+    choices.append(f"no drift: chi-square {fit.chi_square:.4g}, BIC {best_bic:.2f}")
+    local = settings.derived(allow_unconverged=True)
+    while len(moving) < len(paths):
+        start = dict(zip(best.problem.names, best.values.tolist()))
+        pinned = set(best.at_bounds)  # a value held by its bound cannot follow a drift
+        drops = _linear_drops(local, system, paths, moving, c, bounds, start)
+        ranked = sorted((q for q in drops if q not in pinned), key=lambda q: -drops[q])
+        shown = ", ".join(f"{q} {drops[q]:.4g}" for q in ranked)
+        choices.append(f"one step's chi-square drop per candidate (not on a bound): {shown}")
+        penalty = math.log(best.degrees_of_freedom + len(best.values)) + BIC_TIE
+        taken = None
+        for p in ranked[:TRIED]:
+            if not drops[p] > penalty:  # not even its linear step pays for the parameter
+                break
+            problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
+            with warnings.catch_warnings(record=True) as record:
+                warnings.simplefilter("always")  # said below for the chosen one only
+                trial = solve_curves(problem)
+            bic = bic_of(trial)
+            choices.append(
+                f"drifting {', '.join(moving + [p])}: chi-square {trial.chi_square:.4g}, BIC "
+                f"{bic:.2f}"
+            )
+            if bic < best_bic - BIC_TIE:
+                taken = (p, trial, bic, record)
+                break
+        if taken is None:
+            break
+        p, trial, bic, record = taken
+        moving.append(p)
+        best, best_bic, said = trial, bic, record
+    choices.append(f"chosen: {', '.join(moving) if moving else 'no drift'} (BIC {best_bic:.2f})")
+    if moving:  # the chosen model's verdicts and convergence, said once
+        for item in said:
+            warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
+        if not best.converged and not settings.allow_unconverged:
+            raise RuntimeError(
+                f"fit did not converge: the drift fit with {', '.join(moving)} drifting stopped "
+                f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
+            )
+    return best
+
+
+def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
+    """{candidate: the chi-square drop of one Gauss-Newton step from the current solution with its
+    slope freed as well, beyond the step's without it}: one Jacobian (all candidates' slope
+    columns at once) ranks them."""
+    candidates = [p for p in paths if p not in moving]
+    problem = drift_problem(settings, system, paths, moving + candidates, c, bounds, start)
+    model = CurveSet(problem)
+    r = model.residuals(problem.start)
+    j = model.jacobian(problem.start)
+    current = list(range(len(paths) + len(moving)))
+    # the step without a new slope: what the current solution, short of its minimum along a
+    # degenerate valley, would gain anyway (every candidate's drop counts from it)
+    base = _step_drop(j[:, current], r)
+    return {
+        p: _step_drop(j[:, current + [len(current) + d]], r) - base
+        for d, p in enumerate(candidates)
+    }
+
+
+def _step_drop(a, r) -> float:
+    """The chi-square drop of the Gauss-Newton step in the columns ``a`` from residuals ``r``."""
+    step = np.linalg.lstsq(a, -r, rcond=None)[0]
+    after = r + a @ step
+    return float(r @ r - after @ after)
+
+
+def drift_result(fit: MultiCurveFit, c, unit: str, choices) -> DriftFitResult:
+    """The :class:`DriftFitResult` of the driver's fit."""
+    names = fit.problem.names
+    free = tuple(n for n in names if not n.endswith(SLOPE))
+    moving = tuple(n[: -len(SLOPE)] for n in names if n.endswith(SLOPE))
+    return DriftFitResult(
+        parameters=dict(zip(names, fit.values.tolist())),
+        uncertainties=dict(zip(names, fit.uncertainties.tolist())),
+        start=dict(zip(names, fit.problem.start.tolist())),
+        covariance=fit.covariance,
+        correlation=fit.correlation,
+        chi_square=fit.chi_square,
+        reduced_chi_square=reduced(fit.chi_square, fit.degrees_of_freedom),
+        degrees_of_freedom=fit.degrees_of_freedom,
+        free=free,
+        drifting=moving,
+        covariate=c,
+        covariate_reference=float(c.mean()),
+        covariate_unit=unit,
+        curves=fit.fits,
+        degenerate_pairs=fit.degenerate_pairs,
+        at_bounds=fit.at_bounds,
+        evaluations=fit.evaluations,
+        jacobian_evaluations=fit.jacobian_evaluations,
+        converged=fit.converged,
+        message=fit.message,
+        search=fit.search,
+        choices=tuple(choices),
+    )
+
+
+def _ladder_start(system, z, y, w, normalize, extinction_bias, method, tolerance, bounds, seed):
+    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the family's verdicts: the drift fit's own follow
+        ladder = single_fit(
+            system, z, np.median(y, axis=0), np.median(w, axis=0) / math.sqrt(y.shape[0]),
+            free="auto", method=method, tolerance=tolerance, normalize=normalize,
+            extinction_bias=extinction_bias, seed=seed, bounds=bounds, allow_unconverged=True,
+        )  # fmt: skip
+    fit = ladder.chosen
+    start = _parameters.replace(system, dict(fit.parameters))
+    line = f"free='auto': family '{ladder.chosen_family.name}' chosen on the median curve"
+    return start, tuple(fit.parameters), line

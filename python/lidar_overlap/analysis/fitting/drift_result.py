@@ -1,0 +1,193 @@
+"""The result of ``lo.fit_drift`` (:mod:`lidar_overlap.analysis.fitting.drift`): the fixed and
+drifting parameters with one covariance, the overlap predicted (with its 1-sigma band) for any
+covariate value, and the drift in physical units."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, Dict, Optional, Tuple
+
+import numpy as np
+
+from ... import _checks, _values
+from ..._pickling import ByValue
+from ...model import parameters as _parameters
+from ..batch_curves import curves as batch
+from ..sensitivity import jacobian
+from . import multi_result
+from .global_result import SearchReport
+from .multi_result import verdict_lines
+from .relative_result import RelativeFitResult
+from .result import FitResult
+
+#: The suffix of a drifting parameter's slope in ``parameters`` (per covariate unit).
+SLOPE = "@slope"
+#: Units the summary shows the drifts in: SI unit -> (factor, unit).
+SHOWN = {"rad": (1e6, "µrad"), "m": (1e3, "mm"), "1": (1.0, "")}
+
+
+@dataclass(frozen=True, eq=False)
+class DriftFitResult(ByValue):
+    """A drift fit of a series of curves against a covariate (SI units per covariate unit).
+
+    Attributes
+    ----------
+    parameters, uncertainties, start : name -> value, 1-sigma uncertainty, start: each free path's
+        value at the reference covariate, and for each drifting path ``path@slope``, its slope
+        (SI unit per covariate unit).
+    covariance, correlation : (K, K) in the order of ``parameters``.
+    chi_square, reduced_chi_square, degrees_of_freedom : over all curves.
+    free, drifting : the free paths and those of them that drift (linearly).
+    covariate : one value per curve; covariate_reference : c_ref, the covariate's mean, where the
+        free paths take their ``parameters`` values; covariate_unit : its unit's name.
+    curves : one :class:`FitResult` per curve (its paths at its covariate, their covariance).
+    degenerate_pairs, at_bounds, evaluations, jacobian_evaluations, converged, message : as in
+        :class:`JointFitResult`; search : the global search's report or None; choices : with
+        ``drifting="auto"`` (or ``free="auto"``), what the choice tried, one line each.
+    """
+
+    parameters: Dict[str, float]
+    uncertainties: Dict[str, float]
+    start: Dict[str, float]
+    covariance: np.ndarray
+    correlation: np.ndarray
+    chi_square: float
+    reduced_chi_square: float
+    degrees_of_freedom: int
+    free: Tuple[str, ...]
+    drifting: Tuple[str, ...]
+    covariate: np.ndarray
+    covariate_reference: float
+    covariate_unit: str
+    curves: Tuple[FitResult, ...]
+    degenerate_pairs: Tuple[Tuple[str, str, float], ...]
+    at_bounds: Tuple[str, ...]
+    evaluations: int
+    jacobian_evaluations: int
+    converged: bool
+    message: str
+    search: Optional[SearchReport] = None
+    choices: Tuple[str, ...] = ()
+
+    FIELDS: ClassVar[Dict[str, Any]] = {
+        **multi_result.FIELDS,
+        "covariate": _values.array(),
+        "covariate_reference": _values.real(),
+        "covariate_unit": _values.text,
+    }
+
+    def __post_init__(self) -> None:
+        _values.check(self, self.FIELDS)
+        k = len(self.free) + len(self.drifting)
+        names = list(self.free) + [p + SLOPE for p in self.drifting]
+        if list(self.parameters) != names or set(self.uncertainties) != set(names):
+            raise ValueError(
+                "parameters and uncertainties are invalid: expected the free paths, then each "
+                "drifting path's slope"
+            )
+        if self.covariance.shape != (k, k) or self.correlation.shape != (k, k):
+            raise ValueError(
+                f"covariance has shape {self.covariance.shape}: expected ({k}, {k}), as correlation"
+            )
+        if not (
+            isinstance(self.curves, tuple)
+            and len(self.curves) == self.covariate.size
+            and all(isinstance(c, FitResult) for c in self.curves)
+        ):
+            raise ValueError(
+                "curves is invalid: expected a tuple of one FitResult per covariate value"
+            )
+        for name in ("free", "drifting", "at_bounds", "degenerate_pairs", "choices"):
+            if not isinstance(getattr(self, name), tuple):
+                raise ValueError(f"{name} = {_checks.shown(getattr(self, name))}: expected a tuple")
+
+    @property
+    def drift(self) -> Dict[str, Tuple[float, float]]:
+        """{path: (slope, its 1-sigma uncertainty)} of each drifting path, SI unit per covariate
+        unit."""
+        return {
+            p: (self.parameters[p + SLOPE], self.uncertainties[p + SLOPE]) for p in self.drifting
+        }
+
+    def matrix(self, covariate: float) -> np.ndarray:
+        """M (free paths, K): the free paths' values at ``covariate`` are M @ parameters."""
+        k, names = len(self.free), list(self.parameters)
+        m = np.zeros((k, len(names)))
+        m[:, :k] = np.eye(k)
+        for p in self.drifting:
+            m[self.free.index(p), names.index(p + SLOPE)] = covariate - self.covariate_reference
+        return m
+
+    def system_at(self, covariate: float):
+        """The fitted system at ``covariate``."""
+        values = self.matrix(covariate) @ np.array(list(self.parameters.values()))
+        return _parameters.replace(self.curves[0].system, dict(zip(self.free, values.tolist())))
+
+    def predict(self, ranges, covariate, band: bool = False):
+        """The fitted overlap at ``ranges`` (m) for each value of ``covariate``: shape
+        (len(covariate), len(ranges)); relative like the data when they were normalised (each
+        curve divided by its mean over the measured ranges of the normalisation interval, or by
+        its far-range limit; the retrieval's extinction bias, not the instrument's, is left out).
+        ``band=True``: (overlap, its 1-sigma band from the covariance, sqrt(diag(J M C Mᵀ Jᵀ)) of
+        the normalised model)."""
+        z = _checks.ranges("ranges", ranges)
+        c = _checks.real_array("covariate", np.atleast_1d(covariate), ndim=1)
+        bad = ~np.isfinite(c)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
+        first = self.curves[0]
+        normalizing = first.normalizing_ranges if isinstance(first, RelativeFitResult) else None
+        return self.prediction(z, c, normalizing, band)
+
+    def prediction(self, z, c, normalizing, band: bool):
+        """:meth:`predict` at checked ranges ``z`` and covariates ``c``, divided by the mean over
+        ``normalizing`` ranges (m; None: absolute)."""
+        self.curves[0].system._native.validate_ranges(z)
+        both = z if normalizing is None else np.union1d(z, normalizing)
+        systems = [self.system_at(ci) for ci in c]
+        p = self.curves[0].plan.with_system(systems[0]).at(both)
+        g = batch(p, systems)
+        at = np.searchsorted(both, z)
+        inside = None if normalizing is None else np.searchsorted(both, normalizing)
+        s = np.ones(len(c)) if inside is None else g[:, inside].mean(axis=1)
+        out = g[:, at] / s[:, None]
+        if not band:
+            return out
+        sigma = np.empty_like(out)
+        for i, (ci, system) in enumerate(zip(c, systems)):
+            j = jacobian(p, system, list(self.free), self.curves[0].step_tolerance)
+            jn = j[at] / s[i]
+            if inside is not None:
+                jn = jn - np.outer(g[i, at], j[inside].mean(axis=0)) / s[i] ** 2
+            m = self.matrix(ci)
+            with np.errstate(invalid="ignore"):
+                cov = m @ self.covariance @ m.T
+                sigma[i] = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", jn, cov, jn), 0.0))
+        return out, sigma
+
+    def summary(self) -> str:
+        """The parameters, the drifts in physical units per covariate unit, one line each."""
+        unit_c = self.covariate_unit
+        lines = [
+            f"drift fit of {len(self.curves)} curves against the covariate ({unit_c}; reference "
+            f"{self.covariate_reference:.4g}): "
+            f"{'converged' if self.converged else 'NOT converged'} after {self.evaluations} model "
+            f"and {self.jacobian_evaluations} Jacobian evaluations"
+        ]
+        for p in self.free:
+            lines.append(
+                f"  {p:<24} {self.parameters[p]:+.6g} ± {self.uncertainties[p]:.3g} "
+                f"{_parameters.unit(p)} at {self.covariate_reference:.4g} {unit_c}"
+            )
+        for p, (slope, sd) in self.drift.items():
+            factor, shown = SHOWN.get(_parameters.unit(p), (1.0, _parameters.unit(p)))
+            lines.append(
+                f"  drift of {p:<15} {factor * slope:+.4g} ± {factor * sd:.2g} {shown}/{unit_c}"
+            )
+        if not self.drifting:
+            lines.append("  no parameter drifts")
+        lines.extend(verdict_lines(self))
+        return "\n".join(lines)
+
+    __str__ = summary

@@ -1,0 +1,364 @@
+"""One driver for fits of several curves at once: ``lo.fit_joint`` (channels that share the optics)
+and ``lo.fit_drift`` (days that share all but what drifts) are this driver with different parameter
+maps.
+
+Parameter map. The fit's vector θ (K global parameters) sets each curve's system linearly: curve i's
+free scalars (``CurveMap.paths``) are ``CurveMap.matrix`` @ θ. A parameter shared by all curves is a
+column with a 1 in every curve's row of that path; a per-curve one a column with a single 1; a
+linear drift a + b (c_i - c_ref) two columns, 1 and c_i - c_ref. The chain rule then gives the
+Jacobian in θ from each curve's own Jacobian (J_i M_i).
+
+Residuals. Each curve is compared as a single fit compares it
+(:mod:`lidar_overlap.analysis.fitting.normalization`): its own system, normalisation, sigma and
+whitening, its own retrieval extinction bias profiled out; the whitened residuals of all curves are
+stacked and solved by the least-squares driver's optimiser, scaling and checks
+(:mod:`lidar_overlap.analysis.fitting.solve`), so one covariance holds every parameter. Curves that
+share a start system and ranges are evaluated together: one batched core call for the curves, one
+for all their Jacobians (on ray tracing).
+
+Search. ``search="global"``: :mod:`lidar_overlap.analysis.fitting.multi_search`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+
+from ... import _checks
+from ...forward.compute import run
+from ...model import parameters as _parameters
+from ..batch_curves import curves as batch
+from ..sensitivity import difference_systems
+from . import verdict
+from .global_result import SearchReport
+from .global_search import thinned
+from .normalization import extended_plan, normalization
+from .problem import FitProblem
+from .relative import relative_result
+from .result import FitResult, step_tolerance
+from .solve import (
+    COST_TOLERANCE,
+    DEGENERATE_CORRELATION,
+    TOLERANCE_FRACTION,
+    degeneracies,
+    fit_plan,
+    on_bounds,
+    parameter_covariance,
+)
+
+
+@dataclass(frozen=True, eq=False)
+class CurveMap:
+    """How θ sets one curve's system: its start ``system``, the scalar ``paths`` θ sets, and
+    ``matrix`` (len(paths), K): their values are ``matrix`` @ θ."""
+
+    system: Any
+    paths: Tuple[str, ...]
+    matrix: np.ndarray
+
+    def at(self, theta):
+        """The curve's system at θ."""
+        values = (self.matrix @ np.asarray(theta, dtype=float)).tolist()
+        return _parameters.replace(self.system, dict(zip(self.paths, values)))
+
+
+@dataclass(frozen=True, eq=False)
+class MultiCurveProblem:
+    """A fit of several curves: ``settings`` (a :class:`FitProblem` holding the curves and the
+    method, tolerance, loss, evaluations and search), the global ``names``, one :class:`CurveMap`
+    per curve, θ's ``start``, bounds ``low`` and ``high``, natural ``scale`` and, for a search,
+    its box (``search_low``, ``search_high``) and which parameters it takes in their logarithm."""
+
+    settings: FitProblem
+    names: Tuple[str, ...]
+    maps: Tuple[CurveMap, ...]
+    start: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    scale: np.ndarray
+    search_low: np.ndarray
+    search_high: np.ndarray
+    logs: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class MultiCurveFit:
+    """What the driver found: θ (``values``), its ``covariance``, ``correlation`` and
+    ``uncertainties``; ``chi_square`` over all curves and its ``degrees_of_freedom`` (independent
+    points of all curves - K); one :class:`FitResult` per curve (``fits``: its own paths, their
+    covariance M C Mᵀ, its residuals and fitted curve); ``degenerate_pairs``, ``at_bounds``,
+    model and Jacobian ``evaluations``, the optimiser's ``status``, ``message``, ``converged``;
+    ``search`` (the global search's report, or None)."""
+
+    problem: MultiCurveProblem
+    values: np.ndarray
+    covariance: np.ndarray
+    correlation: np.ndarray
+    uncertainties: np.ndarray
+    chi_square: float
+    degrees_of_freedom: int
+    fits: Tuple[FitResult, ...]
+    degenerate_pairs: Tuple[Tuple[str, str, float], ...]
+    at_bounds: Tuple[str, ...]
+    evaluations: int
+    jacobian_evaluations: int
+    status: int
+    message: str
+    converged: bool
+    search: Optional[SearchReport] = None
+
+
+class CurveSet:
+    """Each curve's plan, normalisation and step tolerance, and the batched evaluation of all curves
+    (and their Jacobians) at a θ."""
+
+    def __init__(self, problem: MultiCurveProblem, thin: bool = False) -> None:
+        settings = problem.settings
+        self.maps = problem.maps
+        self.plans, self.norms, self.steps, self.base = [], [], [], []
+        for m, curve in zip(self.maps, settings.curves):
+            p0 = fit_plan(settings, m.system, curve.ranges)
+            if thin:
+                norm, p = thinned(p0, curve)
+            else:
+                norm = normalization(
+                    curve.normalize, p0.ranges, curve.measured, curve.sigma, curve.extinction_bias
+                )
+                p = extended_plan(p0, norm)
+            self.plans.append(p)
+            self.base.append(p0)
+            self.norms.append(norm)
+            self.steps.append(step_tolerance(p0, settings.tolerance))
+        groups: Dict[Tuple[int, bytes], List[int]] = {}
+        for i, (m, p) in enumerate(zip(self.maps, self.plans)):
+            groups.setdefault((id(m.system), p.ranges.tobytes()), []).append(i)
+        self.groups = list(groups.values())
+        self.last: list = [None, None]
+        self.rows = sum(n.whitening.shape[0] for n in self.norms)
+
+    def curves(self, systems, shifted=None):
+        """G of each curve's system (and, with ``shifted``, of each curve's shifted systems): one
+        batched call per group. Returns (G per curve, G of the shifted systems per curve)."""
+        g: List[Any] = [None] * len(systems)
+        out: List[Any] = [None] * len(systems)
+        for group in self.groups:
+            runs, counts = [], []
+            for i in group:
+                extra = [] if shifted is None else shifted[i]
+                runs.extend([systems[i], *extra])
+                counts.append(1 + len(extra))
+            rows = batch(self.plans[group[0]], runs)
+            at = 0
+            for i, count in zip(group, counts):
+                g[i], out[i] = rows[at], rows[at + 1 : at + count]
+                at += count
+        return g, out
+
+    def at(self, theta):
+        """(systems, G per curve) at θ, the last kept (the Jacobian is asked where the model was
+        just evaluated)."""
+        key = np.asarray(theta, dtype=float).tobytes()
+        if self.last[0] != key:
+            systems = [m.at(theta) for m in self.maps]
+            self.last = [key, (systems, self.curves(systems)[0])]
+        return self.last[1]
+
+    def residuals(self, theta) -> np.ndarray:
+        """The whitened residuals of all curves, stacked; NaN where θ makes some curve's system
+        invalid (a drifting divergence below zero at one end of the covariate): the optimiser
+        then shortens its step, as it does for any non-finite residual."""
+        try:
+            _, g = self.at(theta)
+        except ValueError:
+            if self.last[0] is None:  # the start itself: the caller's error
+                raise
+            return np.full(self.rows, np.nan)
+        with np.errstate(invalid="ignore"):  # a model that vanishes where it is normalised
+            return np.concatenate(
+                [n.whitening @ (n.model(gi) - n.data) for n, gi in zip(self.norms, g)]
+            )
+
+    def jacobian(self, theta, keep: Optional[list] = None) -> np.ndarray:
+        """d(whitened residuals)/dθ (rows, K); ``keep`` receives each curve's own Jacobian
+        (model ranges, its paths)."""
+        systems, g = self.at(theta)
+        shifted, widths = [], []
+        for m, s, h in zip(self.maps, systems, self.steps):
+            runs, w = difference_systems(s, list(m.paths), h)
+            shifted.append(runs)
+            widths.append(w)
+        _, rows = self.curves(systems, shifted)
+        blocks = []
+        for i, (m, n) in enumerate(zip(self.maps, self.norms)):
+            pairs = rows[i].reshape(len(m.paths), 2, -1)
+            local = ((pairs[:, 0] - pairs[:, 1]) / widths[i][:, None]).T
+            if keep is not None:
+                keep.append(local)
+            blocks.append(n.whitening @ n.model_jacobian(g[i], local) @ m.matrix)
+        return np.vstack(blocks)
+
+    def independent(self) -> List[int]:
+        """Each curve's independent points (its whitened rows, less one for a profiled δα)."""
+        return [n.whitening.shape[0] - (n.trend is not None) for n in self.norms]
+
+
+def solve_curves(problem: MultiCurveProblem) -> MultiCurveFit:
+    """The local fit of ``problem`` from its start (module docstring)."""
+    try:
+        from scipy import optimize
+    except ImportError:
+        raise ImportError("lo.fit_joint needs scipy: pip install 'lidar-overlap[fit]'") from None
+    settings, names, scale = problem.settings, problem.names, problem.scale
+    model = CurveSet(problem)
+    counts = {"model": 0, "jacobian": 0}
+    k = len(names)
+    n = sum(model.independent())
+    if n <= k:
+        raise ValueError(
+            f"curves hold {n} independent points for {k} parameters: expected more points than "
+            "parameters; measure more ranges or free fewer"
+        )
+    sigmas = np.concatenate([c.sigma for c in settings.curves])
+    tolerance = min(p.tolerance for p in model.base)
+    if math.isfinite(tolerance) and tolerance > TOLERANCE_FRACTION * np.median(sigmas):
+        _checks.warn(
+            f"fit: the model's tolerance {tolerance:g} exceeds {TOLERANCE_FRACTION:g} x the median "
+            f"sigma ({np.median(sigmas):.3g}): its error adds to the noise; lower tolerance"
+        )
+
+    def residuals(u):
+        counts["model"] += 1
+        return model.residuals(u * scale)
+
+    def jacobian(u):
+        counts["jacobian"] += 1
+        return model.jacobian(u * scale) * scale
+
+    solution = verdict.least_squares(
+        optimize,
+        residuals,
+        problem.start / scale,
+        jac=jacobian,
+        bounds=(problem.low / scale, problem.high / scale),
+        method="trf",
+        loss=settings.loss,
+        max_nfev=settings.max_evaluations,
+        ftol=COST_TOLERANCE,
+    )
+    converged = solution.status > 0
+    if not converged and not settings.allow_unconverged:
+        raise RuntimeError(
+            f"fit did not converge: {solution.message} (status {solution.status}, "
+            f"{counts['model']} model evaluations, max_evaluations={settings.max_evaluations}); "
+            "raise max_evaluations, start closer, or pass allow_unconverged=True"
+        )
+    theta = solution.x * scale
+    local: list = []
+    r = model.residuals(theta)
+    j = model.jacobian(theta, local)
+    with np.errstate(over="ignore", invalid="ignore"):
+        chi_square, dof = float(r @ r), n - k
+    cov, corr = parameter_covariance(j, chi_square, dof, True)
+    sd = np.sqrt(np.diag(cov))
+    pairs = degeneracies(list(names), corr, sd)
+    if settings.loss == "linear":
+        verdict.check_quality("fit", r, r, np.ones_like(r), dof, True, tolerance)
+    fits = _curve_fits(problem, model, theta, cov, local, counts, solution)
+    return MultiCurveFit(
+        problem=problem,
+        values=theta,
+        covariance=cov,
+        correlation=corr,
+        uncertainties=sd,
+        chi_square=chi_square,
+        degrees_of_freedom=dof,
+        fits=fits,
+        degenerate_pairs=pairs,
+        at_bounds=on_bounds(names, theta, problem.low, problem.high),
+        evaluations=counts["model"] + 1,
+        jacobian_evaluations=counts["jacobian"],
+        status=int(solution.status),
+        message=str(solution.message),
+        converged=bool(converged),
+    )
+
+
+def _curve_fits(problem, model: CurveSet, theta, cov, local, counts, solution) -> tuple:
+    """One FitResult per curve: its paths at θ, their covariance M C Mᵀ, its residuals; its degrees
+    of freedom its independent points less the parameters only it sets."""
+    settings, maps = problem.settings, problem.maps
+    systems, _ = model.at(theta)
+    own = [int(np.sum((np.abs(m.matrix).sum(axis=0) > 0) & (_users(maps) == 1))) for m in maps]
+    out = []
+    for i, (m, curve, norm) in enumerate(zip(maps, settings.curves, model.norms)):
+        p = model.plans[i]
+        kept = run(p.with_system(systems[i]))
+        c_local = m.matrix @ cov @ m.matrix.T
+        sd = np.sqrt(np.diag(c_local))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            corr = c_local / np.outer(sd, sd)
+        np.fill_diagonal(corr, 1.0)
+        r = norm.whitening @ (norm.model(kept.overlap) - norm.data)
+        chi = float(r @ r)
+        dof = max(model.independent()[i] - own[i], 0)
+        paths = list(m.paths)
+        raw = FitResult(
+            parameters=dict(zip(paths, (m.matrix @ theta).tolist())),
+            uncertainties=dict(zip(paths, sd.tolist())),
+            start=dict(zip(paths, (m.matrix @ problem.start).tolist())),
+            covariance=c_local,
+            correlation=corr,
+            residuals=r,
+            chi_square=chi,
+            reduced_chi_square=chi / dof if dof else math.nan,
+            degrees_of_freedom=dof,
+            result=kept,
+            measured=norm.whitening @ norm.data,
+            sigma=np.ones(r.size),
+            covariance_scaled=False,
+            degenerate_pairs=tuple(
+                (paths[a], paths[b], float(corr[a, b]))
+                for a in range(len(paths))
+                for b in range(a + 1, len(paths))
+                if abs(corr[a, b]) > DEGENERATE_CORRELATION
+            ),
+            evaluations=counts["model"] + 1,
+            jacobian_evaluations=counts["jacobian"],
+            status=int(solution.status),
+            message=str(solution.message),
+            converged=bool(solution.status > 0),
+            loss=settings.loss,
+            plan=p,
+            step_tolerance=model.steps[i],
+        )
+        if curve.normalize is None:
+            raw = _absolute(raw, curve)
+            out.append(raw)
+            continue
+        parts = norm.bias_parts(kept.overlap, local[i]) if norm.trend is not None else None
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # a δα on its bound: said by the joint result
+            out.append(relative_result(settings.derived(curves=(curve,)), raw, norm, parts))
+    return tuple(out)
+
+
+def _absolute(raw: FitResult, curve) -> FitResult:
+    """A curve's result on the scale of its absolute data: residuals (G - y) / sigma."""
+    import dataclasses
+
+    g = raw.result.overlap[: curve.measured.size]
+    return dataclasses.replace(
+        raw,
+        residuals=(g - curve.measured) / curve.sigma,
+        measured=curve.measured,
+        sigma=curve.sigma,
+    )
+
+
+def _users(maps) -> np.ndarray:
+    """How many curves each global parameter sets."""
+    return np.sum([np.abs(m.matrix).sum(axis=0) > 0 for m in maps], axis=0)
