@@ -1,5 +1,5 @@
-"""The Payerne CHM15k (TUB120011, 153 daily overlap curves with the internal temperature:
-/work/shared/data/chm15k_payerne_tub120011, or DATA below): a physical drift model
+"""The Payerne CHM15k (TUB120011, 153 daily overlap curves with the internal temperature,
+examples/data/chm15k_payerne_*.csv): a physical drift model
 (lo.fit_drift) against the empirical temperature model of Hervo et al. (2016, AMT 9, 2947), the
 training days' mean and the factory curve, on held-out days.
 
@@ -7,8 +7,9 @@ Physical model: the model ladder (lo.fit(free="auto")) on the factory curve (the
 known before any day: no held-out day enters the start) gives the family and the start; then
 lo.fit_drift on the training days, every parameter of that family refitted and shared, those that
 drift (linear in temperature about the training mean) chosen by BIC (drifting="auto") on split (a)'s
-training days and kept for the other fits. Empirical model: per range gate, ln(G_day / G_factory)
-= a + b T by least squares on the training days (two coefficients per gate from 15 m to 1 km).
+training days and kept for the other fits. Empirical model (lo.empirical_drift): per range gate,
+ln(G_day / G_factory) = a + b T by least squares on the training days (two coefficients per gate of
+100 m to 1 km, the scored gates; benchmarks/bench_drift_payerne.py scores it on 20 random draws).
 
 Held out: (a) the warmest 40 % of days (an extrapolation in temperature), (b) a random 40 % (DRAWS
 draws). Score: RMS of predicted - measured G over 100-1000 m, all held-out days and gates pooled.
@@ -20,7 +21,6 @@ Writes results/bench_drift.json.
 
 from __future__ import annotations
 
-import os
 import time
 import warnings
 from pathlib import Path
@@ -29,9 +29,10 @@ import numpy as np
 from _common import load_average, run_meta, write_result
 
 import lidar_overlap as lo
+from lidar_overlap.io.overlap_curves import read_overlap_curve
 from lidar_overlap.model.instruments import chm15k
 
-DATA = Path(os.environ.get("PAYERNE_DATA", "/work/shared/data/chm15k_payerne_tub120011"))
+DATA = Path(__file__).resolve().parent.parent / "examples" / "data"
 #: The noise the fits weigh the days by: the day-to-day scatter a temperature model leaves (the
 #: daily curves are smooth; a single fit reaches ~0.004, the days differ from any one model by
 #: ~0.01 near 350 m).
@@ -45,15 +46,12 @@ OPTIONS = dict(method="rt", tolerance=TOLERANCE, normalize=NORMALIZE, allow_unco
 
 
 def read():
-    path = DATA / "daily_overlap.csv"
-    header = path.read_text().splitlines()[0].split(",")
-    z = np.array(header[4:], dtype=float)
-    rows = np.genfromtxt(path, delimiter=",", skip_header=1, dtype=str)
-    temperature = rows[:, 1].astype(float)
-    g = rows[:, 4:].astype(float)
-    factory = np.loadtxt(DATA / "factory_overlap.csv", delimiter=",", skiprows=1)
-    assert np.allclose(factory[: z.size, 0], z)
-    return z, temperature, g, factory[: z.size, 1]
+    """Ranges (m), the days' temperatures (K) and curves, the factory curve at the same gates."""
+    days = lo.read_overlap_series(DATA / "chm15k_payerne_daily_overlap.csv")
+    factory = read_overlap_curve(DATA / "chm15k_payerne_factory_overlap.csv")
+    z = days.ranges
+    assert np.allclose(factory.ranges[: z.size], z)
+    return z, days.covariates["internal_temperature_K"], days.curves, factory.overlap[: z.size]
 
 
 def fitted_gates(z):
@@ -62,17 +60,13 @@ def fitted_gates(z):
 
 
 def empirical(z, t_train, g_train, factory, t_test):
-    """Hervo et al.'s model: per gate ln(G / G_factory) = a + b T (least squares), gates to 1 km
-    where every training day's G is positive (the others, below 100 m, keep the factory's G)."""
-    gates = (z <= SCORED[1]) & (factory > 0) & np.all(g_train > 0, axis=0)
-    y = np.log(g_train[:, gates] / factory[gates])
-    design = np.column_stack([np.ones_like(t_train), t_train])
-    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
+    """Hervo et al.'s model (lo.empirical_drift) on the scored gates; the others keep the factory's
+    G."""
+    gates = (z >= SCORED[0]) & (z <= SCORED[1])
+    model = lo.empirical_drift(z[gates], g_train[:, gates], t_train, factory[gates])
     out = np.tile(factory, (t_test.size, 1))
-    out[:, gates] = factory[gates] * np.exp(
-        np.column_stack([np.ones_like(t_test), t_test]) @ coefficients
-    )
-    return out, int(coefficients.size)
+    out[:, gates] = model.predict(z[gates], t_test)
+    return out, model.coefficients
 
 
 def rms(prediction, measured, z):
