@@ -86,13 +86,10 @@ def test_normalised_covariance_covers_the_truth_at_the_1_sigma_rate():
 @pytest.mark.parametrize(
     "normalize, message",
     [
-        (
-            (500.0, 5000.0),
-            r"normalize = \(500, 5000\) m is invalid: expected z_low < z_high within",
-        ),
-        ((10.0, 100.0), r"within the measured ranges \[60, 3000\] m"),
+        ((10.0, 65.0), r"holds 1 measured points \(the data span \[60, 3000\] m\)"),
         ((2000.0, 1000.0), "expected z_low < z_high"),
         ((2000.0, 2100.0), "holds 0 measured points"),
+        ((4000.0, 5000.0), "holds 0 measured points"),
         ("near", "expected None, 'far' or"),
         ((1.0, 2.0, 3.0), "expected None, 'far' or"),
     ],
@@ -100,6 +97,20 @@ def test_normalised_covariance_covers_the_truth_at_the_1_sigma_rate():
 def test_bad_normalisation_is_a_clear_error(normalize, message):
     with pytest.raises(ValueError, match=message):
         lo.fit(_start(), Z, _truth(), free=list(TRUE), normalize=normalize, **FAST)
+
+
+def test_an_interval_reaching_past_the_data_selects_the_points_within_it():
+    # the last point at 2499.2 m: (1500, 2500) holds the points of (1500, 2499.2), and the fit is
+    # the same fit
+    z = np.geomspace(60.0, 2499.2, 20)
+    y = 0.9 * _truth(z)
+    w = np.full(z.size, SIGMA)
+    wide, exact = normalization((1500.0, 2500.0), z, y, w), normalization((1500.0, 2499.2), z, y, w)
+    assert wide.inside.sum() >= 2 and np.array_equal(wide.inside, exact.inside)
+    assert np.array_equal(wide.whitening, exact.whitening)
+    f = lo.fit(_start(), z, y, SIGMA, free=list(TRUE), normalize=(1500.0, 2500.0), **FAST)
+    g = lo.fit(_start(), z, y, SIGMA, free=list(TRUE), normalize=(1500.0, 2499.2), **FAST)
+    assert f.parameters == g.parameters and f.chi_square == g.chi_square
 
 
 def test_fewer_points_than_parameters_is_a_clear_error():

@@ -248,16 +248,17 @@ def normalization(
             f"normalize = {_checks.shown(normalize)} is invalid: expected None, 'far' or (z_low, "
             "z_high) in m"
         ) from None
-    if not (z_low < z_high and z_low >= z[0] and z_high <= z[-1]):
+    if not z_low < z_high:
         raise ValueError(
-            f"normalize = ({z_low:g}, {z_high:g}) m is invalid: expected z_low < z_high within the "
-            f"measured ranges [{z[0]:g}, {z[-1]:g}] m"
+            f"normalize = ({z_low:g}, {z_high:g}) m is invalid: expected z_low < z_high"
         )
+    # the interval selects the measured points within it: it may reach past the data's ends
     inside = (z >= z_low) & (z <= z_high)
     if inside.sum() < MIN_INTERVAL_POINTS:
         raise ValueError(
-            f"normalize = ({z_low:g}, {z_high:g}) m holds {int(inside.sum())} measured points: "
-            f"expected at least {MIN_INTERVAL_POINTS}; widen the interval"
+            f"normalize = ({z_low:g}, {z_high:g}) m holds {int(inside.sum())} measured points "
+            f"(the data span [{z[0]:g}, {z[-1]:g}] m): expected at least {MIN_INTERVAL_POINTS}; "
+            "widen or move the interval"
         )
     mean = float(y[inside].mean())
     if not mean > 0:
