@@ -113,6 +113,16 @@ def test_an_interval_reaching_past_the_data_selects_the_points_within_it():
     assert f.parameters == g.parameters and f.chi_square == g.chi_square
 
 
+@pytest.mark.parametrize("scale", [1e-200, 1e-300])
+def test_data_too_small_for_their_weights_are_refused_naming_measured(scale):
+    # unit weights on data of 1e-300: sigma / mean overflows double precision (it reached the
+    # eigendecomposition as a LinAlgError)
+    y = scale * _truth()
+    mean = float(y[(Z >= INTERVAL[0]) & (Z <= INTERVAL[1])].mean())
+    with pytest.raises(lo.ParameterError, match=rf"^measured: .* is {mean:g} and sigma reaches 1:"):
+        lo.fit(_start(), Z, y, free=list(TRUE), normalize=INTERVAL, **FAST)
+
+
 def test_fewer_points_than_parameters_is_a_clear_error():
     z = Z[-3:]
     with pytest.raises(ValueError, match="points for 2 free parameters"):

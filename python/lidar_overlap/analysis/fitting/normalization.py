@@ -267,7 +267,18 @@ def normalization(
             "0 (choose an interval where the signal is in the field of view)"
         )
     data = y / mean
-    whitening = _whitening(data.tobytes(), inside.tobytes(), w.tobytes(), mean)
+    try:
+        whitening = _whitening(data.tobytes(), inside.tobytes(), w.tobytes(), mean)
+    except FloatingPointError:
+        raise _checks.refused(
+            "measured",
+            mean,
+            "data and sigma on comparable scales",
+            f"measured: the data's mean over normalize = ({z_low:g}, {z_high:g}) m is {mean:g} and "
+            f"sigma reaches {float(w.max()):g}: the normalised errors sigma / mean overflow double "
+            "precision; expected data and sigma on comparable scales (a relative curve is about 1 "
+            "in the far range: rescale the data)",
+        ) from None
     return Normalization(
         "interval", (z_low, z_high), z, np.empty(0), inside, data, w / mean, mean, whitening
     )
@@ -282,7 +293,10 @@ def _whitening(data: bytes, inside: bytes, sigma: bytes, mean: float) -> np.ndar
     e = np.frombuffer(inside, dtype=bool)
     w = np.frombuffer(sigma)
     a = (np.eye(y.size) - np.outer(y, e / e.sum())) / mean
-    cov = (a * w**2) @ a.T
+    with np.errstate(over="raise", invalid="raise"):  # data of 1e-300 with unit weights
+        cov = (a * w**2) @ a.T
+    if not np.isfinite(cov).all():
+        raise FloatingPointError("the normalised covariance overflows")
     values, vectors = np.linalg.eigh(cov)
     keep = values > RANK_TOLERANCE * values[-1]
     out = (vectors[:, keep] / np.sqrt(values[keep])).T
