@@ -317,8 +317,8 @@ def far_range_noise(ranges, overlap, interval: Tuple[float, float]) -> float:
                 f"{name}[{i}]",
                 float(values[i]),
                 "finite values",
-                f"{name}[{i}] = {values[i]:g} is invalid (range {z[i]:g} m): expected finite values; "
-                "drop that point (its range and overlap) first",
+                f"{name}[{i}] = {values[i]:g} is invalid (range {z[i]:g} m): expected finite "
+                "values; drop that point (its range and overlap) first",
             )
     if not z_low < z_high:
         raise ValueError(f"interval = ({z_low:g}, {z_high:g}) m is invalid: expected low < high")
