@@ -228,8 +228,7 @@ def _alignment_axes(ds) -> list:
         "an alignment map (lo.alignment_map: a dataset with overlap over range and 1 or 2 axes)"
     )
     try:
-        dims = list(ds["overlap"].dims)
-        ds["range"].values
+        dims, _ = list(ds["overlap"].dims), ds["range"].values
     except (KeyError, TypeError, IndexError, AttributeError):
         raise _checks.refused("ds", ds, expected) from None
     names = [d for d in dims if d != "range"]
