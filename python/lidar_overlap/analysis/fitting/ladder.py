@@ -29,14 +29,15 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
+from ..._pickling import ByArguments, ByValue
 from ...model import parameters as _parameters
 from .families import LADDER, Family
 from .global_result import with_search
 from .global_search import fit_global
 from .problem import FitProblem
 from .relative import polish
-from .result import DegeneracyWarning
+from .result import DegeneracyWarning, FitResult
 from .verdict import FitQualityWarning
 
 #: BIC differences below this are no evidence (Kass and Raftery's "not worth more than a mention").
@@ -57,7 +58,7 @@ class FailedFit:
 
 
 @dataclass(frozen=True, eq=False)
-class FamilyScore:
+class FamilyScore(ByValue, ByArguments):
     """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
     ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
     the system cannot free (a numerical aperture of None); ``supported``: every parameter has a
@@ -74,9 +75,30 @@ class FamilyScore:
     dropped: Tuple[str, ...]
     supported: bool = True
 
+    def __post_init__(self) -> None:
+        _kind("family", self.family, Family, "a Family of the ladder")
+        _kind("fit", self.fit, FitResult, "the family's FitResult")
+        _values.check(
+            self,
+            {
+                "k": _values.count(0),
+                "bic": _values.real(),
+                "chi2_dof": _values.real(low=0.0, nan=True, inf=True),
+                "runs_p": _values.real(low=0.0),
+                "reaches_noise": _values.flag,
+                "supported": _values.flag,
+            },
+        )
+        if not self.runs_p <= 1.0:
+            raise _checks.refused("runs_p", self.runs_p, "a p-value from 0 to 1")
+        if not isinstance(self.dropped, (tuple, list)):
+            raise _checks.refused("dropped", self.dropped, "a tuple of parameter paths")
+        dropped = tuple(_values.text(f"dropped[{i}]", p) for i, p in enumerate(self.dropped))
+        object.__setattr__(self, "dropped", dropped)
+
 
 @dataclass(frozen=True, eq=False)
-class LadderResult:
+class LadderResult(ByValue, ByArguments):
     """The ladder's outcome: ``chosen`` (the FitResult of the family chosen), ``chosen_family``,
     ``scores`` (every family, simplest first), ``criterion`` ("BIC") and ``note`` (None, or why no
     family reaches the noise)."""
@@ -86,6 +108,23 @@ class LadderResult:
     scores: Tuple[FamilyScore, ...]
     criterion: str
     note: Optional[str]
+
+    def __post_init__(self) -> None:
+        _kind("chosen", self.chosen, FitResult, "the chosen family's FitResult")
+        _kind("chosen_family", self.chosen_family, Family, "a Family of the ladder")
+        if not isinstance(self.scores, (tuple, list)) or not self.scores:
+            raise _checks.refused("scores", self.scores, "a tuple of FamilyScore, one per family")
+        for i, score in enumerate(self.scores):
+            _kind(f"scores[{i}]", score, FamilyScore, "a FamilyScore")
+        object.__setattr__(self, "scores", tuple(self.scores))
+        if not any(s.family == self.chosen_family and s.fit == self.chosen for s in self.scores):
+            raise _checks.refused(
+                "chosen_family", self.chosen_family, "the family of one of scores, chosen its fit"
+            )
+        if self.criterion != "BIC":
+            raise _checks.refused("criterion", self.criterion, "'BIC'")
+        if self.note is not None:
+            _values.text("note", self.note)
 
     def summary(self) -> str:
         lines = [f"model ladder ({self.criterion}): chosen '{self.chosen_family.name}'"]
@@ -106,6 +145,11 @@ class LadderResult:
         return "\n".join(lines) + "\n" + self.chosen.summary()
 
     __str__ = summary
+
+
+def _kind(name: str, value, kind: type, expected: str) -> None:
+    if not isinstance(value, kind):
+        raise _checks.refused(name, value, expected)
 
 
 def runs_p_value(residuals) -> float:
