@@ -138,6 +138,19 @@ def test_command_line_normalize(tmp_path, capsys, fit_inputs):
     assert "# normalize" in (tmp_path / "out" / "table1_fit.csv").read_text()
 
 
+def test_command_line_normalize_with_fourier_optics_and_its_default_tolerance(
+    tmp_path, capsys, fit_inputs
+):
+    # the relative fit's tolerance left to the library on the FO path (it printed "internal
+    # error": the tolerance was None)
+    z = np.geomspace(300.0, 1200.0, 5)
+    scenario, data = fit_inputs(z.tolist(), (0.9 * _truth(z)).tolist())
+    args = ["fit", str(scenario), str(data), "--free", "beam.tilt[0]", "--out", str(tmp_path)]
+    assert main(args + ["--normalize", "500", "1000", "--method", "fo"]) == 0
+    printed = capsys.readouterr().out
+    assert "fit (fo" in printed and "500-1000 m" in printed
+
+
 def test_interval_whitening_is_the_pseudo_inverse_square_root_and_is_reused_read_only():
     rng = np.random.default_rng(3)
     z = np.linspace(100.0, 1000.0, 30)
