@@ -8,10 +8,21 @@ design value can stop in the wrong valley.
 
 Search space. Tilt, offset and defocus are searched linearly, every other (positive) scalar in its
 logarithm (a divergence between a tenth and ten times the start is as likely to be 3x smaller as 3x
-larger): the parameter table's ``search`` (:mod:`lidar_overlap.model.parameters`). Default bounds
-are the fit's except the beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider
-tilts put the beam out of the field of view at every range, where the cost is flat and tells the
-search nothing).
+larger): the parameter table's ``search`` (:mod:`lidar_overlap.model.parameters`). The bounds given
+are searched whole. Without them the bounds are the fit's except the beam tilt: the start ±
+``TILT_FIELDS`` half fields of view r_d / f (wider tilts put the beam out of the field of view at
+every range, where the cost is flat and tells the search nothing), unless the start itself sees no
+light at any fitted range: then the fit's bounds (±MAX_TILT). The report names the bounds searched,
+which of them the search chose, and whether the start was dark.
+
+Stop. After at most ``generations``, or when the population has gathered in one valley (every
+unit-cube coordinate within ``SPREAD``), not when the candidates' costs agree: over a dark region
+they agree from the first generation on.
+
+Model. A fit planned on Fourier optics of a system ray tracing models (auto's choice for a receiver
+whose diffraction matters) compares its candidates and polishes its minima on ray tracing at the
+fit's tolerance, a generation then being one batched call instead of one FO curve per candidate;
+the best minimum is then polished on the fit's own plan, which gives the result.
 
 Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), its
 first population a Latin hypercube with the start as one member (a good start is never lost), so a
