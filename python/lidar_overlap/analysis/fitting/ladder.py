@@ -21,9 +21,10 @@ model the ladder does not have.
 
 Cost. Each family runs the global search with the fit's own search settings, so ``generations``,
 ``population``, ``minima`` and ``max_evaluations`` of ``lo.fit`` search longer (or shorter) in every
-family; on a 150-point curve the defaults take about a minute on two cores when the fit's plan is
-ray tracing or, through the search on ray tracing, Fourier optics
-(:mod:`~lidar_overlap.analysis.fitting.global_search`).
+family. A fit planned on Fourier optics (auto's choice where diffraction at the receiver matters)
+searches on ray tracing and refines on Fourier optics
+(:mod:`~lidar_overlap.analysis.fitting.global_search`); its local fits on Fourier optics remain the
+ladder's costliest part (about 1-2 CPU minutes on a 100-150 point PollyXT curve).
 """
 
 from __future__ import annotations
