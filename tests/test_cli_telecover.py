@@ -222,3 +222,21 @@ def test_help_lists_telecover(capsys):
     assert "telecover" in capsys.readouterr().out
     assert main(["telecover", "--help"]) == 0
     assert "range_m,<sector>" in capsys.readouterr().out
+
+
+def test_a_fit_at_ranges_outside_ray_tracings_validity_fails_unless_asked_to_go_on(
+    tmp_path, capsys
+):
+    # 1-2 mm from the aperture: the paraxial error of the rays is 1e5 % (it exited 0 with a fit)
+    start = _scenario(tmp_path / "start.toml", 0.0)
+    data = tmp_path / "mm.csv"
+    rows = [f"{z!r},0.01,0.0,-0.01,0.0" for z in (0.001, 0.0015, 0.002)]
+    data.write_text("range_m,north,east,south,west\n" + "\n".join(rows) + "\n")
+    args = ["telecover", str(start), "--measurements", str(data), "--free", "beam.tilt[1]"]
+    assert main(args + ["--out", str(tmp_path / "refused")]) == 1
+    said = capsys.readouterr().err
+    assert re.search(r"mm.csv: range_m: ray tracing outside its validity: at 0.001 m", said)
+    assert "--outside-validity" in said and not (tmp_path / "refused").exists()
+    assert main(args + ["--out", str(tmp_path / "o"), "--outside-validity"]) == 0
+    assert "outside its validity" in capsys.readouterr().err  # still warned
+    assert (tmp_path / "o" / "table1_telecover_fit.csv").exists()

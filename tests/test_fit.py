@@ -339,6 +339,9 @@ GOOD = dict(free=list(TRUE), **FAST)
             r"measured has 1 points for 3 free parameters: expected more points",
         ),
         (dict(loss="l1"), r"loss = 'l1' is invalid"),
+        # a truthy string is no consent to an unconverged result
+        (dict(allow_unconverged="no"), r"^allow_unconverged = 'no' is invalid: expected True or"),
+        (dict(allow_unconverged=1), r"^allow_unconverged = 1 is invalid"),
         (dict(method=lo.Turbulent(lo.Turbulence(1e-14), "rt")), r"Turbulent.*random draws"),
     ],
 )

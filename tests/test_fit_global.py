@@ -126,3 +126,51 @@ def test_bad_search_options_are_clear_errors(kw, message):
 def test_bad_search_name_is_a_clear_error():
     with pytest.raises(ValueError, match="search"):
         lo.fit(BIAXIAL, Z, _data(), SIGMA, free=list(TRUE), search="anneal", **FAST)
+
+
+TILT = "beam.tilt[0]"
+#: The truth, a start where Table 1 sees no light at Z (its beam 2 mrad off the axis) and one where
+#: it sees some (G up to 0.05).
+TILT_TRUE, TILT_START, TILT_LIT = 3e-4, 2e-3, 1e-3
+
+
+def _tilt_data():
+    g = lo.overlap(parameters.replace(TABLE1, {TILT: TILT_TRUE}), Z, "rt", tolerance=1e-8).overlap
+    return g + np.random.default_rng(2).normal(0.0, SIGMA, Z.size)
+
+
+def _tilt_fit(start, **kw):
+    s = parameters.replace(TABLE1, {TILT: start})
+    return lo.fit(s, Z, _tilt_data(), SIGMA, free=[TILT], search="global", seed=1, **FAST, **kw)
+
+
+def _found(f):
+    # Table 1 is coaxial: a tilt and its mirror image give one curve
+    return abs(abs(f.parameters[TILT]) - TILT_TRUE) < FOUND_SIGMAS * f.uncertainties[TILT]
+
+
+def test_the_search_covers_the_bounds_given_and_says_which_it_chose():
+    given = _tilt_fit(TILT_START, bounds={TILT: (0.0, 3.8e-3)})
+    assert given.search.bounds == {TILT: (0.0, 3.8e-3)} and given.search.chosen == ()
+    assert _found(given) and "(chosen)" not in str(given)
+    # none given: a box of TILT_FIELDS half fields of view about a lit start, reported as chosen
+    box = _tilt_fit(TILT_LIT)
+    field = parameters.TILT_FIELDS * TABLE1.detector.radius / TABLE1.telescope.focal_length
+    low, high = box.search.bounds[TILT]
+    assert box.search.chosen == (TILT,) and not box.search.dark_start and _found(box)
+    assert low == pytest.approx(TILT_LIT - field) and high == pytest.approx(TILT_LIT + field)
+    assert f"{TILT} [{low:.4g}, {high:.4g}] (chosen)" in str(box)
+
+
+def test_from_a_dark_start_the_search_covers_the_fits_bounds_and_searches():
+    # tilted 8 mrad: G = 0 at every range, so every candidate of a box about the start costs the
+    # same; it stopped after one generation and returned the start
+    start = parameters.replace(TABLE1, {TILT: 8e-3})
+    assert not lo.overlap(start, Z, "rt").overlap.any()
+    f = _tilt_fit(8e-3)
+    assert f.search.dark_start and f.search.bounds[TILT] == (
+        -parameters.MAX_TILT,
+        parameters.MAX_TILT,
+    )
+    assert f.search.generations > 1 and _found(f)
+    assert "the start sees no light" in str(f)

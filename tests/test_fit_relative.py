@@ -86,13 +86,10 @@ def test_normalised_covariance_covers_the_truth_at_the_1_sigma_rate():
 @pytest.mark.parametrize(
     "normalize, message",
     [
-        (
-            (500.0, 5000.0),
-            r"normalize = \(500, 5000\) m is invalid: expected z_low < z_high within",
-        ),
-        ((10.0, 100.0), r"within the measured ranges \[60, 3000\] m"),
+        ((10.0, 65.0), r"holds 1 measured points \(the data span \[60, 3000\] m\)"),
         ((2000.0, 1000.0), "expected z_low < z_high"),
         ((2000.0, 2100.0), "holds 0 measured points"),
+        ((4000.0, 5000.0), "holds 0 measured points"),
         ("near", "expected None, 'far' or"),
         ((1.0, 2.0, 3.0), "expected None, 'far' or"),
     ],
@@ -100,6 +97,30 @@ def test_normalised_covariance_covers_the_truth_at_the_1_sigma_rate():
 def test_bad_normalisation_is_a_clear_error(normalize, message):
     with pytest.raises(ValueError, match=message):
         lo.fit(_start(), Z, _truth(), free=list(TRUE), normalize=normalize, **FAST)
+
+
+def test_an_interval_reaching_past_the_data_selects_the_points_within_it():
+    # the last point at 2499.2 m: (1500, 2500) holds the points of (1500, 2499.2), and the fit is
+    # the same fit
+    z = np.geomspace(60.0, 2499.2, 20)
+    y = 0.9 * _truth(z)
+    w = np.full(z.size, SIGMA)
+    wide, exact = normalization((1500.0, 2500.0), z, y, w), normalization((1500.0, 2499.2), z, y, w)
+    assert wide.inside.sum() >= 2 and np.array_equal(wide.inside, exact.inside)
+    assert np.array_equal(wide.whitening, exact.whitening)
+    f = lo.fit(_start(), z, y, SIGMA, free=list(TRUE), normalize=(1500.0, 2500.0), **FAST)
+    g = lo.fit(_start(), z, y, SIGMA, free=list(TRUE), normalize=(1500.0, 2499.2), **FAST)
+    assert f.parameters == g.parameters and f.chi_square == g.chi_square
+
+
+@pytest.mark.parametrize("scale", [1e-200, 1e-300])
+def test_data_too_small_for_their_weights_are_refused_naming_measured(scale):
+    # unit weights on data of 1e-300: sigma / mean overflows double precision (it reached the
+    # eigendecomposition as a LinAlgError)
+    y = scale * _truth()
+    mean = float(y[(Z >= INTERVAL[0]) & (Z <= INTERVAL[1])].mean())
+    with pytest.raises(lo.ParameterError, match=rf"^measured: .* is {mean:g} and sigma reaches 1:"):
+        lo.fit(_start(), Z, y, free=list(TRUE), normalize=INTERVAL, **FAST)
 
 
 def test_fewer_points_than_parameters_is_a_clear_error():
@@ -115,6 +136,19 @@ def test_command_line_normalize(tmp_path, capsys, fit_inputs):
     printed = capsys.readouterr().out
     assert "relative data" in printed and "1000-3000 m" in printed
     assert "# normalize" in (tmp_path / "out" / "table1_fit.csv").read_text()
+
+
+def test_command_line_normalize_with_fourier_optics_and_its_default_tolerance(
+    tmp_path, capsys, fit_inputs
+):
+    # the relative fit's tolerance left to the library on the FO path (it printed "internal
+    # error": the tolerance was None)
+    z = np.geomspace(300.0, 1200.0, 5)
+    scenario, data = fit_inputs(z.tolist(), (0.9 * _truth(z)).tolist())
+    args = ["fit", str(scenario), str(data), "--free", "beam.tilt[0]", "--out", str(tmp_path)]
+    assert main(args + ["--normalize", "500", "1000", "--method", "fo"]) == 0
+    printed = capsys.readouterr().out
+    assert "fit (fo" in printed and "500-1000 m" in printed
 
 
 def test_interval_whitening_is_the_pseudo_inverse_square_root_and_is_reused_read_only():

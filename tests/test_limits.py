@@ -77,6 +77,34 @@ def test_memory_budget_is_checked_before_allocating():
     assert lo.max_memory() == default > 0
 
 
+# A process limited to LIMITED_BYTES of address space, its budget lifted to the most there is, asks
+# for a 2-D FO grid of 2^15 per side (~16 GiB of complex samples): the core cannot allocate it.
+LIMITED_BYTES = 3 * 2**30
+_OUT_OF_MEMORY = """
+import resource, sys
+import lidar_overlap as lo
+resource.setrlimit(resource.RLIMIT_AS, ({limit}, {limit}))
+lo.set_max_memory(2**63 - 1)
+try:
+    lo.overlap(lo.paper_table1(), [100.0], "fo", fo_path="2d", beam_grid=2**15)
+except MemoryError as exc:
+    print(exc)
+    sys.exit(3)
+"""
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="RLIMIT_AS as Linux counts it")
+def test_a_budget_above_the_machines_memory_fails_naming_the_grid_and_the_budget():
+    code = _OUT_OF_MEMORY.format(limit=LIMITED_BYTES)
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=120, env=os.environ
+    )
+    assert done.returncode == 3, done.stderr
+    said = done.stdout
+    assert "beam grid of 32768² samples" in said and "set_max_memory" in said, said
+    assert "set_max_memory(0)" in said and "GiB" in said
+
+
 @pytest.mark.parametrize("grid", [2**32, 2**40, 16384 * 16])
 def test_huge_grids_are_refused_without_allocating(grid):
     with pytest.raises(ValueError, match="beam_grid"):

@@ -117,7 +117,13 @@ def test_a_curve_is_a_value_checked_on_construction():
 @pytest.mark.parametrize(
     "ranges, overlap, interval, message",
     [
-        ([1.0, 2.0], [0.5, float("nan")], (0.0, 3.0), "non-finite value at index 1"),
+        (
+            [1.0, 2.0],
+            [0.5, float("nan")],
+            (0.0, 3.0),
+            r"^overlap\[1\] = nan is invalid \(range 2 m\)",
+        ),
+        ([1.0, float("inf")], [0.5, 0.6], (0.0, 3.0), r"^ranges\[1\] = inf is invalid"),
         ([1.0, 2.0], [0.5], (0.0, 3.0), "overlap has 1 values for 2 ranges"),
         ([[1.0, 2.0]], [[0.5, 0.6]], (0.0, 3.0), "ranges has shape"),
         ([1.0, 2.0], [0.5, 0.6], 3.0, "interval = 3.0 is invalid"),

@@ -129,6 +129,25 @@ def test_both_paths_report_the_amplification_and_may_exceed_one():
     assert np.allclose(r.amplification, r.overlap / r.uncorrelated.mean(axis=0))
 
 
+def test_fo_without_a_grid_on_both_paths_takes_the_least_grid_the_core_accepts():
+    # a 70 um detector through Cn2 = 1e-13 over 1 km: the core needs more than the default 256
+    # samples per side; lo.FO() with its grid left to the library takes what auto would
+    s = lo.LidarSystem(
+        beam=lo.GaussianBeam(wavelength=1064e-9, waist_radius=5e-3),
+        telescope=lo.Telescope(diameter=0.05, focal_length=0.5),
+        detector=lo.Detector(radius=70e-6),
+    )
+    z, t = np.array([1000.0]), lo.Turbulence(1e-13)
+    options = _core.TurbulenceOptions(paths="both", realizations=2, receiver_fields=2)
+    needed = int(_core.turbulent_grid(s._native, z, t._native, options).min_beam_grid)
+    assert needed > _core.TurbulenceOptions().beam_grid  # the case the default grid cannot run
+    request = dict(paths="both", realizations=2, receiver_fields=2)
+    fo = lo.plan(s, z, lo.Turbulent(t, lo.FO(), **request))
+    by_auto = lo.plan(s, z, lo.Turbulent(t, **request))
+    assert fo.backend == by_auto.backend == "fo_turbulent"
+    assert fo.options.beam_grid == by_auto.options.beam_grid == needed
+
+
 def test_paths_is_checked_by_name():
     t = lo.Turbulence(1e-14)
     for hostile in ("return", "Both", " both", None, 3, True, b"both"):

@@ -19,7 +19,7 @@ import math
 import pickle
 import types
 import warnings
-from typing import Any, Callable, Dict, FrozenSet, Iterator, Tuple
+from typing import Any, Callable, Dict, FrozenSet, Iterator, NamedTuple, Tuple
 
 import numpy as np
 import pytest
@@ -27,6 +27,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lidar_overlap as lo
+from lidar_overlap.analysis.fitting.families import LADDER
+from lidar_overlap.analysis.fitting.ladder import FamilyScore, LadderResult, fit_ladder
+from lidar_overlap.analysis.fitting.problem import fit_problem
 from lidar_overlap.io.overlap_curves import OverlapCurve
 
 Z = np.array([150.0, 400.0, 1200.0, 3000.0])
@@ -87,8 +90,41 @@ def _fit_entry(build: Callable[[], Any]) -> Entry:
     )
 
 
+class Also(NamedTuple):
+    """A registry key for another example of a registered type (the telecover fit's FitResult)."""
+
+    cls: type
+    label: str
+
+
+def _cls(key: Any) -> type:
+    return key.cls if isinstance(key, Also) else key
+
+
+def _name(key: Any) -> str:
+    return f"{key.cls.__name__}[{key.label}]" if isinstance(key, Also) else key.__name__
+
+
 def _telecover() -> lo.TelecoverResult:
     return lo.telecover(lo.paper_table1(obstruction_radius=0.0), Z, tolerance=1e-5)
+
+
+def _telecover_fit() -> lo.FitResult:
+    s = lo.paper_table1(obstruction_radius=0.0)
+    tilted = lo.parameters.replace(s, {"beam.tilt[1]": 5e-5})
+    measured = lo.telecover(tilted, Z, tolerance=1e-5).deviation
+    return lo.fit_telecover(s, Z, measured, 0.01, free=["beam.tilt[1]"], tolerance=1e-5)
+
+
+def _ladder() -> LadderResult:
+    """The model ladder's first two families, a short search each (its value, not its choice)."""
+    z = np.geomspace(150.0, 3000.0, 10)
+    g = lo.overlap(lo.paper_table1(defocus=1e-3), z, "rt", tolerance=1e-6).overlap
+    problem = fit_problem(
+        SYSTEM, z, g, 1e-3, free="auto", method="rt", tolerance=1e-6, generations=2,
+        population=5, minima=1, allow_unconverged=True,
+    )  # fmt: skip
+    return fit_ladder(problem, LADDER[:2])
 
 
 def _signal() -> lo.LidarSignal:
@@ -193,6 +229,13 @@ REGISTRY: Dict[type, Entry] = {
         )  # fmt: skip
     ),
     lo.TelecoverResult: Entry(_telecover),
+    Also(lo.FitResult, "telecover fit"): _fit_entry(_telecover_fit),
+    LadderResult: Entry(_ladder),
+    FamilyScore: Entry(
+        lambda: dataclasses.replace(example(LadderResult).scores[0]),
+        nan_ok=frozenset({"chi2_dof"}),
+        inf_ok=frozenset({"chi2_dof"}),
+    ),
     lo.LidarSignal: Entry(_signal),
     lo.CorrectedSignal: Entry(
         lambda: lo.correct(Z, _signal().range_corrected, lo.overlap(SYSTEM, Z, "rt"))
@@ -238,8 +281,8 @@ def _public_value_types() -> Iterator[type]:
             yield obj
 
 
-TYPES = sorted(REGISTRY, key=lambda c: c.__name__)
-IDS = [c.__name__ for c in TYPES]
+TYPES = sorted(REGISTRY, key=_name)
+IDS = [_name(c) for c in TYPES]
 
 
 def test_every_public_value_type_is_registered():
@@ -250,7 +293,7 @@ def test_every_public_value_type_is_registered():
 @pytest.mark.parametrize("cls", TYPES, ids=IDS)
 def test_the_example_is_of_its_type_and_frozen(cls):
     value = example(cls)
-    assert type(value) is cls
+    assert type(value) is _cls(cls)
     first = dataclasses.fields(value)[0].name
     with pytest.raises(dataclasses.FrozenInstanceError):
         setattr(value, first, getattr(value, first))
@@ -276,9 +319,9 @@ def test_arrays_are_read_only_and_mappings_cannot_change(cls):
     for f in dataclasses.fields(value):
         for leaf in _leaves(getattr(value, f.name)):
             if isinstance(leaf, np.ndarray):
-                assert not leaf.flags.writeable, f"{cls.__name__}.{f.name} is a writable array"
+                assert not leaf.flags.writeable, f"{_name(cls)}.{f.name} is a writable array"
             assert not isinstance(leaf, (dict, list, set)), (
-                f"{cls.__name__}.{f.name} holds a mutable {type(leaf).__name__}"
+                f"{_name(cls)}.{f.name} holds a mutable {type(leaf).__name__}"
             )
 
 
@@ -286,7 +329,7 @@ def test_arrays_are_read_only_and_mappings_cannot_change(cls):
 def test_pickle_copy_and_deepcopy_give_an_equal_value(cls):
     value = example(cls)
     for again in (pickle.loads(pickle.dumps(value)), copy.copy(value), copy.deepcopy(value)):
-        assert type(again) is cls and again == value
+        assert type(again) is _cls(cls) and again == value
 
 
 @pytest.mark.parametrize("cls", TYPES, ids=IDS)
@@ -306,14 +349,14 @@ def _replaceable(cls: type) -> Iterator[Tuple[type, str]]:
 
 
 def _optional(cls: type, name: str) -> bool:
-    default = next(f for f in dataclasses.fields(cls) if f.name == name).default
+    default = next(f for f in dataclasses.fields(_cls(cls)) if f.name == name).default
     return default is None or name in REGISTRY[cls].none_ok
 
 
 NUMERIC = [pair for cls in TYPES for pair in _replaceable(cls)]
 
 
-@pytest.mark.parametrize("cls, name", NUMERIC, ids=[f"{c.__name__}.{n}" for c, n in NUMERIC])
+@pytest.mark.parametrize("cls, name", NUMERIC, ids=[f"{_name(c)}.{n}" for c, n in NUMERIC])
 @pytest.mark.parametrize("hostile", ["x", None, {"a": 1.0}])
 def test_a_field_of_the_wrong_kind_is_refused_by_name(cls, name, hostile):
     value = example(cls)
@@ -323,7 +366,7 @@ def test_a_field_of_the_wrong_kind_is_refused_by_name(cls, name, hostile):
         dataclasses.replace(value, **{name: hostile})
 
 
-@pytest.mark.parametrize("cls, name", NUMERIC, ids=[f"{c.__name__}.{n}" for c, n in NUMERIC])
+@pytest.mark.parametrize("cls, name", NUMERIC, ids=[f"{_name(c)}.{n}" for c, n in NUMERIC])
 def test_an_array_of_another_shape_is_refused(cls, name):
     value = example(cls)
     old = getattr(value, name)
@@ -333,10 +376,10 @@ def test_an_array_of_another_shape_is_refused(cls, name):
         dataclasses.replace(value, **{name: np.zeros(old.shape + (2,))})
 
 
-WITH_NUMBERS = sorted({c for c, _ in NUMERIC}, key=lambda c: c.__name__)
+WITH_NUMBERS = sorted({c for c, _ in NUMERIC}, key=_name)
 
 
-@pytest.mark.parametrize("cls", WITH_NUMBERS, ids=[c.__name__ for c in WITH_NUMBERS])
+@pytest.mark.parametrize("cls", WITH_NUMBERS, ids=[_name(c) for c in WITH_NUMBERS])
 @settings(
     max_examples=30,
     derandomize=True,

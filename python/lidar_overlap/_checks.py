@@ -147,6 +147,13 @@ def choice(name: str, value: Any, valid: tuple[str, ...]) -> str:
     return value
 
 
+def flag(name: str, value: Any) -> bool:
+    """True or False, strictly: a truthy string such as 'no' is refused, not read as True."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise refused(name, value, "True or False")
+    return bool(value)
+
+
 def count(name: str, value: Any, minimum: int, maximum: int = MAX_COUNT) -> int:
     """An integer in [minimum, maximum] (bools refused)."""
     if (

@@ -95,9 +95,7 @@ def count(low: int = 0) -> Kind:
 
 def flag(name: str, value: Any) -> bool:
     """True or False (not a truthy object)."""
-    if not isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} = {_checks.shown(value)} is invalid: expected True or False")
-    return bool(value)
+    return _checks.flag(name, value)
 
 
 def pair(name: str, value: Any) -> tuple:

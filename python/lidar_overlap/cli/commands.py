@@ -128,6 +128,12 @@ def _parser() -> argparse.ArgumentParser:
         metavar="PATH",
         help="parameters to fit with --measurements, e.g. beam.tilt",
     )
+    tc.add_argument(
+        "--outside-validity",
+        action="store_true",
+        help="with --measurements: fit even at ranges outside ray tracing's validity (warned "
+        "instead of refused)",
+    )
     view = sub.add_parser(
         "view",
         help="the scenario's system as an interactive page in the browser",
@@ -325,7 +331,12 @@ def _telecover(args) -> int:
                 lines = telecover_command.summary(scenario.name, result)
             else:
                 result, files, notes = telecover_command.fit(
-                    scenario, args.sectors, args.measurements, args.free, out
+                    scenario,
+                    args.sectors,
+                    args.measurements,
+                    args.free,
+                    out,
+                    outside_validity=args.outside_validity,
                 )
                 lines = [f"{scenario.name}: telecover {result.summary()}"]
             for note in notes:

@@ -26,6 +26,7 @@ from .. import _files
 from ..analysis.studies.telecover import sector_mask, telecover
 from ..analysis.studies.telecover_fit import fit_telecover
 from ..forward.result_files import csv_value
+from ..forward.validity import rt_ranges_outside
 from ..io.overlap_curves import read_csv_table
 from ..io.scenario import Scenario
 from ..model.aperture_mask import ApertureMask, equal_sectors
@@ -138,12 +139,20 @@ def fit(
     measurements: Path,
     free: List[str],
     out: Path,
+    outside_validity: bool = False,
 ):
     """Fit the deviations of ``measurements`` by ray tracing at the scenario's ``[run]``
     tolerance (the command line's telecover fit; ``lo.fit_telecover`` takes any model), written;
-    returns (FitResult, files, notes)."""
+    returns (FitResult, files, notes). Ranges outside ray tracing's validity are refused (a
+    ValueError) unless ``outside_validity``: a fit there reports numbers the model cannot give."""
     names = [column(n) for n in sector_mask(scenario.system, mask).names]
     data, sigma = read_csv_table(measurements, ["range_m"] + names, signed=names)
+    outside = rt_ranges_outside(scenario.system, data[:, 0])
+    if outside and not outside_validity:
+        raise ValueError(
+            f"{measurements}: range_m: {outside.rstrip('.')}; pass --outside-validity to fit "
+            "there anyway"
+        )
     result = fit_telecover(
         scenario.system,
         data[:, 0],

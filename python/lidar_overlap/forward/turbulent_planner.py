@@ -105,6 +105,11 @@ def turbulent_rt(scene: Scene, request: Turbulent, model: RT, chosen, warned) ->
 
 def turbulent_fo(scene: Scene, request: Turbulent, model: FO, chosen) -> Plan:
     options = fo_options(request, model, scene.threads)
+    if request.paths == "both" and model.beam_grid is None:
+        # a grid left to the library: the default raised to the least the core accepts, as auto
+        options.beam_grid = auto.turbulent_fo_grid(
+            scene.system, scene.z, request.turbulence, options, None, scene.threads
+        ).grid
     both = (
         f"; the return path through the same screens ({request.receiver_fields} random-phase "
         "receiver fields)"

@@ -190,13 +190,22 @@ def warn_if_rt_invalid(system, ranges: np.ndarray, diffraction: bool = True) -> 
             f"about {airy_tail:.2%} of the image power across its edge; geometric optics ignores "
             "this. Use Fourier optics (method='fo') for this receiver."
         )
+    outside = rt_ranges_outside(system, ranges)
+    if outside:
+        warn(outside)
+
+
+def rt_ranges_outside(system, ranges: np.ndarray) -> str:
+    """Why ``ranges`` (m) lie outside ray tracing's validity (its paraxial error above
+    RT_MODEL_ERROR_LIMIT at the nearest), or "" when they do not."""
     paraxial = rt_paraxial_error(system, ranges)
-    if paraxial > RT_MODEL_ERROR_LIMIT:
-        warn(
-            f"ray tracing outside its validity: at {float(np.min(ranges)):.3g} m the aperture is "
-            f"seen under slopes whose paraxial error is about {paraxial:.2%}; start the ranges "
-            "farther away."
-        )
+    if not paraxial > RT_MODEL_ERROR_LIMIT:
+        return ""
+    return (
+        f"ray tracing outside its validity: at {float(np.min(ranges)):.3g} m the aperture is "
+        f"seen under slopes whose paraxial error is about {paraxial:.2%}; start the ranges "
+        "farther away."
+    )
 
 
 #: Fourier optics warns where a second stop's pupil disc moves by more than this fraction of its

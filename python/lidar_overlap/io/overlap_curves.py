@@ -309,13 +309,17 @@ def far_range_noise(ranges, overlap, interval: Tuple[float, float]) -> float:
             f"interval = {_checks.shown(interval)} is invalid: expected (z_low, z_high) in m"
         )
     z_low, z_high = (_checks.real("interval", v) for v in interval)
-    bad = ~np.isfinite(z) | ~np.isfinite(g)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(
-            f"the curve holds a non-finite value at index {i} (range {z[i]!r}, overlap {g[i]!r}): "
-            "expected finite ranges and overlap"
-        )
+    for name, values in (("ranges", z), ("overlap", g)):
+        bad = ~np.isfinite(values)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise _checks.refused(
+                f"{name}[{i}]",
+                float(values[i]),
+                "finite values",
+                f"{name}[{i}] = {values[i]:g} is invalid (range {z[i]:g} m): expected finite "
+                "values; drop that point (its range and overlap) first",
+            )
     if not z_low < z_high:
         raise ValueError(f"interval = ({z_low:g}, {z_high:g}) m is invalid: expected low < high")
     inside = (z >= z_low) & (z <= z_high)

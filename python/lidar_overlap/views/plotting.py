@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import _checks
+from ..analysis.studies.signals import LidarSignal
+from ..analysis.studies.telecover import TelecoverResult
+from ..forward.result import OverlapResult
 from ..optics.detector_image import detector_image
 
 
@@ -15,12 +19,35 @@ def _pyplot():
     return plt
 
 
+def _checked_axes(name: str, ax, count: int = 1):
+    """``ax`` (one matplotlib Axes, or a sequence of ``count`` of them when count > 1) as given, or
+    None; anything else refused naming ``name``."""
+    from matplotlib.axes import Axes
+
+    if ax is None:
+        return None
+    if count == 1:
+        if not isinstance(ax, Axes):
+            raise _checks.refused(name, ax, "a matplotlib Axes, or None for a new figure")
+        return ax
+    many = list(ax) if isinstance(ax, (tuple, list, np.ndarray)) else []
+    if len(many) != count or not all(isinstance(a, Axes) for a in many):
+        raise _checks.refused(name, ax, f"{count} matplotlib Axes, or None for a new figure")
+    return ax
+
+
+def _checked_kind(name: str, value, kind: type, made_by: str) -> None:
+    if not isinstance(value, kind):
+        raise _checks.refused(name, value, f"the {kind.__name__} of {made_by}")
+
+
 def plot_overlap(result, ax=None, label=None, mark_ranges=True, **line_kwargs):
     """Draw one overlap curve G(z) on a log range axis; mark the full-overlap (G >= 0.99 max G, only
     where the curve shows its far-range limit) and first-signal (G >= 1e-3) ranges. Returns the
     Axes."""
     plt = _pyplot()
-    if ax is None:
+    _checked_kind("result", result, OverlapResult, "lo.overlap")
+    if _checked_axes("ax", ax) is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
     (line,) = ax.plot(result.ranges, result.overlap, label=label or result.method, **line_kwargs)
     if mark_ranges:
@@ -43,7 +70,7 @@ def plot_detector_image(system, z, ax=None, n=192):
     detector disc outlined and the fraction it collects in the title. Returns the Axes."""
     plt = _pyplot()
     img = detector_image(system, z, n)
-    if ax is None:
+    if _checked_axes("ax", ax) is None:
         _, ax = plt.subplots(figsize=(4.8, 4.2), constrained_layout=True)
     mm = 1e3
     extent = (img.u[-1] * mm, img.u[0] * mm, img.v[-1] * mm, img.v[0] * mm)
@@ -66,7 +93,8 @@ def plot_signal(sig, ax=None):
     shot with the overlap and without it (G = 1), the background, the noise level (its standard
     deviation over the shots) and, where positive, the noisy realisation. Returns the Axes."""
     plt = _pyplot()
-    if ax is None:
+    _checked_kind("sig", sig, LidarSignal, "lo.signal")
+    if _checked_axes("ax", ax) is None:
         _, ax = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
     z = sig.ranges
     if sig.noisy is not None:
@@ -106,7 +134,9 @@ def plot_telecover(result, band=0.05, axes=None):
     mean of four quadrants); bottom, the normalised deviations G_i / mean G - 1 in % with the
     ±``band`` lines. Returns the two Axes."""
     plt = _pyplot()
-    if axes is None:
+    _checked_kind("result", result, TelecoverResult, "lo.telecover")
+    band = _checks.positive("band", band)
+    if _checked_axes("axes", axes, count=2) is None:
         _, axes = plt.subplots(2, 1, figsize=(6.4, 6.4), sharex=True, constrained_layout=True)
     top, bottom = axes
     n = len(result.names)
@@ -147,8 +177,14 @@ def plot_alignment_map(ds, range=None, ax=None, cmap="viridis"):
     lengths in mm). Returns the Axes, or an array of Axes (one per range) when several ranges are
     drawn."""
     plt = _pyplot()
-    names = [d for d in ds["overlap"].dims if d != "range"]
-    chosen = ds["range"].values if range is None else np.atleast_1d(np.asarray(range, dtype=float))
+    names = _alignment_axes(ds)
+    if range is None:
+        chosen = ds["range"].values
+    else:
+        chosen = _checks.real_array("range", np.atleast_1d(range), ndim=1)
+        if not np.isfinite(chosen).all():
+            raise _checks.refused("range", range, "finite ranges of the map in m")
+    _checked_axes("ax", ax)
     if ax is not None and len(names) == 2 and chosen.size != 1:
         raise ValueError(f"range = {range!r}: one Axes given, so choose one range")
     if ax is None:
@@ -196,7 +232,12 @@ def plot_series(ds, against=None, axes=None):
     with the straight line weighted by the uncertainties and its slope in the legend (angles in
     µrad, lengths in mm). Unconverged fits are drawn hollow. Returns the array of Axes."""
     plt = _pyplot()
-    dimension = ds["value"].dims[0]
+    try:
+        dimension = ds["value"].dims[0]
+        paths = [str(p) for p in ds["parameter"].values]
+        ds["uncertainty"], ds["converged"], ds["unit"]
+    except (KeyError, TypeError, IndexError, AttributeError):
+        raise _checks.refused("ds", ds, "the dataset of lo.fit_series") from None
     name = dimension if against is None else against
     if name not in ds.coords or ds[name].dims != (dimension,):
         raise ValueError(
@@ -204,7 +245,6 @@ def plot_series(ds, against=None, axes=None):
             f"{dimension!r}: {[c for c in ds.coords if ds[c].dims == (dimension,)]}"
         )
     x = ds[name].values
-    paths = [str(p) for p in ds["parameter"].values]
     if axes is None:
         _, axes = plt.subplots(
             len(paths), 1, figsize=(6.4, 2.6 * len(paths)), constrained_layout=True, squeeze=False
@@ -239,3 +279,19 @@ def _unit_of(name: str) -> str:
     """The unit a coordinate's name ends with (``internal_temperature_K``: K), else 'unit'."""
     tail = name.rsplit("_", 1)[-1]
     return tail if "_" in name and tail in ("K", "C", "s", "m", "Pa", "hPa") else "unit"
+
+
+def _alignment_axes(ds) -> list:
+    """The axes of an alignment map other than range, ``ds`` refused naming ``ds`` unless it is one
+    (a dataset whose ``overlap`` has a ``range`` dimension and one or two others)."""
+    expected = (
+        "an alignment map (lo.alignment_map: a dataset with overlap over range and 1 or 2 axes)"
+    )
+    try:
+        dims, _ = list(ds["overlap"].dims), ds["range"].values
+    except (KeyError, TypeError, IndexError, AttributeError):
+        raise _checks.refused("ds", ds, expected) from None
+    names = [d for d in dims if d != "range"]
+    if "range" not in dims or len(names) not in (1, 2):
+        raise _checks.refused("ds", ds, expected)
+    return names

@@ -35,7 +35,10 @@ class SearchReport:
     """How the global search ran: ``method``, ``seed``, ``population`` (candidates per generation),
     ``generations`` run, ``candidates`` evaluated, ``core_calls`` (one per generation on ray
     tracing), ``local_evaluations`` (curves of the local fits, every polished candidate counted),
-    ``minima`` (distinct, best first; the first is the result) and the ``bounds`` searched."""
+    ``minima`` (distinct, best first; the first is the result), the ``bounds`` searched,
+    ``chosen``: the paths whose bounds the search chose (none given: a box about the start, or the
+    fit's defaults) and ``dark_start``: whether the start's model was zero at every fitted range
+    (then no box about it)."""
 
     method: str
     seed: int
@@ -46,17 +49,36 @@ class SearchReport:
     local_evaluations: int
     minima: Tuple[SearchMinimum, ...]
     bounds: Dict[str, Tuple[float, float]]
+    chosen: Tuple[str, ...] = ()
+    dark_start: bool = False
 
     def __post_init__(self) -> None:
         pairs = {p: _values.pair(f"bounds[{p!r}]", b) for p, b in dict(self.bounds).items()}
         object.__setattr__(self, "bounds", _values.FrozenMap(pairs))
         object.__setattr__(self, "minima", tuple(self.minima))
+        chosen = tuple(_values.text(f"chosen[{i}]", p) for i, p in enumerate(self.chosen))
+        unknown = [p for p in chosen if p not in pairs]
+        if unknown:
+            raise ValueError(
+                f"chosen = {chosen!r} is invalid: expected paths of bounds, not {unknown[0]!r}"
+            )
+        object.__setattr__(self, "chosen", chosen)
+        object.__setattr__(self, "dark_start", _values.flag("dark_start", self.dark_start))
 
     def summary(self) -> str:
         lines = [
             f"global search ({self.method}, seed {self.seed}): {self.generations} generations of "
             f"{self.population}, {self.candidates} candidates in {self.core_calls} batched calls"
         ]
+        searched = ", ".join(
+            f"{p} [{lo:.4g}, {hi:.4g}]{' (chosen)' if p in self.chosen else ''}"
+            for p, (lo, hi) in self.bounds.items()
+        )
+        lines.append(f"  bounds {searched}")
+        if self.dark_start:
+            lines.append(
+                "  the start sees no light at any fitted range: the fit's default bounds searched"
+            )
         for rank, m in enumerate(self.minima):
             what = "best" if rank == 0 else f"runner-up {rank}"
             values = ", ".join(f"{p} {v:.4g}" for p, v in m.parameters.items())

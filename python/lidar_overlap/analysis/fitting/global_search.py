@@ -8,10 +8,21 @@ design value can stop in the wrong valley.
 
 Search space. Tilt, offset and defocus are searched linearly, every other (positive) scalar in its
 logarithm (a divergence between a tenth and ten times the start is as likely to be 3x smaller as 3x
-larger): the parameter table's ``search`` (:mod:`lidar_overlap.model.parameters`). Default bounds
-are the fit's except the beam tilt: the start ± ``TILT_FIELDS`` half fields of view r_d / f (wider
-tilts put the beam out of the field of view at every range, where the cost is flat and tells the
-search nothing).
+larger): the parameter table's ``search`` (:mod:`lidar_overlap.model.parameters`). The bounds given
+are searched whole. Without them the bounds are the fit's except the beam tilt: the start ±
+``TILT_FIELDS`` half fields of view r_d / f (wider tilts put the beam out of the field of view at
+every range, where the cost is flat and tells the search nothing), unless the start itself sees no
+light at any fitted range: then the fit's bounds (±MAX_TILT). The report names the bounds searched,
+which of them the search chose, and whether the start was dark.
+
+Stop. After at most ``generations``, or when the population has gathered in one valley (every
+unit-cube coordinate within ``SPREAD``), not when the candidates' costs agree: over a dark region
+they agree from the first generation on.
+
+Model. A fit planned on Fourier optics of a system ray tracing models (auto's choice for a receiver
+whose diffraction matters) compares its candidates and polishes its minima on ray tracing at the
+fit's tolerance, a generation then being one batched call instead of one FO curve per candidate;
+the best minimum is then polished on the fit's own plan, which gives the result.
 
 Candidates. scipy's ``differential_evolution`` (``vectorized=True``, ``updating="deferred"``), its
 first population a Latin hypercube with the start as one member (a good start is never lost), so a
@@ -31,6 +42,7 @@ from typing import Any, Dict, List, Tuple
 
 import numpy as np
 
+from ...forward.methods import RT
 from ...model import parameters as _parameters
 from ..batch_curves import curves, variants
 from .global_result import SearchMinimum, SearchReport, with_search
@@ -44,8 +56,10 @@ DISTINCT = 0.1
 #: Default population: this many candidates per free parameter (at least MIN_POPULATION).
 POPULATION_PER_PARAMETER, MIN_POPULATION = 5, 15
 #: The search stops before its most generations (:data:`.problem.GENERATIONS` by default) when the
-#: population's costs agree (scipy's relative tolerance TOLERANCE).
-TOLERANCE = 1e-3
+#: population has gathered in one valley: every unit-cube coordinate of its members within SPREAD
+#: (half the distance of distinct minima; the polish finds the valley's bottom). Not when their
+#: costs agree: over a dark region (no candidate's beam in the field of view) they agree at once.
+SPREAD = DISTINCT / 2
 #: The search compares candidates on at most this many of the measured ranges (evenly thinned: a
 #: valley's place does not need every point, its polish uses them all).
 SEARCH_POINTS = 60
@@ -59,10 +73,11 @@ def fit_global(problem: FitProblem):
     and its ``search`` report (candidates, generations, core calls, and every distinct polished
     minimum with its chi-square)."""
     system, paths, curve, settings = problem.start, problem.paths, problem.curve, problem.search
-    p0 = fit_plan(problem, system, curve.ranges)
-    norm, p = thinned(p0, curve)
+    searched = ray_traced(problem)
+    norm, p = thinned(fit_plan(searched, system, curve.ranges), curve)
     start = np.array([_parameters.get(system, path) for path in paths])
-    box = search_bounds(system, paths, start, problem.bounds)
+    dark = not np.any(curves(p, [system])[0][: norm.ranges.size] > 0)
+    box = search_bounds(system, paths, start, problem.bounds, dark)
     low, high = parameter_bounds(system, paths, start, box)
     logs = np.array([_parameters.searched_in_log(path, lo) for path, lo in zip(paths, low)])
     cube = UnitCube(low, high, logs)
@@ -79,12 +94,19 @@ def fit_global(problem: FitProblem):
         trial = _parameters.replace(system, dict(zip(paths, values(u_all[i][None])[0].tolist())))
         with warnings.catch_warnings(record=True) as record:
             warnings.simplefilter("always")
-            local = polish(problem.derived(start=trial, bounds=given, allow_unconverged=True))
+            local = polish(searched.derived(start=trial, bounds=given, allow_unconverged=True))
         fits.append((local, float(c_all[i])))
         caught.append(record)
     order = _distinct_fits(fits, paths, a, b, logs)
-    best = fits[order[0]][0]
-    for item in caught[order[0]]:
+    best, record = fits[order[0]][0], caught[order[0]]
+    refined = 0
+    if searched is not problem:  # the best valley, polished on the fit's own model
+        trial = _parameters.replace(system, best.parameters)
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            best = polish(problem.derived(start=trial, bounds=given, allow_unconverged=True))
+        refined = best.evaluations
+    for item in record:
         warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
     if not best.converged and not problem.allow_unconverged:
         raise RuntimeError(
@@ -92,21 +114,41 @@ def fit_global(problem: FitProblem):
             f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
         )
     report = SearchReport(
-        method="differential evolution",
+        method="differential evolution"
+        + ("" if searched is problem else ", candidates ray traced (the best refined on FO)"),
         seed=settings.seed,
         population=int(np.asarray(solution.population).shape[0]),
         generations=int(solution.nit),
         candidates=int(c_all.size),
         core_calls=calls,
-        local_evaluations=sum(f.evaluations for f, _ in fits),
+        local_evaluations=sum(f.evaluations for f, _ in fits) + refined,
         minima=tuple(
             SearchMinimum(f.parameters, f.chi_square, candidate, f.converged, f.evaluations)
             for f, candidate in (fits[j] for j in order)
         ),
         bounds={path: given[path] for path in paths},
+        chosen=tuple(path for path in paths if not _named(path, problem.bounds)),
+        dark_start=dark,
     )
-    evaluations = int(c_all.size) + sum(f.evaluations for f, _ in fits)
+    evaluations = int(c_all.size) + sum(f.evaluations for f, _ in fits) + refined
     return with_search(best, report, evaluations)
+
+
+def ray_traced(problem: FitProblem) -> FitProblem:
+    """The problem the search and the polish of its candidates run: ``problem`` itself, or the same
+    on ray tracing at its tolerance when its plan is Fourier optics of a system ray tracing models
+    (a valley's place does not need diffraction's percent of G, and a generation is then one
+    batched call; the best valley is then polished on the plan's own model)."""
+    if fit_plan(problem, problem.start, problem.curve.ranges).method != "fo":
+        return problem
+    traced = problem.derived(method=RT(tolerance=problem.tolerance))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # RT's validity: the refinement on FO answers it
+            plan = fit_plan(traced, problem.start, problem.curve.ranges)
+    except ValueError:  # a system only Fourier optics models
+        return problem
+    return traced if plan.method == "rt" else problem
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,12 +198,19 @@ def population_search(cost, cube: UnitCube, start, settings: Search):
         seen_cost.append(c)
         return c
 
+    def gathered(intermediate_result) -> bool:  # scipy's population, in the unit cube
+        return bool(np.all(np.ptp(intermediate_result.population, axis=0) <= SPREAD))
+
     solution = optimize.differential_evolution(
         unit_cost,
         [(0.0, 1.0)] * k,
         popsize=max(1, math.ceil(population / k)),
         maxiter=settings.generations,
-        tol=TOLERANCE,
+        # scipy's own test (the costs' spread below atol + tol x their mean) never passes: the
+        # population's spread decides, in gathered
+        tol=0.0,
+        atol=-math.inf,
+        callback=gathered,
         seed=settings.seed,
         polish=False,
         init="latinhypercube",
@@ -191,16 +240,23 @@ def thinned(p0, curve: Curve):
     return norm, extended_plan(p, norm)
 
 
-def search_bounds(system, paths, start, bounds) -> Dict[str, Tuple[float, float]]:
+def search_bounds(
+    system, paths, start, bounds, dark: bool = False
+) -> Dict[str, Tuple[float, float]]:
     """The bounds the search uses: those given, else the parameter table's search box where it has
     one (the tilt: start ± TILT_FIELDS r_d / f, within the fit's ±MAX_TILT), else the fit's
-    defaults."""
+    defaults. From a ``dark`` start (its model zero at every fitted range) no box about it: the
+    fit's defaults, since no candidate near a start that sees no light tells the search anything."""
     out = dict(bounds or {})
     for path, x0 in zip(paths, start):
-        named = path in out or path.split("[")[0] in out
-        if not named and _parameters.describe(path).search_bounds is not None:
+        if not dark and not _named(path, out) and _parameters.describe(path).search_bounds:
             out[path] = _parameters.search_bounds(system, path, x0)
     return out
+
+
+def _named(path: str, bounds) -> bool:
+    """Whether ``bounds`` (as given to the fit) name ``path``, or the pair it belongs to."""
+    return bool(bounds) and (path in bounds or path.split("[")[0] in bounds)
 
 
 def _distinct_fits(fits, paths, a, b, logs) -> list:

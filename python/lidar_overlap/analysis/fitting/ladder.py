@@ -18,6 +18,13 @@ also says whether it reaches the noise: chi²/dof within ``CHI2_SIGMAS`` standar
 sqrt(2/dof) of 1, and the residuals' signs not in fewer runs than chance gives (one-sided
 Wald-Wolfowitz runs test, p > ``RUNS_P``). When none does, the result says so: the curve needs a
 model the ladder does not have.
+
+Cost. Each family runs the global search with the fit's own search settings, so ``generations``,
+``population``, ``minima`` and ``max_evaluations`` of ``lo.fit`` search longer (or shorter) in every
+family. A fit planned on Fourier optics (auto's choice where diffraction at the receiver matters)
+searches on ray tracing and refines on Fourier optics
+(:mod:`~lidar_overlap.analysis.fitting.global_search`); its local fits on Fourier optics remain the
+ladder's costliest part (about 1-2 CPU minutes on a 100-150 point PollyXT curve).
 """
 
 from __future__ import annotations
@@ -29,14 +36,15 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ... import _checks
+from ... import _checks, _values
+from ..._pickling import ByArguments, ByValue
 from ...model import parameters as _parameters
 from .families import LADDER, Family
 from .global_result import with_search
 from .global_search import fit_global
 from .problem import FitProblem
 from .relative import polish
-from .result import DegeneracyWarning
+from .result import DegeneracyWarning, FitResult
 from .verdict import FitQualityWarning
 
 #: BIC differences below this are no evidence (Kass and Raftery's "not worth more than a mention").
@@ -57,7 +65,7 @@ class FailedFit:
 
 
 @dataclass(frozen=True, eq=False)
-class FamilyScore:
+class FamilyScore(ByValue, ByArguments):
     """One family's fit: ``family``, ``fit`` (its FitResult), ``k``, ``bic``, ``chi2_dof``,
     ``runs_p`` (one-sided runs test of the residual signs), ``reaches_noise``; ``dropped``: paths
     the system cannot free (a numerical aperture of None); ``supported``: every parameter has a
@@ -74,9 +82,30 @@ class FamilyScore:
     dropped: Tuple[str, ...]
     supported: bool = True
 
+    def __post_init__(self) -> None:
+        _kind("family", self.family, Family, "a Family of the ladder")
+        _kind("fit", self.fit, FitResult, "the family's FitResult")
+        _values.check(
+            self,
+            {
+                "k": _values.count(0),
+                "bic": _values.real(),
+                "chi2_dof": _values.real(low=0.0, nan=True, inf=True),
+                "runs_p": _values.real(low=0.0),
+                "reaches_noise": _values.flag,
+                "supported": _values.flag,
+            },
+        )
+        if not self.runs_p <= 1.0:
+            raise _checks.refused("runs_p", self.runs_p, "a p-value from 0 to 1")
+        if not isinstance(self.dropped, (tuple, list)):
+            raise _checks.refused("dropped", self.dropped, "a tuple of parameter paths")
+        dropped = tuple(_values.text(f"dropped[{i}]", p) for i, p in enumerate(self.dropped))
+        object.__setattr__(self, "dropped", dropped)
+
 
 @dataclass(frozen=True, eq=False)
-class LadderResult:
+class LadderResult(ByValue, ByArguments):
     """The ladder's outcome: ``chosen`` (the FitResult of the family chosen), ``chosen_family``,
     ``scores`` (every family, simplest first), ``criterion`` ("BIC") and ``note`` (None, or why no
     family reaches the noise)."""
@@ -86,6 +115,23 @@ class LadderResult:
     scores: Tuple[FamilyScore, ...]
     criterion: str
     note: Optional[str]
+
+    def __post_init__(self) -> None:
+        _kind("chosen", self.chosen, FitResult, "the chosen family's FitResult")
+        _kind("chosen_family", self.chosen_family, Family, "a Family of the ladder")
+        if not isinstance(self.scores, (tuple, list)) or not self.scores:
+            raise _checks.refused("scores", self.scores, "a tuple of FamilyScore, one per family")
+        for i, score in enumerate(self.scores):
+            _kind(f"scores[{i}]", score, FamilyScore, "a FamilyScore")
+        object.__setattr__(self, "scores", tuple(self.scores))
+        if not any(s.family == self.chosen_family and s.fit == self.chosen for s in self.scores):
+            raise _checks.refused(
+                "chosen_family", self.chosen_family, "the family of one of scores, chosen its fit"
+            )
+        if self.criterion != "BIC":
+            raise _checks.refused("criterion", self.criterion, "'BIC'")
+        if self.note is not None:
+            _values.text("note", self.note)
 
     def summary(self) -> str:
         lines = [f"model ladder ({self.criterion}): chosen '{self.chosen_family.name}'"]
@@ -106,6 +152,11 @@ class LadderResult:
         return "\n".join(lines) + "\n" + self.chosen.summary()
 
     __str__ = summary
+
+
+def _kind(name: str, value, kind: type, expected: str) -> None:
+    if not isinstance(value, kind):
+        raise _checks.refused(name, value, expected)
 
 
 def runs_p_value(residuals) -> float:
@@ -219,9 +270,11 @@ def _score(system, family: Family, f) -> FamilyScore:
 
 
 def _from_larger_families(problem: FitProblem, families, fits) -> list:
-    """Each family's fit, replaced by a local fit of its own paths from a larger family's solution
-    when that ends lower: a larger family's search may find a valley the smaller one's missed, and
-    the smaller family can reach it too when the extra parameters do not matter there."""
+    """Each family's fit, replaced by a local fit of its own paths from the best solution of the
+    larger families when that ends lower: a larger family's search may find a valley the smaller
+    one's missed, and the smaller family can reach it too when the extra parameters do not matter
+    there. (From the best only: each refit is a local fit of the fit's own model, the ladder's
+    costliest step.)"""
     out = list(fits)
     for i in range(len(families) - 2, -1, -1):
         if isinstance(out[i], FailedFit):
@@ -229,19 +282,24 @@ def _from_larger_families(problem: FitProblem, families, fits) -> list:
         model = families[i].model(problem.start)
         paths = [p for p in families[i].paths if _freeable(model, p)]
         given = _family_bounds(families[i], model, paths, problem.bounds)
-        for j in range(i + 1, len(families)):
-            if isinstance(out[j], FailedFit) or not out[j].chi_square < out[i].chi_square:
-                continue
-            if not set(paths) <= set(out[j].parameters):  # not a larger model of family i's
-                continue
-            start = _parameters.replace(model, {p: out[j].parameters[p] for p in paths})
-            local = problem.derived(start=start, free=paths, bounds=given, allow_unconverged=True)
-            try:
-                g = polish(local)
-            except ValueError:  # that start lies outside the smaller family's bounds
-                continue
-            if g.chi_square < out[i].chi_square:
-                out[i] = with_search(g, out[i].search, out[i].evaluations + g.evaluations)
+        larger = [
+            out[j]
+            for j in range(i + 1, len(families))
+            if not isinstance(out[j], FailedFit)
+            and out[j].chi_square < out[i].chi_square
+            and set(paths) <= set(out[j].parameters)  # a larger model of family i's
+        ]
+        if not larger:
+            continue
+        better = min(larger, key=lambda f: f.chi_square)
+        start = _parameters.replace(model, {p: better.parameters[p] for p in paths})
+        local = problem.derived(start=start, free=paths, bounds=given, allow_unconverged=True)
+        try:
+            g = polish(local)
+        except ValueError:  # that start lies outside the smaller family's bounds
+            continue
+        if g.chi_square < out[i].chi_square:
+            out[i] = with_search(g, out[i].search, out[i].evaluations + g.evaluations)
     return out
 
 

@@ -248,16 +248,17 @@ def normalization(
             f"normalize = {_checks.shown(normalize)} is invalid: expected None, 'far' or (z_low, "
             "z_high) in m"
         ) from None
-    if not (z_low < z_high and z_low >= z[0] and z_high <= z[-1]):
+    if not z_low < z_high:
         raise ValueError(
-            f"normalize = ({z_low:g}, {z_high:g}) m is invalid: expected z_low < z_high within the "
-            f"measured ranges [{z[0]:g}, {z[-1]:g}] m"
+            f"normalize = ({z_low:g}, {z_high:g}) m is invalid: expected z_low < z_high"
         )
+    # the interval selects the measured points within it: it may reach past the data's ends
     inside = (z >= z_low) & (z <= z_high)
     if inside.sum() < MIN_INTERVAL_POINTS:
         raise ValueError(
-            f"normalize = ({z_low:g}, {z_high:g}) m holds {int(inside.sum())} measured points: "
-            f"expected at least {MIN_INTERVAL_POINTS}; widen the interval"
+            f"normalize = ({z_low:g}, {z_high:g}) m holds {int(inside.sum())} measured points "
+            f"(the data span [{z[0]:g}, {z[-1]:g}] m): expected at least {MIN_INTERVAL_POINTS}; "
+            "widen or move the interval"
         )
     mean = float(y[inside].mean())
     if not mean > 0:
@@ -266,7 +267,18 @@ def normalization(
             "0 (choose an interval where the signal is in the field of view)"
         )
     data = y / mean
-    whitening = _whitening(data.tobytes(), inside.tobytes(), w.tobytes(), mean)
+    try:
+        whitening = _whitening(data.tobytes(), inside.tobytes(), w.tobytes(), mean)
+    except FloatingPointError:
+        raise _checks.refused(
+            "measured",
+            mean,
+            "data and sigma on comparable scales",
+            f"measured: the data's mean over normalize = ({z_low:g}, {z_high:g}) m is {mean:g} and "
+            f"sigma reaches {float(w.max()):g}: the normalised errors sigma / mean overflow double "
+            "precision; expected data and sigma on comparable scales (a relative curve is about 1 "
+            "in the far range: rescale the data)",
+        ) from None
     return Normalization(
         "interval", (z_low, z_high), z, np.empty(0), inside, data, w / mean, mean, whitening
     )
@@ -281,7 +293,10 @@ def _whitening(data: bytes, inside: bytes, sigma: bytes, mean: float) -> np.ndar
     e = np.frombuffer(inside, dtype=bool)
     w = np.frombuffer(sigma)
     a = (np.eye(y.size) - np.outer(y, e / e.sum())) / mean
-    cov = (a * w**2) @ a.T
+    with np.errstate(over="raise", invalid="raise"):  # data of 1e-300 with unit weights
+        cov = (a * w**2) @ a.T
+    if not np.isfinite(cov).all():
+        raise FloatingPointError("the normalised covariance overflows")
     values, vectors = np.linalg.eigh(cov)
     keep = values > RANK_TOLERANCE * values[-1]
     out = (vectors[:, keep] / np.sqrt(values[keep])).T

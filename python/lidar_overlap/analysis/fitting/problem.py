@@ -206,7 +206,7 @@ def fit_settings(
         tolerance=model_tolerance(tolerance),
         loss=_checks.choice("loss", loss, LOSSES),
         max_evaluations=_checks.count("max_evaluations", max_evaluations, 1),
-        allow_unconverged=allow_unconverged,
+        allow_unconverged=_checks.flag("allow_unconverged", allow_unconverged),
         threads=threads,
     )
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Optional
 
-from ... import _checks
+from ... import _checks, _core
 from ..result import OverlapResult
 from . import aberrated, batch, fo, masked, mixture, rt, turbulent, turbulent_parts
 
@@ -174,10 +174,28 @@ def run(plan) -> OverlapResult:
         )
     for message in plan.warnings:
         _checks.warn(message)
-    result = entry.run(plan)
+    try:
+        result = entry.run(plan)
+    except MemoryError as exc:  # the core's std::bad_alloc: a budget above the machine's memory
+        raise _out_of_memory(plan, exc) from None
     if plan.turbulence is not None and not entry.turbulence:
         return turbulent.without_turbulence(plan, result)
     return result
+
+
+def _out_of_memory(plan, exc: MemoryError) -> MemoryError:
+    """``exc`` of the core, said with the grid that asked for the memory and the budget that let
+    it try."""
+    grid = getattr(plan.options, "beam_grid", None)
+    sized = f" on a beam grid of {grid}² samples" if grid is not None else ""
+    budget = _core.max_memory() / 2**30
+    return MemoryError(
+        f"the {plan.backend} run{sized} for {plan.ranges.size} ranges could not allocate its "
+        f"arrays ({exc}): the memory budget, {budget:.6g} GiB (set_max_memory), is above what this "
+        "machine can give; lower beam_grid or the ranges, or call set_max_memory(0) to restore "
+        "the default budget (a quarter of the physical memory), under which the call is refused "
+        "before it starts"
+    )
 
 
 def _run_mixture(plan) -> OverlapResult:
