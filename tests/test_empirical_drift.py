@@ -93,3 +93,15 @@ def test_bad_input_is_refused_by_name(change, match):
     arguments.update(change)
     with pytest.raises(ValueError, match=match):
         lo.empirical_drift(**arguments)
+
+
+def test_a_prediction_that_overflows_is_refused_naming_the_covariate():
+    z = np.array([100.0, 200.0, 300.0])
+    t = np.array([270.0, 280.0, 290.0, 300.0])
+    curves = np.exp(0.01 * np.outer(t - 285.0, [1.0, 2.0, 3.0])) * 0.5
+    model = lo.empirical_drift(z, curves, t, np.full(3, 0.5))
+    assert np.all(np.isfinite(model.predict(z, [250.0, 320.0])))
+    with pytest.raises(
+        lo.ParameterError, match=r"^covariate\[1\] = 1e\+300 is invalid: .*270 to 300"
+    ):
+        model.predict(z, [280.0, 1e300])

@@ -65,9 +65,12 @@ def test_auto_gives_fourier_optics_the_grid_the_scene_needs():
     assert f"beam grid of {needed}" in str(p)
     res = lo.overlap(system, z, request)
     assert np.all(np.isfinite(res.overlap))
-    # the explicit FO on the default grid is what the core refuses, naming the size auto took
+    # an FO without a grid takes the same least grid; a grid below it is refused, naming that size
+    explicit = lo.plan(system, z, lo.Turbulent(air, lo.FO(), realizations=1, screens=2))
+    assert explicit.options.beam_grid == needed
+    too_small = lo.FO(beam_grid=auto.DEFAULT_TURBULENT_GRID)
     with pytest.raises(ValueError, match=f"beam_grid.*>= {needed}"):
-        lo.overlap(system, z, lo.Turbulent(air, lo.FO(), realizations=1, screens=2))
+        lo.overlap(system, z, lo.Turbulent(air, too_small, realizations=1, screens=2))
 
 
 def test_memory_budget_and_a_given_grid_also_send_auto_to_ray_tracing():

@@ -102,8 +102,18 @@ class EmpiricalDrift(ByValue):
                 f"{self.ranges.size} gates ({self.ranges[0]:g} to {self.ranges[-1]:g} m); the "
                 "per-gate model is not interpolated"
             )
-        log_ratio = self.intercept[index] + np.outer(x - self.center, self.slope[index])
-        return self.reference[index] * np.exp(log_ratio)
+        with np.errstate(over="ignore", invalid="ignore"):
+            log_ratio = self.intercept[index] + np.outer(x - self.center, self.slope[index])
+            g = self.reference[index] * np.exp(log_ratio)
+        if not np.all(np.isfinite(g)):
+            i = int(np.argmax(~np.all(np.isfinite(g), axis=1)))
+            raise _checks.refused(
+                f"covariate[{i}]",
+                float(x[i]),
+                "a value at which the model's G is finite (the training covariates span "
+                f"{self.covariate_range[0]:g} to {self.covariate_range[1]:g})",
+            )
+        return g
 
 
 def empirical_drift(ranges, curves, covariate, reference) -> EmpiricalDrift:
