@@ -25,7 +25,7 @@ from .families import LADDER
 from .joint_result import JointFitResult, joint_result
 from .ladder import BIC_TIE
 from .multi_curve import CurveSet, MultiCurveFit, solve_curves
-from .multi_inputs import checked_bounds, has_path, joint_problem
+from .multi_inputs import checked_bounds, has_path, joint_names, joint_problem, path_of
 from .multi_result import bic_of
 from .multi_search import fit_curves
 
@@ -33,14 +33,10 @@ from .multi_search import fit_curves
 FAMILIES = tuple(f for f in LADDER if f.extend is None)[:3]
 
 
-def _names(shared, own, n: int) -> List[str]:
-    return list(shared) + [f"{p}@{i}" for p in own for i in range(n)]
-
-
 def _start(fit: MultiCurveFit, names) -> dict:
     """``names``' start values from ``fit``: a per-curve name from its own or its shared value."""
     values = dict(zip(fit.problem.names, fit.values.tolist()))
-    return {n: values[n] if n in values else values[n.split("@")[0]] for n in names}
+    return {n: values[n] if n in values else values[path_of(n)] for n in names}
 
 
 def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
@@ -75,7 +71,7 @@ def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
         f"(BIC {bic:.2f})"
     )
     shared = [q for q in paths if q not in own]
-    start = _start(best, _names(shared, own, len(systems)))
+    start = _start(best, joint_names(shared, own, len(systems)))
     final = solve_curves(joint_problem(settings, systems, shared, own, given, start))
     return joint_result(final, family.name, choices)
 
@@ -90,7 +86,7 @@ def _per_curve(settings, systems, paths, given, fit, choices):
         drops = _linear_drops(settings, systems, paths, own, candidates, given, best)
         p = max(drops, key=lambda q: drops[q])
         shared = [q for q in paths if q not in own + [p]]
-        start = _start(best, _names(shared, own + [p], n))
+        start = _start(best, joint_names(shared, own + [p], n))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             trial = solve_curves(joint_problem(settings, systems, shared, own + [p], given, start))
@@ -109,25 +105,25 @@ def _linear_drops(settings, systems, paths, own, candidates, given, fit) -> dict
     value per curve}: one Jacobian with every candidate split ranks them."""
     n = len(systems)
     shared = [q for q in paths if q not in own + candidates]
-    names = _names(shared, own + candidates, n)
+    names = joint_names(shared, own + candidates, n)
     problem = joint_problem(settings, systems, shared, own + candidates, given, _start(fit, names))
     model = CurveSet(problem)
     r = model.residuals(problem.start)
     j = model.jacobian(problem.start)
     drops = {}
-    fixed = [a for a, name in enumerate(names) if name.split("@")[0] not in candidates]
+    fixed = [a for a, name in enumerate(names) if path_of(name) not in candidates]
     summed = [
-        j[:, [a for a, name in enumerate(names) if name.split("@")[0] == q]].sum(axis=1)
+        j[:, [a for a, name in enumerate(names) if path_of(name) == q]].sum(axis=1)
         for q in candidates
     ]
     # the step with every candidate still shared: what the current solution would gain anyway
     base = _step_drop(np.column_stack([j[:, fixed], *summed]), r)
     for p in candidates:
-        keep = [a for a, name in enumerate(names) if name.split("@")[0] not in candidates]
-        keep += [a for a, name in enumerate(names) if name.split("@")[0] == p]
+        keep = [a for a, name in enumerate(names) if path_of(name) not in candidates]
+        keep += [a for a, name in enumerate(names) if path_of(name) == p]
         # the other candidates stay shared: their per-curve columns summed
         others = [
-            j[:, [a for a, name in enumerate(names) if name.split("@")[0] == q]].sum(axis=1)
+            j[:, [a for a, name in enumerate(names) if path_of(name) == q]].sum(axis=1)
             for q in candidates
             if q != p
         ]

@@ -15,6 +15,7 @@ from . import multi_result
 from .global_result import SearchReport
 from .ladder import runs_p_value
 from .multi_curve import MultiCurveFit
+from .multi_inputs import path_of
 from .multi_result import reduced, verdict_lines
 from .result import FitResult
 
@@ -108,7 +109,7 @@ class JointFitResult(ByValue):
             + (f"; family '{self.family}'" if self.family else "")
         ]
         for name, value in self.parameters.items():
-            unit = _parameters.unit(name.split("@")[0])
+            unit = _parameters.unit(path_of(name))
             lines.append(
                 f"  {name:<24} {value:+.6g} ± {self.uncertainties[name]:.3g} {unit}  (start "
                 f"{self.start[name]:+.6g})"
@@ -127,8 +128,8 @@ class JointFitResult(ByValue):
 def joint_result(fit: MultiCurveFit, family=None, choices=()) -> JointFitResult:
     """The :class:`JointFitResult` of the driver's fit."""
     names = fit.problem.names
-    shared = tuple(n for n in names if "@" not in n)
-    own = tuple(dict.fromkeys(n.split("@")[0] for n in names if "@" in n))
+    shared = tuple(n for n in names if path_of(n) == n)
+    own = tuple(dict.fromkeys(path_of(n) for n in names if path_of(n) != n))
     dof = fit.degrees_of_freedom
     return JointFitResult(
         curves=fit.fits,

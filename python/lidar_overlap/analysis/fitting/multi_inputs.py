@@ -153,11 +153,22 @@ def checked_bounds(bounds, paths) -> Optional[dict]:
     return out
 
 
+def joint_names(shared, own, n: int) -> List[str]:
+    """The names of a joint fit's parameters: the ``shared`` paths, then each path of ``own`` once
+    per curve of ``n`` (``path@i``: ``path`` of curve i)."""
+    return list(shared) + [f"{p}@{i}" for p in own for i in range(n)]
+
+
+def path_of(name: str) -> str:
+    """The system path a joint fit's parameter ``name`` stands for (``path@i``: ``path``)."""
+    return name.partition("@")[0]
+
+
 def joint_problem(settings, systems, shared, own, bounds, start=None) -> MultiCurveProblem:
     """The multi-curve problem of shared and per-curve paths (module docstring's names); ``start``
     {name: value} overrides the systems' values."""
     n = len(systems)
-    names = list(shared) + [f"{p}@{i}" for p in own for i in range(n)]
+    names = joint_names(shared, own, n)
     k = len(names)
     paths = tuple(shared) + tuple(own)
     maps = []
