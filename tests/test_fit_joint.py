@@ -206,3 +206,34 @@ def test_auto_chooses_the_family_and_splits_the_divergence_per_channel():
     for i, d in enumerate(DIVERGENCE):
         name = f"beam.divergence@{i}"
         assert abs(joint.parameters[name] - d) < PULL * joint.uncertainties[name]
+
+
+def test_an_unconstrained_per_curve_parameter_is_infinite_only_where_it_is_used():
+    # an acceptance of 0.45 cuts no ray of these systems: the data cannot constrain it, which
+    # makes its uncertainty infinite, and the shared and the other curve's own values keep theirs
+    systems = [parameters.replace(s, {"detector.numerical_aperture": 0.45}) for s in _systems()]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        joint = lo.fit_joint(
+            systems, [Z, Z], _curves(10), sigma=list(SIGMA), shared=SHARED,
+            per_curve=["detector.numerical_aperture"], normalize=INTERVAL, **FAST,
+        )  # fmt: skip
+    for i in range(2):
+        assert joint.uncertainties[f"detector.numerical_aperture@{i}"] == np.inf
+        assert joint.curves[i].uncertainties["detector.numerical_aperture"] == np.inf
+        assert not np.isnan(joint.curves[i].uncertainties["beam.tilt[0]"])
+
+
+def test_mapped_covariance_leaves_out_the_terms_of_zero_weight():
+    from lidar_overlap.analysis.fitting.multi_curve import mapped_covariance
+
+    cov = np.array([[4.0, 1.0, 0.0], [1.0, 9.0, np.inf], [0.0, np.inf, np.inf]])
+    shared_and_own = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])  # θ0 shared, θ1 this curve's
+    # θ2 (unconstrained) is another curve's: this curve's covariance is the plain product's block
+    np.testing.assert_array_equal(mapped_covariance(shared_and_own, cov), cov[:2, :2])
+    drift = np.array([[0.0, 1.0, 2.0]])  # θ1 + 2 θ2: it uses the unconstrained one
+    assert mapped_covariance(drift, cov)[0, 0] == np.inf
+    finite = np.array([[1.0, 0.5, 0.0], [0.0, 1.0, 0.0]])
+    np.testing.assert_allclose(
+        mapped_covariance(finite, cov), finite[:, :2] @ cov[:2, :2] @ finite[:, :2].T, rtol=1e-15
+    )

@@ -297,7 +297,7 @@ def _curve_fits(problem, model: CurveSet, theta, cov, local, counts, solution) -
     for i, (m, curve, norm) in enumerate(zip(maps, settings.curves, model.norms)):
         p = model.plans[i]
         kept = run(p.with_system(systems[i]))
-        c_local = m.matrix @ cov @ m.matrix.T
+        c_local = mapped_covariance(m.matrix, cov)
         sd = np.sqrt(np.diag(c_local))
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = c_local / np.outer(sd, sd)
@@ -344,6 +344,17 @@ def _curve_fits(problem, model: CurveSet, theta, cov, local, counts, solution) -
             warnings.simplefilter("ignore")  # a δα on its bound: said by the joint result
             out.append(relative_result(settings.derived(curves=(curve,)), raw, norm, parts))
     return tuple(out)
+
+
+def mapped_covariance(matrix: np.ndarray, cov: np.ndarray) -> np.ndarray:
+    """``matrix`` @ ``cov`` @ ``matrix``ᵀ with the terms of zero weight left out: a parameter the
+    data leave unconstrained (infinite variance) makes infinite only the values that use it, not
+    NaN (0 x inf) every value of the curve; a sum of unconstrained terms (inf - inf) is one too."""
+    weights = matrix[:, None, :, None] * matrix[None, :, None, :]  # (P, P, K, K)
+    with np.errstate(invalid="ignore"):
+        terms = np.where(weights != 0.0, weights * cov[None, None], 0.0)
+        out = terms.sum(axis=(2, 3))
+    return np.where(np.isnan(out), np.inf, out)
 
 
 def _absolute(raw: FitResult, curve) -> FitResult:
