@@ -208,6 +208,65 @@ def test_auto_chooses_the_family_and_splits_the_divergence_per_channel():
         assert abs(joint.parameters[name] - d) < PULL * joint.uncertainties[name]
 
 
+def _fo_curves(seed):
+    """The two channels' relative curves on Fourier optics (auto's plan for these systems)."""
+    rng = np.random.default_rng(seed)
+    out = []
+    for system, sigma in zip(_systems(), SIGMA):
+        g = lo.overlap(system, Z, "fo", tolerance=1e-4).overlap
+        out.append(g / g[Z >= INTERVAL[0]].mean() + rng.normal(0.0, sigma, Z.size))
+    return out
+
+
+#: A planned-on-FO fit's settings: auto's plan (Fourier optics for the PollyXT receiver).
+ON_FO = dict(method="auto", tolerance=2e-3, threads=1)
+
+
+def test_a_search_planned_on_fo_runs_on_rt_and_refines_its_best_on_fo():
+    curves = _fo_curves(9)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        joint = lo.fit_joint(
+            _systems(False), [Z, Z], curves, sigma=list(SIGMA), shared=SHARED,
+            per_curve=["beam.divergence"], normalize=INTERVAL, search="global", seed=3,
+            population=10, generations=3, minima=2, **ON_FO,
+        )  # fmt: skip
+        # the same fit, local on FO from the search's best (ray-traced) minimum
+        best = joint.search.minima[0].parameters
+        systems = [parameters.replace(s, {p: best[p] for p in SHARED}) for s in _systems(False)]
+        systems = [
+            parameters.replace(s, {"beam.divergence": best[f"beam.divergence@{i}"]})
+            for i, s in enumerate(systems)
+        ]
+        local = lo.fit_joint(
+            systems, [Z, Z], curves, sigma=list(SIGMA), shared=SHARED,
+            per_curve=["beam.divergence"], normalize=INTERVAL, **ON_FO,
+        )  # fmt: skip
+    assert "ray traced" in joint.search.method
+    assert all(c.plan.method == "fo" for c in joint.curves)
+    assert joint.chi_square == pytest.approx(local.chi_square, rel=1e-9)
+    # the refinement is counted among the search's local evaluations
+    assert joint.search.local_evaluations > sum(m.evaluations for m in joint.search.minima)
+    for path in SHARED:
+        assert abs(joint.parameters[path] - TRUE[path]) < PULL * joint.uncertainties[path]
+
+
+def test_auto_planned_on_fo_chooses_on_rt_and_fits_the_chosen_family_on_fo():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        joint = lo.fit_joint(
+            _systems(False), [Z, Z], _fo_curves(8), sigma=list(SIGMA), free="auto",
+            normalize=INTERVAL, seed=1, population=10, generations=3, **ON_FO,
+        )  # fmt: skip
+    assert all(c.plan.method == "fo" for c in joint.curves)
+    assert "beam.divergence" in joint.per_curve
+    # every fit of the choice is counted: the search's candidates alone are 10 per generation
+    assert joint.evaluations > 10 * 3
+    for i, d in enumerate(DIVERGENCE):
+        name = f"beam.divergence@{i}"
+        assert abs(joint.parameters[name] - d) < PULL * joint.uncertainties[name]
+
+
 def test_an_unconstrained_per_curve_parameter_is_infinite_only_where_it_is_used():
     # an acceptance of 0.45 cuts no ray of these systems: the data cannot constrain it, which
     # makes its uncertainty infinite, and the shared and the other curve's own values keep theirs

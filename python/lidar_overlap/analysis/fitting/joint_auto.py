@@ -10,6 +10,12 @@ shared (one Jacobian ranks them all); the best is fitted and taken when it lower
 than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is chosen (a
 simpler one within ``BIC_TIE`` preferred). Cost: one search, and per family at most k + 1 local
 fits and k Jacobians (k paths).
+
+Model. A fit planned on Fourier optics of systems ray tracing models makes its whole choice on ray
+tracing at its tolerance (as the single search compares and polishes its candidates,
+:mod:`.multi_search`) and fits only the chosen family on its own plans. The result's
+``evaluations`` count every model evaluation of the choice (the search's candidates, each family's
+fits, the final fit), as a ladder's scores do.
 """
 
 from __future__ import annotations
@@ -27,7 +33,7 @@ from .ladder import BIC_TIE
 from .multi_curve import CurveSet, MultiCurveFit, solve_curves
 from .multi_inputs import checked_bounds, has_path, joint_names, joint_problem, path_of
 from .multi_result import bic_of
-from .multi_search import fit_curves
+from .multi_search import fit_curves, ray_traced_settings
 
 #: The families tried: those of the ladder that do not extend the model.
 FAMILIES = tuple(f for f in LADDER if f.extend is None)[:3]
@@ -41,9 +47,11 @@ def _start(fit: MultiCurveFit, names) -> dict:
 
 def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
     """The joint fit with its family and per-curve parameters chosen (module docstring)."""
-    quiet = settings.derived(allow_unconverged=True)
+    # the choice on ray tracing where the plans are Fourier optics; the chosen fit on the plans
+    quiet = ray_traced_settings(settings, systems).derived(allow_unconverged=True)
     choices: List[str] = []
     scored = []
+    spent = [0]  # the model evaluations of every fit the choice made
     previous = None
     for i, family in enumerate(FAMILIES):
         paths = tuple(p for p in family.paths if all(has_path(s, p) for s in systems))
@@ -57,11 +65,12 @@ def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # each family's verdicts: its score here
             shared_fit = fit_curves(joint_problem(local, systems, paths, (), given, start))
+        spent[0] += shared_fit.evaluations
         choices.append(
             f"family '{family.name}', all shared: chi-square {shared_fit.chi_square:.4g}, BIC "
             f"{bic_of(shared_fit):.2f}"
         )
-        fit, own = _per_curve(quiet, systems, paths, given, shared_fit, choices)
+        fit, own = _per_curve(quiet, systems, paths, given, shared_fit, choices, spent)
         scored.append((bic_of(fit), family, paths, own, given, fit))
         previous = shared_fit
     lowest = min(s[0] for s in scored)
@@ -73,23 +82,27 @@ def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
     shared = [q for q in paths if q not in own]
     start = _start(best, joint_names(shared, own, len(systems)))
     final = solve_curves(joint_problem(settings, systems, shared, own, given, start))
+    final = dataclasses.replace(final, evaluations=final.evaluations + spent[0])
     return joint_result(final, family.name, choices)
 
 
-def _per_curve(settings, systems, paths, given, fit, choices):
-    """(the fit, the per-curve paths) of the forward selection within one family."""
+def _per_curve(settings, systems, paths, given, fit, choices, spent):
+    """(the fit, the per-curve paths) of the forward selection within one family; ``spent[0]``
+    gains the model evaluations of its fits."""
     n = len(systems)
     own: List[str] = []
     best, best_bic = fit, bic_of(fit)
     while len(own) < len(paths):
         candidates = [p for p in paths if p not in own]
         drops = _linear_drops(settings, systems, paths, own, candidates, given, best)
+        spent[0] += 1  # the residuals it ranks from (its Jacobian counted apart, as a fit's are)
         p = max(drops, key=lambda q: drops[q])
         shared = [q for q in paths if q not in own + [p]]
         start = _start(best, joint_names(shared, own + [p], n))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             trial = solve_curves(joint_problem(settings, systems, shared, own + [p], given, start))
+        spent[0] += trial.evaluations
         bic = bic_of(trial)
         choices.append(f"  per-curve {', '.join(own + [p])}: chi-square {trial.chi_square:.4g}, "
                        f"BIC {bic:.2f}")  # fmt: skip

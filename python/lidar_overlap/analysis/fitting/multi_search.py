@@ -3,25 +3,35 @@
 the joint space, each candidate's cost the sum of the curves' whitened costs on thinned ranges (the
 curves of a group in one batched call per generation), then the local fit
 (:mod:`lidar_overlap.analysis.fitting.multi_curve`) from the best distinct minima; the best becomes
-the result, with the search's report."""
+the result, with the search's report.
+
+Model. As the single global search does (:func:`.global_search.ray_traced`): when some curve's plan
+is Fourier optics of a system ray tracing models, the candidates are compared and the minima
+polished on ray tracing at the fit's tolerance (a generation is then one batched call, not one FO
+curve per candidate), and the best minimum is then refined on the fit's own plans, which gives the
+result."""
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 
 import numpy as np
 
+from ...forward.methods import RT
 from ..batch_curves import curves as batch
 from .global_result import SearchMinimum, SearchReport
 from .global_search import UnitCube, distinct_minima, population_search
 from .multi_curve import CurveSet, MultiCurveFit, MultiCurveProblem, solve_curves
+from .solve import fit_plan
 
 
 def search_curves(problem: MultiCurveProblem) -> MultiCurveFit:
     """The global search over the joint space, then the local fit from its best distinct minima
     (module docstring); the best becomes the result, with the search's report."""
     settings = problem.settings
-    model = CurveSet(problem, thin=True)
+    searched = ray_traced_curves(problem)
+    model = CurveSet(searched, thin=True)
     cube = UnitCube(problem.search_low, problem.search_high, problem.logs)
 
     def cost(x):  # candidates (S, K) -> the sum of the curves' whitened costs
@@ -45,14 +55,20 @@ def search_curves(problem: MultiCurveProblem) -> MultiCurveFit:
     fits, caught = [], []
     for i in starts:
         theta = cube.values(u_all[i][None])[0]
-        local = _allow_unconverged(MultiCurveProblem(**{**problem.__dict__, "start": theta}))
+        local = _allow_unconverged(dataclasses.replace(searched, start=theta))
         with warnings.catch_warnings(record=True) as record:
             warnings.simplefilter("always")
             fits.append((solve_curves(local), float(c_all[i])))
         caught.append(record)
     order = sorted(range(len(fits)), key=lambda j: fits[j][0].chi_square)
-    best = fits[order[0]][0]
-    for item in caught[order[0]]:  # the best's warnings, said once
+    best, record, refined = fits[order[0]][0], caught[order[0]], 0
+    if searched is not problem:  # the best valley, refined on the fit's own plans
+        local = _allow_unconverged(dataclasses.replace(problem, start=best.values))
+        with warnings.catch_warnings(record=True) as record:
+            warnings.simplefilter("always")
+            best = solve_curves(local)
+        refined = best.evaluations
+    for item in record:  # the best's warnings, said once
         warnings.warn_explicit(item.message, item.category, item.filename, item.lineno)
     if not best.converged and not settings.allow_unconverged:
         raise RuntimeError(
@@ -60,13 +76,14 @@ def search_curves(problem: MultiCurveProblem) -> MultiCurveFit:
             f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
         )
     report = SearchReport(
-        method="differential evolution",
+        method="differential evolution"
+        + ("" if searched is problem else ", candidates ray traced (the best refined on FO)"),
         seed=settings.search.seed,
         population=int(np.asarray(solution.population).shape[0]),
         generations=int(solution.nit),
         candidates=int(c_all.size),
         core_calls=calls,
-        local_evaluations=sum(f.evaluations for f, _ in fits),
+        local_evaluations=sum(f.evaluations for f, _ in fits) + refined,
         minima=tuple(
             SearchMinimum(
                 dict(zip(problem.names, f.values.tolist())),
@@ -86,9 +103,33 @@ def search_curves(problem: MultiCurveProblem) -> MultiCurveFit:
     return MultiCurveFit(**{**best.__dict__, "search": report, "evaluations": evaluations})
 
 
+def ray_traced_curves(problem: MultiCurveProblem) -> MultiCurveProblem:
+    """The problem the search and the polish of its minima run: ``problem`` itself, or the same on
+    ray tracing (:func:`ray_traced_settings`)."""
+    traced = ray_traced_settings(problem.settings, [m.system for m in problem.maps])
+    return problem if traced is problem.settings else dataclasses.replace(problem, settings=traced)
+
+
+def ray_traced_settings(settings, systems):
+    """``settings`` (a FitProblem holding one curve per system of ``systems``) themselves, or the
+    same on ray tracing at their tolerance when some curve's plan is Fourier optics of a system ray
+    tracing models (module docstring) and every curve's plan then is ray tracing."""
+    pairs = list(zip(systems, settings.curves))
+    if all(fit_plan(settings, s, c.ranges).method != "fo" for s, c in pairs):
+        return settings
+    traced = settings.derived(method=RT(tolerance=settings.tolerance))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # RT's validity: the refinement on FO answers it
+            methods = {fit_plan(traced, s, c.ranges).method for s, c in pairs}
+    except ValueError:  # a system only Fourier optics models
+        return settings
+    return traced if methods == {"rt"} else settings
+
+
 def _allow_unconverged(problem: MultiCurveProblem) -> MultiCurveProblem:
     settings = problem.settings.derived(allow_unconverged=True)
-    return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
+    return dataclasses.replace(problem, settings=settings)
 
 
 def fit_curves(problem: MultiCurveProblem) -> MultiCurveFit:
