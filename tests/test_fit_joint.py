@@ -296,3 +296,26 @@ def test_mapped_covariance_leaves_out_the_terms_of_zero_weight():
     np.testing.assert_allclose(
         mapped_covariance(finite, cov), finite[:, :2] @ cov[:2, :2] @ finite[:, :2].T, rtol=1e-15
     )
+
+
+def test_auto_splits_per_curve_only_the_paths_allowed():
+    # the data ask for a per-curve divergence (the test above); allowed only the tilt per curve,
+    # the choice keeps the divergence shared and never tries it per curve
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        joint = lo.fit_joint(
+            _systems(False), [Z, Z], _curves(8), sigma=list(SIGMA), free="auto",
+            per_curve=["beam.tilt[0]"], normalize=INTERVAL, seed=1, population=10,
+            generations=4, **FAST,
+        )  # fmt: skip
+    assert set(joint.per_curve) <= {"beam.tilt[0]"}
+    tried = [line for line in joint.choices if line.strip().startswith("per-curve")]
+    assert tried and all(line.split(":")[0].strip() == "per-curve beam.tilt[0]" for line in tried)
+
+
+def test_auto_with_an_unknown_per_curve_path_is_a_clear_error():
+    with pytest.raises(ValueError, match="per_curve"):
+        lo.fit_joint(
+            _systems(False), [Z, Z], _curves(8), sigma=list(SIGMA), free="auto",
+            per_curve=["beam.nothing"], normalize=INTERVAL, **FAST,
+        )  # fmt: skip

@@ -64,10 +64,12 @@ def fit_joint(
     (z_low, z_high) in m for every curve, or a list of one per curve. extinction_bias : True fits
     each curve's retrieval extinction bias (with an interval normalisation; profiled per curve).
     free : ``"auto"`` chooses the family and which parameters are per-curve instead of ``shared``
-    and ``per_curve`` (:mod:`lidar_overlap.analysis.fitting.joint_auto`). bounds : {path: (low,
-    high)} in SI units for every curve's value of that path. method, tolerance, loss,
-    max_evaluations, allow_unconverged, threads, search (None or "local": from the start;
-    "global": one population search over the joint space, then the local fit), seed, population,
+    (:mod:`lidar_overlap.analysis.fitting.joint_auto`); ``per_curve`` then names the paths that may
+    be per-curve (those the instrument's physics lets differ between the curves; empty: any).
+    bounds : {path: (low, high)} in SI units for every curve's value of that path. method,
+    tolerance, loss, max_evaluations, allow_unconverged, threads, search (None or "local": from
+    the start; "global": one population search over the joint space, then the local fit), seed,
+    population,
     generations, minima : as in :func:`lidar_overlap.fit`. Returns a :class:`JointFitResult`.
     """
     n = _count(curves)
@@ -94,8 +96,9 @@ def fit_joint(
             "or 'auto'"
         )
     if auto:
+        allowed = checked_paths("per_curve", per_curve, systems, allow_empty=True) or None
         settings = _settings(systems[0], ("beam.tilt[0]",), data, the_search, **options)
-        return fit_joint_auto(settings, systems, checked_bounds_any(bounds))
+        return fit_joint_auto(settings, systems, checked_bounds_any(bounds), allowed)
     if shared is None:
         raise ValueError("shared is missing: give the paths all curves share, or free='auto'")
     own = checked_paths("per_curve", per_curve, systems, allow_empty=True)

@@ -1,15 +1,16 @@
 """``lo.fit_joint(..., free="auto")``: the family and which of its parameters are per-curve, chosen
 on the joint data by BIC = chi² + K ln n (n independent points of all curves, K global parameters).
 
-What it tries (bounded cost): each family of the ladder that does not extend the model (alignment;
-+ beam; + focus), first with every parameter shared (the first family by the joint global search,
-each next one from the one before's solution); then, within that family, forward selection of the
-per-curve parameters: the shared paths are ranked by the chi-square drop of one Gauss-Newton step
-from the current solution with that path split into one value per curve, beyond the step's with it
-shared (one Jacobian ranks them all); the best is fitted and taken when it lowers the BIC by more
-than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is chosen (a
-simpler one within ``BIC_TIE`` preferred). Cost: one search, and per family at most k + 1 local
-fits and k Jacobians (k paths).
+What it tries (bounded cost): each family of the ladder that does not extend the model (alignment; +
+beam; + focus), first with every parameter shared (the first family by the joint global search, each
+next one from the one before's solution); then, within that family, forward selection of the per-
+curve parameters: the shared paths are ranked by the chi-square drop of one Gauss-Newton step from
+the current solution with that path split into one value per curve, beyond the step's with it shared
+(one Jacobian ranks them all; only the paths ``per_curve`` allows, when given: those the
+instrument's physics lets differ between the curves); the best is fitted and taken when it lowers
+the BIC by more than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is
+chosen (a simpler one within ``BIC_TIE`` preferred). Cost: one search, and per family at most k + 1
+local fits and k Jacobians (k paths).
 
 Model. A fit planned on Fourier optics of systems ray tracing models makes its whole choice on ray
 tracing at its tolerance (as the single search compares and polishes its candidates,
@@ -45,8 +46,9 @@ def _start(fit: MultiCurveFit, names) -> dict:
     return {n: values[n] if n in values else values[path_of(n)] for n in names}
 
 
-def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
-    """The joint fit with its family and per-curve parameters chosen (module docstring)."""
+def fit_joint_auto(settings, systems, bounds, allowed=None) -> JointFitResult:
+    """The joint fit with its family and per-curve parameters chosen (module docstring); only the
+    paths of ``allowed`` may be per-curve (None: any of the family's)."""
     # the choice on ray tracing where the plans are Fourier optics; the chosen fit on the plans
     quiet = ray_traced_settings(settings, systems).derived(allow_unconverged=True)
     choices: List[str] = []
@@ -70,7 +72,7 @@ def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
             f"family '{family.name}', all shared: chi-square {shared_fit.chi_square:.4g}, BIC "
             f"{bic_of(shared_fit):.2f}"
         )
-        fit, own = _per_curve(quiet, systems, paths, given, shared_fit, choices, spent)
+        fit, own = _per_curve(quiet, systems, paths, given, shared_fit, choices, spent, allowed)
         scored.append((bic_of(fit), family, paths, own, given, fit))
         previous = shared_fit
     lowest = min(s[0] for s in scored)
@@ -86,14 +88,15 @@ def fit_joint_auto(settings, systems, bounds) -> JointFitResult:
     return joint_result(final, family.name, choices)
 
 
-def _per_curve(settings, systems, paths, given, fit, choices, spent):
+def _per_curve(settings, systems, paths, given, fit, choices, spent, allowed):
     """(the fit, the per-curve paths) of the forward selection within one family; ``spent[0]``
     gains the model evaluations of its fits."""
     n = len(systems)
     own: List[str] = []
     best, best_bic = fit, bic_of(fit)
-    while len(own) < len(paths):
-        candidates = [p for p in paths if p not in own]
+    splittable = [p for p in paths if allowed is None or p in allowed]
+    while len(own) < len(splittable):
+        candidates = [p for p in splittable if p not in own]
         drops = _linear_drops(settings, systems, paths, own, candidates, given, best)
         spent[0] += 1  # the residuals it ranks from (its Jacobian counted apart, as a fit's are)
         p = max(drops, key=lambda q: drops[q])
