@@ -69,8 +69,8 @@ def fit_joint(
     bounds : {path: (low, high)} in SI units for every curve's value of that path. method,
     tolerance, loss, max_evaluations, allow_unconverged, threads, search (None or "local": from
     the start; "global": one population search over the joint space, then the local fit), seed,
-    population,
-    generations, minima : as in :func:`lidar_overlap.fit`. Returns a :class:`JointFitResult`.
+    population, generations, minima : as in :func:`lidar_overlap.fit`. Returns a
+    :class:`JointFitResult`.
     """
     n = _count(curves)
     systems = checked_systems(systems, n)

@@ -1,16 +1,16 @@
 """``lo.fit_joint(..., free="auto")``: the family and which of its parameters are per-curve, chosen
 on the joint data by BIC = chi² + K ln n (n independent points of all curves, K global parameters).
 
-What it tries (bounded cost): each family of the ladder that does not extend the model (alignment; +
-beam; + focus), first with every parameter shared (the first family by the joint global search, each
-next one from the one before's solution); then, within that family, forward selection of the per-
-curve parameters: the shared paths are ranked by the chi-square drop of one Gauss-Newton step from
-the current solution with that path split into one value per curve, beyond the step's with it shared
-(one Jacobian ranks them all; only the paths ``per_curve`` allows, when given: those the
-instrument's physics lets differ between the curves); the best is fitted and taken when it lowers
-the BIC by more than ``BIC_TIE``, until it does not. The family of lowest BIC after its selection is
-chosen (a simpler one within ``BIC_TIE`` preferred). Cost: one search, and per family at most k + 1
-local fits and k Jacobians (k paths).
+What it tries (bounded cost): each family of the ladder that does not extend the model
+(alignment; + beam; + focus), first with every parameter shared (the first family by the joint
+global search, each next one from the one before's solution); then, within that family, forward
+selection of the per-curve parameters: the shared paths are ranked by the chi-square drop of one
+Gauss-Newton step from the current solution with that path split into one value per curve, beyond
+the step's with it shared (one Jacobian ranks them all; only the paths ``per_curve`` allows, when
+given: those the instrument's physics lets differ between the curves); the best is fitted and taken
+when it lowers the BIC by more than ``BIC_TIE``, until it does not. The family of lowest BIC after
+its selection is chosen (a simpler one within ``BIC_TIE`` preferred). Cost: one search, and per
+family at most k + 1 local fits and k Jacobians (k paths).
 
 Model. A fit planned on Fourier optics of systems ray tracing models makes its whole choice on ray
 tracing at its tolerance (as the single search compares and polishes its candidates,
@@ -98,7 +98,7 @@ def _per_curve(settings, systems, paths, given, fit, choices, spent, allowed):
     while len(own) < len(splittable):
         candidates = [p for p in splittable if p not in own]
         drops = _linear_drops(settings, systems, paths, own, candidates, given, best)
-        spent[0] += 1  # the residuals it ranks from (its Jacobian counted apart, as a fit's are)
+        spent[0] += 1  # the residuals it ranks from (Jacobians are not model evaluations)
         p = max(drops, key=lambda q: drops[q])
         shared = [q for q in paths if q not in own + [p]]
         start = _start(best, joint_names(shared, own + [p], n))
