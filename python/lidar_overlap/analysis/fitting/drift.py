@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import List, Optional
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -38,7 +38,7 @@ from .multi_inputs import (
     path_bounds,
     search_box,
 )
-from .multi_result import bic_of, reduced
+from .multi_result import bic_of, fit_fields
 from .multi_search import fit_curves
 from .problem import GENERATIONS, MINIMA, checked_search, fit_settings, measured_values
 
@@ -131,10 +131,10 @@ def fit_drift(
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the model without drift: its BIC is its verdict
             fit = fit_curves(_quiet(problem))
-        fit = _select(fit, settings, system, paths, c, given, choices)
+        fit, moving = _select(fit, settings, system, paths, c, given, choices)
     else:
         fit = fit_curves(problem)
-    return drift_result(fit, c, covariate_unit, choices)
+    return drift_result(fit, paths, moving, c, covariate_unit, choices)
 
 
 def _series(curves, z) -> np.ndarray:
@@ -240,8 +240,9 @@ def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
     return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
 
 
-def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
-    """Forward selection of the drifting paths by BIC (module docstring)."""
+def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurveFit, tuple]:
+    """Forward selection of the drifting paths by BIC (module docstring): the chosen fit and its
+    drifting paths."""
     moving: List[str] = []
     best, best_bic, said = fit, bic_of(fit), []
     choices.append(f"no drift: chi-square {fit.chi_square:.4g}, BIC {best_bic:.2f}")
@@ -284,7 +285,7 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
                 f"fit did not converge: the drift fit with {', '.join(moving)} drifting stopped "
                 f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
             )
-    return best
+    return best, tuple(moving)
 
 
 def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
@@ -313,33 +314,16 @@ def _step_drop(a, r) -> float:
     return float(r @ r - after @ after)
 
 
-def drift_result(fit: MultiCurveFit, c, unit: str, choices) -> DriftFitResult:
-    """The :class:`DriftFitResult` of the driver's fit."""
-    names = fit.problem.names
-    free = tuple(n for n in names if not n.endswith(SLOPE))
-    moving = tuple(n[: -len(SLOPE)] for n in names if n.endswith(SLOPE))
+def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> DriftFitResult:
+    """The :class:`DriftFitResult` of the driver's fit of free ``paths``, ``moving`` of them
+    drifting (the problem's names: those paths, then their slopes)."""
     return DriftFitResult(
-        parameters=dict(zip(names, fit.values.tolist())),
-        uncertainties=dict(zip(names, fit.uncertainties.tolist())),
-        start=dict(zip(names, fit.problem.start.tolist())),
-        covariance=fit.covariance,
-        correlation=fit.correlation,
-        chi_square=fit.chi_square,
-        reduced_chi_square=reduced(fit.chi_square, fit.degrees_of_freedom),
-        degrees_of_freedom=fit.degrees_of_freedom,
-        free=free,
-        drifting=moving,
+        **fit_fields(fit),
+        free=tuple(paths),
+        drifting=tuple(moving),
         covariate=c,
         covariate_reference=float(c.mean()),
         covariate_unit=unit,
-        curves=fit.fits,
-        degenerate_pairs=fit.degenerate_pairs,
-        at_bounds=fit.at_bounds,
-        evaluations=fit.evaluations,
-        jacobian_evaluations=fit.jacobian_evaluations,
-        converged=fit.converged,
-        message=fit.message,
-        search=fit.search,
         choices=tuple(choices),
     )
 
