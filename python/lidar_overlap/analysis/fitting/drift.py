@@ -35,12 +35,13 @@ from .multi_inputs import (
     checked_curve,
     checked_paths,
     is_interval,
+    multi_settings,
     path_bounds,
     search_box,
 )
 from .multi_result import bic_of, fit_fields
 from .multi_search import fit_curves
-from .problem import GENERATIONS, MINIMA, checked_search, fit_settings, measured_values
+from .problem import GENERATIONS, MINIMA, measured_values
 
 #: drifting="auto" fits at most this many of the best-ranked candidates per round.
 TRIED = 2
@@ -99,9 +100,14 @@ def fit_drift(
     data = tuple(
         checked_curve(i, z, y[i], w[i], normalize, extinction_bias) for i in range(y.shape[0])
     )
-    the_search = checked_search(search or "local", seed, population, generations, minima)
+    settings = multi_settings(
+        system, data, method=method, tolerance=tolerance, loss=loss,
+        max_evaluations=max_evaluations, allow_unconverged=allow_unconverged, threads=threads,
+        search=search, seed=seed, population=population, generations=generations, minima=minima,
+    )  # fmt: skip
     choices: List[str] = []
-    if isinstance(free, str) and free == "auto":
+    chosen = isinstance(free, str) and free == "auto"
+    if chosen:
         system, free, line = _ladder_start(system, z, y, w, normalize, extinction_bias, method,
                                            tolerance, bounds, seed)  # fmt: skip
         choices.append(line)
@@ -114,18 +120,10 @@ def fit_drift(
             f"drifting: {', '.join(outside)} is not free: expected drifting paths among free "
             f"({', '.join(paths)})"
         )
+    if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)
+        bounds = {k: v for k, v in bounds.items() if not _outside(k, paths)}
     given = checked_bounds(bounds, paths)
-    settings = fit_settings(
-        system,
-        free=paths,
-        bounds=None,
-        method=method,
-        tolerance=tolerance,
-        loss=loss,
-        max_evaluations=max_evaluations,
-        allow_unconverged=allow_unconverged,
-        threads=threads,
-    ).derived(curves=data, search=the_search)
+    settings = settings.derived(start=system, free=paths)
     problem = drift_problem(settings, system, paths, moving, c, given)
     if auto:
         with warnings.catch_warnings():
@@ -135,6 +133,15 @@ def fit_drift(
     else:
         fit = fit_curves(problem)
     return drift_result(fit, paths, moving, c, covariate_unit, choices)
+
+
+def _outside(key, paths) -> bool:
+    """Whether the bounds' ``key`` names a valid path outside ``paths`` (a bad key is left for
+    checked_bounds to name)."""
+    try:
+        return not set(_parameters.expand([key])) <= set(paths)
+    except ValueError:
+        return False
 
 
 def _series(curves, z) -> np.ndarray:

@@ -15,13 +15,28 @@ from .multi_curve import CurveMap, MultiCurveProblem
 from .normalization import normalization
 from .problem import (
     Curve,
+    FitProblem,
     checked_extinction_bias,
+    checked_search,
+    fit_settings,
     free_paths,
     measured_values,
     sigma_weights,
     with_system_bounds,
 )
 from .solve import parameter_bounds
+
+
+def multi_settings(
+    system, data, *, search, seed, population, generations, minima, **options
+) -> FitProblem:
+    """The settings of a fit of several curves with its ``data`` (the checked curves), free paths
+    still to come (``derived(free=...)``): the search's (``search`` None: local) and lo.fit's
+    ``options`` (method, tolerance, loss, max_evaluations, allow_unconverged, threads), each checked
+    as lo.fit checks it; the one validation of lo.fit_joint's and lo.fit_drift's keywords."""
+    the_search = checked_search(search or "local", seed, population, generations, minima)
+    settings = fit_settings(system, free=(), bounds=None, **options)
+    return settings.derived(curves=data, search=the_search)
 
 
 def one_per_curve(name: str, value, n: int, single) -> list:
