@@ -139,3 +139,16 @@ def test_fit_bounds_is_a_checked_read_only_value():
 def test_bad_fit_bounds_are_refused_naming_them(bounds, match):
     with pytest.raises(ValueError, match=match):
         dataclasses.replace(chm15k(), fit_bounds=bounds)
+
+
+def test_a_search_keeps_a_start_on_the_presets_bound_within_it():
+    """chm15k()'s divergence starts on its upper bound, 0.15 mrad; the global search takes it in
+    its logarithm, and exp(log(0.15e-3)) is one rounding above it: the cube's values stay within
+    the bounds (a search's polish from a value beyond them was refused)."""
+    from lidar_overlap.analysis.fitting.global_search import UnitCube
+
+    high = chm15k_bounds()["beam.divergence"][1]
+    assert np.exp(np.log(high)) > high  # the rounding this guards against
+    cube = UnitCube(np.array([1e-5]), np.array([high]), np.array([True]))
+    assert cube.values(np.ones((1, 1)))[0, 0] == high
+    assert cube.values(np.zeros((1, 1)))[0, 0] >= 1e-5

@@ -70,12 +70,20 @@ def expand(paths: Iterable[str]) -> List[str]:
     return out
 
 
+class CheckedBounds(FrozenMap):
+    """A map of bounds :func:`checked_bounds` made: taken as it is when it comes again (every new
+    system of a fit, ``parameters.replace``, carries its start's); pickled as a FrozenMap, so an
+    unpickled one is checked again."""
+
+    __slots__ = ()
+
+
 def checked_bounds(name: str, bounds) -> Optional[FrozenMap]:
     """``bounds`` ({path: (low, high)}, SI units; None or empty: none) as a read-only map of scalar
     paths (a bare pair expanded to both) to finite pairs with low < high; ValueError naming
     ``name`` and the path otherwise."""
-    if bounds is None:
-        return None
+    if bounds is None or isinstance(bounds, CheckedBounds):
+        return bounds
     if not isinstance(bounds, Mapping):
         raise ValueError(
             f"{name} = {_checks.shown(bounds)} is invalid: expected None or a dict path -> "
@@ -94,7 +102,7 @@ def checked_bounds(name: str, bounds) -> Optional[FrozenMap]:
                     f"{name}[{path!r}] = ({low!r}, {high!r}) is invalid: expected finite low < high"
                 )
             out[path] = (low, high)
-    return FrozenMap(out) if out else None
+    return CheckedBounds(out) if out else None
 
 
 def canonical(path) -> str:

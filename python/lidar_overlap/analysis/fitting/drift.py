@@ -79,7 +79,9 @@ def fit_drift(
     the curves. curves : (n_curves, n_ranges), G or relative G, at least two. covariate : one
     finite value per curve, not all equal (in ``covariate_unit``, e.g. K). sigma : 1-sigma error:
     a scalar, one per range, or (n_curves, n_ranges); required. free : paths fitted (a list, or
-    ``"auto"``); drifting : those of them that drift (a list, possibly empty, or ``"auto"``).
+    ``"auto"``: the model ladder on the median curve chooses them, its global searches run with
+    this call's seed, population, generations and minima); drifting : those of them that drift
+    (a list, possibly empty, or ``"auto"``).
     normalize : None, "far" or (z_low, z_high) in m, for every curve; extinction_bias : each
     curve's retrieval extinction bias profiled (with an interval). bounds : {path: (low, high)}
     for the paths' values (the slopes' bounds: ± that width per covariate span). method,
@@ -108,8 +110,9 @@ def fit_drift(
     choices: List[str] = []
     chosen = isinstance(free, str) and free == "auto"
     if chosen:
-        system, free, line = _ladder_start(system, z, y, w, normalize, extinction_bias, method,
-                                           tolerance, bounds, seed)  # fmt: skip
+        system, free, line = _ladder_start(
+            system, z, y, w, normalize, extinction_bias, settings, bounds
+        )
         choices.append(line)
     paths = checked_paths("free", free, [system])
     auto = isinstance(drifting, str) and drifting == "auto"
@@ -335,14 +338,19 @@ def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> Dr
     )
 
 
-def _ladder_start(system, z, y, w, normalize, extinction_bias, method, tolerance, bounds, seed):
-    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve."""
+def _ladder_start(system, z, y, w, normalize, extinction_bias, settings, bounds):
+    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve, with
+    the drift fit's method, tolerance, threads and search settings (seed, population, generations,
+    minima: its families' global searches)."""
+    search = settings.search
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the family's verdicts: the drift fit's own follow
         ladder = single_fit(
             system, z, np.median(y, axis=0), np.median(w, axis=0) / math.sqrt(y.shape[0]),
-            free="auto", method=method, tolerance=tolerance, normalize=normalize,
-            extinction_bias=extinction_bias, seed=seed, bounds=bounds, allow_unconverged=True,
+            free="auto", method=settings.method, tolerance=settings.tolerance,
+            threads=settings.threads, normalize=normalize, extinction_bias=extinction_bias,
+            seed=search.seed, population=search.population, generations=search.generations,
+            minima=search.minima, bounds=bounds, allow_unconverged=True,
         )  # fmt: skip
     fit = ladder.chosen
     start = _parameters.replace(system, dict(fit.parameters))
