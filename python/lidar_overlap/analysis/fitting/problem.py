@@ -70,9 +70,10 @@ class Search:
 class FitProblem:
     """A checked fit problem (module docstring). ``start``: the system whose values start the fit;
     ``curves``: the data; ``free``: the free scalar paths, or ``"auto"`` (the model ladder);
-    ``bounds``: {path: (low, high)} as given (None: the defaults of the parameter table); ``method``
-    (planned once on the start), ``tolerance`` (the model's absolute tolerance on G), ``loss``,
-    ``max_evaluations``, ``allow_unconverged``, ``threads``, ``search``."""
+    ``bounds``: {path: (low, high)} as given over the start's ``fit_bounds`` of the free paths
+    (None: the defaults of the parameter table); ``method`` (planned once on the start),
+    ``tolerance`` (the model's absolute tolerance on G), ``loss``, ``max_evaluations``,
+    ``allow_unconverged``, ``threads``, ``search``."""
 
     start: Any
     curves: Tuple[Curve, ...]
