@@ -1,7 +1,8 @@
 """Which fitted divergences end at the diffraction limit: a Gaussian beam cannot spread more slowly
 than λ/(π w0) (rad, 1/e² half-angle, w0 its 1/e² waist radius), so a fit that drives a divergence
 there found the data asking for a beam better than physics allows (or a waist the model holds
-wrong), as a value on a bound is set by the bound and not by the data."""
+wrong), as a value on a bound is set by the bound and not by the data. The default lower bound of a
+divergence (:data:`lidar_overlap.model.parameters.DIFFRACTION_MARGIN`) lies just above the limit."""
 
 from __future__ import annotations
 
@@ -9,12 +10,11 @@ import math
 from typing import Iterable, Tuple
 
 from ...model import parameters as _parameters
-from ...model.parameters import DIFFRACTION_MARGIN
 
-#: A fitted divergence at most DIFFRACTION_MARGIN (1.05) times λ/(π w0) is "at the diffraction
-#: limit": the parameter table's default lower bound, which a value on it reaches within rounding
-#: (this relative slack).
-ROUNDING = 1e-9
+#: A fitted divergence at most this many times λ/(π w0) is "at the diffraction limit": the
+#: parameter table's default lower bound (DIFFRACTION_MARGIN, 1.05) and the presets' lie below it,
+#: and a value the optimiser leaves on such a bound (a fraction of the bounds' width above it) too.
+AT_LIMIT = 1.06
 
 
 def diffraction_limit(system, path: str) -> float:
@@ -30,12 +30,12 @@ def diffraction_limit(system, path: str) -> float:
 
 def at_diffraction_limit(system, paths: Iterable[str]) -> Tuple[str, ...]:
     """The divergence ``paths`` (``beam.divergence``, ``beam.components[i].divergence``) whose value
-    in ``system`` is at most DIFFRACTION_MARGIN times their diffraction limit."""
+    in ``system`` is at most AT_LIMIT times their diffraction limit."""
     out = []
     for path in paths:
         if not path.endswith("divergence"):
             continue
         limit = diffraction_limit(system, path)
-        if _parameters.get(system, path) <= DIFFRACTION_MARGIN * (1.0 + ROUNDING) * limit:
+        if _parameters.get(system, path) <= AT_LIMIT * limit:
             out.append(path)
     return tuple(out)

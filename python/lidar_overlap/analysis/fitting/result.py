@@ -192,7 +192,7 @@ class FitResult(ByValue):
 
     @property
     def at_diffraction_limit(self) -> Tuple[str, ...]:
-        """The fitted divergences that end within 5 % of their beam's diffraction limit λ/(π w0)
+        """The fitted divergences that end within 6 % of their beam's diffraction limit λ/(π w0)
         (:mod:`lidar_overlap.analysis.fitting.diffraction`); () for a fit without a system."""
         system = getattr(self.result, "system", None)
         return () if system is None else at_diffraction_limit(system, self.parameters)
