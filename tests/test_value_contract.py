@@ -153,7 +153,7 @@ REGISTRY: Dict[type, Entry] = {
     lo.GaussianBeam: Entry(lambda: lo.paper_table1().beam),
     lo.Telescope: Entry(lambda: lo.paper_table1().telescope),
     lo.Detector: Entry(lambda: lo.paper_table1().detector),
-    lo.LidarSystem: Entry(lambda: lo.paper_table1()),
+    lo.LidarSystem: Entry(lambda: lo.instruments.chm15k()),  # with fit_bounds
     lo.Field: Entry(lambda: lo.Field.gaussian(532e-9, 1e-3, n=32, spacing=2e-4)),
     lo.FieldBeam: Entry(
         lambda: lo.FieldBeam(lo.Field.gaussian(355e-9, 1e-3, n=32, spacing=2e-4), tilt=(1e-5, 0))

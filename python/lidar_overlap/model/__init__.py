@@ -3,8 +3,8 @@ masks, aberrations, turbulence, atmosphere), their parameters by path, and the p
 preset.
 
 Files: aberrations.py, aperture_mask.py, atmosphere.py, field.py, field_beam.py, flat_top.py,
-instruments.py, mixture_beam.py, parameter_paths.py, parameters.py, presets.py, system.py,
-system_attributes.py, tilt.py, turbulence.py.
+instruments.py, mixture_beam.py, parameter_paths.py, parameters.py, path_syntax.py, presets.py,
+system.py, system_attributes.py, tilt.py, turbulence.py.
 """
 
 __all__ = [
@@ -18,6 +18,7 @@ __all__ = [
     "mixture_beam",
     "parameter_paths",
     "parameters",
+    "path_syntax",
     "presets",
     "system",
     "system_attributes",

@@ -2,8 +2,10 @@
 overlap curves (SI units). Each states which values its sources give and which are assumptions:
 the assumed ones (axis separation, expanded beam size, obstruction) differ between units and are
 what a fit of the unit's overlap curve should free. Where the sources bound an assumed value, the
-preset's ``*_bounds`` function gives those bounds ({path: (low, high)}, SI units) for a fit's
-``bounds=`` argument; a fitted value that ends on one is named in the result's ``at_bounds``.
+preset's ``*_bounds`` function gives those bounds ({path: (low, high)}, SI units) and the system
+it makes carries them as its ``fit_bounds``: every fit takes them as its default bounds, under the
+caller's ``bounds`` (``dataclasses.replace(system, fit_bounds=None)`` drops them). A fitted value
+that ends on one is named in the result's ``at_bounds``.
 """
 
 from __future__ import annotations
@@ -53,7 +55,8 @@ def pollyxt(
     1/e² radius (15 mm), and for the far range a secondary mirror of 35 mm radius 0.6 m in front of
     the primary's aperture stop; the near-range refractor has no obstruction, its focal length is
     taken as 0.2 m. ``numerical_aperture``: the acceptance of the field stop's relay (None: every
-    ray; give a value, e.g. 0.22, to fit it). ``channel``: ``"far"`` or ``"near"``.
+    ray; give a value, e.g. 0.22, to fit it). ``channel``: ``"far"`` or ``"near"``. The system's
+    ``fit_bounds`` are :func:`pollyxt_bounds`.
     """
     if channel not in _CHANNELS:
         raise ValueError(f"channel = {channel!r} is invalid: expected 'far' or 'near'")
@@ -76,7 +79,9 @@ def pollyxt(
         offset=(beam_offset, 0.0),
         tilt=(beam_tilt, 0.0),
     )
-    return LidarSystem(beam=beam, telescope=telescope, detector=detector)
+    return LidarSystem(
+        beam=beam, telescope=telescope, detector=detector, fit_bounds=pollyxt_bounds()
+    )
 
 
 def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
@@ -96,7 +101,7 @@ def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
     the 0.225 mrad half field of view and full overlap would never be reached); a 0.45 mrad full
     field of view. Assumed (fit them):
     a 0.1 m receiver lens of 0.5 m focal length, ``beam_offset`` (m, along x) and ``beam_tilt``
-    (rad, along x).
+    (rad, along x). The system's ``fit_bounds`` are :func:`chm15k_bounds`.
     """
     beam = GaussianBeam(
         wavelength=CHM15K_WAVELENGTH,
@@ -107,7 +112,10 @@ def chm15k(beam_offset: float = 0.1, beam_tilt: float = 0.0) -> LidarSystem:
     )
     telescope = Telescope(diameter=0.1, focal_length=0.5)
     return LidarSystem(
-        beam=beam, telescope=telescope, detector=Detector.from_fov(fov=0.45e-3, focal_length=0.5)
+        beam=beam,
+        telescope=telescope,
+        detector=Detector.from_fov(fov=0.45e-3, focal_length=0.5),
+        fit_bounds=chm15k_bounds(),
     )
 
 

@@ -16,87 +16,29 @@ without an index (``"beam.tilt"``) stands for both of its scalars where a list o
 asked for (:func:`expand`).
 
 Systems are immutable: :func:`replace` builds a new one, validated like any other, so a value
-outside the model's range is refused naming the path.
+outside the model's range is refused naming the path. The paths' syntax (parsing, :func:`expand`,
+:func:`canonical`) lives in :mod:`lidar_overlap.model.path_syntax`, which the system reads too.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import re
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple
+from typing import Any, Dict, Mapping
 
 from .. import _checks
-from .aberrations import SEIDEL_TERMS, Aberrations
+from .aberrations import Aberrations
 from .mixture_beam import GaussianMixtureBeam
+from .path_syntax import (  # noqa: F401 (handed on: parameters and callers read them here)
+    COMPONENT_SCALARS,
+    PAIRS,
+    SCALARS,
+    canonical,
+    checked_bounds,
+    expand,
+    parse,
+    valid_paths,
+)
 from .system import LidarSystem
-
-PAIRS = {"beam": ("offset", "tilt"), "detector": ("offset",)}
-SCALARS = {
-    "beam": ("wavelength", "waist_radius", "divergence"),
-    "telescope": ("diameter", "focal_length", "obstruction_radius", "obstruction_distance"),
-    "detector": ("radius", "defocus", "numerical_aperture", "stop_radius", "stop_distance"),
-}
-# ASCII only and anchored at the very end (\Z, not $, which also matches before a final newline): a
-# path is one spelling of one scalar, so that duplicates can be found (see canonical()).
-_PATH = re.compile(r"(beam|telescope|detector)\.([A-Za-z_0-9]+)(?:\[([0-9]+)\])?\Z")
-_COMPONENT = re.compile(r"beam\.components\[([0-9]{1,4})\]\.(weight|waist_radius|divergence)\Z")
-COMPONENT_SCALARS = ("weight", "waist_radius", "divergence")
-_ABERRATION = re.compile(r"telescope\.aberrations\.(?:zernike\[([0-9]+)\]|([A-Za-z_0-9]+))\Z")
-
-
-def valid_paths() -> List[str]:
-    """Every path form :func:`get` and :func:`replace` accept (``zernike[j]`` for any Noll index
-    j)."""
-    paths = [f"{part}.{name}" for part, names in SCALARS.items() for name in names]
-    paths += [
-        f"{part}.{name}[{i}]" for part, names in PAIRS.items() for name in names for i in (0, 1)
-    ]
-    return (
-        paths
-        + [f"beam.components[i].{name}" for name in COMPONENT_SCALARS]
-        + ["telescope.aberrations.zernike[j]"]
-        + [f"telescope.aberrations.{t}" for t in SEIDEL_TERMS]
-    )
-
-
-def expand(paths: Iterable[str]) -> List[str]:
-    """``paths`` with each bare pair (``"beam.tilt"``) replaced by its two scalars; each path
-    checked."""
-    if isinstance(paths, str):
-        paths = [paths]
-    if paths is None or not isinstance(paths, Iterable):
-        raise ValueError(
-            f"parameters = {_checks.shown(paths)} is invalid: expected a list of parameter paths, "
-            "e.g. ['beam.tilt', 'detector.defocus']"
-        )
-    paths = list(paths)
-    out: List[str] = []
-    for path in paths:
-        m = _PATH.match(path) if isinstance(path, str) else None
-        if m and m.group(3) is None and m.group(2) in PAIRS.get(m.group(1), ()):
-            out += [f"{path}[0]", f"{path}[1]"]
-        else:
-            out.append(canonical(path))
-    twice = sorted({p for p in out if out.count(p) > 1})
-    if twice:
-        raise ValueError(
-            f"parameters = {_checks.shown(paths)} is invalid: {twice[0]} is named twice (paths are "
-            "compared in their plain form: no leading zeros in an index)"
-        )
-    return out
-
-
-def canonical(path) -> str:
-    """The one spelling of the scalar ``path`` names (``"beam.tilt[00]"`` -> ``"beam.tilt[0]"``);
-    ValueError for anything that is not a path."""
-    kind, part, name, index = parse(path)
-    if kind == "zernike":
-        return f"telescope.aberrations.zernike[{index}]"
-    if kind == "seidel":
-        return f"telescope.aberrations.{name}"
-    if kind == "component":
-        return f"beam.components[{index}].{name}"
-    return f"{part}.{name}" + ("" if index is None else f"[{index}]")
 
 
 def get(system: LidarSystem, path: str) -> float:
@@ -158,44 +100,11 @@ def replace(system: LidarSystem, values: Mapping[str, float]) -> LidarSystem:
         parts = {part: _replaced(getattr(system, part), part, c) for part, c in changes.items()}
         for i, c in components.items():
             parts["beam"] = parts["beam"].with_component(i, **c)
-        return LidarSystem(**parts)
+        return LidarSystem(**parts, fit_bounds=system.fit_bounds)
     except ValueError as exc:
         raise ValueError(
             f"{', '.join(values)} = {_shown(values)} makes an invalid system: {exc}"
         ) from None
-
-
-def parse(path) -> Tuple[str, str, str, Optional[int]]:
-    """(kind, part, name, index) of a path: kind ``"plain"``, ``"zernike"`` or ``"seidel"``."""
-    if isinstance(path, str):
-        m = _COMPONENT.match(path)
-        if m:
-            return "component", "beam", m.group(2), int(m.group(1))
-        m = _ABERRATION.match(path)
-        if m and m.group(1) is not None and len(m.group(1)) <= 4:
-            j = int(m.group(1))
-            if 1 <= j <= 231:
-                return "zernike", "telescope", "zernike", j
-        elif m and m.group(2) in SEIDEL_TERMS + ("field_radius",):
-            return "seidel", "telescope", m.group(2), None
-        m = _PATH.match(path)
-        if m:
-            part, name, index = m.group(1), m.group(2), m.group(3)
-            if index is None and name in SCALARS[part]:
-                return "plain", part, name, None
-            if (
-                index is not None
-                and name in PAIRS.get(part, ())
-                and len(index) <= 4
-                and int(index) in (0, 1)
-            ):
-                return "plain", part, name, int(index)
-    raise _checks.refused(
-        "parameter",
-        path,
-        f"one of {', '.join(valid_paths())}",
-        f"parameter {_checks.shown(path)} is invalid: expected one of {', '.join(valid_paths())}",
-    )
 
 
 def _main_component(system, kind: str, part: str, name: str, index):

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import ClassVar, Literal, Optional, Tuple
+from typing import ClassVar, Literal, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -25,6 +25,7 @@ from .aberrations import Aberrations
 from .aperture_mask import ApertureMask
 from .field_beam import FieldBeam
 from .mixture_beam import GaussianMixtureBeam
+from .path_syntax import checked_bounds
 
 Pair = Tuple[float, float]
 #: The width laws of a Gaussian beam (:class:`GaussianBeam`).
@@ -261,11 +262,20 @@ class LidarSystem(ByArguments):
     """A lidar: transmitted beam, receiving telescope and detector, validated together
     (obstruction inside the aperture, detector plane behind the lens). The beam is a
     :class:`GaussianBeam` (both methods) or a :class:`FieldBeam` / :class:`FlatTopBeam` (Fourier
-    optics), or a :class:`GaussianMixtureBeam` of incoherent Gaussian components (both methods)."""
+    optics), or a :class:`GaussianMixtureBeam` of incoherent Gaussian components (both methods).
+
+    ``fit_bounds``: {path: (low, high)} (SI units), the ranges the system's sources allow for some
+    of its scalars (an instrument preset's divergence, its axis separation), or None. They change
+    no overlap: every fit that frees one of those paths takes them as its default bounds, under
+    the caller's ``bounds`` (the caller's win, path by path); ``dataclasses.replace(system,
+    fit_bounds=None)`` switches them off. Paths as :mod:`lidar_overlap.model.parameters` names
+    them (a bare pair, ``"beam.offset"``, stands for both scalars); kept read-only.
+    """
 
     beam: GaussianBeam | FieldBeam | GaussianMixtureBeam = field(default_factory=GaussianBeam)
     telescope: Telescope = field(default_factory=Telescope)
     detector: Detector = field(default_factory=Detector)
+    fit_bounds: Optional[Mapping[str, Pair]] = None
     _native: _core.LidarSystem = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -279,6 +289,7 @@ class LidarSystem(ByArguments):
                 raise ValueError(
                     f"{name} = {getattr(self, name)!r} is invalid: expected a {expected}"
                 )
+        object.__setattr__(self, "fit_bounds", checked_bounds("fit_bounds", self.fit_bounds))
         object.__setattr__(
             self,
             "_native",

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import List, Optional
+from typing import List, Optional, Tuple
 
 import numpy as np
 
@@ -35,12 +35,13 @@ from .multi_inputs import (
     checked_curve,
     checked_paths,
     is_interval,
+    multi_settings,
     path_bounds,
     search_box,
 )
-from .multi_result import bic_of, reduced
+from .multi_result import bic_of, fit_fields
 from .multi_search import fit_curves
-from .problem import GENERATIONS, MINIMA, checked_search, fit_settings, measured_values
+from .problem import GENERATIONS, MINIMA, measured_values
 
 #: drifting="auto" fits at most this many of the best-ranked candidates per round.
 TRIED = 2
@@ -78,7 +79,9 @@ def fit_drift(
     the curves. curves : (n_curves, n_ranges), G or relative G, at least two. covariate : one
     finite value per curve, not all equal (in ``covariate_unit``, e.g. K). sigma : 1-sigma error:
     a scalar, one per range, or (n_curves, n_ranges); required. free : paths fitted (a list, or
-    ``"auto"``); drifting : those of them that drift (a list, possibly empty, or ``"auto"``).
+    ``"auto"``: the model ladder on the median curve chooses them, its global searches run with
+    this call's seed, population, generations and minima); drifting : those of them that drift
+    (a list, possibly empty, or ``"auto"``).
     normalize : None, "far" or (z_low, z_high) in m, for every curve; extinction_bias : each
     curve's retrieval extinction bias profiled (with an interval). bounds : {path: (low, high)}
     for the paths' values (the slopes' bounds: ± that width per covariate span). method,
@@ -99,11 +102,17 @@ def fit_drift(
     data = tuple(
         checked_curve(i, z, y[i], w[i], normalize, extinction_bias) for i in range(y.shape[0])
     )
-    the_search = checked_search(search or "local", seed, population, generations, minima)
+    settings = multi_settings(
+        system, data, method=method, tolerance=tolerance, loss=loss,
+        max_evaluations=max_evaluations, allow_unconverged=allow_unconverged, threads=threads,
+        search=search, seed=seed, population=population, generations=generations, minima=minima,
+    )  # fmt: skip
     choices: List[str] = []
-    if isinstance(free, str) and free == "auto":
-        system, free, line = _ladder_start(system, z, y, w, normalize, extinction_bias, method,
-                                           tolerance, bounds, seed)  # fmt: skip
+    chosen = isinstance(free, str) and free == "auto"
+    if chosen:
+        system, free, line = _ladder_start(
+            system, z, y, w, normalize, extinction_bias, settings, bounds
+        )
         choices.append(line)
     paths = checked_paths("free", free, [system])
     auto = isinstance(drifting, str) and drifting == "auto"
@@ -114,27 +123,28 @@ def fit_drift(
             f"drifting: {', '.join(outside)} is not free: expected drifting paths among free "
             f"({', '.join(paths)})"
         )
+    if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)
+        bounds = {k: v for k, v in bounds.items() if not _outside(k, paths)}
     given = checked_bounds(bounds, paths)
-    settings = fit_settings(
-        system,
-        free=paths,
-        bounds=None,
-        method=method,
-        tolerance=tolerance,
-        loss=loss,
-        max_evaluations=max_evaluations,
-        allow_unconverged=allow_unconverged,
-        threads=threads,
-    ).derived(curves=data, search=the_search)
+    settings = settings.derived(start=system, free=paths)
     problem = drift_problem(settings, system, paths, moving, c, given)
     if auto:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the model without drift: its BIC is its verdict
             fit = fit_curves(_quiet(problem))
-        fit = _select(fit, settings, system, paths, c, given, choices)
+        fit, moving = _select(fit, settings, system, paths, c, given, choices)
     else:
         fit = fit_curves(problem)
-    return drift_result(fit, c, covariate_unit, choices)
+    return drift_result(fit, paths, moving, c, covariate_unit, choices)
+
+
+def _outside(key, paths) -> bool:
+    """Whether the bounds' ``key`` names a valid path outside ``paths`` (a bad key is left for
+    checked_bounds to name)."""
+    try:
+        return not set(_parameters.expand([key])) <= set(paths)
+    except ValueError:
+        return False
 
 
 def _series(curves, z) -> np.ndarray:
@@ -240,8 +250,9 @@ def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
     return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
 
 
-def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
-    """Forward selection of the drifting paths by BIC (module docstring)."""
+def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurveFit, tuple]:
+    """Forward selection of the drifting paths by BIC (module docstring): the chosen fit and its
+    drifting paths."""
     moving: List[str] = []
     best, best_bic, said = fit, bic_of(fit), []
     choices.append(f"no drift: chi-square {fit.chi_square:.4g}, BIC {best_bic:.2f}")
@@ -284,7 +295,7 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> MultiCurveFit:
                 f"fit did not converge: the drift fit with {', '.join(moving)} drifting stopped "
                 f"short ({best.message}); raise max_evaluations or pass allow_unconverged=True"
             )
-    return best
+    return best, tuple(moving)
 
 
 def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
@@ -313,45 +324,33 @@ def _step_drop(a, r) -> float:
     return float(r @ r - after @ after)
 
 
-def drift_result(fit: MultiCurveFit, c, unit: str, choices) -> DriftFitResult:
-    """The :class:`DriftFitResult` of the driver's fit."""
-    names = fit.problem.names
-    free = tuple(n for n in names if not n.endswith(SLOPE))
-    moving = tuple(n[: -len(SLOPE)] for n in names if n.endswith(SLOPE))
+def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> DriftFitResult:
+    """The :class:`DriftFitResult` of the driver's fit of free ``paths``, ``moving`` of them
+    drifting (the problem's names: those paths, then their slopes)."""
     return DriftFitResult(
-        parameters=dict(zip(names, fit.values.tolist())),
-        uncertainties=dict(zip(names, fit.uncertainties.tolist())),
-        start=dict(zip(names, fit.problem.start.tolist())),
-        covariance=fit.covariance,
-        correlation=fit.correlation,
-        chi_square=fit.chi_square,
-        reduced_chi_square=reduced(fit.chi_square, fit.degrees_of_freedom),
-        degrees_of_freedom=fit.degrees_of_freedom,
-        free=free,
-        drifting=moving,
+        **fit_fields(fit),
+        free=tuple(paths),
+        drifting=tuple(moving),
         covariate=c,
         covariate_reference=float(c.mean()),
         covariate_unit=unit,
-        curves=fit.fits,
-        degenerate_pairs=fit.degenerate_pairs,
-        at_bounds=fit.at_bounds,
-        evaluations=fit.evaluations,
-        jacobian_evaluations=fit.jacobian_evaluations,
-        converged=fit.converged,
-        message=fit.message,
-        search=fit.search,
         choices=tuple(choices),
     )
 
 
-def _ladder_start(system, z, y, w, normalize, extinction_bias, method, tolerance, bounds, seed):
-    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve."""
+def _ladder_start(system, z, y, w, normalize, extinction_bias, settings, bounds):
+    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve, with
+    the drift fit's method, tolerance, threads and search settings (seed, population, generations,
+    minima: its families' global searches)."""
+    search = settings.search
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the family's verdicts: the drift fit's own follow
         ladder = single_fit(
             system, z, np.median(y, axis=0), np.median(w, axis=0) / math.sqrt(y.shape[0]),
-            free="auto", method=method, tolerance=tolerance, normalize=normalize,
-            extinction_bias=extinction_bias, seed=seed, bounds=bounds, allow_unconverged=True,
+            free="auto", method=settings.method, tolerance=settings.tolerance,
+            threads=settings.threads, normalize=normalize, extinction_bias=extinction_bias,
+            seed=search.seed, population=search.population, generations=search.generations,
+            minima=search.minima, bounds=bounds, allow_unconverged=True,
         )  # fmt: skip
     fit = ladder.chosen
     start = _parameters.replace(system, dict(fit.parameters))

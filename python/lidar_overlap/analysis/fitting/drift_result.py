@@ -10,15 +10,13 @@ from typing import Any, ClassVar, Dict, Optional, Tuple
 import numpy as np
 
 from ... import _checks, _values
-from ..._pickling import ByValue
 from ...model import parameters as _parameters
 from ..batch_curves import curves as batch
 from ..sensitivity import jacobian
 from . import multi_result
 from .global_result import SearchReport
-from .multi_result import verdict_lines
+from .multi_result import MultiFitResult, verdict_lines
 from .relative_result import RelativeFitResult
-from .result import FitResult
 
 #: The suffix of a drifting parameter's slope in ``parameters`` (per covariate unit).
 SLOPE = "@slope"
@@ -27,7 +25,7 @@ SHOWN = {"rad": (1e6, "µrad"), "m": (1e3, "mm"), "1": (1.0, "")}
 
 
 @dataclass(frozen=True, eq=False)
-class DriftFitResult(ByValue):
+class DriftFitResult(MultiFitResult):
     """A drift fit of a series of curves against a covariate (SI units per covariate unit).
 
     Attributes
@@ -42,30 +40,16 @@ class DriftFitResult(ByValue):
         free paths take their ``parameters`` values; covariate_unit : its unit's name.
     curves : one :class:`FitResult` per curve (its paths at its covariate, their covariance).
     degenerate_pairs, at_bounds, evaluations, jacobian_evaluations, converged, message : as in
-        :class:`JointFitResult`; search : the global search's report or None; choices : with
-        ``drifting="auto"`` (or ``free="auto"``), what the choice tried, one line each.
+        :class:`JointFitResult` (at_diffraction_limit too); search : the global search's report or
+        None; choices : with ``drifting="auto"`` (or ``free="auto"``), what the choice tried, one
+        line each. The fields from ``parameters`` to ``message`` are :class:`MultiFitResult`'s.
     """
 
-    parameters: Dict[str, float]
-    uncertainties: Dict[str, float]
-    start: Dict[str, float]
-    covariance: np.ndarray
-    correlation: np.ndarray
-    chi_square: float
-    reduced_chi_square: float
-    degrees_of_freedom: int
     free: Tuple[str, ...]
     drifting: Tuple[str, ...]
     covariate: np.ndarray
     covariate_reference: float
     covariate_unit: str
-    curves: Tuple[FitResult, ...]
-    degenerate_pairs: Tuple[Tuple[str, str, float], ...]
-    at_bounds: Tuple[str, ...]
-    evaluations: int
-    jacobian_evaluations: int
-    converged: bool
-    message: str
     search: Optional[SearchReport] = None
     choices: Tuple[str, ...] = ()
 
@@ -75,31 +59,20 @@ class DriftFitResult(ByValue):
         "covariate_reference": _values.real(),
         "covariate_unit": _values.text,
     }
+    TUPLES: ClassVar[Tuple[str, ...]] = MultiFitResult.TUPLES + ("free", "drifting", "choices")
 
     def __post_init__(self) -> None:
-        _values.check(self, self.FIELDS)
-        k = len(self.free) + len(self.drifting)
+        super().__post_init__()
         names = list(self.free) + [p + SLOPE for p in self.drifting]
-        if list(self.parameters) != names or set(self.uncertainties) != set(names):
+        if list(self.parameters) != names:
             raise ValueError(
                 "parameters and uncertainties are invalid: expected the free paths, then each "
                 "drifting path's slope"
             )
-        if self.covariance.shape != (k, k) or self.correlation.shape != (k, k):
-            raise ValueError(
-                f"covariance has shape {self.covariance.shape}: expected ({k}, {k}), as correlation"
-            )
-        if not (
-            isinstance(self.curves, tuple)
-            and len(self.curves) == self.covariate.size
-            and all(isinstance(c, FitResult) for c in self.curves)
-        ):
+        if len(self.curves) != self.covariate.size:
             raise ValueError(
                 "curves is invalid: expected a tuple of one FitResult per covariate value"
             )
-        for name in ("free", "drifting", "at_bounds", "degenerate_pairs", "choices"):
-            if not isinstance(getattr(self, name), tuple):
-                raise ValueError(f"{name} = {_checks.shown(getattr(self, name))}: expected a tuple")
 
     @property
     def drift(self) -> Dict[str, Tuple[float, float]]:

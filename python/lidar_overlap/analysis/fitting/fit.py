@@ -27,10 +27,11 @@ def fit(
     ranges : m, strictly increasing. measured : G at each range. sigma : 1-sigma error of each point
     (a scalar or one per range, > 0); None: unit weights, covariance scaled by the reduced
     chi-square. free : parameter paths (``"beam.tilt"`` stands for both components). bounds :
-    {path: (low, high)} in SI units, replacing the defaults
-    (:func:`lidar_overlap.model.parameters.default_bounds`) for those paths; the start must lie
-    within. method : ``"rt"``, ``"fo"``, ``"auto"`` or a method object, planned once on the start
-    (module docstring). tolerance : the model's absolute tolerance on G (RT and auto; None: RT's
+    {path: (low, high)} in SI units, replacing the defaults for those paths: the system's
+    ``fit_bounds`` (an instrument preset's), else
+    :func:`lidar_overlap.model.parameters.default_bounds`; the start must lie within. method :
+    ``"rt"``, ``"fo"``, ``"auto"`` or a method object, planned once on the start (module
+    docstring). tolerance : the model's absolute tolerance on G (RT and auto; None: RT's
     default); keep it below 0.1 x the median sigma (warned otherwise). loss : as in least_squares
     (``"soft_l1"``, ``"huber"``, ``"cauchy"``, ``"arctan"`` resist outliers; the residual scale is
     1 sigma). max_evaluations : most model evaluations. allow_unconverged : return a result with

@@ -170,9 +170,12 @@ class UnitCube:
         return np.where(self.logs, np.log(np.where(self.logs, self.high, 1.0)), self.high)
 
     def values(self, u):
-        """Unit-cube points (S, k) -> parameter values."""
+        """Unit-cube points (S, k) -> parameter values, within the bounds (exp(log(high)) may
+        exceed high by a rounding: a start on a bound, a preset's, stays on it)."""
         x = self.a + u * (self.b - self.a)
-        return np.where(self.logs, np.exp(np.where(self.logs, x, 0.0)), x)
+        return np.clip(
+            np.where(self.logs, np.exp(np.where(self.logs, x, 0.0)), x), self.low, self.high
+        )
 
     def unit(self, x):
         """Parameter values (k,) -> their unit-cube point, clipped to the cube."""

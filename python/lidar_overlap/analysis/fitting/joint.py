@@ -24,10 +24,11 @@ from .multi_inputs import (
     checked_systems,
     is_interval,
     joint_problem,
+    multi_settings,
     one_per_curve,
 )
 from .multi_search import fit_curves
-from .problem import GENERATIONS, MINIMA, checked_search, fit_settings
+from .problem import GENERATIONS, MINIMA
 
 
 def fit_joint(
@@ -80,15 +81,11 @@ def fit_joint(
     data = tuple(
         checked_curve(i, zs[i], curves[i], sigmas[i], norms[i], extinction_bias) for i in range(n)
     )
-    the_search = checked_search(search or "local", seed, population, generations, minima)
-    options = dict(
-        method=method,
-        tolerance=tolerance,
-        loss=loss,
-        max_evaluations=max_evaluations,
-        allow_unconverged=allow_unconverged,
-        threads=threads,
-    )
+    settings = multi_settings(
+        systems[0], data, method=method, tolerance=tolerance, loss=loss,
+        max_evaluations=max_evaluations, allow_unconverged=allow_unconverged, threads=threads,
+        search=search, seed=seed, population=population, generations=generations, minima=minima,
+    )  # fmt: skip
     auto = isinstance(free, str) and free == "auto"
     if free is not None and not auto:
         raise ValueError(
@@ -97,7 +94,7 @@ def fit_joint(
         )
     if auto:
         allowed = checked_paths("per_curve", per_curve, systems, allow_empty=True) or None
-        settings = _settings(systems[0], ("beam.tilt[0]",), data, the_search, **options)
+        settings = settings.derived(free=("beam.tilt[0]",))
         return fit_joint_auto(settings, systems, checked_bounds_any(bounds), allowed)
     if shared is None:
         raise ValueError("shared is missing: give the paths all curves share, or free='auto'")
@@ -109,7 +106,7 @@ def fit_joint(
             f"per_curve: {', '.join(sorted(both))} is also in shared: expected each path in one"
         )
     given = checked_bounds(bounds, shared_paths + own)
-    settings = _settings(systems[0], shared_paths + own, data, the_search, **options)
+    settings = settings.derived(free=shared_paths + own)
     return joint_result(fit_curves(joint_problem(settings, systems, shared_paths, own, given)))
 
 
@@ -142,9 +139,3 @@ def per_curve_list(name: str, value, n: int) -> list:
     if name == "sigma" and isinstance(value, (int, float)) and not isinstance(value, bool):
         return [value] * n
     return one_per_curve(name, value, n, lambda v: False)
-
-
-def _settings(system, paths, data, the_search, **options):
-    """The checked settings (``options``: method, tolerance, loss, ...) with the curves."""
-    settings = fit_settings(system, free=tuple(paths), bounds=None, **options)
-    return settings.derived(curves=data, search=the_search)

@@ -13,8 +13,30 @@ from ...model import parameters as _parameters
 from ...model.system import LidarSystem
 from .multi_curve import CurveMap, MultiCurveProblem
 from .normalization import normalization
-from .problem import Curve, checked_extinction_bias, free_paths, measured_values, sigma_weights
+from .problem import (
+    Curve,
+    FitProblem,
+    checked_extinction_bias,
+    checked_search,
+    fit_settings,
+    free_paths,
+    measured_values,
+    sigma_weights,
+    with_system_bounds,
+)
 from .solve import parameter_bounds
+
+
+def multi_settings(
+    system, data, *, search, seed, population, generations, minima, **options
+) -> FitProblem:
+    """The settings of a fit of several curves with its ``data`` (the checked curves), free paths
+    still to come (``derived(free=...)``): the search's (``search`` None: local) and lo.fit's
+    ``options`` (method, tolerance, loss, max_evaluations, allow_unconverged, threads), each checked
+    as lo.fit checks it; the one validation of lo.fit_joint's and lo.fit_drift's keywords."""
+    the_search = checked_search(search or "local", seed, population, generations, minima)
+    settings = fit_settings(system, free=(), bounds=None, **options)
+    return settings.derived(curves=data, search=the_search)
 
 
 def one_per_curve(name: str, value, n: int, single) -> list:
@@ -112,12 +134,14 @@ def has_path(system, path: str) -> bool:
 
 def path_bounds(systems: Sequence, path: str, bounds) -> Tuple[float, float]:
     """The bounds of ``path`` in every one of ``systems`` (each from its own value; the given
-    ``bounds`` for that path where there are some): their intersection."""
+    ``bounds`` for that path where there are some, else the system's ``fit_bounds``): their
+    intersection."""
     given = None if bounds is None else {k: v for k, v in bounds.items() if k == path}
     lows, highs = [], []
     for s in systems:
         x0 = _parameters.get(s, path)
-        lo, hi = parameter_bounds(s, [path], np.array([x0]), given or None)
+        own = with_system_bounds(s, given or None, [path])
+        lo, hi = parameter_bounds(s, [path], np.array([x0]), own)
         lows.append(lo[0])
         highs.append(hi[0])
     return max(lows), min(highs)

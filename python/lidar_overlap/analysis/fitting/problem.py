@@ -70,9 +70,10 @@ class Search:
 class FitProblem:
     """A checked fit problem (module docstring). ``start``: the system whose values start the fit;
     ``curves``: the data; ``free``: the free scalar paths, or ``"auto"`` (the model ladder);
-    ``bounds``: {path: (low, high)} as given (None: the defaults of the parameter table); ``method``
-    (planned once on the start), ``tolerance`` (the model's absolute tolerance on G), ``loss``,
-    ``max_evaluations``, ``allow_unconverged``, ``threads``, ``search``."""
+    ``bounds``: {path: (low, high)} as given over the start's ``fit_bounds`` of the free paths
+    (None: the defaults of the parameter table); ``method`` (planned once on the start),
+    ``tolerance`` (the model's absolute tolerance on G), ``loss``, ``max_evaluations``,
+    ``allow_unconverged``, ``threads``, ``search``."""
 
     start: Any
     curves: Tuple[Curve, ...]
@@ -143,7 +144,7 @@ def fit_problem(
     settings = fit_settings(
         system,
         free=paths,
-        bounds=bounds,
+        bounds=with_system_bounds(system, bounds, None if auto else paths),
         method=method,
         tolerance=tolerance,
         loss=loss,
@@ -209,6 +210,24 @@ def fit_settings(
         allow_unconverged=_checks.flag("allow_unconverged", allow_unconverged),
         threads=threads,
     )
+
+
+def with_system_bounds(system, bounds, paths) -> Optional[Mapping[str, Any]]:
+    """The caller's ``bounds`` over the system's own ``fit_bounds`` (an instrument preset's): the
+    caller's win path by path (a bare pair names both scalars); of the system's, those of ``paths``
+    only (None: all, the ladder picks its family's). Anything but a dict of ``bounds`` is left for
+    :func:`fit_settings` to refuse."""
+    own = getattr(system, "fit_bounds", None)
+    if not own or not (bounds is None or isinstance(bounds, dict)):
+        return bounds
+    named = set()
+    for key in bounds or {}:
+        try:
+            named.update(_parameters.expand([key]))
+        except ValueError:
+            pass  # the fit's bound checks name it
+    out = {p: v for p, v in own.items() if p not in named and (paths is None or p in paths)}
+    return {**out, **(bounds or {})} or None
 
 
 def free_paths(free):

@@ -19,6 +19,7 @@ from ...forward.planning import plan
 from ...forward.result import OverlapResult
 from ...model.parameters import unit
 from ..sensitivity import jacobian
+from .diffraction import at_diffraction_limit
 
 #: Singular values of the normalised Jacobian below this fraction of the largest count as zero.
 RANK_TOLERANCE = 1e-10
@@ -88,6 +89,7 @@ class FitResult(ByValue):
     status, message, converged : the optimiser's.
     at_bounds : the parameters that end on a bound of the fit (the bound, not the data, set them;
         a divergence's default lower bound is just above the diffraction limit).
+    at_diffraction_limit : (property) the fitted divergences within a few % of λ/(π w0).
     """
 
     parameters: Dict[str, float]
@@ -188,6 +190,13 @@ class FitResult(ByValue):
     def ranges(self) -> np.ndarray:
         return self.result.ranges
 
+    @property
+    def at_diffraction_limit(self) -> Tuple[str, ...]:
+        """The fitted divergences that end within 6 % of their beam's diffraction limit λ/(π w0)
+        (:mod:`lidar_overlap.analysis.fitting.diffraction`); () for a fit without a system."""
+        system = getattr(self.result, "system", None)
+        return () if system is None else at_diffraction_limit(system, self.parameters)
+
     def predict(self, ranges) -> Prediction:
         """The fitted model at ``ranges`` (m) and its 1-sigma band, sqrt(diag(J C Jᵀ)) with J =
         dG/dp there: e.g. the near range of a curve measured only from 150 m. The fit's plan (model
@@ -230,6 +239,8 @@ class FitResult(ByValue):
             lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
         if self.at_bounds:
             lines.append(f"  on a bound (set by it, not by the data): {', '.join(self.at_bounds)}")
+        if self.at_diffraction_limit:
+            lines.append(f"  at the diffraction limit: {', '.join(self.at_diffraction_limit)}")
         return "\n".join(lines)
 
     __str__ = summary

@@ -337,7 +337,7 @@ def parameter_bounds(system, paths, start, bounds):
         if not lo <= x0 <= hi:
             raise ValueError(
                 f"bounds[{path!r}] = ({lo:g}, {hi:g}) excludes the start {x0:g}: widen the bounds "
-                "or start the system within them"
+                "(given, or the system's fit_bounds) or start the system within them"
             )
         low[i], high[i] = lo, hi
     return low, high

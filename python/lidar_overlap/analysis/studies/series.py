@@ -11,6 +11,7 @@ the chunks run in a loop, in dask's threads or on a cluster.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any, Dict, List, Optional, Sequence
 
@@ -61,7 +62,9 @@ def fit_series(
     Returns an ``xarray.Dataset`` along the series' dimension: ``value`` and ``uncertainty``
     (x ``parameter``, SI units in the ``unit`` coordinate), ``rms`` (RMS of model - data, on the
     normalised scale for relative data), ``noise`` (RMS of sigma), ``reduced_chi_square``,
-    ``converged``, ``evaluations`` (model curves). Needs scipy and xarray.
+    ``converged``, ``evaluations`` (model curves); with ``extinction_bias=True`` also
+    ``extinction_bias`` and ``extinction_bias_uncertainty`` (1/m: each curve's retrieval error δα
+    and its 1-sigma uncertainty, ``lo.fit``'s). Needs scipy and xarray.
     """
     xr = xarray("fit_series")
     z = _checks.ranges("ranges", ranges)
@@ -108,7 +111,8 @@ def fit_series(
         key: np.array([[f[key][p] for p in paths] for f in fits])
         for key in ("value", "uncertainty")
     }
-    scalar = {key: np.array([f[key] for f in fits]) for key in _SCALARS}
+    described = {**_SCALARS, **(_BIAS if options.get("extinction_bias") else {})}
+    scalar = {key: np.array([f[key] for f in fits]) for key in described}
     return xr.Dataset(
         {
             "value": (along + ("parameter",), table["value"], {"long_name": "fitted value"}),
@@ -117,7 +121,9 @@ def fit_series(
                 table["uncertainty"],
                 {"long_name": "1-sigma uncertainty of the fitted value"},
             ),
-            **{key: (along, scalar[key], {"long_name": text}) for key, text in _SCALARS.items()},
+            **{
+                key: (along, scalar[key], _attributes(key, text)) for key, text in described.items()
+            },
         },
         coords={
             **coordinates,
@@ -144,6 +150,17 @@ _SCALARS = {
 }
 
 
+#: With extinction_bias=True, the retrieval's extinction bias per curve (1/m), with its meaning.
+_BIAS = {
+    "extinction_bias": "the retrieval's extinction bias delta_alpha the fit profiled",
+    "extinction_bias_uncertainty": "1-sigma uncertainty of the extinction bias",
+}
+
+
+def _attributes(key: str, text: str) -> Dict[str, str]:
+    return {"long_name": text, **({"units": "1/m"} if key in _BIAS else {})}
+
+
 def _fit_chunk(system, z, curves, sigmas, settings, first) -> List[Dict[str, Any]]:
     """The fits of consecutive curves, each warm-started from the previous converged one."""
     out = []
@@ -163,10 +180,16 @@ def _fit_chunk(system, z, curves, sigmas, settings, first) -> List[Dict[str, Any
                 "reduced_chi_square": result.reduced_chi_square,
                 "converged": bool(result.converged),
                 "evaluations": int(result.evaluations),
+                # None (not fitted) kept as NaN: the dataset holds these only when it was
+                **{key: _number(getattr(result, key, None)) for key in _BIAS},
             }
         )
         start = parameters.replace(system, result.parameters) if result.converged else system
     return out
+
+
+def _number(value) -> float:
+    return math.nan if value is None else float(value)
 
 
 def _curves(curves, n_ranges: int) -> np.ndarray:
