@@ -39,14 +39,21 @@ double frequency(std::size_t i, std::size_t n, double dx) {
 }
 
 // Per-axis chirp exp(i k x^2 / 2z) on a centred grid, times (-1)^i when `centring` (the sign that
-// turns an FFT into a centred DFT for even n).
-std::vector<Complex> axis_chirp(std::size_t n, double dx, double k, double z, bool centring) {
-  std::vector<Complex> c(n);
+// turns an FFT into a centred DFT for even n): its n real parts, then its n imaginary parts.
+std::vector<double> axis_chirp(std::size_t n, double dx, double k, double z, bool centring) {
+  std::vector<double> c(2 * n);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = (static_cast<double>(i) - 0.5 * n) * dx;
-    c[i] = unit_phasor(0.5 * k * x * x / z) * ((centring && i % 2) ? -1.0 : 1.0);
+    const Complex v = unit_phasor(0.5 * k * x * x / z) * ((centring && i % 2) ? -1.0 : 1.0);
+    c[i] = v.real();
+    c[n + i] = v.imag();
   }
   return c;
+}
+
+// Value i of a chirp split by axis_chirp.
+Complex chirp_at(const std::vector<double>& chirp, std::size_t i) {
+  return {chirp[i], chirp[chirp.size() / 2 + i]};
 }
 
 // What the validity checks need of a field: total power, power in the outer n/16 of the window, and the
@@ -81,28 +88,38 @@ class ExtentSums {
         border_(std::max<std::size_t>(1, n / 16)),
         total_(n),
         edge_(n),
-        radial_(radial ? threads : 0, std::vector<double>(4 * n + 2, 0.0)) {}
+        radial_(radial ? threads : 0, std::vector<double>(4 * n + 2, 0.0)) {
+    if (!radial) return;
+    w2_.resize(n / 2 + 1);
+    for (std::size_t j = 0; j < n; j += 2) {
+      const double w = static_cast<double>(j) - 0.5 * static_cast<double>(n);
+      w2_[j / 2] = w * w;
+    }
+  }
 
   // Line i holding its final values v[0..n).
   void add(std::size_t i, const Complex* v) {
+    const bool end = i < border_ || i >= n_ - border_;
     const double total = detail::power(v, n_);
-    total_[i] = total;
-    edge_[i] = (i < border_ || i >= n_ - border_)
-                   ? total
-                   : detail::power(v, border_) + detail::power(v + n_ - border_, border_);
-    // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
-    // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
+    set_totals(
+        i, {total,
+            end ? total : detail::power(v, border_) + detail::power(v + n_ - border_, border_)});
     if (radial_.empty() || i % 2) return;
-    std::vector<double>& bins = radial_[omp_get_thread_num()];
-    const std::size_t last = bins.size() - 1;
-    const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half,
-                 per_bin = 8.0 / n_;
-    for (std::size_t j = 0; j < n_; j += 2) {
-      const double w = static_cast<double>(j) - half;
-      // a signed conversion (one instruction; the unsigned one branches): the same bin for these sums >= 0
-      const auto bin = static_cast<std::size_t>(static_cast<long>((w * w + u * u) * per_bin));
-      bins[std::min(last, bin)] += 4.0 * (v[j].real() * v[j].real() + v[j].imag() * v[j].imag());
-    }
+    // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
+    double* squares = line_squares();
+    for (std::size_t j = 0; j < n_; j += 2)
+      squares[j] = v[j].real() * v[j].real() + v[j].imag() * v[j].imag();
+    add_radial(i, squares);
+  }
+
+  // Line i written as to[j] = from[j] (scale chirp[j]) (a chirp split by axis_chirp), with its sums in the
+  // same loop.
+  void add_product(std::size_t i, const Complex* from, Complex scale,
+                   const std::vector<double>& chirp, Complex* to) {
+    double* squares = radial_.empty() || i % 2 ? nullptr : line_squares();
+    set_totals(i, detail::chirp_product_power(from, scale, chirp.data(), chirp.data() + n_, to, n_,
+                                              border_, squares));
+    if (squares) add_radial(i, squares);
   }
 
   Extent result() const {
@@ -120,10 +137,40 @@ class ExtentSums {
   std::size_t n_, border_;
   std::vector<double> total_, edge_;
   std::vector<std::vector<double>> radial_;
+  std::vector<double> w2_;  // (j - n/2)^2 for even j, at j / 2
+
+  void set_totals(std::size_t i, detail::LinePower p) {
+    total_[i] = p.total;
+    edge_[i] = i < border_ || i >= n_ - border_ ? p.total : p.ends;
+  }
+
+  // The calling thread's buffer for one line's |v_j|^2.
+  double* line_squares() const {
+    thread_local std::vector<double> squares;
+    if (squares.size() < n_) squares.resize(n_);
+    return squares.data();
+  }
+
+  // Power per squared radius in bins of n/8 samples^2 (no square root per sample, and a quarter sample of
+  // radius at r = n/4), from every other line and sample (weighted 4): they resolve the profile to two
+  // samples at a quarter of the cost. squares[j] = |v_j|^2 for even j.
+  void add_radial(std::size_t i, const double* squares) {
+    std::vector<double>& bins = radial_[omp_get_thread_num()];
+    const double u = static_cast<double>(i) - 0.5 * static_cast<double>(n_), u2 = u * u,
+                 per_bin = 8.0 / static_cast<double>(n_),
+                 last = static_cast<double>(bins.size() - 1);
+    for (std::size_t j = 0; j < n_; j += 2) {
+      // min(last, floor) taken before the conversion (the same bin for these sums >= 0), signed (one
+      // instruction; the unsigned one branches)
+      const auto bin = static_cast<long>(std::min(last, (w2_[j / 2] + u2) * per_bin));
+      bins[static_cast<std::size_t>(bin)] += 4.0 * squares[j];
+    }
+  }
 };
 
-// u[iy, ix] *= scale * a[iy] * a[ix], and the Extent of the result (the chirp-z path's multiplications).
-Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a,
+// u[iy, ix] *= scale * a[iy] * a[ix] (a chirp split by axis_chirp), and the Extent of the result (the
+// chirp-z path's multiplications).
+Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<double>& a,
                        Complex scale) {
   const int threads = fft_threads(n * n);
   ExtentSums sums(n, threads, true);
@@ -132,8 +179,7 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
   for (long iy = 0; iy < static_cast<long>(n); ++iy) {
     if (stop.stopped()) continue;
     Complex* line = u.data() + iy * n;
-    detail::chirp_product(line, scale * a[iy], a.data(), line, n);
-    sums.add(static_cast<std::size_t>(iy), line);
+    sums.add_product(static_cast<std::size_t>(iy), line, scale * chirp_at(a, iy), a, line);
   }
   stop.rethrow();
   return sums.result();
@@ -265,7 +311,8 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
   // recently used go first, the newest stays.
   constexpr std::size_t kCapacityBytes = std::size_t{1} << 30;
   auto bytes = [](const PropagationPlan& p) {
-    return sizeof(Complex) * (p.transfer_.size() + p.chirp_in_.size() + p.chirp_out_.size());
+    return sizeof(Complex) * p.transfer_.size() +
+           sizeof(double) * (p.chirp_in_.size() + p.chirp_out_.size());
   };
   std::size_t total = 0;
   for (const auto& entry : recent) total += bytes(*entry.second);
@@ -385,8 +432,7 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
   detail::row_pass_into(
       out, n, n, FftDirection::forward, threads,
       [&](std::size_t iy, Complex* line) {
-        detail::chirp_product(in + iy * n, chirp_in_[iy], chirp_in_.data(), line, n);
-        input.add(iy, line);
+        input.add_product(iy, in + iy * n, chirp_at(chirp_in_, iy), chirp_in_, line);
       },
       [](std::size_t, Complex*) {});
   const BlockTransform columns(n, FftDirection::forward, n);
@@ -396,8 +442,8 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
     for (std::size_t c = 0; c < count; ++c) {
       Complex* column = block + c * stride;
       columns(column, transformed, 1);
-      detail::chirp_product(transformed, front_ * chirp_out_[x0 + c], chirp_out_.data(), column, n);
-      output.add(x0 + c, column);
+      output.add_product(x0 + c, transformed, front_ * chirp_at(chirp_out_, x0 + c), chirp_out_,
+                         column);
     }
   });
   fresnel_report(r, input.result(), output.result(), false, spacing_, output_spacing_, wavelength_,
@@ -409,7 +455,8 @@ PropagationReport PropagationPlan::scaled(ComplexBuffer& u) const {
   PropagationReport r;
   r.method = method_;
   r.critical_distance = critical_distance_;
-  const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
+  std::vector<double> unit(2 * n_, 0.0);  // 1 + 0i, split
+  std::fill(unit.begin(), unit.begin() + n_, 1.0);
   const Extent before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
   u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
   const Extent after = apply_separable(u, n_, chirp_out_, front_);
