@@ -151,6 +151,13 @@ class ExtentSums {
     return squares.data();
   }
 
+  // The calling thread's buffer for one line's bins.
+  int* line_bins() const {
+    thread_local std::vector<int> bins;
+    if (bins.size() < n_ / 2) bins.resize(n_ / 2);
+    return bins.data();
+  }
+
   // Power per squared radius in bins of n/8 samples^2 (no square root per sample, and a quarter sample of
   // radius at r = n/4), from every other line and sample (weighted 4): they resolve the profile to two
   // samples at a quarter of the cost. squares[j] = |v_j|^2 for even j.
@@ -159,12 +166,14 @@ class ExtentSums {
     const double u = static_cast<double>(i) - 0.5 * static_cast<double>(n_), u2 = u * u,
                  per_bin = 8.0 / static_cast<double>(n_),
                  last = static_cast<double>(bins.size() - 1);
-    for (std::size_t j = 0; j < n_; j += 2) {
-      // min(last, floor) taken before the conversion (the same bin for these sums >= 0), signed (one
-      // instruction; the unsigned one branches)
-      const auto bin = static_cast<long>(std::min(last, (w2_[j / 2] + u2) * per_bin));
-      bins[static_cast<std::size_t>(bin)] += 4.0 * squares[j];
-    }
+    // The bins first, two per instruction (min(last, floor) taken before the conversion: the same bin for
+    // these sums >= 0, and a conversion to 32 bits that vectorises), then the sums into them.
+    const std::size_t half = n_ / 2;
+    int* slot = line_bins();
+    for (std::size_t k = 0; k < half; ++k)
+      slot[k] = static_cast<int>(std::min(last, (w2_[k] + u2) * per_bin));
+    for (std::size_t k = 0; k < half; ++k)
+      bins[static_cast<std::size_t>(slot[k])] += 4.0 * squares[2 * k];
   }
 };
 
