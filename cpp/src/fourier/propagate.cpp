@@ -1,7 +1,5 @@
 #include "lidar_overlap/fourier/propagate.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <list>
@@ -14,12 +12,16 @@
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/extent_sums.hpp"
 #include "fourier/fft_passes.hpp"
 #include "fourier/line_products.hpp"
 #include "fourier/scaled_dft.hpp"
 #include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
+
+using detail::Extent;
+using detail::ExtentSums;
 
 namespace {
 
@@ -55,127 +57,6 @@ std::vector<double> axis_chirp(std::size_t n, double dx, double k, double z, boo
 Complex chirp_at(const std::vector<double>& chirp, std::size_t i) {
   return {chirp[i], chirp[chirp.size() / 2 + i]};
 }
-
-// What the validity checks need of a field: total power, power in the outer n/16 of the window, and the
-// power per squared radius about the optical axis (bins of n/8 samples^2: no square root per sample, and a
-// quarter sample of radius at r = n/4), taken on every other row and column.
-struct Extent {
-  double total = 0.0, border = 0.0;
-  std::size_t n;
-  std::vector<double> radial;
-  explicit Extent(std::size_t n_) : n(n_), radial(4 * n_ + 2, 0.0) {}
-  double edge_fraction() const { return total > 0.0 ? border / total : 0.0; }
-  // Radius (m) holding `fraction` of the (sampled) radial profile's power, for samples of spacing dx.
-  double radius(double fraction, double dx) const {
-    double sampled = 0.0, inside = 0.0;
-    for (double p : radial) sampled += p;
-    for (std::size_t b = 0; b < radial.size(); ++b) {
-      inside += radial[b];
-      if (inside >= fraction * sampled) return dx * std::sqrt((b + 1) * n / 8.0);
-    }
-    return dx * std::sqrt(radial.size() * n / 8.0);
-  }
-};
-
-// Gathers an Extent from the lines (rows, or columns: the window is square and the checks symmetric) of a
-// field as a pass finishes each of them, on any thread and in any order. Totals are kept per line and
-// added in line order, so they are the same bits for any schedule; the radial profile is kept per thread
-// (it only places the extent on its bin edges).
-class ExtentSums {
- public:
-  ExtentSums(std::size_t n, int threads, bool radial)
-      : n_(n),
-        border_(std::max<std::size_t>(1, n / 16)),
-        total_(n),
-        edge_(n),
-        radial_(radial ? threads : 0, std::vector<double>(4 * n + 2, 0.0)) {
-    if (!radial) return;
-    w2_.resize(n / 2 + 1);
-    for (std::size_t j = 0; j < n; j += 2) {
-      const double w = static_cast<double>(j) - 0.5 * static_cast<double>(n);
-      w2_[j / 2] = w * w;
-    }
-  }
-
-  // Line i holding its final values v[0..n).
-  void add(std::size_t i, const Complex* v) {
-    const bool end = i < border_ || i >= n_ - border_;
-    const double total = detail::power(v, n_);
-    set_totals(
-        i, {total,
-            end ? total : detail::power(v, border_) + detail::power(v + n_ - border_, border_)});
-    if (radial_.empty() || i % 2) return;
-    // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
-    double* squares = line_squares();
-    for (std::size_t j = 0; j < n_; j += 2)
-      squares[j] = v[j].real() * v[j].real() + v[j].imag() * v[j].imag();
-    add_radial(i, squares);
-  }
-
-  // Line i written as to[j] = from[j] (scale chirp[j]) (a chirp split by axis_chirp), with its sums in the
-  // same loop.
-  void add_product(std::size_t i, const Complex* from, Complex scale,
-                   const std::vector<double>& chirp, Complex* to) {
-    double* squares = radial_.empty() || i % 2 ? nullptr : line_squares();
-    set_totals(i, detail::chirp_product_power(from, scale, chirp.data(), chirp.data() + n_, to, n_,
-                                              border_, squares));
-    if (squares) add_radial(i, squares);
-  }
-
-  Extent result() const {
-    Extent e(n_);
-    for (std::size_t i = 0; i < n_; ++i) {
-      e.total += total_[i];
-      e.border += edge_[i];
-    }
-    for (const std::vector<double>& bins : radial_)
-      for (std::size_t b = 0; b < bins.size(); ++b) e.radial[b] += bins[b];
-    return e;
-  }
-
- private:
-  std::size_t n_, border_;
-  std::vector<double> total_, edge_;
-  std::vector<std::vector<double>> radial_;
-  std::vector<double> w2_;  // (j - n/2)^2 for even j, at j / 2
-
-  void set_totals(std::size_t i, detail::LinePower p) {
-    total_[i] = p.total;
-    edge_[i] = i < border_ || i >= n_ - border_ ? p.total : p.ends;
-  }
-
-  // The calling thread's buffer for one line's |v_j|^2.
-  double* line_squares() const {
-    thread_local std::vector<double> squares;
-    if (squares.size() < n_) squares.resize(n_);
-    return squares.data();
-  }
-
-  // The calling thread's buffer for one line's bins.
-  int* line_bins() const {
-    thread_local std::vector<int> bins;
-    if (bins.size() < n_ / 2) bins.resize(n_ / 2);
-    return bins.data();
-  }
-
-  // Power per squared radius in bins of n/8 samples^2 (no square root per sample, and a quarter sample of
-  // radius at r = n/4), from every other line and sample (weighted 4): they resolve the profile to two
-  // samples at a quarter of the cost. squares[j] = |v_j|^2 for even j.
-  void add_radial(std::size_t i, const double* squares) {
-    std::vector<double>& bins = radial_[omp_get_thread_num()];
-    const double u = static_cast<double>(i) - 0.5 * static_cast<double>(n_), u2 = u * u,
-                 per_bin = 8.0 / static_cast<double>(n_),
-                 last = static_cast<double>(bins.size() - 1);
-    // The bins first, two per instruction (min(last, floor) taken before the conversion: the same bin for
-    // these sums >= 0, and a conversion to 32 bits that vectorises), then the sums into them.
-    const std::size_t half = n_ / 2;
-    int* slot = line_bins();
-    for (std::size_t k = 0; k < half; ++k)
-      slot[k] = static_cast<int>(std::min(last, (w2_[k] + u2) * per_bin));
-    for (std::size_t k = 0; k < half; ++k)
-      bins[static_cast<std::size_t>(slot[k])] += 4.0 * squares[2 * k];
-  }
-};
 
 // u[iy, ix] *= scale * a[iy] * a[ix] (a chirp split by axis_chirp), and the Extent of the result (the
 // chirp-z path's multiplications).
