@@ -1,7 +1,5 @@
 #include "lidar_overlap/fourier/propagate.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <list>
@@ -14,12 +12,16 @@
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/extent_sums.hpp"
 #include "fourier/fft_passes.hpp"
 #include "fourier/line_products.hpp"
 #include "fourier/scaled_dft.hpp"
 #include "fourier/zeroed_buffer.hpp"
 
 namespace lidar_overlap {
+
+using detail::Extent;
+using detail::ExtentSums;
 
 namespace {
 
@@ -39,91 +41,26 @@ double frequency(std::size_t i, std::size_t n, double dx) {
 }
 
 // Per-axis chirp exp(i k x^2 / 2z) on a centred grid, times (-1)^i when `centring` (the sign that
-// turns an FFT into a centred DFT for even n).
-std::vector<Complex> axis_chirp(std::size_t n, double dx, double k, double z, bool centring) {
-  std::vector<Complex> c(n);
+// turns an FFT into a centred DFT for even n): its n real parts, then its n imaginary parts.
+std::vector<double> axis_chirp(std::size_t n, double dx, double k, double z, bool centring) {
+  std::vector<double> c(2 * n);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = (static_cast<double>(i) - 0.5 * n) * dx;
-    c[i] = unit_phasor(0.5 * k * x * x / z) * ((centring && i % 2) ? -1.0 : 1.0);
+    const Complex v = unit_phasor(0.5 * k * x * x / z) * ((centring && i % 2) ? -1.0 : 1.0);
+    c[i] = v.real();
+    c[n + i] = v.imag();
   }
   return c;
 }
 
-// What the validity checks need of a field: total power, power in the outer n/16 of the window, and the
-// power per squared radius about the optical axis (bins of n/8 samples^2: no square root per sample, and a
-// quarter sample of radius at r = n/4), taken on every other row and column.
-struct Extent {
-  double total = 0.0, border = 0.0;
-  std::size_t n;
-  std::vector<double> radial;
-  explicit Extent(std::size_t n_) : n(n_), radial(4 * n_ + 2, 0.0) {}
-  double edge_fraction() const { return total > 0.0 ? border / total : 0.0; }
-  // Radius (m) holding `fraction` of the (sampled) radial profile's power, for samples of spacing dx.
-  double radius(double fraction, double dx) const {
-    double sampled = 0.0, inside = 0.0;
-    for (double p : radial) sampled += p;
-    for (std::size_t b = 0; b < radial.size(); ++b) {
-      inside += radial[b];
-      if (inside >= fraction * sampled) return dx * std::sqrt((b + 1) * n / 8.0);
-    }
-    return dx * std::sqrt(radial.size() * n / 8.0);
-  }
-};
+// Value i of a chirp split by axis_chirp.
+Complex chirp_at(const std::vector<double>& chirp, std::size_t i) {
+  return {chirp[i], chirp[chirp.size() / 2 + i]};
+}
 
-// Gathers an Extent from the lines (rows, or columns: the window is square and the checks symmetric) of a
-// field as a pass finishes each of them, on any thread and in any order. Totals are kept per line and
-// added in line order, so they are the same bits for any schedule; the radial profile is kept per thread
-// (it only places the extent on its bin edges).
-class ExtentSums {
- public:
-  ExtentSums(std::size_t n, int threads, bool radial)
-      : n_(n),
-        border_(std::max<std::size_t>(1, n / 16)),
-        total_(n),
-        edge_(n),
-        radial_(radial ? threads : 0, std::vector<double>(4 * n + 2, 0.0)) {}
-
-  // Line i holding its final values v[0..n).
-  void add(std::size_t i, const Complex* v) {
-    const double total = detail::power(v, n_);
-    total_[i] = total;
-    edge_[i] = (i < border_ || i >= n_ - border_)
-                   ? total
-                   : detail::power(v, border_) + detail::power(v + n_ - border_, border_);
-    // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
-    // |v|^2 written out: libstdc++'s std::norm squares std::abs (a hypot) unless compiled for fast math.
-    if (radial_.empty() || i % 2) return;
-    std::vector<double>& bins = radial_[omp_get_thread_num()];
-    const std::size_t last = bins.size() - 1;
-    const double half = 0.5 * static_cast<double>(n_), u = static_cast<double>(i) - half,
-                 per_bin = 8.0 / n_;
-    for (std::size_t j = 0; j < n_; j += 2) {
-      const double w = static_cast<double>(j) - half;
-      // a signed conversion (one instruction; the unsigned one branches): the same bin for these sums >= 0
-      const auto bin = static_cast<std::size_t>(static_cast<long>((w * w + u * u) * per_bin));
-      bins[std::min(last, bin)] += 4.0 * (v[j].real() * v[j].real() + v[j].imag() * v[j].imag());
-    }
-  }
-
-  Extent result() const {
-    Extent e(n_);
-    for (std::size_t i = 0; i < n_; ++i) {
-      e.total += total_[i];
-      e.border += edge_[i];
-    }
-    for (const std::vector<double>& bins : radial_)
-      for (std::size_t b = 0; b < bins.size(); ++b) e.radial[b] += bins[b];
-    return e;
-  }
-
- private:
-  std::size_t n_, border_;
-  std::vector<double> total_, edge_;
-  std::vector<std::vector<double>> radial_;
-};
-
-// u[iy, ix] *= scale * a[iy] * a[ix], and the Extent of the result (the chirp-z path's multiplications).
-Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Complex>& a,
+// u[iy, ix] *= scale * a[iy] * a[ix] (a chirp split by axis_chirp), and the Extent of the result (the
+// chirp-z path's multiplications).
+Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<double>& a,
                        Complex scale) {
   const int threads = fft_threads(n * n);
   ExtentSums sums(n, threads, true);
@@ -132,8 +69,7 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<Comple
   for (long iy = 0; iy < static_cast<long>(n); ++iy) {
     if (stop.stopped()) continue;
     Complex* line = u.data() + iy * n;
-    detail::chirp_product(line, scale * a[iy], a.data(), line, n);
-    sums.add(static_cast<std::size_t>(iy), line);
+    sums.add_product(static_cast<std::size_t>(iy), line, scale * chirp_at(a, iy), a, line);
   }
   stop.rethrow();
   return sums.result();
@@ -265,7 +201,8 @@ std::shared_ptr<const PropagationPlan> PropagationPlan::cached(std::size_t n, do
   // recently used go first, the newest stays.
   constexpr std::size_t kCapacityBytes = std::size_t{1} << 30;
   auto bytes = [](const PropagationPlan& p) {
-    return sizeof(Complex) * (p.transfer_.size() + p.chirp_in_.size() + p.chirp_out_.size());
+    return sizeof(Complex) * p.transfer_.size() +
+           sizeof(double) * (p.chirp_in_.size() + p.chirp_out_.size());
   };
   std::size_t total = 0;
   for (const auto& entry : recent) total += bytes(*entry.second);
@@ -385,8 +322,7 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
   detail::row_pass_into(
       out, n, n, FftDirection::forward, threads,
       [&](std::size_t iy, Complex* line) {
-        detail::chirp_product(in + iy * n, chirp_in_[iy], chirp_in_.data(), line, n);
-        input.add(iy, line);
+        input.add_product(iy, in + iy * n, chirp_at(chirp_in_, iy), chirp_in_, line);
       },
       [](std::size_t, Complex*) {});
   const BlockTransform columns(n, FftDirection::forward, n);
@@ -396,8 +332,8 @@ PropagationReport PropagationPlan::execute(const Complex* in, Complex* out) cons
     for (std::size_t c = 0; c < count; ++c) {
       Complex* column = block + c * stride;
       columns(column, transformed, 1);
-      detail::chirp_product(transformed, front_ * chirp_out_[x0 + c], chirp_out_.data(), column, n);
-      output.add(x0 + c, column);
+      output.add_product(x0 + c, transformed, front_ * chirp_at(chirp_out_, x0 + c), chirp_out_,
+                         column);
     }
   });
   fresnel_report(r, input.result(), output.result(), false, spacing_, output_spacing_, wavelength_,
@@ -409,7 +345,8 @@ PropagationReport PropagationPlan::scaled(ComplexBuffer& u) const {
   PropagationReport r;
   r.method = method_;
   r.critical_distance = critical_distance_;
-  const std::vector<Complex> unit(n_, Complex{1.0, 0.0});
+  std::vector<double> unit(2 * n_, 0.0);  // 1 + 0i, split
+  std::fill(unit.begin(), unit.begin() + n_, 1.0);
   const Extent before = apply_separable(u, n_, chirp_in_.empty() ? unit : chirp_in_, 1.0);
   u = scaled_dft2d(u, n_, n_, spacing_ * output_spacing_ / (wavelength_ * distance_));
   const Extent after = apply_separable(u, n_, chirp_out_, front_);

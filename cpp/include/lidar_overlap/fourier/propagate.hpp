@@ -68,11 +68,13 @@ class PropagationPlan {
   std::size_t n_;
   double spacing_, wavelength_, distance_, output_spacing_, critical_distance_;
   PropagationMethod method_;
-  ComplexBuffer transfer_;          // AS: n x n, zero outside the band limit
-  std::vector<Complex> chirp_in_;   // Fresnel: exp(i k x^2 / 2z) per axis, centring sign folded in
-  std::vector<Complex> chirp_out_;  // exp(i k x^2 / 2z) per axis on the output grid, sign folded in
-  Complex front_{1.0, 0.0};         // exp(ikz) / (i lambda z) dx^2
-  bool single_fft_ = false;         // Fresnel/Fraunhofer at the natural spacing: one FFT
+  ComplexBuffer transfer_;  // AS: n x n, zero outside the band limit
+  // Fresnel: exp(i k x^2 / 2z) per axis, centring sign folded in; then the same on the output grid. Each
+  // as its n real parts followed by its n imaginary parts (the product loops read them without shuffles).
+  std::vector<double> chirp_in_;
+  std::vector<double> chirp_out_;
+  Complex front_{1.0, 0.0};  // exp(ikz) / (i lambda z) dx^2
+  bool single_fft_ = false;  // Fresnel/Fraunhofer at the natural spacing: one FFT
 
   // The chirp-z path (Fresnel/Fraunhofer to another spacing), in place on u (n x n).
   PropagationReport scaled(ComplexBuffer& u) const;
