@@ -30,6 +30,7 @@ import lidar_overlap as lo
 from lidar_overlap.analysis.fitting.families import LADDER
 from lidar_overlap.analysis.fitting.ladder import FamilyScore, LadderResult, fit_ladder
 from lidar_overlap.analysis.fitting.problem import fit_problem
+from lidar_overlap.io.noise_profile import NoiseProfile, noise_profile
 from lidar_overlap.io.overlap_curves import OverlapCurve
 
 Z = np.array([150.0, 400.0, 1200.0, 3000.0])
@@ -177,6 +178,11 @@ REGISTRY: Dict[type, Entry] = {
     OverlapCurve: Entry(
         lambda: OverlapCurve(Z, [0.1, 0.5, 0.9, 1.0], [0.01] * 4, ("h",), "m"),
         none_ok=frozenset({"sigma"}),
+    ),
+    NoiseProfile: Entry(
+        lambda: noise_profile(
+            np.arange(500.0, 800.0, 7.5), np.cos(np.arange(40.0) ** 2), (500.0, 800.0)
+        )
     ),
     lo.OverlapSeries: Entry(
         lambda: lo.OverlapSeries(

@@ -328,11 +328,17 @@ def far_range_noise(ranges, overlap, interval: Tuple[float, float]) -> float:
             f"interval = ({z_low:g}, {z_high:g}) m holds {int(inside.sum())} points of the curve "
             f"(ranges {z[0]:g} to {z[-1]:g} m): expected at least {MIN_NOISE_POINTS}"
         )
-    d = np.diff(g[inside])
-    sigma = MAD_TO_SIGMA * float(np.median(np.abs(d - np.median(d)))) / math.sqrt(2.0)
+    sigma = difference_scatter(g[inside])
     if not sigma > 0:
         raise ValueError(
             f"interval = ({z_low:g}, {z_high:g}) m: the curve has no scatter there (constant or "
             "quantised values); choose an interval where it is measured, not clipped"
         )
     return sigma
+
+
+def difference_scatter(values: np.ndarray) -> float:
+    """1.4826 x MAD(first differences of ``values``) / sqrt(2): the 1-sigma scatter of a nearly
+    flat stretch of a curve, in the units of ``values`` (unchecked: at least 2 finite values)."""
+    d = np.diff(values)
+    return MAD_TO_SIGMA * float(np.median(np.abs(d - np.median(d)))) / math.sqrt(2.0)
