@@ -2,9 +2,9 @@
 daily curves, examples/data/): held-out RMS over 100-1000 m of each model, and the time of one
 fixed-family fit per day.
 
-Models (each a function in MODELS: trained on the training days, it predicts the held-out days'
-curves at the gates of INTERVAL from their internal temperature; another model is one more function
-there, e.g. the physical drift fit, lo.fit_drift):
+Models (benchmarks/_payerne.py's BASELINES, trained on the training days, each predicts the
+held-out days' curves at the gates of INTERVAL from their internal temperature; the physical drift
+fit, lo.fit_drift, is bench_drift.py's, on the same splits):
 - empirical: Hervo et al. (2016), ln(G / G_factory) linear in temperature per gate
   (lo.empirical_drift), 2 coefficients per gate;
 - training mean: the mean curve of the training days, 1 coefficient per gate;
@@ -25,100 +25,31 @@ from __future__ import annotations
 
 import time
 import warnings
-from pathlib import Path
-from typing import Callable, Dict, Tuple
 
 import numpy as np
 from _common import load_average, run_meta, write_result
+from _payerne import (
+    BASELINES,
+    DRAWS,
+    HELD_OUT,
+    INTERVAL,
+    SEED,
+    TEMPERATURE,
+    gates,
+    held_out,
+    read,
+    splits,
+    summary,
+    table,
+)
 
 import lidar_overlap as lo
-from lidar_overlap.io.overlap_curves import read_overlap_curve
 
-DATA = Path(__file__).resolve().parent.parent / "examples" / "data"
-INTERVAL = (100.0, 1000.0)  # m: the held-out RMS's gates
-HELD_OUT = 0.4
-DRAWS, SEED = 20, 34
-TEMPERATURE = "internal_temperature_K"
 #: The fits' ranges (m) and normalisation interval: every day equals the factory curve beyond ~1 km.
 FIT_RANGES, NORMALIZE = (30.0, 1520.0), (1000.0, 1500.0)
 #: The days' scatter about a smooth model (0.004 in G, the per-day tilt fits' RMS).
 SIGMA, TOLERANCE = 0.004, 4e-4
 TARGET_S = 60.0
-
-#: A model: (training days, the held-out days' temperatures, the factory curve at the training
-#: series' ranges) -> (G predicted at the gates of INTERVAL, one row per held-out day; fitted
-#: coefficients).
-Model = Callable[[lo.OverlapSeries, np.ndarray, np.ndarray], Tuple[np.ndarray, int]]
-
-
-def _gates(series: lo.OverlapSeries) -> np.ndarray:
-    return (series.ranges >= INTERVAL[0]) & (series.ranges <= INTERVAL[1])
-
-
-def empirical(train, temperature, factory):
-    near = _gates(train)
-    model = lo.empirical_drift(
-        train.ranges[near], train.curves[:, near], train.covariates[TEMPERATURE], factory[near]
-    )
-    return model.predict(model.ranges, temperature), model.coefficients
-
-
-def training_mean(train, temperature, factory):
-    mean = train.curves[:, _gates(train)].mean(axis=0)
-    return np.tile(mean, (temperature.size, 1)), int(mean.size)
-
-
-def factory_curve(train, temperature, factory):
-    return np.tile(factory[_gates(train)], (temperature.size, 1)), 0
-
-
-MODELS: Dict[str, Model] = {
-    "empirical (Hervo et al. 2016)": empirical,
-    "training mean": training_mean,
-    "factory curve": factory_curve,
-}
-
-
-def held_out_rms(series, factory, held_out) -> Dict[str, Tuple[float, int]]:
-    """{model: (RMS of prediction - measured over the held-out days and gates, coefficients)}."""
-    train = series.select(~held_out)
-    test = series.select(held_out)
-    measured = test.curves[:, _gates(test)]
-    out = {}
-    for name, model in MODELS.items():
-        predicted, coefficients = model(train, test.covariates[TEMPERATURE], factory)
-        out[name] = (float(np.sqrt(np.mean((predicted - measured) ** 2))), coefficients)
-    return out
-
-
-def splits(series, factory) -> dict:
-    t = series.covariates[TEMPERATURE]
-    n = len(series)
-    count = int(round(HELD_OUT * n))
-    warmest = np.zeros(n, dtype=bool)
-    warmest[np.argsort(t)[-count:]] = True
-    rows = {"warmest": held_out_rms(series, factory, warmest)}
-    rng = np.random.default_rng(SEED)
-    draws = []
-    for _ in range(DRAWS):
-        mask = np.zeros(n, dtype=bool)
-        mask[rng.choice(n, count, replace=False)] = True
-        draws.append(held_out_rms(series, factory, mask))
-    out = {
-        "warmest": {
-            name: {"rms": rms, "coefficients": k} for name, (rms, k) in rows["warmest"].items()
-        },
-        "random": {},
-    }
-    for name in MODELS:
-        values = np.array([d[name][0] for d in draws])
-        out["random"][name] = {
-            "rms": float(values.mean()),
-            "rms_std": float(values.std(ddof=1)),
-            "coefficients": draws[0][name][1],
-        }
-    out["held_out_days"], out["days"] = count, n
-    return out
 
 
 def series_timing(everything: lo.OverlapSeries) -> dict:
@@ -177,21 +108,12 @@ def series_timing(everything: lo.OverlapSeries) -> dict:
 def main():
     load = load_average()
     print(f"lidar_overlap {lo.__version__} | load average {load:.2f}")
-    everything = lo.read_overlap_series(DATA / "chm15k_payerne_daily_overlap.csv")
-    factory = read_overlap_curve(DATA / "chm15k_payerne_factory_overlap.csv")
-    if not np.array_equal(factory.ranges, everything.ranges):
-        raise SystemExit("the factory curve's ranges differ from the series'")
-    series = everything.select(everything.covariates["quality"] >= 1)
-    held_out = splits(series, factory.overlap)
-    gates = int(np.count_nonzero(_gates(series)))
-    print(f"held-out RMS over {INTERVAL[0]:g}-{INTERVAL[1]:g} m ({gates} gates):")
-    print(f"  {'model':32s} {'coefficients':>12s} {'warmest 40 %':>13s} {'random 40 %':>17s}")
-    for name in MODELS:
-        a, b = held_out["warmest"][name], held_out["random"][name]
-        print(
-            f"  {name:32s} {a['coefficients']:12d} {a['rms']:13.4f} "
-            f"{b['rms']:9.4f} ± {b['rms_std']:.4f}"
-        )
+    everything, series, factory = read()
+    rows = {name: held_out(series, factory, mask, BASELINES) for name, mask in splits(series)}
+    result = summary(rows)
+    result["held_out_days"], result["days"] = int(splits(series)[0][1].sum()), len(series)
+    print(table(result))
+    print(f"({int(np.count_nonzero(gates(series)))} gates)")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         timing = series_timing(everything)
@@ -215,7 +137,7 @@ def main():
         sigma=SIGMA,
         tolerance=TOLERANCE,
     )
-    write_result("bench_drift_payerne", {"meta": meta, "held_out": held_out, "series": timing})
+    write_result("bench_drift_payerne", {"meta": meta, "held_out": result, "series": timing})
 
 
 if __name__ == "__main__":
