@@ -7,12 +7,14 @@ one path: the beam's offset from the telescope axis, the field stop's radius and
 value for both (the telescope is a mirror, so the stop's focus does not depend on the wavelength;
 a radius or defocus per channel would describe two stops). What each channel may have of its own,
 PER_CHANNEL, the only paths the choice may split:
+
 - the divergence and the waist: the harmonics leave the laser's crystals with their own beam
   quality and diameter, and an expander's far field scales with the wavelength;
 - the tilt: the harmonics are generated in crystals with walk-off and pass separating optics, so
   they may leave along directions tens of µrad apart;
 - the acceptance (detector.numerical_aperture): behind the common stop each channel has its own
   dichroic path, lens and detector, so each cuts the steepest rays differently.
+
 The families the joint choice tries (alignment; + beam; + focus) hold the tilt and the divergence
 of these. Each channel is also fitted alone in the family chosen, all its parameters its own,
 started from the joint solution (a local fit): a global search from the preset, capped at 300
