@@ -9,6 +9,7 @@ worker processes. Shaded: the 5-95 % band of the members; the median and the nom
 over it. Writes tolerance_study.png. SI units.
 """
 
+import logging
 import time
 
 import matplotlib
@@ -34,8 +35,14 @@ def main():
 
     system = lo.paper_table1()
     with (
+        # silence_logs: a worker's heartbeat may race the scheduler's shutdown and log a harmless
+        # "Stream is closed" traceback; real failures still raise in this process
         LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=logging.CRITICAL,
         ) as cluster,
         Client(cluster) as client,
     ):
