@@ -17,6 +17,7 @@ from .diffraction import at_diffraction_limit
 from .ladder import runs_p_value
 from .multi_curve import MultiCurveFit
 from .result import FitResult
+from .result import verdict_lines as fit_verdict_lines
 
 #: The fields every multi-curve result checks on construction (beside its own).
 FIELDS: Dict[str, Any] = {
@@ -140,16 +141,6 @@ def bic_of(fit: MultiCurveFit) -> float:
 
 
 def verdict_lines(result) -> List[str]:
-    """The chi-square, degeneracy, bound and choice lines of a result's summary."""
-    lines = [
-        f"  chi-square {result.chi_square:.4g} for {result.degrees_of_freedom} degrees of "
-        f"freedom, reduced {result.reduced_chi_square:.4g}"
-    ]
-    for a, b, c in result.degenerate_pairs:
-        lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
-    if result.at_bounds:
-        lines.append(f"  on a bound (set by it, not by the data): {', '.join(result.at_bounds)}")
-    if result.at_diffraction_limit:
-        lines.append(f"  at the diffraction limit: {', '.join(result.at_diffraction_limit)}")
-    lines.extend(f"  {line}" for line in result.choices)
-    return lines
+    """The summary lines of a single fit's verdict (:func:`.result.verdict_lines`), then the
+    choices the fit made (family, per-curve or drifting parameters)."""
+    return fit_verdict_lines(result) + [f"  {line}" for line in result.choices]

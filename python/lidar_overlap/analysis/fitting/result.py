@@ -8,7 +8,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from typing import Any, ClassVar, Dict, Optional, Tuple, Union
+from typing import Any, ClassVar, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -231,16 +231,7 @@ class FitResult(ByValue):
                 f"{self.start[path]:+.6g})"
             )
         scaled = " (unit weights: covariance scaled by it)" if self.covariance_scaled else ""
-        lines.append(
-            f"  chi-square {self.chi_square:.4g} for {self.degrees_of_freedom} degrees of freedom, "
-            f"reduced {self.reduced_chi_square:.4g}{scaled}"
-        )
-        for a, b, c in self.degenerate_pairs:
-            lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
-        if self.at_bounds:
-            lines.append(f"  on a bound (set by it, not by the data): {', '.join(self.at_bounds)}")
-        if self.at_diffraction_limit:
-            lines.append(f"  at the diffraction limit: {', '.join(self.at_diffraction_limit)}")
+        lines.extend(verdict_lines(self, scaled))
         return "\n".join(lines)
 
     __str__ = summary
@@ -303,6 +294,22 @@ class FitResult(ByValue):
         bottom.set_xlabel("range (m)")
         bottom.set_ylabel("residual / sigma" if self.sigma is not None else "residual")
         return fig
+
+
+def verdict_lines(result, scaled: str = "") -> List[str]:
+    """The chi-square (``scaled``: a note after it), degeneracy, bound and diffraction-limit lines
+    of a fit result's summary (single or of several curves)."""
+    lines = [
+        f"  chi-square {result.chi_square:.4g} for {result.degrees_of_freedom} degrees of freedom, "
+        f"reduced {result.reduced_chi_square:.4g}{scaled}"
+    ]
+    for a, b, c in result.degenerate_pairs:
+        lines.append(f"  degenerate: {a} and {b} (correlation {c:+.3f})")
+    if result.at_bounds:
+        lines.append(f"  on a bound (set by it, not by the data): {', '.join(result.at_bounds)}")
+    if result.at_diffraction_limit:
+        lines.append(f"  at the diffraction limit: {', '.join(result.at_diffraction_limit)}")
+    return lines
 
 
 def _rebuild_fit(cls, state, recipe):
