@@ -37,11 +37,12 @@ def _systems(true=True):
     ]
 
 
-def _curves(seed):
+def _curves(seed, method="rt", tolerance=1e-6):
+    """The two channels' relative curves with noise, computed by ``method``."""
     rng = np.random.default_rng(seed)
     out = []
     for system, sigma in zip(_systems(), SIGMA):
-        g = lo.overlap(system, Z, "rt", tolerance=1e-6).overlap
+        g = lo.overlap(system, Z, method, tolerance=tolerance).overlap
         out.append(g / g[Z >= INTERVAL[0]].mean() + rng.normal(0.0, sigma, Z.size))
     return out
 
@@ -210,12 +211,7 @@ def test_auto_chooses_the_family_and_splits_the_divergence_per_channel():
 
 def _fo_curves(seed):
     """The two channels' relative curves on Fourier optics (auto's plan for these systems)."""
-    rng = np.random.default_rng(seed)
-    out = []
-    for system, sigma in zip(_systems(), SIGMA):
-        g = lo.overlap(system, Z, "fo", tolerance=1e-4).overlap
-        out.append(g / g[Z >= INTERVAL[0]].mean() + rng.normal(0.0, sigma, Z.size))
-    return out
+    return _curves(seed, "fo", 1e-4)
 
 
 #: A planned-on-FO fit's settings: auto's plan (Fourier optics for the PollyXT receiver).
