@@ -314,7 +314,7 @@ def _curve_fits(problem, model: CurveSet, theta, cov, local, counts, solution) -
             correlation=corr,
             residuals=r,
             chi_square=chi,
-            reduced_chi_square=chi / dof if dof else math.nan,
+            reduced_chi_square=reduced(chi, dof),
             degrees_of_freedom=dof,
             result=kept,
             measured=norm.whitening @ norm.data,
@@ -373,3 +373,8 @@ def _absolute(raw: FitResult, curve) -> FitResult:
 def _users(maps) -> np.ndarray:
     """How many curves each global parameter sets."""
     return np.sum([np.abs(m.matrix).sum(axis=0) > 0 for m in maps], axis=0)
+
+
+def reduced(chi_square: float, dof: int) -> float:
+    """chi²/dof, NaN without degrees of freedom."""
+    return chi_square / dof if dof else math.nan

@@ -15,7 +15,7 @@ from ... import _checks, _values
 from ..._pickling import ByValue
 from .diffraction import at_diffraction_limit
 from .ladder import runs_p_value
-from .multi_curve import MultiCurveFit
+from .multi_curve import MultiCurveFit, reduced
 from .result import FitResult
 from .result import verdict_lines as fit_verdict_lines
 
@@ -127,11 +127,6 @@ def fit_fields(fit: MultiCurveFit) -> Dict[str, Any]:
         message=fit.message,
         search=fit.search,
     )
-
-
-def reduced(chi_square: float, dof: int) -> float:
-    """chi²/dof, NaN without degrees of freedom."""
-    return chi_square / dof if dof else math.nan
 
 
 def bic_of(fit: MultiCurveFit) -> float:
