@@ -201,3 +201,17 @@ def test_drift_curve_refuses_bad_paths_and_covariates():
         fit.drift_curve("beam.tilt[0]", [300.0, math.nan])
     with pytest.raises(ValueError, match=r"covariate\[0\] = inf"):
         fit.drift_curve("beam.tilt[0]", math.inf)
+
+
+def test_the_result_refuses_splines_and_knots_that_do_not_fit_its_parameters():
+    import dataclasses
+
+    fit = _drift(_series(29))
+    with pytest.raises(ValueError, match="knots"):
+        dataclasses.replace(fit, knots=fit.knots[::-1])
+    with pytest.raises(ValueError, match="knots"):
+        dataclasses.replace(fit, knots=np.empty(0))
+    with pytest.raises(ValueError, match="splines"):
+        dataclasses.replace(fit, splines=("detector.defocus",))
+    with pytest.raises(ValueError, match="parameters"):  # one knot more: two departures short
+        dataclasses.replace(fit, knots=np.linspace(290.0, 310.0, 6))

@@ -76,8 +76,8 @@ def fit_drift(
     generations: int = GENERATIONS,
     minima: int = MINIMA,
 ) -> DriftFitResult:
-    """Fit a series of curves with parameters that drift linearly with a covariate (module
-    docstring).
+    """Fit a series of curves with parameters that drift with a covariate, linearly or as a
+    spline (module docstring).
 
     system : the start (its values start every curve). ranges : m, strictly increasing, shared by
     the curves. curves : (n_curves, n_ranges), G or relative G, at least two. covariate : one

@@ -43,7 +43,9 @@ class DriftFitResult(MultiFitResult):
     degenerate_pairs, at_bounds, evaluations, jacobian_evaluations, converged, message : as in
         :class:`JointFitResult` (at_diffraction_limit too); search : the global search's report or
         None; choices : with ``drifting="auto"`` (or ``free="auto"``), what the choice tried, one
-        line each. The fields from ``parameters`` to ``message`` are :class:`MultiFitResult`'s.
+        line each; splines : the drifting paths that are splines (the others linear); knots : their
+        knots (covariate values; empty without a spline). The fields from ``parameters`` to
+        ``message`` are :class:`MultiFitResult`'s.
     """
 
     free: Tuple[str, ...]
@@ -76,7 +78,8 @@ class DriftFitResult(MultiFitResult):
             raise ValueError(
                 f"splines = {self.splines} is invalid: expected drifting paths ({self.drifting})"
             )
-        if bool(self.splines) != bool(self.knots.size) or not np.all(np.diff(self.knots) > 0):
+        few = bool(self.splines) and self.knots.size < 3
+        if bool(self.splines) != bool(self.knots.size) or few or np.any(np.diff(self.knots) <= 0):
             raise ValueError(
                 f"knots = {_checks.shown(self.knots)} is invalid: expected strictly increasing "
                 "covariate values with a spline drift, none without"
