@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 import pytest
+from test_fit_drift import BASE, FAST, FREE, INTERVAL, SIGMA, SLOPE, START, TEMPERATURE, Z
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
@@ -18,17 +19,10 @@ from lidar_overlap.model.instruments import chm15k
 
 pytest.importorskip("scipy")
 
-FAST = dict(method="rt", tolerance=1e-4, threads=1)
-Z = np.arange(10, 80, 5) * 14.985  # 150-1124 m, 14 gates
-INTERVAL = (800.0, 1120.0)
-TEMPERATURE = np.linspace(290.0, 310.0, 8)  # K
-SIGMA = 0.004
-FREE = ["beam.tilt[0]", "detector.defocus"]
-TILT = 2e-5  # rad, at the covariate's mean
-SLOPE = -2e-6  # rad/K
-#: rad/K²: the tilt bends by 20 µrad at the span's ends (~ 25 sigma of the spline's departures)
+TILT = BASE["beam.tilt[0]"]  # rad, at the covariate's mean; SLOPE: rad/K
+#: rad/K²: the tilt bends by 20 µrad at the span's ends (its departure from the chord at the
+#: interior knots, 18 µrad, is ~ 20 sigma of the spline's fitted departures)
 CURVATURE = 2e-7
-START = parameters.replace(chm15k(), {"beam.tilt[0]": 0.0, "detector.defocus": 1e-4})
 SPLINE = {"beam.tilt[0]": "spline"}
 #: |pull| bound for a single Gaussian quantity (p ~ 6e-5 two-sided).
 PULL = 4.0
