@@ -209,3 +209,17 @@ def test_the_result_refuses_splines_and_knots_that_do_not_fit_its_parameters():
         dataclasses.replace(fit, splines=("detector.defocus",))
     with pytest.raises(ValueError, match="parameters"):  # one knot more: two departures short
         dataclasses.replace(fit, knots=np.linspace(290.0, 310.0, 6))
+
+
+def test_the_spline_does_not_depend_on_the_covariates_offset_or_scale():
+    # the covariate in another unit and origin (mK from 1e9 mK): the same curves, the same
+    # chi-square, the slope and its uncertainty in the new unit
+    y = _series(30)
+    fit = _drift(y)
+    moved = _drift(y, covariate=1e3 * TEMPERATURE + 1e9)
+    assert moved.knots == pytest.approx(1e3 * fit.knots + 1e9, rel=1e-15)
+    assert moved.chi_square == pytest.approx(fit.chi_square, rel=1e-9)
+    slope, sd = fit.drift["beam.tilt[0]"]
+    assert moved.drift["beam.tilt[0]"] == pytest.approx((1e-3 * slope, 1e-3 * sd), rel=1e-6)
+    for name in ("beam.tilt[0]@knot[1]", "beam.tilt[0]@knot[2]"):  # departures: in rad, unmoved
+        assert moved.parameters[name] == pytest.approx(fit.parameters[name], rel=1e-6)

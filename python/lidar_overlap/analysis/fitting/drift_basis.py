@@ -147,10 +147,12 @@ class DriftBasis:
             return np.zeros((c.size, 0))
         from scipy.interpolate import CubicSpline
 
-        t = self.knots
-        spline = CubicSpline(t, np.eye(t.size), bc_type="natural")
-        inside = np.clip(c, t[0], t[-1])
-        values = spline(inside) + spline(inside, 1) * (c - inside)[:, None]
+        # on the span mapped to [0, 1]: N_j does not change, and no covariate's scale overflows
+        t, span = self.knots, self.knots[-1] - self.knots[0]
+        spline = CubicSpline((t - t[0]) / span, np.eye(t.size), bc_type="natural")
+        u = (c - t[0]) / span
+        inside = np.clip(u, 0.0, 1.0)
+        values = spline(inside) + spline(inside, 1) * (u - inside)[:, None]
         return values[:, 1:-1]
 
 
