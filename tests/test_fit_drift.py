@@ -99,7 +99,8 @@ def test_prediction_at_a_curves_covariate_is_that_curves_fit_and_its_band_grows_
     assert at.shape == (2, Z.size)
     for row, i in zip(at, (0, 6)):
         assert row == pytest.approx(fit.curves[i].fitted, abs=1e-9)
-    g, band = fit.predict(Z, [300.0, 340.0], band=True)
+    with pytest.warns(UserWarning, match="covariate = 340 K lies outside the fitted span"):
+        g, band = fit.predict(Z, [300.0, 340.0], band=True)
     near = Z < 600.0  # where the tilt matters
     assert np.all(band[1][near] > 2.0 * band[0][near])  # 2 spans out: the slope's share grows
     # the relative curve's normaliser is the data's: its mean over the interval is 1

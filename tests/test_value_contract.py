@@ -234,6 +234,20 @@ REGISTRY: Dict[type, Entry] = {
             tolerance=1e-6,
         )  # fmt: skip
     ),
+    Also(lo.DriftFitResult, "spline drift"): _fit_entry(
+        lambda: lo.fit_drift(
+            SYSTEM,
+            Z,
+            [_measured()[0]] * 3,
+            [290.0, 295.0, 300.0],
+            sigma=1e-3,
+            free=["detector.defocus"],
+            drifting={"detector.defocus": "spline"},
+            spline_knots=3,
+            method="rt",
+            tolerance=1e-6,
+        )  # fmt: skip
+    ),
     lo.TelecoverResult: Entry(_telecover),
     Also(lo.FitResult, "telecover fit"): _fit_entry(_telecover_fit),
     LadderResult: Entry(_ladder),

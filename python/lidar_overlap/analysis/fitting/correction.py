@@ -10,7 +10,8 @@ parameters' uncertainty, not the model's own error.
 
 A drift fit (``lo.fit_drift``) gives the curve of the instrument at the signal's covariate value
 (``covariate=``, e.g. the day's internal temperature), in the same way: absolute as fitted, relative
-divided by its far-range limit (or its peak), with the band of the drift fit's covariance.
+divided by its far-range limit (or its peak), with the band of the drift fit's covariance; a
+covariate outside the fitted span is warned about (the drift is extrapolated there).
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ... import _checks
+from .drift_basis import warn_outside
 from .drift_result import DriftFitResult
 from .normalization import FAR_FACTOR
 from .relative_result import RelativeFitResult, normalised_prediction
@@ -59,6 +61,7 @@ def _drift_overlap(fit: DriftFitResult, z, covariate):
     c = _checks.real("covariate", covariate)
     if not np.isfinite(c):
         raise ValueError(f"covariate = {c!r} is invalid: expected a finite value")
+    warn_outside(c, fit.span, fit.covariate_unit)
     if not isinstance(fit.curves[0], RelativeFitResult):
         g, band = fit.prediction(z, np.array([c]), None, True)
         return g[0], band[0]

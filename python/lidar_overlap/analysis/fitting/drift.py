@@ -1,7 +1,9 @@
 """``lo.fit_drift``: a series of curves of one instrument with a covariate per curve (its internal
 temperature, the time): the fixed parameters shared by all curves, each drifting one linear in the
 covariate, a + b (c - c_ref), with c_ref the covariate's mean (so a is the value at the series'
-mean and a and b are nearly uncorrelated). One fit of all curves
+mean and a and b are nearly uncorrelated), or a natural cubic spline in it with the same a and b
+(its value at c_ref and its mean slope over the span) and K - 2 more coefficients
+(:mod:`lidar_overlap.analysis.fitting.drift_basis`). One fit of all curves
 (:mod:`lidar_overlap.analysis.fitting.multi_curve`), one covariance.
 
 ``drifting="auto"``: forward selection by BIC = chi² + K ln n (n independent points of all curves):
@@ -11,7 +13,7 @@ ranks them all; a path held by its bound is not a candidate), the best is fitted
 the current solution, its slope starting at 0) and taken when it lowers the BIC by more than
 ``BIC_TIE``, else the next best (``TRIED`` per round at most, and only while the one step's drop
 exceeds the BIC's penalty); until none is taken. At most ``TRIED`` k local fits and k Jacobians for
-k free paths.
+k free paths. The drifts it chooses are linear; ask for a spline by name (a mapping).
 ``free="auto"``: the model ladder (``lo.fit(..., free="auto")``) on the series' median curve
 chooses the family (its paths become ``free``) and its fit the start.
 """
@@ -26,6 +28,7 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
+from .drift_basis import DEFAULT_KNOTS, DriftBasis, checked_drifting, knots_at_quantiles
 from .drift_result import SLOPE, DriftFitResult
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
@@ -64,6 +67,7 @@ def fit_drift(
     seed: Optional[int] = None,
     bounds=None,
     covariate_unit: str = "K",
+    spline_knots: int = DEFAULT_KNOTS,
     loss: str = "linear",
     max_evaluations: int = 200,
     allow_unconverged: bool = False,
@@ -72,8 +76,8 @@ def fit_drift(
     generations: int = GENERATIONS,
     minima: int = MINIMA,
 ) -> DriftFitResult:
-    """Fit a series of curves with parameters that drift linearly with a covariate (module
-    docstring).
+    """Fit a series of curves with parameters that drift with a covariate, linearly or as a
+    spline (module docstring).
 
     system : the start (its values start every curve). ranges : m, strictly increasing, shared by
     the curves. curves : (n_curves, n_ranges), G or relative G, at least two. covariate : one
@@ -81,7 +85,10 @@ def fit_drift(
     a scalar, one per range, or (n_curves, n_ranges); required. free : paths fitted (a list, or
     ``"auto"``: the model ladder on the median curve chooses them, its global searches run with
     this call's seed, population, generations and minima); drifting : those of them that drift
-    (a list, possibly empty, or ``"auto"``).
+    (a list, possibly empty, each linear; a mapping {path: "linear" | "spline"}; or ``"auto"``,
+    linear drifts chosen by BIC). spline_knots : the number of a spline drift's knots, at the
+    covariate's quantiles (>= 3, at most the covariate's distinct values): K - 2 coefficients
+    beyond the linear drift's.
     normalize : None, "far" or (z_low, z_high) in m, for every curve; extinction_bias : each
     curve's retrieval extinction bias profiled (with an interval). bounds : {path: (low, high)}
     for the paths' values (the slopes' bounds: ± that width per covariate span). method,
@@ -116,7 +123,7 @@ def fit_drift(
         choices.append(line)
     paths = checked_paths("free", free, [system])
     auto = isinstance(drifting, str) and drifting == "auto"
-    moving = () if auto else checked_paths("drifting", drifting, [system], allow_empty=True)
+    moving, splines = ((), ()) if auto else checked_drifting(drifting, [system])
     outside = [p for p in moving if p not in paths]
     if outside:
         raise ValueError(
@@ -126,8 +133,10 @@ def fit_drift(
     if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)
         bounds = {k: v for k, v in bounds.items() if not _outside(k, paths)}
     given = checked_bounds(bounds, paths)
+    knots = knots_at_quantiles(spline_knots, c, splines)
     settings = settings.derived(start=system, free=paths)
-    problem = drift_problem(settings, system, paths, moving, c, given)
+    basis = DriftBasis(moving, float(c.mean()), splines, knots)
+    problem = drift_problem(settings, system, paths, moving, c, given, basis=basis)
     if auto:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the model without drift: its BIC is its verdict
@@ -135,7 +144,7 @@ def fit_drift(
         fit, moving = _select(fit, settings, system, paths, c, given, choices)
     else:
         fit = fit_curves(problem)
-    return drift_result(fit, paths, moving, c, covariate_unit, choices)
+    return drift_result(fit, paths, moving, c, covariate_unit, choices, splines, knots)
 
 
 def _outside(key, paths) -> bool:
@@ -209,19 +218,22 @@ def _sigma(sigma, shape) -> np.ndarray:
         ) from None
 
 
-def drift_problem(settings, system, paths, moving, c, bounds, start=None) -> MultiCurveProblem:
-    """The multi-curve problem of free ``paths``, ``moving`` of them linear in ``c`` (module
-    docstring); ``start`` {name: value} overrides the system's values (slopes: 0)."""
+def drift_problem(
+    settings, system, paths, moving, c, bounds, start=None, basis=None
+) -> MultiCurveProblem:
+    """The multi-curve problem of free ``paths``, ``moving`` of them drifting with ``c`` as
+    ``basis`` says (None: each linear; module docstring); ``start`` {name: value} overrides the
+    system's values (slopes: 0)."""
     k = len(paths)
-    names = list(paths) + [p + SLOPE for p in moving]
-    dc = c - c.mean()
+    basis = basis or DriftBasis(tuple(moving), float(c.mean()))
+    names = list(paths) + basis.names
+    owners = [paths.index(p) for p in basis.owners]
     span = float(np.ptp(c))
     maps = []
-    for ci in dc:
+    for row in basis.columns(c):
         m = np.zeros((k, len(names)))
         m[:, :k] = np.eye(k)
-        for d, p in enumerate(moving):
-            m[paths.index(p), k + d] = ci
+        m[owners, k + np.arange(len(owners))] = row
         maps.append(CurveMap(system, tuple(paths), m))
     x0, low, high, scale, s_low, s_high, logs = (np.zeros(len(names)) for _ in range(7))
     for a, path in enumerate(paths):
@@ -230,14 +242,15 @@ def drift_problem(settings, system, paths, moving, c, bounds, start=None) -> Mul
         scale[a] = _parameters.step_scale(system, path)
         s_low[a], s_high[a] = search_box(system, path, x0[a], low[a], high[a])
         logs[a] = _parameters.searched_in_log(path, s_low[a])
-    for d, p in enumerate(moving):
-        a, b = paths.index(p), k + d
-        low[b], high[b] = -(high[a] - low[a]) / span, (high[a] - low[a]) / span
+    for b, (a, name) in enumerate(zip(owners, basis.names), start=k):
+        # a slope: ± the value's width per span; a spline's departure at a knot: ± that width
+        per = span if name.endswith(SLOPE) else 1.0
+        low[b], high[b] = -(high[a] - low[a]) / per, (high[a] - low[a]) / per
         s_low[b], s_high[b] = (
-            -(s_high[a] - s_low[a]) / (2 * span),
-            (s_high[a] - s_low[a]) / (2 * span),
+            -(s_high[a] - s_low[a]) / (2 * per),
+            (s_high[a] - s_low[a]) / (2 * per),
         )
-        scale[b] = scale[a] / span
+        scale[b] = scale[a] / per
     if start is not None:
         x0 = np.array([start.get(name, 0.0) for name in names])
     return MultiCurveProblem(
@@ -324,9 +337,12 @@ def _step_drop(a, r) -> float:
     return float(r @ r - after @ after)
 
 
-def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> DriftFitResult:
+def drift_result(
+    fit: MultiCurveFit, paths, moving, c, unit: str, choices, splines=(), knots=None
+) -> DriftFitResult:
     """The :class:`DriftFitResult` of the driver's fit of free ``paths``, ``moving`` of them
-    drifting (the problem's names: those paths, then their slopes)."""
+    drifting, ``splines`` of those on ``knots`` (the problem's names: those paths, then each
+    drifting one's slope and a spline's departures at its knots)."""
     return DriftFitResult(
         **fit_fields(fit),
         free=tuple(paths),
@@ -335,6 +351,8 @@ def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> Dr
         covariate_reference=float(c.mean()),
         covariate_unit=unit,
         choices=tuple(choices),
+        splines=tuple(splines),
+        knots=np.empty(0) if knots is None else knots,
     )
 
 

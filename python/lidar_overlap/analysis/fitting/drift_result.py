@@ -4,7 +4,7 @@ covariate value, and the drift in physical units."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, ClassVar, Dict, Optional, Tuple
 
 import numpy as np
@@ -14,12 +14,11 @@ from ...model import parameters as _parameters
 from ..batch_curves import curves as batch
 from ..sensitivity import jacobian
 from . import multi_result
+from .drift_basis import SLOPE, DriftBasis, knot_name, warn_outside
 from .global_result import SearchReport
 from .multi_result import MultiFitResult, verdict_lines
 from .relative_result import RelativeFitResult
 
-#: The suffix of a drifting parameter's slope in ``parameters`` (per covariate unit).
-SLOPE = "@slope"
 #: Units the summary shows the drifts in: SI unit -> (factor, unit).
 SHOWN = {"rad": (1e6, "µrad"), "m": (1e3, "mm"), "1": (1.0, "")}
 
@@ -32,17 +31,21 @@ class DriftFitResult(MultiFitResult):
     ----------
     parameters, uncertainties, start : name -> value, 1-sigma uncertainty, start: each free path's
         value at the reference covariate, and for each drifting path ``path@slope``, its slope
-        (SI unit per covariate unit).
+        (SI unit per covariate unit; a spline's mean slope over the covariate's span), then for a
+        spline ``path@knot[j]``, its departure at interior knot j from the chord through its end
+        values (SI unit; :mod:`lidar_overlap.analysis.fitting.drift_basis`).
     covariance, correlation : (K, K) in the order of ``parameters``.
     chi_square, reduced_chi_square, degrees_of_freedom : over all curves.
-    free, drifting : the free paths and those of them that drift (linearly).
+    free, drifting : the free paths and those of them that drift.
     covariate : one value per curve; covariate_reference : c_ref, the covariate's mean, where the
         free paths take their ``parameters`` values; covariate_unit : its unit's name.
     curves : one :class:`FitResult` per curve (its paths at its covariate, their covariance).
     degenerate_pairs, at_bounds, evaluations, jacobian_evaluations, converged, message : as in
         :class:`JointFitResult` (at_diffraction_limit too); search : the global search's report or
         None; choices : with ``drifting="auto"`` (or ``free="auto"``), what the choice tried, one
-        line each. The fields from ``parameters`` to ``message`` are :class:`MultiFitResult`'s.
+        line each; splines : the drifting paths that are splines (the others linear); knots : their
+        knots (covariate values; empty without a spline). The fields from ``parameters`` to
+        ``message`` are :class:`MultiFitResult`'s.
     """
 
     free: Tuple[str, ...]
@@ -52,22 +55,40 @@ class DriftFitResult(MultiFitResult):
     covariate_unit: str
     search: Optional[SearchReport] = None
     choices: Tuple[str, ...] = ()
+    splines: Tuple[str, ...] = ()
+    knots: np.ndarray = field(default_factory=lambda: np.empty(0))
 
     FIELDS: ClassVar[Dict[str, Any]] = {
         **multi_result.FIELDS,
         "covariate": _values.array(),
         "covariate_reference": _values.real(),
         "covariate_unit": _values.text,
+        "knots": _values.array(),
     }
-    TUPLES: ClassVar[Tuple[str, ...]] = MultiFitResult.TUPLES + ("free", "drifting", "choices")
+    TUPLES: ClassVar[Tuple[str, ...]] = MultiFitResult.TUPLES + (
+        "free",
+        "drifting",
+        "choices",
+        "splines",
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        names = list(self.free) + [p + SLOPE for p in self.drifting]
+        if not set(self.splines) <= set(self.drifting):
+            raise ValueError(
+                f"splines = {self.splines} is invalid: expected drifting paths ({self.drifting})"
+            )
+        few = bool(self.splines) and self.knots.size < 3
+        if bool(self.splines) != bool(self.knots.size) or few or np.any(np.diff(self.knots) <= 0):
+            raise ValueError(
+                f"knots = {_checks.shown(self.knots)} is invalid: expected strictly increasing "
+                "covariate values with a spline drift, none without"
+            )
+        names = list(self.free) + self.basis.names
         if list(self.parameters) != names:
             raise ValueError(
                 "parameters and uncertainties are invalid: expected the free paths, then each "
-                "drifting path's slope"
+                "drifting path's slope (and a spline's departures at its knots)"
             )
         if len(self.curves) != self.covariate.size:
             raise ValueError(
@@ -75,9 +96,16 @@ class DriftFitResult(MultiFitResult):
             )
 
     @property
+    def basis(self) -> DriftBasis:
+        """How the drifting paths depend on the covariate (their columns of ``parameters``)."""
+        return DriftBasis(self.drifting, self.covariate_reference, self.splines, self.knots)
+
+    @property
     def drift(self) -> Dict[str, Tuple[float, float]]:
         """{path: (slope, its 1-sigma uncertainty)} of each drifting path, SI unit per covariate
-        unit."""
+        unit: a linear drift's slope; a spline's mean slope over the covariate's span, (p(c_max) -
+        p(c_min)) / (c_max - c_min), its own parameter (``path@slope``), so that its uncertainty
+        is that parameter's in the covariance."""
         return {
             p: (self.parameters[p + SLOPE], self.uncertainties[p + SLOPE]) for p in self.drifting
         }
@@ -87,12 +115,45 @@ class DriftFitResult(MultiFitResult):
         k, names = len(self.free), list(self.parameters)
         m = np.zeros((k, len(names)))
         m[:, :k] = np.eye(k)
-        for p in self.drifting:
-            m[self.free.index(p), names.index(p + SLOPE)] = covariate - self.covariate_reference
+        owners = [self.free.index(p) for p in self.basis.owners]
+        m[owners, k + np.arange(len(owners))] = self.basis.columns(covariate)[0]
         return m
 
+    def drift_curve(self, path: str, covariate) -> Tuple[np.ndarray, np.ndarray]:
+        """(value, its 1-sigma uncertainty) of the free ``path`` at each ``covariate`` value (SI
+        unit): a + b (c - c_ref) for a linear drift, the spline for a spline drift, a constant for
+        a path that does not drift; the uncertainty sqrt(m C mᵀ) from the covariance. Outside the
+        fitted span a warning says it is extrapolated (linearly)."""
+        if path not in self.free:
+            raise ValueError(
+                f"path = {_checks.shown(path)} is invalid: expected a free path "
+                f"({', '.join(self.free)})"
+            )
+        c = self._checked_covariate(covariate)
+        warn_outside(c, self.span, self.covariate_unit)
+        rows = np.array([self.matrix(ci)[self.free.index(path)] for ci in c])
+        value = rows @ np.array(list(self.parameters.values()))
+        with np.errstate(invalid="ignore"):
+            var = np.einsum("ij,jk,ik->i", rows, self.covariance, rows)
+        return value, np.sqrt(np.maximum(var, 0.0))
+
+    @property
+    def span(self) -> Tuple[float, float]:
+        """The fitted covariate span (smallest, largest value)."""
+        return float(self.covariate.min()), float(self.covariate.max())
+
+    @staticmethod
+    def _checked_covariate(covariate) -> np.ndarray:
+        c = _checks.real_array("covariate", np.atleast_1d(covariate), ndim=1)
+        bad = ~np.isfinite(c)
+        if bad.any():
+            i = int(np.argmax(bad))
+            raise ValueError(f"covariate[{i}] = {float(c[i])!r} is invalid: expected finite values")
+        return c
+
     def system_at(self, covariate: float):
-        """The fitted system at ``covariate``."""
+        """The fitted system at ``covariate`` (beyond the fitted span every drift continues
+        linearly)."""
         values = self.matrix(covariate) @ np.array(list(self.parameters.values()))
         return _parameters.replace(self.curves[0].system, dict(zip(self.free, values.tolist())))
 
@@ -104,11 +165,8 @@ class DriftFitResult(MultiFitResult):
         ``band=True``: (overlap, its 1-sigma band from the covariance, sqrt(diag(J M C Mᵀ Jᵀ)) of
         the normalised model)."""
         z = _checks.ranges("ranges", ranges)
-        c = _checks.real_array("covariate", np.atleast_1d(covariate), ndim=1)
-        bad = ~np.isfinite(c)
-        if bad.any():
-            i = int(np.argmax(bad))
-            raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
+        c = self._checked_covariate(covariate)
+        warn_outside(c, self.span, self.covariate_unit)
         first = self.curves[0]
         normalizing = first.normalizing_ranges if isinstance(first, RelativeFitResult) else None
         return self.prediction(z, c, normalizing, band)
@@ -155,9 +213,18 @@ class DriftFitResult(MultiFitResult):
             )
         for p, (slope, sd) in self.drift.items():
             factor, shown = SHOWN.get(_parameters.unit(p), (1.0, _parameters.unit(p)))
+            mean = " (spline: mean over the span)" if p in self.splines else ""
             lines.append(
                 f"  drift of {p:<15} {factor * slope:+.4g} ± {factor * sd:.2g} {shown}/{unit_c}"
+                + mean
             )
+            for j in range(1, self.knots.size - 1) if p in self.splines else ():
+                name = knot_name(p, j)
+                lines.append(
+                    f"    off the chord at {self.knots[j]:.4g} {unit_c}: "
+                    f"{factor * self.parameters[name]:+.4g} ± "
+                    f"{factor * self.uncertainties[name]:.2g} {shown}"
+                )
         if not self.drifting:
             lines.append("  no parameter drifts")
         lines.extend(verdict_lines(self))
