@@ -9,8 +9,9 @@ nm) on a square window of +-5 w0 (spacing 10 w0 / N), propagated
   critical distance of every grid.
 
 lo is timed against the transforms it is made of, with no copies around them, in the same
-interleaved rounds (each timing the least of its rounds, so that a change of machine load hits all
-alike):
+interleaved rounds; in each round lo is called right after its own transform(s), so that the two
+see the same load. Two estimates are kept: the least time of each over the rounds, and the median
+over the rounds of the per-round ratio (lo / its transform timed just before it):
 
 - its own transforms: the library's deterministic 2-D FFT pair (``_core._fft_pair_seconds(n, 1,
   True)``) for the angular spectrum, one forward transform (``transforms=1``) for Fresnel. Targets:
@@ -22,10 +23,16 @@ alike):
   methods <= 1.3x it.
 
 ``--load N`` adds N busy processes (pure-Python loops) for a second run; there every target is
-1.5x. The 1-minute load average is recorded with every size. Cold times are reported separately:
-``cold`` is the first call of the process for that N and method (the library's 1-D plans and the
-propagation plan are made), ``new z`` the best call at a distance not seen before (the propagation
-plan -- transfer function or chirps -- is made anew, which each new range of an overlap curve pays).
+1.5x, rounds go on for LOADED_SECONDS per size (at least the quiet run's count), and the targets are
+judged on the median per-round ratio: with more runnable threads than cores, each function's least
+time is the round where it alone happened to run unpreempted, so a ratio of two minima mixes
+different luck (and the minima still move after hundreds of rounds), while a back-to-back ratio
+sees one load and its median converges. On a quiet machine the least times are the target's (both
+reach their unpreempted time). The 1-minute load average is recorded with every size. Cold times
+are reported separately: ``cold`` is the first call of the process for that N and method (the
+library's 1-D plans and the propagation plan are made), ``new z`` the best call at a distance not
+seen before (the propagation plan -- transfer function or chirps -- is made anew, which each new
+range of an overlap curve pays).
 
 Peers (optional, benchmark-only; each is skipped with the reason when it does not import):
 LightPipes (Forvard: spectral, paraxial transfer function; Fresnel: convolution with
@@ -57,16 +64,26 @@ from pathlib import Path
 
 import numpy as np
 from _common import best_time, load_average, source_commit
+from _fo_references import (
+    FLOOR_NAMES,
+    HALF_WINDOW,
+    THREADS,
+    WAIST,
+    WAVELENGTH,
+    d1_error,
+    d1_radius,
+    floor_rounds,
+    load_peers,
+    print_peers,
+)
 
 import lidar_overlap as lo
 from lidar_overlap import _core
 
-WAVELENGTH = 355e-9  # m
-WAIST = 5e-3  # m, w0
-HALF_WINDOW = 5.0  # window +- HALF_WINDOW w0
 SIZES = (256, 512, 1024, 2048)
 CASES = {"angular_spectrum": 2.0, "fresnel": 100.0}  # method -> distance (m)
 REPEATS_LO = {256: 25, 512: 19, 1024: 13, 2048: 9}  # interleaved rounds of lo and the transforms
+LOADED_SECONDS = 20.0  # per size with busy processes: rounds go on (at least REPEATS_LO) this long
 REPEATS_PEER = {256: 7, 512: 5, 1024: 3, 2048: 3}
 NEW_DISTANCES = 5  # distinct unseen distances timed for "new z"
 #: Targets, lo warm time over: the library's own transform(s) for each method, the fastest floor;
@@ -75,256 +92,30 @@ TARGET_OWN = {"angular_spectrum": 1.2, "fresnel": 1.3}
 TARGET_FLOOR = 1.3
 TARGET_LOADED = 1.5
 LOADS = (0, 4)  # busy processes added, one run each
-THREADS = int(
-    os.environ.get("OMP_NUM_THREADS", os.cpu_count())
-)  # the team lo uses, and the floor's
 FLOOR_TRANSFORMS = {"angular_spectrum": 2, "fresnel": 1}  # FFTs each method needs
-FLOOR_NAMES = {1: "one", 2: "pair"}
 
 
-def d1_radius(z):
-    """Eq. (D1) in vacuum."""
-    return WAIST * np.sqrt(1.0 + (WAVELENGTH * z / (np.pi * WAIST**2)) ** 2)
-
-
-def second_moment_radius(intensity, x, y):
-    """sqrt(2 (var x + var y)) of an irradiance on the grid x (columns) by y (rows), about its
-    centroid: the 1/e^2 radius of a TEM00 beam."""
-    i = np.asarray(intensity, dtype=float)
-    total = i.sum()
-    px, py = i.sum(axis=0), i.sum(axis=1)
-    cx, cy = (px * x).sum() / total, (py * y).sum() / total
-    return float(np.sqrt(2.0 * (((x - cx) ** 2 * px).sum() + ((y - cy) ** 2 * py).sum()) / total))
-
-
-def d1_error(intensity, x, y, z):
-    return abs(1.0 - d1_radius(z) / second_moment_radius(intensity, x, y))
-
-
-def interleaved_best(fns, repeats):
-    """Least time (s) of each function in `fns` (name -> callable), timed in `repeats` rounds that
-    call every function once, after one untimed round. A function that returns a float has timed
-    itself (a transform without the Python call around it): that is its time."""
+def interleaved_rounds(fns, repeats, seconds=0.0):
+    """Times (s) of each function in `fns` (name -> callable, called in this order), one per round:
+    {name: [time of round 0, ...]}. At least `repeats` rounds, and more until `seconds` have
+    passed, after one untimed round. A function that returns a float has timed itself (a
+    transform without the Python call around it): that is its time."""
     for fn in fns.values():
         fn()
-    best = {name: float("inf") for name in fns}
-    for _ in range(repeats):
+    times = {name: [] for name in fns}
+    start = time.perf_counter()
+    while len(times[next(iter(fns))]) < repeats or time.perf_counter() - start < seconds:
         for name, fn in fns.items():
             t0 = time.perf_counter()
             own = fn()
-            t = own if isinstance(own, float) else time.perf_counter() - t0
-            best[name] = min(best[name], t)
-    return best
-
-
-def pyfftw_floors(n):
-    """pyFFTW's FFTW, FFTW_MEASURE for THREADS threads, out of place on aligned arrays: {"one":
-    timed forward, "pair": timed forward and backward}, each returning its own seconds; {} with
-    the reason printed once where pyFFTW does not import."""
-    try:
-        import pyfftw
-    except ImportError as e:
-        if not getattr(pyfftw_floors, "reported", False):
-            print(f"floor pyFFTW: not installed ({e}); floors without it")
-            pyfftw_floors.reported = True
-        return {}
-    a = pyfftw.empty_aligned((n, n), dtype="complex128")
-    b = pyfftw.empty_aligned((n, n), dtype="complex128")
-    flags = ("FFTW_MEASURE",)
-    forward = pyfftw.FFTW(a, b, axes=(0, 1), direction="FFTW_FORWARD", flags=flags, threads=THREADS)
-    backward = pyfftw.FFTW(
-        b, a, axes=(0, 1), direction="FFTW_BACKWARD", flags=flags, threads=THREADS
-    )
-    a[:] = 1.0 + 0.5j  # planning by timing overwrote the arrays
-
-    def one():
-        t0 = time.perf_counter()
-        forward.execute()
-        return time.perf_counter() - t0
-
-    def pair():
-        t0 = time.perf_counter()
-        forward.execute()
-        backward.execute()
-        t = time.perf_counter() - t0
-        a[:] = 1.0 + 0.5j  # bounded values (FFTW may reuse an out-of-place input as scratch)
-        return t
-
-    return {"one": one, "pair": pair}
-
-
-def floor_rounds(n):
-    """The transforms lo is timed against, each returning its own time (s) of one call:
-    {(source, "one" | "pair"): callable}, source = "own" (the library's deterministic transforms),
-    "fftw" (the system FFTW, measured plan, THREADS threads), "pyfftw" (where installed)."""
-    rounds = {}
-    for k, name in FLOOR_NAMES.items():
-        rounds[("own", name)] = lambda k=k: _core._fft_pair_seconds(n, 1, True, k)
-        rounds[("fftw", name)] = lambda k=k: _core._fft_pair_seconds(n, 1, False, k, THREADS)
-    for name, fn in pyfftw_floors(n).items():
-        rounds[("pyfftw", name)] = fn
-    return rounds
+            times[name].append(own if isinstance(own, float) else time.perf_counter() - t0)
+    return times
 
 
 def timed_once(fn):
     t0 = time.perf_counter()
     result = fn()
     return time.perf_counter() - t0, result
-
-
-# ---------------------------------------------------------------------------------------------
-# Peers. Each factory returns (version, variants); a variant is (peer, routine, settings, prepare,
-# methods it is run for), and prepare(n, distance) -> (call, setup or None, intensity_and_grid),
-# where intensity_and_grid(result) -> (irradiance, x of the columns, y of the rows).
-# ---------------------------------------------------------------------------------------------
-def lightpipes_variants():
-    import LightPipes as lp
-    from LightPipes import config as lp_config
-
-    fields = {}
-
-    def field(n):
-        if n not in fields:
-            fields.clear()  # one grid at a time
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                fields[n] = lp.GaussBeam(lp.Begin(2 * HALF_WINDOW * WAIST, WAVELENGTH, n), WAIST)
-        return fields[n]
-
-    def make(routine):
-        def prepare(n, distance):
-            f = field(n)
-            return (
-                (lambda: routine(f, distance)),
-                None,
-                (lambda g: (lp.Intensity(g, 0), g.xvalues, g.yvalues)),
-            )
-
-        return prepare
-
-    settings = f"numpy FFT (pyFFTW {'on' if lp_config._USE_PYFFTW else 'off'})"
-    return lp.__version__, [
-        ("LightPipes", "Forvard", settings, make(lp.Forvard), ("angular_spectrum", "fresnel")),
-        ("LightPipes", "Fresnel", settings + ", 2N grid", make(lp.Fresnel), ("fresnel",)),
-    ]
-
-
-def hcipy_variants():
-    import hcipy
-
-    def make(cls, oversampling):
-        def prepare(n, distance):
-            grid = hcipy.make_pupil_grid(n, 2 * HALF_WINDOW * WAIST)
-            amplitude = np.exp(-(grid.x**2 + grid.y**2) / WAIST**2).astype(complex)
-            wf = hcipy.Wavefront(hcipy.Field(amplitude, grid), WAVELENGTH)
-            prop = cls(grid, distance, num_oversampling=oversampling)
-            x, y = grid.x.reshape(n, n)[0], grid.y.reshape(n, n)[:, 0]
-            return (
-                (lambda: prop.forward(wf)),
-                None,
-                (lambda out: (np.asarray(out.intensity.shaped), x, y)),
-            )
-
-        return prepare
-
-    try:  # hcipy tries mkl_fft first, then scipy.fft (all cores from 256^2 samples on)
-        import mkl_fft  # noqa: F401
-
-        backend = "mkl_fft"
-    except ImportError:
-        backend = "scipy.fft"
-    variants = []
-    for method, cls in (
-        ("angular_spectrum", hcipy.AngularSpectrumPropagator),
-        ("fresnel", hcipy.FresnelPropagator),
-    ):
-        for oversampling in (2, 1):
-            variants.append(
-                (
-                    "hcipy",
-                    f"{cls.__name__}",
-                    f"num_oversampling={oversampling}"
-                    + (" (default)" if oversampling == 2 else "")
-                    + f", 2N zero padding, {backend}",
-                    make(cls, oversampling),
-                    (method,),
-                )
-            )
-    return hcipy.__version__, variants
-
-
-def poppy_variants():
-    import astropy.units as u
-    import poppy
-    from poppy import accel_math
-
-    def prepare(n, distance):
-        values = lo.Field.gaussian(WAVELENGTH, WAIST, n, 2 * HALF_WINDOW * WAIST / n).values
-
-        def setup():
-            # Window 2 * HALF_WINDOW * w0 = npix * oversample pixels of spacing 2 beam_radius /
-            # npix.
-            wf = poppy.FresnelWavefront(
-                beam_radius=HALF_WINDOW * WAIST / 2 * u.m,
-                wavelength=WAVELENGTH * u.m,
-                npix=n // 2,
-                oversample=2,
-            )
-            wf.wavefront = values.copy()
-            return wf
-
-        def call(wf):
-            wf.propagate_fresnel(distance * u.m)
-            return wf
-
-        def intensity_and_grid(wf):
-            yy, xx = wf.coordinates()
-            return wf.intensity, xx[0], yy[:, 0]
-
-        return call, setup, intensity_and_grid
-
-    backends = (
-        ", ".join(
-            k[5:].lower()
-            for k in ("_USE_FFTW", "_USE_MKL", "_USE_NUMEXPR", "_USE_CUPY")
-            if getattr(accel_math, k, False)
-        )
-        or "numpy"
-    )
-    return poppy.__version__, [
-        (
-            "poppy",
-            "FresnelWavefront.propagate_fresnel",
-            f"oversample=2, npix=N/2; accelerators: {backends}",
-            prepare,
-            ("angular_spectrum", "fresnel"),
-        )
-    ]
-
-
-PEERS = {"LightPipes": lightpipes_variants, "hcipy": hcipy_variants, "poppy": poppy_variants}
-
-
-def load_peers():
-    status, variants = {}, []
-    for name, factory in PEERS.items():
-        try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                version, v = factory()
-        except ImportError as e:
-            status[name] = {"installed": False, "version": None, "reason": f"not installed ({e})"}
-            continue
-        except Exception as e:  # imports but cannot be set up: record why
-            status[name] = {
-                "installed": True,
-                "version": None,
-                "reason": f"{type(e).__name__}: {e}",
-            }
-            continue
-        status[name] = {"installed": True, "version": version, "reason": None}
-        variants += v
-    return status, variants
 
 
 # ---------------------------------------------------------------------------------------------
@@ -343,13 +134,18 @@ def run_size(n, peer_variants, loaded):
             m: timed_once(lambda m=m, z=z: lo.propagate(field, z, method=m))[0]
             for m, z in CASES.items()
         }
-        rounds = floor_rounds(n)
-        for m, z in CASES.items():
+        floors_of_size = floor_rounds(n)
+        rounds = {}
+        for m, z in CASES.items():  # each method right after its own transform(s)
+            own_key = ("own", FLOOR_NAMES[FLOOR_TRANSFORMS[m]])
+            rounds[own_key] = floors_of_size.pop(own_key)
             rounds[m] = lambda m=m, z=z: lo.propagate(field, z, method=m)
             rounds[m + "_native"] = lambda m=m, z=z: _core.propagate(
                 field.values, spacing, WAVELENGTH, z, m, 0.0, 0
             )
-        warm = interleaved_best(rounds, REPEATS_LO[n])
+        rounds.update(floors_of_size)
+        per_round = interleaved_rounds(rounds, REPEATS_LO[n], LOADED_SECONDS if loaded else 0.0)
+        warm = {name: min(t) for name, t in per_round.items()}
         new_z = {
             m: min(
                 timed_once(
@@ -366,6 +162,7 @@ def run_size(n, peer_variants, loaded):
         for name in FLOOR_NAMES.values()
     }
     out["transforms_s"] = floors  # "one" / "pair" -> source -> least time
+    out["rounds"] = len(per_round[next(iter(per_round))])
     out["load_average_1min"] = load_average()
     for m, z in CASES.items():
         g = results[m]
@@ -375,6 +172,16 @@ def run_size(n, peer_variants, loaded):
         floor = transforms[source]
         target_own = TARGET_LOADED if loaded else TARGET_OWN[m]
         target_floor = TARGET_LOADED if loaded else TARGET_FLOOR
+        # Per round: lo over its own transform timed just before it, and over the least floor of
+        # that round.
+        name = FLOOR_NAMES[FLOOR_TRANSFORMS[m]]
+        sources = [key for key in per_round if isinstance(key, tuple) and key[1] == name]
+        lo_times = np.array(per_round[m])
+        own_median = float(np.median(lo_times / np.array(per_round[("own", name)])))
+        floor_median = float(
+            np.median(lo_times / np.min([per_round[key] for key in sources], axis=0))
+        )
+        judged = (own_median, floor_median) if loaded else (warm[m] / own, warm[m] / floor)
         case = {
             "distance_m": z,
             "inside_angular_spectrum_region": bool(z <= critical),
@@ -387,9 +194,12 @@ def run_size(n, peer_variants, loaded):
             "floor_source": source,
             "ratio_to_own": warm[m] / own,
             "ratio_to_floor": warm[m] / floor,
+            "ratio_to_own_median": own_median,
+            "ratio_to_floor_median": floor_median,
+            "target_judged_on": "median per-round ratios" if loaded else "least times",
             "target_own": target_own,
             "target_floor": target_floor,
-            "target_met": bool(warm[m] / own <= target_own and warm[m] / floor <= target_floor),
+            "target_met": bool(judged[0] <= target_own and judged[1] <= target_floor),
             "output_spacing_m": g.spacing,
             "d1_radius_m": float(d1_radius(z)),
             "lo_d1_rel_error": d1_error(g.intensity, g.x, g.y, z),
@@ -438,7 +248,8 @@ def print_tables(rows, added):
     )
     header = (
         f"{'N':>5} {'case':9} {'own':>8} {'floor':>8} {'from':>6} {'lo':>8} {'x own':>6} "
-        f"{'x floor':>7} {'native':>8} {'cold':>8} {'new z':>8} {'D1 err':>8} {'load':>5}  target"
+        f"{'x floor':>7} {'med own':>7} {'med fl':>6} {'native':>8} {'cold':>8} {'new z':>8} "
+        f"{'D1 err':>8} {'load':>5} {'rounds':>6}  target"
     )
     print(header)
     print("-" * len(header))
@@ -447,11 +258,12 @@ def print_tables(rows, added):
             print(
                 f"{r['n']:5d} {m[:9]:9} {fmt_ms(c['own_s'])} {fmt_ms(c['floor_s'])} "
                 f"{c['floor_source']:>6} {fmt_ms(c['lo_s'])} {c['ratio_to_own']:5.2f}x "
-                f"{c['ratio_to_floor']:6.2f}x {fmt_ms(c['lo_native_s'])} "
+                f"{c['ratio_to_floor']:6.2f}x {c['ratio_to_own_median']:6.2f}x "
+                f"{c['ratio_to_floor_median']:5.2f}x {fmt_ms(c['lo_native_s'])} "
                 f"{c['lo_cold_s'] * 1e3:8.1f} {fmt_ms(c['lo_new_distance_s'])} "
-                f"{c['lo_d1_rel_error']:8.1e} {r['load_average_1min']:5.1f}  "
+                f"{c['lo_d1_rel_error']:8.1e} {r['load_average_1min']:5.1f} {r['rounds']:6d}  "
                 f"{'met' if c['target_met'] else 'NOT met'} (<= {c['target_own']:g}x own, "
-                f"{c['target_floor']:g}x floor)"
+                f"{c['target_floor']:g}x floor, on {c['target_judged_on']})"
             )
     print(
         "transforms alone (ms): "
@@ -464,31 +276,6 @@ def print_tables(rows, added):
             for r in rows
         )
     )
-
-
-def print_peers(rows):
-    print(
-        "\npeers (ms; x lo = peer time / lo warm time, x new z = peer time / lo new-z time; D1 err "
-        "of the peer and of lo on the same case)"
-    )
-    header = (
-        f"{'N':>5} {'case':9} {'peer':10} {'routine':34} {'time':>9} {'x lo':>7} {'x new z':>7} "
-        f"{'D1 err':>8} {'lo err':>8}"
-    )
-    print(header)
-    print("-" * len(header))
-    for r in rows:
-        for m, c in r["cases"].items():
-            for p in c["peers"]:
-                routine = p["routine"] + (" os=1" if "num_oversampling=1" in p["settings"] else "")
-                if p["s"] is None:
-                    print(f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} failed: {p['error']}")
-                    continue
-                print(
-                    f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} {p['s'] * 1e3:9.2f} "
-                    f"{p['ratio_to_lo']:6.1f}x {p['ratio_to_lo_new_distance']:6.1f}x "
-                    f"{p['d1_rel_error']:8.1e} {c['lo_d1_rel_error']:8.1e}"
-                )
 
 
 def measure(added, sizes, peer_variants):
@@ -542,7 +329,8 @@ def main():
     print(
         f"TEM00 w0 = {WAIST * 1e3:g} mm, {WAVELENGTH * 1e9:g} nm, window +-{HALF_WINDOW:g} w0; "
         f"angular spectrum over {CASES['angular_spectrum']:g} m, Fresnel over {CASES['fresnel']:g} "
-        f"m; least of {REPEATS_LO} interleaved rounds (lo, transforms) / {REPEATS_PEER} (peers)"
+        f"m; {REPEATS_LO} interleaved rounds (lo, transforms; with busy processes for at least "
+        f"{LOADED_SECONDS:g} s per size) / least of {REPEATS_PEER} (peers)"
     )
     if load_start > 0.5:
         print(
@@ -598,8 +386,11 @@ def main():
         "floor": "least of own, the system FFTW's FFTW_MEASURE 2-D plan on the same threads "
         "(_core._fft_pair_seconds(n, 1, False, k, threads)) and pyFFTW's, where installed; no "
         "copies",
-        "timing": "least of the rounds after one untimed round; lo, its native call and every "
-        "transform in interleaved rounds",
+        "timing": "lo, its native call and every transform in interleaved rounds after one "
+        "untimed round, lo right after its own transform(s); least time of each over the rounds, "
+        "and the median over the rounds of lo / own and lo / the round's least floor; with busy "
+        f"processes rounds go on for {LOADED_SECONDS:g} s per size and the targets are judged on "
+        "the medians, without on the least times",
         "accuracy": "|1 - w_D1 / w|, w = second-moment radius of the returned irradiance on its "
         "own grid",
         "peers": peer_status,

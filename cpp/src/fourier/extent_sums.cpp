@@ -86,14 +86,20 @@ void ExtentSums::add_radial(std::size_t i, const double* squares) {
   std::vector<double>& bins = radial_[omp_get_thread_num()];
   const double u = static_cast<double>(i) - 0.5 * static_cast<double>(n_), u2 = u * u,
                per_bin = 8.0 / static_cast<double>(n_), last = static_cast<double>(bins.size() - 1);
-  // The bins first, two per instruction (min(last, floor) taken before the conversion: the same bin for
-  // these sums >= 0, and a conversion to 32 bits that vectorises), then the sums into them.
-  const std::size_t half = n_ / 2;
-  int* slot = line_bins(half);
-  for (std::size_t k = 0; k < half; ++k)
+  // Sample k (at w = 2k - n/2) and sample half - k (at -w) fall in the same bin: the bins of k <= half/2
+  // only, two per instruction (min(last, floor) taken before the conversion: the same bin for these sums
+  // >= 0, and a conversion to 32 bits that vectorises), then each mirrored pair summed into its bin once.
+  // A bin's sum then differs in its last bits from a sample-by-sample sum (as it does between thread
+  // counts): an extent moves only where a cumulative sum meets its threshold exactly.
+  const std::size_t half = n_ / 2, mid = half / 2;
+  int* slot = line_bins(mid + 1);
+  for (std::size_t k = 0; k <= mid; ++k)
     slot[k] = static_cast<int>(std::min(last, (w2_[k] + u2) * per_bin));
-  for (std::size_t k = 0; k < half; ++k)
-    bins[static_cast<std::size_t>(slot[k])] += 4.0 * squares[2 * k];
+  // w = -n/2: its mirror is not sampled.
+  bins[static_cast<std::size_t>(slot[0])] += 4.0 * squares[0];
+  for (std::size_t k = 1; k < half - k; ++k)
+    bins[static_cast<std::size_t>(slot[k])] += 4.0 * (squares[2 * k] + squares[2 * (half - k)]);
+  if (half % 2 == 0) bins[static_cast<std::size_t>(slot[mid])] += 4.0 * squares[half];  // w = 0
 }
 
 }  // namespace lidar_overlap::detail
