@@ -214,6 +214,15 @@ def plot_speed_accuracy(scenes, path):
     plt.close(fig)
 
 
+def timed_part(sections, name, run, plot):
+    """run(), its wall time into sections[name + "_s"], its chart drawn to RESULTS / name.png."""
+    t0 = time.perf_counter()
+    out = run()
+    sections[f"{name}_s"] = time.perf_counter() - t0
+    plot(out, RESULTS / f"{name}.png")
+    return out
+
+
 def main():
     start = time.perf_counter()
     load_start = load_average()
@@ -279,10 +288,7 @@ def main():
             f"{r['ratio_to_fastest_public']:7.1f}x"
         )
 
-    t0 = time.perf_counter()
-    fm = failure_map()
-    sections["failure_map_s"] = time.perf_counter() - t0
-    plot_failure_map(fm, RESULTS / "failure_map.png")
+    fm = timed_part(sections, "failure_map", failure_map, plot_failure_map)
     print(
         f"\nfailure map ({sections['failure_map_s']:.0f} s): RT error > {FAILURE_TOLERANCE:g} at "
         f"{CUT_RANGE:g} m for detector radii {fm['rt_cut']['failing_airy_radii']} Airy radii "
@@ -311,10 +317,7 @@ def main():
         f"{fm['fo_2d_window_sweep']['failing_ranges_per_window']}"
     )
 
-    t0 = time.perf_counter()
-    sc = scaling()
-    sections["scaling_s"] = time.perf_counter() - t0
-    plot_scaling(sc, RESULTS / "scaling.png")
+    sc = timed_part(sections, "scaling", scaling, plot_scaling)
     print(
         f"\nscaling ({sections['scaling_s']:.0f} s), Table 1, ranges "
         f"{SCALING_SPAN[0]:g}-{SCALING_SPAN[1]:g} m:"
