@@ -170,6 +170,7 @@ TOP_KEYS = {
     "run": "table",
     "output": "table",
     "turbulence": "table",
+    "fit_bounds": "table",
 }
 REQUIRED = {
     "gaussian": ("wavelength", "waist_radius"),
