@@ -65,6 +65,7 @@ from .scenario_schema import (
     build,
     checked_keys,
     choice,
+    fit_bounds_table,
     is_number,
     prefixed,
     require,
@@ -240,7 +241,7 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         beam=_beam(source, data["beam"]),
         telescope=telescope,
         detector=_detector(source, data["detector"], telescope),
-        fit_bounds=_fit_bounds(source, data.get("fit_bounds", {})),
+        fit_bounds=fit_bounds_table(source, data.get("fit_bounds", {})),
     )
     run = dict(checked_keys(source, "run", data.get("run", {}), SCHEMA["run"]))
     method = choice(f"{source}: [run]", "method", run.pop("method", "auto"), METHODS)
@@ -286,26 +287,6 @@ def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
         return build(source, "beam", FieldBeam, field, **pointing)
     args = [values.pop(key) for key in REQUIRED["flat_top"]]
     return build(source, "beam", FlatTopBeam, *args, **values)
-
-
-def _fit_bounds(source: str, table: Dict[str, Any]) -> Dict[str, Any]:
-    """[fit_bounds]: "path" = [low, high]; a bare dotted key (beam.divergence) is a nested table in
-    TOML, read back as its path. The paths and bounds are the system's to check."""
-    out: Dict[str, Any] = {}
-    pending = [("", table)]
-    while pending:
-        prefix, part = pending.pop()
-        for key, value in part.items():
-            if isinstance(value, dict):
-                pending.append((f"{prefix}{key}.", value))
-            elif isinstance(value, list) and len(value) == 2 and all(map(is_number, value)):
-                out[prefix + key] = tuple(value)
-            else:
-                raise ScenarioError(
-                    f"{source}: [fit_bounds] {short(prefix + key, 40)} = {short(value)} is "
-                    "invalid: expected [low, high], two finite numbers in SI units"
-                )
-    return out
 
 
 def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
