@@ -5,11 +5,15 @@ ladder of each channel alone (lo.fit(free="auto")) and the joint ladder of both
 path allowed per channel, once with only those physics allows, PER_CHANNEL, as
 examples/fit_joint_channels.py), with the
 settings of examples/fit_real_overlap.py (ray tracing, tolerance 5 % of the noise, normalised over
-1500-2480 m, the retrieval's extinction bias, seed 1, at most 300 evaluations per local fit).
+1500-2480 m, the retrieval's extinction bias, seed 1, at most 300 evaluations per local fit), each
+channel weighted by its range-resolved noise sigma(r) as examples/fit_joint_channels.py weights it
+(lidar_overlap.io.noise_profile: 4 windows over 700-2500 m, held at sigma(700 m) below) and the
+model's tolerance 5 % of the smallest sigma(r).
 
 Figures: CPU time of the process (all threads; steadier than wall time on a shared machine) and wall
 time of each ladder, the model evaluations (search candidates and local fits; the single ladder's
-summed over its families), each channel's RMS / noise and the family chosen. Target: the joint
+summed over its families), each channel's yardstick sqrt(mean((residual / sigma(r))^2)) beside the
+old RMS / (the one far-range noise figure), and the family chosen. Target: the joint
 ladder's CPU time <= 2x one channel's (the mean of the two single ladders; each ratio is given).
 The joint ladder tries three families (alignment; + beam; + focus), the first by the joint global
 search, the next from the one before's solution; the single ladder six, each by its own search.
@@ -27,7 +31,8 @@ import numpy as np
 from _common import load_average, run_meta, write_result
 
 import lidar_overlap as lo
-from lidar_overlap.io.overlap_curves import far_range_noise, read_overlap_curve
+from lidar_overlap.io.noise_profile import noise_profile
+from lidar_overlap.io.overlap_curves import read_overlap_curve
 from lidar_overlap.model.instruments import pollyxt
 
 DATA = Path(__file__).resolve().parent.parent / "examples" / "data"
@@ -37,11 +42,17 @@ FITTED, NOISE, INTERVAL = (100.0, 2500.0), (700.0, 2500.0), (1500.0, 2480.0)  # 
 BOUNDS = {"detector.numerical_aperture": (0.05, 0.5), "detector.defocus": (-0.01, 0.01)}
 PER_CHANNEL = ["beam.divergence", "beam.waist_radius", "beam.tilt[0]",
                "detector.numerical_aperture"]  # fmt: skip
+WINDOWS = 4  # as examples/fit_joint_channels.py
 TARGET_RATIO = 2.0
 
 
-def _rms_ratio(fit, noise: float) -> float:
-    return float(np.sqrt(np.mean((fit.fitted - fit.measured) ** 2)) / noise)
+def _yardsticks(fit, sigma, single: float) -> dict:
+    """sqrt(mean((residual / sigma(r))^2)) and the old RMS / the one far-range figure."""
+    residual = fit.fitted - fit.measured
+    return {
+        "profile": float(np.sqrt(np.mean((residual / sigma) ** 2))),
+        "single": float(np.sqrt(np.mean(residual**2)) / single),
+    }
 
 
 def _timed(fn, *args, **kwargs):
@@ -54,19 +65,22 @@ def _timed(fn, *args, **kwargs):
 def main():
     load = load_average()
     print(f"lidar_overlap {lo.__version__} | {os.cpu_count()} cores | load average {load:.2f}")
-    curves, noises, starts = [], [], []
+    curves, profiles, noises, starts = [], [], [], []
     for _, file, wavelength in CHANNELS:
         curve = read_overlap_curve(DATA / file)
-        noises.append(far_range_noise(curve.ranges, curve.overlap, NOISE))
+        profiles.append(noise_profile(curve.ranges, curve.overlap, NOISE, windows=WINDOWS))
         curves.append(curve.within(*FITTED))
+        noises.append(profiles[-1](curves[-1].ranges, below="hold"))
         starts.append(pollyxt("far", wavelength, numerical_aperture=0.22))
     options = dict(
-        method="rt", tolerance=0.05 * min(noises), normalize=INTERVAL, extinction_bias=True,
-        seed=1, max_evaluations=300, allow_unconverged=True, bounds=BOUNDS,
+        method="rt", tolerance=0.05 * min(float(n.min()) for n in noises), normalize=INTERVAL,
+        extinction_bias=True, seed=1, max_evaluations=300, allow_unconverged=True, bounds=BOUNDS,
     )  # fmt: skip
     warnings.simplefilter("ignore")  # each fit's verdicts are in its figures below
     rows = {}
-    for (name, _, _), start, curve, noise in zip(CHANNELS, starts, curves, noises):
+    for (name, _, _), start, curve, noise, profile in zip(
+        CHANNELS, starts, curves, noises, profiles
+    ):
         ladder, wall, cpu = _timed(
             lo.fit, start, curve.ranges, curve.overlap, sigma=noise, free="auto", **options
         )
@@ -75,7 +89,7 @@ def main():
             "cpu_s": cpu,
             "model_evaluations": sum(s.fit.evaluations for s in ladder.scores),
             "family": ladder.chosen_family.name,
-            "rms_over_noise": [_rms_ratio(ladder.chosen, noise)],
+            "yardsticks": [_yardsticks(ladder.chosen, noise, profile.single)],
         }
         print(f"single ladder {name}: {cpu:.1f} CPU s, {wall:.1f} s, {rows[f'single {name}']}")
     ranges, measured = [c.ranges for c in curves], [c.overlap for c in curves]
@@ -92,7 +106,9 @@ def main():
             "family": joint.family,
             "per_curve": list(joint.per_curve),
             "parameters": len(joint.parameters),
-            "rms_over_noise": [_rms_ratio(f, n) for f, n in zip(joint.curves, noises)],
+            "yardsticks": [
+                _yardsticks(f, n, p.single) for f, n, p in zip(joint.curves, noises, profiles)
+            ],
         }
     singles = [rows[f"single {name}"]["cpu_s"] for name, _, _ in CHANNELS]
     ratios = {}
@@ -112,7 +128,11 @@ def main():
         + ", ".join(f"{k} {v:.2f}" for k, v in ratios.items())
     )
     meta = {**run_meta(load), "fitted_m": FITTED, "noise_interval_m": NOISE,
-            "normalize_m": INTERVAL, "noise": noises, "target_ratio": TARGET_RATIO}  # fmt: skip
+            "normalize_m": INTERVAL, "tolerance": options["tolerance"],
+            "noise_profiles": [{"amplitude": p.amplitude, "exponent": p.exponent,
+                                "reference_range_m": p.reference_range, "single": p.single,
+                                "windows": WINDOWS, "below": "hold"} for p in profiles],
+            "target_ratio": TARGET_RATIO}  # fmt: skip
     write_result("bench_joint", {"meta": meta, "results": rows, "ratios": ratios, "met": met})
 
 

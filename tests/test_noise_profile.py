@@ -66,6 +66,20 @@ def test_the_profile_is_the_power_law_through_its_windows():
     assert p(np.array([[700.0], [2000.0]])).shape == (2, 1)
 
 
+def test_the_power_law_is_the_count_weighted_least_squares_line():
+    """The fit against the normal equations of least squares on ln sigma against ln r, each
+    window weighted by its points (windows of 84, 84, 83 and 83 points here), to 1e-12."""
+    p = noise_profile(Z, curve(1.5, 7), INTERVAL)
+    counts = [part.size for part in np.array_split(np.arange(Z.size), 4)]  # all within INTERVAL
+    assert len(set(counts)) == 2
+    x, y, w = np.log(p.window_ranges), np.log(p.window_sigmas), np.array(counts, dtype=float)
+    x_ref = np.sum(w * x) / np.sum(w)
+    slope = np.sum(w * (x - x_ref) * (y - np.sum(w * y) / np.sum(w))) / np.sum(w * (x - x_ref) ** 2)
+    assert p.exponent == pytest.approx(slope, rel=1e-12)
+    assert p.reference_range == pytest.approx(math.exp(x_ref), rel=1e-12)
+    assert p.amplitude == pytest.approx(math.exp(np.sum(w * y) / np.sum(w)), rel=1e-12)
+
+
 def test_scaled_curves_scale_the_profile_exactly():
     g = curve(1.5, 5)
     p = noise_profile(Z, g, INTERVAL)

@@ -11,7 +11,9 @@ import numpy as np
 import pytest
 
 import lidar_overlap as lo
-from lidar_overlap.analysis.fitting.multi_inputs import path_bounds
+from lidar_overlap.analysis.fitting.families import LADDER
+from lidar_overlap.analysis.fitting.ladder import _family_bounds
+from lidar_overlap.analysis.fitting.multi_inputs import checked_bounds, path_bounds
 from lidar_overlap.analysis.fitting.problem import fit_problem
 from lidar_overlap.model.instruments import (
     CHM15K_OFFSET,
@@ -70,14 +72,67 @@ def test_the_problem_takes_the_free_paths_bounds_the_ladder_all_and_the_caller_w
     assert dict(problem.bounds) == {"beam.divergence": chm15k_bounds()["beam.divergence"]}
     problem = fit_problem(chm15k(), Z, g, 1e-3, free="auto")
     assert dict(problem.bounds) == chm15k_bounds()  # the ladder picks its families' paths
-    mine = {"beam.offset": (0.0, 0.4)}
+    mine = {"beam.offset": (0.0, 0.4)}  # a bare pair: both scalars, each over the preset's
     problem = fit_problem(chm15k(), Z, g, 1e-3, free="auto", bounds=mine)
-    assert dict(problem.bounds) == {"beam.divergence": chm15k_bounds()["beam.divergence"], **mine}
+    assert dict(problem.bounds) == {
+        "beam.divergence": chm15k_bounds()["beam.divergence"],
+        "beam.offset[0]": (0.0, 0.4),
+        "beam.offset[1]": (0.0, 0.4),
+    }
+
+
+def test_a_bare_pair_bounds_the_scalars_the_fit_frees_in_every_fit():
+    """Bounds are matched by scalar path, as free paths are: a bare pair's bound for those of its
+    scalars the fit frees (both when it frees both or the ladder chooses), any spelling of an
+    index, a scalar bounded twice refused naming both keys."""
+    g = _close_curve()
+    pair, one = {"beam.offset": (0.05, 0.5)}, ["beam.offset[0]"]
+    for bounds in (pair, {"beam.offset[00]": (0.05, 0.5)}):
+        assert dict(fit_problem(chm15k(), Z, g, 1e-3, free=one, bounds=bounds).bounds) == {
+            "beam.offset[0]": (0.05, 0.5)
+        }
+        assert checked_bounds(bounds, tuple(one)) == {"beam.offset[0]": (0.05, 0.5)}  # joint
+    both = fit_problem(chm15k(), Z, g, 1e-3, free=["beam.offset"], bounds=pair).bounds
+    assert dict(both) == {"beam.offset[0]": (0.05, 0.5), "beam.offset[1]": (0.05, 0.5)}
+    # the ladder takes its family's scalar from the pair, no longer dropping the bare key
+    ladder = fit_problem(chm15k(), Z, g, 1e-3, free="auto", bounds=pair).bounds
+    assert _family_bounds(LADDER[0], chm15k(), list(LADDER[0].paths), ladder) == {
+        "beam.offset[0]": (0.05, 0.5)
+    }
+    twice = {"beam.offset": (0.05, 0.5), "beam.offset[0]": (0.1, 0.4)}
+    with pytest.raises(ValueError, match=r"bounds: beam.offset\[0\] is bounded twice"):
+        fit_problem(chm15k(), Z, g, 1e-3, free=one, bounds=twice)
+    with pytest.raises(ValueError, match=r"fit_bounds: beam.tilt\[1\] is bounded twice"):
+        dataclasses.replace(chm15k(), fit_bounds={"beam.tilt": (-1, 1), "beam.tilt[01]": (0, 1)})
+    # a pair of which nothing is free is still refused, naming its scalar
+    with pytest.raises(ValueError, match=r"bounds: 'detector.offset\[0\]' is not a free"):
+        _fit(chm15k(), g, bounds={"detector.offset": (0.0, 0.1), "beam.offset": (0.0, 0.5)})
 
 
 def test_a_start_outside_the_presets_bound_is_named():
     with pytest.raises(ValueError, match=r"beam.offset\[0\].*excludes the start 0.05.*fit_bounds"):
         _fit(chm15k(beam_offset=0.05), _close_curve())
+
+
+def test_a_telecover_fit_takes_the_presets_bounds_under_the_callers():
+    """The telecover fit of a CHM15k whose axes are 0.09 m apart stops on the preset's 0.095 m
+    bound; the caller's bound (a bare pair) wins; a start outside is refused naming fit_bounds."""
+    z = np.geomspace(300.0, 1500.0, 5)
+    truth = lo.parameters.replace(chm15k(), {"beam.offset[0]": TOO_CLOSE})
+    measured = lo.telecover(truth, z, tolerance=1e-6)
+    options = dict(free=["beam.offset[0]"], tolerance=1e-4, threads=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # noise-free: the scatter warning
+        held = lo.fit_telecover(chm15k(), z, measured, **options)
+        free = lo.fit_telecover(
+            chm15k(), z, measured, bounds={"beam.offset": (0.05, 0.5)}, **options
+        )
+    assert held.at_bounds == ("beam.offset[0]",)
+    assert held.parameters["beam.offset[0]"] == pytest.approx(CHM15K_OFFSET[0], abs=1e-9)
+    assert free.at_bounds == ()
+    assert free.parameters["beam.offset[0]"] == pytest.approx(TOO_CLOSE, abs=1e-6)
+    with pytest.raises(ValueError, match=r"beam.offset\[0\].*excludes the start 0.05.*fit_bounds"):
+        lo.fit_telecover(chm15k(beam_offset=0.05), z, measured, **options)
 
 
 def test_fits_of_several_curves_intersect_each_systems_bounds():

@@ -1,5 +1,7 @@
 """Types of lidar_overlap._core, the C++ core (SI units throughout). Kept in step with
-bindings/*.cpp by tests/test_core_stub.py (mypy's stubtest)."""
+bindings/*.cpp by tests/test_core_stub.py (mypy's stubtest). Argument lists are packed by hand
+(formatting off): one argument a line would double the file. Properties that several results share
+are declared once on private, stub-only bases (_Curve, _RtCurve, _RtCounted)."""
 
 from collections.abc import Callable, Sequence
 from typing import Any, SupportsFloat, SupportsIndex, SupportsInt, Union
@@ -10,22 +12,37 @@ from numpy.typing import ArrayLike, NDArray
 _Float = Union[SupportsFloat, SupportsIndex]
 _Int = Union[SupportsInt, SupportsIndex]
 _Pair = Sequence[_Float]  # (x, y)
-_Ranges = Union[
-    Sequence[_Float], NDArray[Any]
-]  # any 1-D sequence of numbers, NumPy arrays included
+# any 1-D sequence of numbers, NumPy arrays included
+_Ranges = Union[Sequence[_Float], NDArray[Any]]
 _Reals = NDArray[numpy.float64]
 _Counts = NDArray[numpy.uint64]
 _Flags = NDArray[numpy.bool_]
 _Complex = NDArray[numpy.complex128]
 
-class _pybind11_type(
-    type
-): ...  # the metaclass of every class below (pybind11_builtins.pybind11_type)
+# fmt: off
+# the metaclass of every class below (pybind11_builtins.pybind11_type)
+class _pybind11_type(type): ...
 
 class _MadeByTheCore(metaclass=_pybind11_type):
     # Results and reports (and Cn2Profile, made by its static methods): pybind11's __init__ takes
     # anything and raises TypeError ("No constructor defined").
     def __init__(self, *args: Any, **kwargs: Any) -> None: ...
+
+class _Curve(_MadeByTheCore):
+    @property
+    def overlap(self) -> _Reals: ...
+
+class _RtCurve(_Curve):
+    @property
+    def error_estimate(self) -> _Reals: ...
+    @property
+    def converged(self) -> _Flags: ...
+
+class _RtCounted(_RtCurve):
+    @property
+    def evaluations(self) -> int: ...
+    @property
+    def axisymmetric(self) -> bool: ...
 
 __version__: str
 
@@ -48,45 +65,22 @@ def max_threads() -> int: ...
 
 # System model (bind_system.cpp)
 class GaussianBeam(metaclass=_pybind11_type):
-    def __init__(
-        self,
-        wavelength: _Float,
-        waist_radius: _Float,
-        divergence: _Float | None,
-        offset: _Pair,
-        tilt: _Pair,
-        width_law: str,
-    ) -> None: ...
+    def __init__(self, wavelength: _Float, waist_radius: _Float, divergence: _Float | None,
+                 offset: _Pair, tilt: _Pair, width_law: str) -> None: ...
     def half_angle_divergence(self) -> float: ...
     def radius(self, z: ArrayLike) -> object: ...
 
 class Telescope(metaclass=_pybind11_type):
-    def __init__(
-        self,
-        diameter: _Float,
-        focal_length: _Float,
-        obstruction_radius: _Float,
-        obstruction_distance: _Float,
-    ) -> None: ...
+    def __init__(self, diameter: _Float, focal_length: _Float, obstruction_radius: _Float,
+                 obstruction_distance: _Float) -> None: ...
 
 class Detector(metaclass=_pybind11_type):
-    def __init__(
-        self,
-        radius: _Float,
-        defocus: _Float,
-        offset: _Pair,
-        numerical_aperture: _Float | None,
-        stop_radius: _Float | None = None,
-        stop_distance: _Float = 0.0,
-    ) -> None: ...
+    def __init__(self, radius: _Float, defocus: _Float, offset: _Pair,
+                 numerical_aperture: _Float | None, stop_radius: _Float | None = None,
+                 stop_distance: _Float = 0.0) -> None: ...
     @staticmethod
-    def from_fov(
-        fov: _Float,
-        focal_length: _Float,
-        defocus: _Float,
-        offset: _Pair,
-        numerical_aperture: _Float | None,
-    ) -> Detector: ...
+    def from_fov(fov: _Float, focal_length: _Float, defocus: _Float, offset: _Pair,
+                 numerical_aperture: _Float | None) -> Detector: ...
     @property
     def radius(self) -> float: ...
 
@@ -100,27 +94,15 @@ class RtOptions(metaclass=_pybind11_type):
     tolerance: float
     threads: int
     max_segments: int
-    def __init__(
-        self, *, tolerance: _Float = ..., threads: _Int = ..., max_segments: _Int = ...
-    ) -> None: ...
+    def __init__(self, *, tolerance: _Float = ..., threads: _Int = ...,
+                 max_segments: _Int = ...) -> None: ...
     def __copy__(self) -> RtOptions: ...
 
-class RtOverlap(_MadeByTheCore):
-    @property
-    def overlap(self) -> _Reals: ...
-    @property
-    def error_estimate(self) -> _Reals: ...
-    @property
-    def converged(self) -> _Flags: ...
-    @property
-    def evaluations(self) -> int: ...
-    @property
-    def axisymmetric(self) -> bool: ...
+class RtOverlap(_RtCounted): ...
 
 def overlap_rt(system: LidarSystem, ranges: _Ranges, options: RtOptions = ...) -> RtOverlap: ...
-def overlap_rt_batch(
-    systems: Sequence[LidarSystem], ranges: _Ranges, options: RtOptions = ...
-) -> RtOverlap: ...
+def overlap_rt_batch(systems: Sequence[LidarSystem], ranges: _Ranges,
+                     options: RtOptions = ...) -> RtOverlap: ...
 def emitter_coupling_rt(system: LidarSystem, z: _Float, position: _Pair) -> float: ...
 def optimal_focus_range(focal_length: _Float, defocus: _Float) -> float: ...
 
@@ -129,54 +111,34 @@ class ApertureMask(metaclass=_pybind11_type):
     def __init__(self, sectors: Sequence[tuple[_Float, _Float, _Float, _Float | None]]) -> None: ...
     def validate(self, telescope: Telescope) -> None: ...
 
-def overlap_rt_masked(
-    system: LidarSystem, ranges: _Ranges, mask: ApertureMask, options: RtOptions = ...
-) -> RtOverlap: ...
-def overlap_rt_masks(
-    system: LidarSystem, ranges: _Ranges, masks: Sequence[ApertureMask], options: RtOptions = ...
-) -> list[RtOverlap]: ...
+def overlap_rt_masked(system: LidarSystem, ranges: _Ranges, mask: ApertureMask,
+                      options: RtOptions = ...) -> RtOverlap: ...
+def overlap_rt_masks(system: LidarSystem, ranges: _Ranges, masks: Sequence[ApertureMask],
+                     options: RtOptions = ...) -> list[RtOverlap]: ...
 
 MAX_MASKS: int
 
-def overlap_fo_masked(
-    system: LidarSystem, ranges: _Ranges, mask: ApertureMask, options: FoAberratedOptions = ...
-) -> FoAberratedOverlap: ...
-def emitter_coupling_rt_masked(
-    system: LidarSystem, z: _Float, position: _Pair, mask: ApertureMask
-) -> float: ...
+def overlap_fo_masked(system: LidarSystem, ranges: _Ranges, mask: ApertureMask,
+                      options: FoAberratedOptions = ...) -> FoAberratedOverlap: ...
+def emitter_coupling_rt_masked(system: LidarSystem, z: _Float, position: _Pair,
+                               mask: ApertureMask) -> float: ...
 
 # Alignment maps (bind_alignment_map.cpp)
 MAX_ALIGNMENT_POINTS: int
 
-class AlignmentMap(_MadeByTheCore):
+class AlignmentMap(_RtCounted):
     @property
     def shape(self) -> list[int]: ...
-    @property
-    def overlap(self) -> _Reals: ...
-    @property
-    def error_estimate(self) -> _Reals: ...
-    @property
-    def converged(self) -> _Flags: ...
-    @property
-    def evaluations(self) -> int: ...
-    @property
-    def axisymmetric(self) -> bool: ...
 
-def alignment_map(
-    system: LidarSystem,
-    axes: Sequence[tuple[str, _Ranges]],
-    ranges: _Ranges,
-    options: RtOptions = ...,
-) -> AlignmentMap: ...
+def alignment_map(system: LidarSystem, axes: Sequence[tuple[str, _Ranges]], ranges: _Ranges,
+                  options: RtOptions = ...) -> AlignmentMap: ...
 def alignment_parameters() -> list[str]: ...
 
 # Fields and propagation (bind_field.cpp, bind_propagate.cpp)
-def field_moments(
-    values: ArrayLike, spacing: _Float, wavelength: _Float
-) -> tuple[float, list[float], float]: ...
-def gaussian_field(
-    wavelength: _Float, waist_radius: _Float, n: _Int, spacing: _Float, center: _Pair, power: _Float
-) -> _Complex: ...
+def field_moments(values: ArrayLike, spacing: _Float,
+                  wavelength: _Float) -> tuple[float, list[float], float]: ...
+def gaussian_field(wavelength: _Float, waist_radius: _Float, n: _Int, spacing: _Float,
+                   center: _Pair, power: _Float) -> _Complex: ...
 
 class PropagationReport(_MadeByTheCore):
     @property
@@ -198,15 +160,9 @@ class PropagationReport(_MadeByTheCore):
     @property
     def fraunhofer_phase(self) -> float: ...
 
-def propagate(
-    values: ArrayLike,
-    spacing: _Float,
-    wavelength: _Float,
-    distance: _Float,
-    method: str,
-    output_spacing: _Float,
-    grid_size: _Int,
-) -> tuple[_Complex, float, PropagationReport]: ...
+def propagate(values: ArrayLike, spacing: _Float, wavelength: _Float, distance: _Float, method: str,
+              output_spacing: _Float,
+              grid_size: _Int) -> tuple[_Complex, float, PropagationReport]: ...
 def fft2d_roundtrip(values: ArrayLike) -> _Complex: ...
 
 # Fourier-optics overlap (bind_overlap_fo.cpp)
@@ -215,14 +171,8 @@ class FoOptions(metaclass=_pybind11_type):
     beam_window: float
     max_spectrum_grid: int
     threads: int
-    def __init__(
-        self,
-        *,
-        beam_grid: _Int = ...,
-        beam_window: _Float = ...,
-        max_spectrum_grid: _Int = ...,
-        threads: _Int = ...,
-    ) -> None: ...
+    def __init__(self, *, beam_grid: _Int = ..., beam_window: _Float = ...,
+                 max_spectrum_grid: _Int = ..., threads: _Int = ...) -> None: ...
     def __copy__(self) -> FoOptions: ...
 
 class RadialFoOptions(metaclass=_pybind11_type):
@@ -231,32 +181,21 @@ class RadialFoOptions(metaclass=_pybind11_type):
     def __init__(self, *, periods_per_panel: _Float = ..., threads: _Int = ...) -> None: ...
     def __copy__(self) -> RadialFoOptions: ...
 
-class FoOverlap(_MadeByTheCore):
-    @property
-    def overlap(self) -> _Reals: ...
+class FoOverlap(_Curve):
     @property
     def beam_reports(self) -> list[PropagationReport]: ...
     @property
     def spectrum_grid(self) -> _Counts: ...
 
-class RadialFoOverlap(_MadeByTheCore):
-    @property
-    def overlap(self) -> _Reals: ...
+class RadialFoOverlap(_Curve):
     @property
     def evaluations(self) -> _Counts: ...
 
 def overlap_fo(system: LidarSystem, ranges: _Ranges, options: FoOptions = ...) -> FoOverlap: ...
-def overlap_fo_field(
-    system: LidarSystem,
-    ranges: _Ranges,
-    values: ArrayLike,
-    spacing: _Float,
-    wavelength: _Float,
-    options: FoOptions = ...,
-) -> FoOverlap: ...
-def overlap_fo_radial(
-    system: LidarSystem, ranges: _Ranges, options: RadialFoOptions = ...
-) -> RadialFoOverlap: ...
+def overlap_fo_field(system: LidarSystem, ranges: _Ranges, values: ArrayLike, spacing: _Float,
+                     wavelength: _Float, options: FoOptions = ...) -> FoOverlap: ...
+def overlap_fo_radial(system: LidarSystem, ranges: _Ranges,
+                      options: RadialFoOptions = ...) -> RadialFoOverlap: ...
 def emitter_coupling_fo(system: LidarSystem, z: _Float, position: _Pair) -> float: ...
 
 # Flat-top plates (bind_flat_top.cpp)
@@ -290,18 +229,9 @@ class FlatTopDesign(_MadeByTheCore):
     @property
     def edge_width(self) -> float: ...
 
-def design_flat_top(
-    wavelength: _Float,
-    waist_radius: _Float,
-    angular_diameter: _Float,
-    grid: _Int,
-    samples_per_waist: _Float,
-    edge_width: _Float,
-    max_iterations: _Int,
-    tolerance: _Float,
-    max_error: _Float,
-    power: _Float,
-) -> FlatTopDesign: ...
+def design_flat_top(wavelength: _Float, waist_radius: _Float, angular_diameter: _Float, grid: _Int,
+                    samples_per_waist: _Float, edge_width: _Float, max_iterations: _Int,
+                    tolerance: _Float, max_error: _Float, power: _Float) -> FlatTopDesign: ...
 
 # Turbulence (bind_turbulence.cpp)
 class Cn2Profile(_MadeByTheCore):
@@ -322,15 +252,12 @@ class Cn2Profile(_MadeByTheCore):
     def fried_parameter_spherical(self, wavelength: _Float, path_length: _Float) -> float: ...
     def rytov_variance(self, wavelength: _Float, path_length: _Float) -> float: ...
     def isoplanatic_angle(self, wavelength: _Float, path_length: _Float) -> float: ...
-    def beam_wander_variance(
-        self, waist_radius: _Float, wavelength: _Float, path_length: _Float
-    ) -> float: ...
-    def long_term_radius(
-        self, waist_radius: _Float, wavelength: _Float, path_length: _Float
-    ) -> float: ...
-    def short_term_radius(
-        self, waist_radius: _Float, wavelength: _Float, path_length: _Float
-    ) -> float: ...
+    def beam_wander_variance(self, waist_radius: _Float, wavelength: _Float,
+                             path_length: _Float) -> float: ...
+    def long_term_radius(self, waist_radius: _Float, wavelength: _Float,
+                         path_length: _Float) -> float: ...
+    def short_term_radius(self, waist_radius: _Float, wavelength: _Float,
+                          path_length: _Float) -> float: ...
 
 class TurbulenceOptions(metaclass=_pybind11_type):
     realizations: int
@@ -343,41 +270,27 @@ class TurbulenceOptions(metaclass=_pybind11_type):
     threads: int
     paths: str
     receiver_fields: int
-    def __init__(
-        self,
-        *,
-        realizations: _Int = ...,
-        first_realization: _Int = ...,
-        screens: _Int = ...,
-        seed: _Int = ...,
-        beam_grid: _Int = ...,
-        beam_window: _Float = ...,
-        max_spectrum_grid: _Int = ...,
-        threads: _Int = ...,
-        paths: str = ...,
-        receiver_fields: _Int = ...,
-    ) -> None: ...
+    def __init__(self, *, realizations: _Int = ..., first_realization: _Int = ...,
+                 screens: _Int = ..., seed: _Int = ..., beam_grid: _Int = ...,
+                 beam_window: _Float = ..., max_spectrum_grid: _Int = ..., threads: _Int = ...,
+                 paths: str = ..., receiver_fields: _Int = ...) -> None: ...
     def __copy__(self) -> TurbulenceOptions: ...
 
-class TurbulentOverlap(_MadeByTheCore):
-    @property
-    def overlap(self) -> _Reals: ...  # realisations (from first_realization) x ranges
+class TurbulentOverlap(_Curve):  # overlap: realisations (from first_realization) x ranges
     @property
     def wander_x(self) -> _Reals: ...
     @property
     def wander_y(self) -> _Reals: ...
     @property
     def radius_last(self) -> _Reals: ...
+    # paths = both: a draw's beam with an independent draw's receiver
     @property
-    def uncorrelated(
-        self,
-    ) -> _Reals: ...  # paths = both: a draw's beam with an independent draw's receiver
+    def uncorrelated(self) -> _Reals: ...
     @property
     def receiver_error(self) -> _Reals: ...
+    # paths = both: the sensitivity's centroid at the last range
     @property
-    def receiver_x(
-        self,
-    ) -> _Reals: ...  # paths = both: the sensitivity's centroid at the last range
+    def receiver_x(self) -> _Reals: ...
     @property
     def receiver_y(self) -> _Reals: ...
     @property
@@ -387,18 +300,10 @@ class TurbulentOverlap(_MadeByTheCore):
     @property
     def screen_r0(self) -> _Reals: ...
 
-def phase_screen(
-    n: _Int,
-    spacing: _Float,
-    r0: _Float,
-    outer_scale: _Float,
-    inner_scale: _Float,
-    seed: _Int,
-    index: _Int,
-) -> _Reals: ...
-def overlap_fo_turbulent(
-    system: LidarSystem, ranges: _Ranges, atmosphere: Cn2Profile, options: TurbulenceOptions = ...
-) -> TurbulentOverlap: ...
+def phase_screen(n: _Int, spacing: _Float, r0: _Float, outer_scale: _Float, inner_scale: _Float,
+                 seed: _Int, index: _Int) -> _Reals: ...
+def overlap_fo_turbulent(system: LidarSystem, ranges: _Ranges, atmosphere: Cn2Profile,
+                         options: TurbulenceOptions = ...) -> TurbulentOverlap: ...
 
 class TurbulentGrid(_MadeByTheCore):
     @property
@@ -410,28 +315,18 @@ class TurbulentGrid(_MadeByTheCore):
     @property
     def min_beam_grid(self) -> int: ...
 
-def turbulent_grid(
-    system: LidarSystem, ranges: _Ranges, atmosphere: Cn2Profile, options: TurbulenceOptions = ...
-) -> TurbulentGrid: ...
-def turbulent_both_bytes(
-    beam_grid: _Int, screens: _Int, receiver_fields: _Int, threads: _Int
-) -> float: ...
+def turbulent_grid(system: LidarSystem, ranges: _Ranges, atmosphere: Cn2Profile,
+                   options: TurbulenceOptions = ...) -> TurbulentGrid: ...
+def turbulent_both_bytes(beam_grid: _Int, screens: _Int, receiver_fields: _Int,
+                         threads: _Int) -> float: ...
 
 # Receiver aberrations (bind_aberrations.cpp)
 def noll_index(j: _Int) -> list[int]: ...
 def zernike(j: _Int, x: ArrayLike, y: ArrayLike) -> _Reals: ...
 
 class Aberrations(metaclass=_pybind11_type):
-    def __init__(
-        self,
-        zernike: Sequence[_Float],
-        w040: _Float,
-        w131: _Float,
-        w222: _Float,
-        w220: _Float,
-        w311: _Float,
-        field_radius: _Float,
-    ) -> None: ...
+    def __init__(self, zernike: Sequence[_Float], w040: _Float, w131: _Float, w222: _Float,
+                 w220: _Float, w311: _Float, field_radius: _Float) -> None: ...
     def wavefront(self, x: ArrayLike, y: ArrayLike, field: _Pair) -> _Reals: ...
     def gradient(self, x: ArrayLike, y: ArrayLike, field: _Pair) -> tuple[_Reals, _Reals]: ...
     def max_gradient(self, field: _Pair) -> float: ...
@@ -442,9 +337,8 @@ class FoAberratedOptions(metaclass=_pybind11_type):
     max_grid: int
     tail_error: float
     threads: int
-    def __init__(
-        self, *, max_grid: _Int = ..., tail_error: _Float = ..., threads: _Int = ...
-    ) -> None: ...
+    def __init__(self, *, max_grid: _Int = ..., tail_error: _Float = ...,
+                 threads: _Int = ...) -> None: ...
     def __copy__(self) -> FoAberratedOptions: ...
 
 class RtAberratedOptions(metaclass=_pybind11_type):
@@ -454,55 +348,25 @@ class RtAberratedOptions(metaclass=_pybind11_type):
     directions: int
     threads: int
     max_segments: int
-    def __init__(
-        self,
-        *,
-        rings: _Int = ...,
-        ring_rays: _Int = ...,
-        tolerance: _Float = ...,
-        directions: _Int = ...,
-        threads: _Int = ...,
-        max_segments: _Int = ...,
-    ) -> None: ...
+    def __init__(self, *, rings: _Int = ..., ring_rays: _Int = ..., tolerance: _Float = ...,
+                 directions: _Int = ..., threads: _Int = ..., max_segments: _Int = ...) -> None: ...
     def __copy__(self) -> RtAberratedOptions: ...
 
-class FoAberratedOverlap(_MadeByTheCore):
-    @property
-    def overlap(self) -> _Reals: ...
+class FoAberratedOverlap(_Curve):
     @property
     def grid(self) -> _Counts: ...
 
-class RtAberratedOverlap(_MadeByTheCore):
-    @property
-    def overlap(self) -> _Reals: ...
-    @property
-    def error_estimate(self) -> _Reals: ...
-    @property
-    def converged(self) -> _Flags: ...
+class RtAberratedOverlap(_RtCurve):
     @property
     def rotationally_symmetric(self) -> bool: ...
     @property
     def pupil_form(self) -> bool: ...
 
-def overlap_fo_aberrated(
-    system: LidarSystem,
-    aberrations: Aberrations,
-    ranges: _Ranges,
-    options: FoAberratedOptions = ...,
-) -> FoAberratedOverlap: ...
-def overlap_rt_aberrated(
-    system: LidarSystem,
-    aberrations: Aberrations,
-    ranges: _Ranges,
-    options: RtAberratedOptions = ...,
-) -> RtAberratedOverlap: ...
-def emitter_coupling_rt_aberrated(
-    system: LidarSystem,
-    aberrations: Aberrations,
-    z: _Float,
-    position: _Pair,
-    options: RtAberratedOptions = ...,
-) -> float: ...
-def point_image(
-    system: LidarSystem, aberrations: Aberrations, z: _Float, n: _Int, spacing: _Float
-) -> _Complex: ...
+def overlap_fo_aberrated(system: LidarSystem, aberrations: Aberrations, ranges: _Ranges,
+                         options: FoAberratedOptions = ...) -> FoAberratedOverlap: ...
+def overlap_rt_aberrated(system: LidarSystem, aberrations: Aberrations, ranges: _Ranges,
+                         options: RtAberratedOptions = ...) -> RtAberratedOverlap: ...
+def emitter_coupling_rt_aberrated(system: LidarSystem, aberrations: Aberrations, z: _Float,
+                                  position: _Pair, options: RtAberratedOptions = ...) -> float: ...
+def point_image(system: LidarSystem, aberrations: Aberrations, z: _Float, n: _Int,
+                spacing: _Float) -> _Complex: ...

@@ -7,10 +7,10 @@ sqrt 2) is applied in windows of equal point counts over the flat far interval, 
 
     sigma(r) = amplitude * (r / reference_range) ** exponent
 
-is fitted to the window estimates (least squares on ln sigma against ln r, each window weighted by
-its number of points). ``reference_range`` is the windows' weighted geometric mean range, where the
-fitted level and exponent are uncorrelated. Shot noise gives an exponent between 1 (signal
-dominated) and 2 (background dominated), more with the extinction.
+is fitted to the window estimates (``np.polyfit`` of ln sigma against ln r, each window's squared
+residual weighted by its number of points). ``reference_range`` is the windows' weighted geometric
+mean range, where the fitted level and exponent are uncorrelated. Shot noise gives an exponent
+between 1 (signal dominated) and 2 (background dominated), more with the extinction.
 """
 
 from __future__ import annotations
@@ -134,13 +134,14 @@ def noise_profile(ranges, overlap, interval: Tuple[float, float], windows: int =
         centres.append(math.exp(float(np.mean(np.log(z[part])))))
         sigmas.append(sigma)
         counts.append(part.size)
-    x, y, w = np.log(centres), np.log(sigmas), np.asarray(counts, dtype=float)
+    x, w = np.log(centres), np.asarray(counts, dtype=float)
     x_ref = float(np.average(x, weights=w))
-    exponent = float(np.sum(w * (x - x_ref) * y) / np.sum(w * (x - x_ref) ** 2))
-    amplitude = math.exp(float(np.average(y, weights=w)))
+    # polyfit weighs the residuals, not their squares: sqrt(counts). About the weighted mean of
+    # ln r the intercept is ln sigma there, uncorrelated with the slope.
+    exponent, log_amplitude = np.polyfit(x - x_ref, np.log(sigmas), 1, w=np.sqrt(w))
     return NoiseProfile(
-        amplitude=amplitude,
-        exponent=exponent,
+        amplitude=math.exp(float(log_amplitude)),
+        exponent=float(exponent),
         reference_range=math.exp(x_ref),
         interval=(low, high),
         window_ranges=np.asarray(centres),

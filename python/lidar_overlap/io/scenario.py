@@ -2,14 +2,17 @@
 units).
 
 A scenario has the top-level keys ``name``, ``description`` and the sections ``[beam]``,
-``[telescope]``, ``[detector]``, ``[ranges]`` (required), ``[run]``, ``[output]`` and
-``[turbulence]`` (optional); see ``examples/scenarios/table1.toml`` and ``table1_turbulence.toml``.
-``[turbulence]`` holds the keys of :class:`lidar_overlap.Turbulence` (``cn2`` a number or
-``"hv57"``, ``elevation``, ...) and the draws' of :class:`lidar_overlap.Turbulent`
-(``realizations``, ``seed``, ``screens``, ``paths``, ``receiver_fields``) around the ``[run]``
-method. Every error is a :class:`ScenarioError` (a ValueError) that
-names the file, the section and the key, and says what is valid. ``method = "auto"`` in ``[run]`` is
-:class:`lidar_overlap.Auto` at the ``[run]`` tolerance: the cheapest model whose error fits it
+``[telescope]``, ``[detector]``, ``[ranges]`` (required), ``[run]``, ``[output]``, ``[turbulence]``
+and ``[fit_bounds]`` (optional); see ``examples/scenarios/table1.toml`` and
+``table1_turbulence.toml``. ``[turbulence]`` holds the keys of :class:`lidar_overlap.Turbulence`
+(``cn2`` a number or ``"hv57"``, ``elevation``, ...) and the draws' of
+:class:`lidar_overlap.Turbulent` (``realizations``, ``seed``, ``screens``, ``paths``,
+``receiver_fields``) around the ``[run]`` method. ``[fit_bounds]`` holds the system's
+``fit_bounds``, one ``"path" = [low, high]`` per parameter path (SI units; ``"beam.offset[0]"``
+quoted, a path without an index may be written bare: ``beam.divergence = [5e-5, 1e-3]``). Every
+error is a :class:`ScenarioError` (a ValueError) that names the file, the section and the key, and
+says what is valid. ``method = "auto"`` in ``[run]`` is :class:`lidar_overlap.Auto` at the
+``[run]`` tolerance: the cheapest model whose error fits it
 (Fourier optics for a beam that is not Gaussian).
 
 A scenario is read as untrusted input: the file must be UTF-8 TOML of at most 10 MB, every number
@@ -62,6 +65,7 @@ from .scenario_schema import (
     build,
     checked_keys,
     choice,
+    fit_bounds_table,
     is_number,
     prefixed,
     require,
@@ -220,7 +224,7 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         if section not in data:
             raise ScenarioError(
                 f"{source}: missing section [{section}] (required: [beam], [telescope], "
-                "[detector], [ranges]; optional: [run], [output], [turbulence])"
+                "[detector], [ranges]; optional: [run], [output], [turbulence], [fit_bounds])"
             )
     require(f"{source}:", data, ("name",))
     name = data["name"]
@@ -237,6 +241,7 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         beam=_beam(source, data["beam"]),
         telescope=telescope,
         detector=_detector(source, data["detector"], telescope),
+        fit_bounds=fit_bounds_table(source, data.get("fit_bounds", {})),
     )
     run = dict(checked_keys(source, "run", data.get("run", {}), SCHEMA["run"]))
     method = choice(f"{source}: [run]", "method", run.pop("method", "auto"), METHODS)

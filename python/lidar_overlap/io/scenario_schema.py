@@ -1,6 +1,7 @@
 """The keys a scenario file may hold (:data:`SCHEMA`: each key's kind; :data:`INTEGER_LIMITS`: the
 bounds of the keys that size work or memory) and the checks of a table against them, each failure a
-:class:`ScenarioError` naming the file, the section and the key."""
+:class:`ScenarioError` naming the file, the section and the key; the [fit_bounds] table, whose keys
+are parameter paths, read by :func:`fit_bounds_table`."""
 
 from __future__ import annotations
 
@@ -170,6 +171,7 @@ TOP_KEYS = {
     "run": "table",
     "output": "table",
     "turbulence": "table",
+    "fit_bounds": "table",
 }
 REQUIRED = {
     "gaussian": ("wavelength", "waist_radius"),
@@ -253,6 +255,26 @@ def is_number(value: Any) -> bool:
         return math.isfinite(value)
     except OverflowError:
         return False
+
+
+def fit_bounds_table(source: str, table: Dict[str, Any]) -> Dict[str, Any]:
+    """[fit_bounds]: "path" = [low, high]; a bare dotted key (beam.divergence) is a nested table in
+    TOML, read back as its path. The paths and bounds are the system's to check."""
+    out: Dict[str, Any] = {}
+    pending = [("", table)]
+    while pending:
+        prefix, part = pending.pop()
+        for key, value in part.items():
+            if isinstance(value, dict):
+                pending.append((f"{prefix}{key}.", value))
+            elif isinstance(value, list) and len(value) == 2 and all(map(is_number, value)):
+                out[prefix + key] = tuple(value)
+            else:
+                raise ScenarioError(
+                    f"{source}: [fit_bounds] {short(prefix + key, 40)} = {short(value)} is "
+                    "invalid: expected [low, high], two finite numbers in SI units"
+                )
+    return out
 
 
 def short(value: Any, limit: int = 80) -> str:

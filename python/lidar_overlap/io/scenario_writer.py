@@ -15,7 +15,8 @@ def _toml_value(value) -> str:
 def scenario_toml(system, ranges, name: str, tolerance: float) -> str:
     """``system`` (a GaussianBeam) at ``ranges`` (m) as a scenario file (TOML, SI units) for ray
     tracing; the values are written with repr, so the file reads back to the same system. A
-    telescope's aperture mask has no place in a scenario and is left out (said in a comment)."""
+    telescope's aperture mask has no place in a scenario and is left out (said in a comment); the
+    system's ``fit_bounds`` are its ``[fit_bounds]`` table."""
     beam, tel, det = system.beam, system.telescope, system.detector
     sections = {
         "beam": {
@@ -69,4 +70,7 @@ def scenario_toml(system, ranges, name: str, tolerance: float) -> str:
         if ab.zernike:
             lines.append("\n[telescope.aberrations.zernike]")
             lines += [f'"{j}" = {float(c)!r}' for j, c in sorted(ab.zernike.items())]
+    if system.fit_bounds:
+        lines.append("\n[fit_bounds]")
+        lines += [f"{_toml_value(p)} = {_toml_value(b)}" for p, b in system.fit_bounds.items()]
     return "\n".join(lines) + "\n"

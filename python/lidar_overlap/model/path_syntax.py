@@ -1,14 +1,15 @@
 """The syntax of parameter paths (``"beam.tilt[0]"``, ``"beam.components[1].divergence"``,
 ``"telescope.aberrations.zernike[11]"``): parsing, the one spelling of each, the expansion of a bare
-pair, and maps of paths to bounds, without a system (what the system itself checks its
-``fit_bounds`` with). Reading and replacing values: :mod:`lidar_overlap.model.parameter_paths`.
+pair, and maps of paths to bounds by scalar path (:func:`by_scalar`, what every fit matches bounds
+with), without a system (what the system itself checks its ``fit_bounds`` with). Reading and
+replacing values: :mod:`lidar_overlap.model.parameter_paths`.
 """
 
 from __future__ import annotations
 
 import math
 import re
-from typing import Dict, Iterable, List, Mapping, Optional, Tuple
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Tuple
 
 from .. import _checks
 from .._values import FrozenMap
@@ -90,19 +91,41 @@ def checked_bounds(name: str, bounds) -> Optional[FrozenMap]:
             "(low, high) in SI units"
         )
     out: Dict[str, Tuple[float, float]] = {}
+    for path, value in by_scalar(name, bounds).items():
+        low, high = _checks.pair(f"{name}[{path!r}]", value)
+        if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            raise ValueError(
+                f"{name}[{path!r}] = ({low!r}, {high!r}) is invalid: expected finite low < high"
+            )
+        out[path] = (low, high)
+    return CheckedBounds(out) if out else None
+
+
+def by_scalar(name: str, bounds: Mapping, free: Optional[Iterable[str]] = None) -> Dict[str, Any]:
+    """``bounds`` ({path: value}, the values left to the caller to check) by scalar path in its one
+    spelling: a bare pair's value for both its scalars, as everywhere a pair is named. With
+    ``free`` (the fit's free scalars), a pair of which the fit frees one bounds that one only
+    ("beam.offset" when only "beam.offset[0]" is free); other keys are kept for the fit to refuse.
+    ValueError naming ``name`` for a key that is not a path and for a scalar named twice
+    ("beam.offset" and "beam.offset[0]")."""
+    chosen = None if free is None else set(free)
+    out: Dict[str, Any] = {}
+    whose: Dict[str, Any] = {}
     for key, value in bounds.items():
         try:
             paths = expand([key])
         except ValueError as exc:
             raise ValueError(f"{name}: {exc}") from None
+        if chosen is not None and len(paths) == 2 and chosen & set(paths):
+            paths = [p for p in paths if p in chosen]
         for path in paths:
-            low, high = _checks.pair(f"{name}[{path!r}]", value)
-            if not (math.isfinite(low) and math.isfinite(high) and low < high):
+            if path in out:
                 raise ValueError(
-                    f"{name}[{path!r}] = ({low!r}, {high!r}) is invalid: expected finite low < high"
+                    f"{name}: {path} is bounded twice ({whose[path]!r} and {key!r}): expected one "
+                    "bound per scalar (a bare pair bounds both of its scalars)"
                 )
-            out[path] = (low, high)
-    return CheckedBounds(out) if out else None
+            out[path], whose[path] = value, key
+    return out
 
 
 def canonical(path) -> str:

@@ -269,7 +269,8 @@ class LidarSystem(ByArguments):
     no overlap: every fit that frees one of those paths takes them as its default bounds, under
     the caller's ``bounds`` (the caller's win, path by path); ``dataclasses.replace(system,
     fit_bounds=None)`` switches them off. Paths as :mod:`lidar_overlap.model.parameters` names
-    them (a bare pair, ``"beam.offset"``, stands for both scalars); kept read-only.
+    them (a bare pair, ``"beam.offset"``, stands for both scalars); kept read-only; written to
+    result files and scenarios (``[fit_bounds]``) with the system.
     """
 
     beam: GaussianBeam | FieldBeam | GaussianMixtureBeam = field(default_factory=GaussianBeam)

@@ -1,5 +1,6 @@
 """A lidar system as flat, numeric file attributes (SI units in the names) and back: what result
-files carry."""
+files carry. Its ``fit_bounds`` are numbered entries ``fit_bound_<i>_path``, ``_low``, ``_high``
+(the path's SI unit); a file without them reads as a system without."""
 
 from __future__ import annotations
 
@@ -103,6 +104,10 @@ def system_attributes(system: LidarSystem) -> Dict[str, Any]:
             )
             if sector.outer_radius is not None:
                 a[f"mask_sector_{i}_outer_radius_m"] = sector.outer_radius
+    for i, (path, (low, high)) in enumerate((system.fit_bounds or {}).items()):
+        a.update(
+            {f"fit_bound_{i}_path": path, f"fit_bound_{i}_low": low, f"fit_bound_{i}_high": high}
+        )
     return {k: (float(v) if isinstance(v, (float, np.floating)) else v) for k, v in a.items()}
 
 
@@ -137,8 +142,14 @@ def _mask_from_attributes(attrs: Dict[str, Any]) -> Optional[ApertureMask]:
     )
 
 
+def _fit_bounds_from_attributes(attrs: Dict[str, Any], get) -> Optional[Dict[str, Any]]:
+    n = sum(1 for k in attrs if k.startswith("fit_bound_") and k.endswith("_path"))
+    keys = [f"fit_bound_{i}_" for i in range(n)]
+    return {str(get(k + "path")): (get(k + "low"), get(k + "high")) for k in keys} or None
+
+
 #: Prefixes of the keys :func:`system_attributes` writes.
-SYSTEM_PREFIXES = ("beam_", "telescope_", "detector_", "aberration_", "mask_")
+SYSTEM_PREFIXES = ("beam_", "telescope_", "detector_", "aberration_", "mask_", "fit_bound_")
 #: Beam types a file may name whose system is not rebuilt (the field is not stored).
 UNSTORED_BEAMS = ("flat_top", "field")
 
@@ -171,7 +182,7 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
                 raise ValueError(f"system attribute {key!r} is missing: the header is incomplete")
             return default
         value = attrs[key]
-        if key.endswith(("_name", "_law")) or value is None:
+        if key.endswith(("_name", "_law", "_path")) or value is None:
             return value
         if isinstance(value, (bool, str)) or not isinstance(value, (int, float, np.number)):
             raise ValueError(f"system attribute {key} = {value!r} is invalid: expected a number")
@@ -228,7 +239,12 @@ def system_from_attributes(attrs: Dict[str, Any]) -> Optional[LidarSystem]:
             stop_radius=get("detector_stop_radius_m", None),
             stop_distance=get("detector_stop_distance_m", 0.0),
         )
-        return LidarSystem(beam=beam, telescope=telescope, detector=detector)
+        return LidarSystem(
+            beam=beam,
+            telescope=telescope,
+            detector=detector,
+            fit_bounds=_fit_bounds_from_attributes(attrs, get),
+        )
     except (KeyError, TypeError) as exc:
         raise ValueError(f"system attributes are invalid: {exc}") from None
     except ValueError as exc:

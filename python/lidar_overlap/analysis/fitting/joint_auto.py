@@ -28,6 +28,7 @@ from typing import List
 import numpy as np
 
 from ...model import parameters as _parameters
+from ...model.path_syntax import by_scalar
 from .families import LADDER
 from .joint_result import JointFitResult, joint_result
 from .ladder import BIC_TIE
@@ -57,7 +58,9 @@ def fit_joint_auto(settings, systems, bounds, allowed=None) -> JointFitResult:
     previous = None
     for i, family in enumerate(FAMILIES):
         paths = tuple(p for p in family.paths if all(has_path(s, p) for s in systems))
-        given = checked_bounds({k: v for k, v in (bounds or {}).items() if k in paths}, paths)
+        given = checked_bounds(
+            {k: v for k, v in by_scalar("bounds", bounds or {}).items() if k in paths}, paths
+        )
         start = None
         if previous is not None:
             start = {p: _parameters.get(systems[0], p) for p in paths}

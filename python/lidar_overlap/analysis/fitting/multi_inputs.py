@@ -10,6 +10,7 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
+from ...model.path_syntax import by_scalar
 from ...model.system import LidarSystem
 from .multi_curve import CurveMap, MultiCurveProblem
 from .normalization import normalization
@@ -157,7 +158,8 @@ def search_box(system, path: str, start: float, low: float, high: float) -> Tupl
 
 
 def checked_bounds(bounds, paths) -> Optional[dict]:
-    """``bounds``: None or {path: (low, high)} of fitted paths."""
+    """``bounds``: None or {path: (low, high)} of fitted paths, by scalar path (a bare pair bounds
+    those of its scalars the fit frees, as in lo.fit)."""
     if bounds is None:
         return None
     if not isinstance(bounds, dict):
@@ -165,15 +167,12 @@ def checked_bounds(bounds, paths) -> Optional[dict]:
             f"bounds = {_checks.shown(bounds)} is invalid: expected a dict path -> (low, high)"
         )
     out = {}
-    for key, value in bounds.items():
-        keys = _parameters.expand([key]) if isinstance(key, str) else [key]
-        for path in keys:
-            if path not in paths:
-                raise ValueError(
-                    f"bounds: {_checks.shown(key)} is not a fitted parameter: expected one of "
-                    f"{', '.join(paths)}"
-                )
-            out[path] = _checks.pair(f"bounds[{path!r}]", value)
+    for path, value in by_scalar("bounds", bounds, paths).items():
+        if path not in paths:
+            raise ValueError(
+                f"bounds: {path} is not a fitted parameter: expected one of {', '.join(paths)}"
+            )
+        out[path] = _checks.pair(f"bounds[{path!r}]", value)
     return out
 
 

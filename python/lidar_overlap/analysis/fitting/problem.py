@@ -21,6 +21,7 @@ import numpy as np
 from ... import _checks
 from ...forward.methods import RT, Turbulent
 from ...model import parameters as _parameters
+from ...model.path_syntax import by_scalar
 from . import inputs
 from .normalization import normalization
 
@@ -70,8 +71,8 @@ class Search:
 class FitProblem:
     """A checked fit problem (module docstring). ``start``: the system whose values start the fit;
     ``curves``: the data; ``free``: the free scalar paths, or ``"auto"`` (the model ladder);
-    ``bounds``: {path: (low, high)} as given over the start's ``fit_bounds`` of the free paths
-    (None: the defaults of the parameter table); ``method`` (planned once on the start),
+    ``bounds``: {scalar path: (low, high)} as given over the start's ``fit_bounds`` of the free
+    paths (None: the defaults of the parameter table); ``method`` (planned once on the start),
     ``tolerance`` (the model's absolute tolerance on G), ``loss``, ``max_evaluations``,
     ``allow_unconverged``, ``threads``, ``search``."""
 
@@ -213,21 +214,17 @@ def fit_settings(
 
 
 def with_system_bounds(system, bounds, paths) -> Optional[Mapping[str, Any]]:
-    """The caller's ``bounds`` over the system's own ``fit_bounds`` (an instrument preset's): the
-    caller's win path by path (a bare pair names both scalars); of the system's, those of ``paths``
+    """The caller's ``bounds`` over the system's own ``fit_bounds`` (an instrument preset's), by
+    scalar path (:func:`~lidar_overlap.model.path_syntax.by_scalar`: a bare pair bounds its scalars
+    among ``paths``, or both): the caller's win path by path; of the system's, those of ``paths``
     only (None: all, the ladder picks its family's). Anything but a dict of ``bounds`` is left for
     :func:`fit_settings` to refuse."""
-    own = getattr(system, "fit_bounds", None)
-    if not own or not (bounds is None or isinstance(bounds, dict)):
+    if not (bounds is None or isinstance(bounds, dict)):
         return bounds
-    named = set()
-    for key in bounds or {}:
-        try:
-            named.update(_parameters.expand([key]))
-        except ValueError:
-            pass  # the fit's bound checks name it
-    out = {p: v for p, v in own.items() if p not in named and (paths is None or p in paths)}
-    return {**out, **(bounds or {})} or None
+    given = by_scalar("bounds", bounds or {}, paths)
+    own = getattr(system, "fit_bounds", None) or {}
+    out = {p: v for p, v in own.items() if p not in given and (paths is None or p in paths)}
+    return {**out, **given} or None
 
 
 def free_paths(free):

@@ -22,7 +22,7 @@ import numpy as np
 
 from ...forward.compute import run
 from ..fitting import inputs as fit_inputs
-from ..fitting.problem import fit_settings, free_paths
+from ..fitting.problem import fit_settings, free_paths, with_system_bounds
 from ..fitting.result import FitResult, step_tolerance
 from ..fitting.solve import Model, fit_plan, solve
 from ..sensitivity import central_differences
@@ -61,16 +61,18 @@ def fit_telecover(
     ``"quadrants"`` or an :class:`ApertureMask` (as in :func:`.telecover`). method : each sector's
     model, ``"rt"`` (its sectors in one core call), ``"fo"``, ``"auto"`` or a method object, planned
     once on the start. tolerance : RT's absolute tolerance on each sector's G (None: RT's default).
-    Other arguments as in :func:`.fit`. Returns a :class:`FitResult` whose ``result`` is the fitted
-    :class:`TelecoverResult` and whose ``measured``, ``sigma`` and ``residuals`` are sector-major
-    (sector x range, flattened); ``predict`` gives the full aperture's G. Needs scipy.
+    bounds : {path: (low, high)} (SI units) over the start's ``fit_bounds`` (an instrument
+    preset's), as in :func:`.fit`. Other arguments as in :func:`.fit`. Returns a
+    :class:`FitResult` whose ``result`` is the fitted :class:`TelecoverResult` and whose
+    ``measured``, ``sigma`` and ``residuals`` are sector-major (sector x range, flattened);
+    ``predict`` gives the full aperture's G. Needs scipy.
     """
+    paths = tuple(free_paths(free))
     problem = fit_settings(
-        system, free=tuple(free_paths(free)), bounds=bounds, method=method, tolerance=tolerance,
-        loss=loss, max_evaluations=max_evaluations, allow_unconverged=allow_unconverged,
-        threads=threads,
+        system, free=paths, bounds=with_system_bounds(system, bounds, paths), method=method,
+        tolerance=tolerance, loss=loss, max_evaluations=max_evaluations,
+        allow_unconverged=allow_unconverged, threads=threads,
     )  # fmt: skip
-    paths = problem.paths
     mask = sector_mask(system, sectors)
     if len(mask.names) < 2:
         raise ValueError(
