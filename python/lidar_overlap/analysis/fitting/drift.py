@@ -26,6 +26,7 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
+from .drift_reference import OFFSET, REFERENCE, checked_reference, reference_state
 from .drift_result import SLOPE, DriftFitResult
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
@@ -56,6 +57,8 @@ def fit_drift(
     sigma,
     free,
     drifting,
+    reference=None,
+    reference_offsets=(),
     normalize=None,
     extinction_bias=False,
     method="auto",
@@ -82,6 +85,11 @@ def fit_drift(
     ``"auto"``: the model ladder on the median curve chooses them, its global searches run with
     this call's seed, population, generations and minima); drifting : those of them that drift
     (a list, possibly empty, or ``"auto"``).
+    reference : None, or a curve on ``ranges`` (G, relative like the curves: the factory curve)
+    the curves differ from by what the model changes: the differential anchor of
+    :mod:`lidar_overlap.analysis.fitting.drift_reference`, one more coefficient (the covariate
+    value c_ref of the reference, ``covariate@reference``); reference_offsets : free paths whose
+    value at the reference also takes its own offset (``path@reference_offset``).
     normalize : None, "far" or (z_low, z_high) in m, for every curve; extinction_bias : each
     curve's retrieval extinction bias profiled (with an interval). bounds : {path: (low, high)}
     for the paths' values (the slopes' bounds: ± that width per covariate span). method,
@@ -93,6 +101,12 @@ def fit_drift(
     z = _checks.ranges("ranges", ranges)
     y = _series(curves, z)
     c = _covariate(covariate, y.shape[0])
+    anchor = None if reference is None else checked_reference(reference, z, extinction_bias)
+    if anchor is not None and search not in (None, "local"):
+        raise ValueError(
+            f"search = {_checks.shown(search)} with a reference is not supported: expected None "
+            "or 'local' (start from a fit of the reference, e.g. free='auto')"
+        )
     w = _sigma(sigma, y.shape)
     if not is_interval(normalize):
         raise ValueError(
@@ -110,8 +124,16 @@ def fit_drift(
     choices: List[str] = []
     chosen = isinstance(free, str) and free == "auto"
     if chosen:
+        if anchor is None:  # the median curve, its error the median's
+            shape, error, what = (
+                np.median(y, axis=0),
+                np.median(w, axis=0) / math.sqrt(len(y)),
+                "median curve",
+            )
+        else:
+            shape, error, what = anchor, np.median(w, axis=0), "reference"
         system, free, line = _ladder_start(
-            system, z, y, w, normalize, extinction_bias, settings, bounds
+            system, z, shape, error, what, normalize, extinction_bias, settings, bounds
         )
         choices.append(line)
     paths = checked_paths("free", free, [system])
@@ -123,19 +145,40 @@ def fit_drift(
             f"drifting: {', '.join(outside)} is not free: expected drifting paths among free "
             f"({', '.join(paths)})"
         )
+    offsets = _offsets(reference_offsets, anchor, system, paths)
+    pair = None if anchor is None else (anchor, offsets)
     if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)
         bounds = {k: v for k, v in bounds.items() if not _outside(k, paths)}
     given = checked_bounds(bounds, paths)
     settings = settings.derived(start=system, free=paths)
-    problem = drift_problem(settings, system, paths, moving, c, given)
+    problem = drift_problem(settings, system, paths, moving, c, given, anchor=pair)
     if auto:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the model without drift: its BIC is its verdict
             fit = fit_curves(_quiet(problem))
-        fit, moving = _select(fit, settings, system, paths, c, given, choices)
+        fit, moving = _select(fit, settings, system, paths, c, given, choices, pair)
     else:
         fit = fit_curves(problem)
-    return drift_result(fit, paths, moving, c, covariate_unit, choices)
+    return drift_result(fit, paths, moving, c, covariate_unit, choices, z)
+
+
+def _offsets(offsets, anchor, system, paths) -> tuple:
+    """The checked ``reference_offsets``: free paths, and only with a reference."""
+    if isinstance(offsets, (list, tuple)) and not offsets:
+        return ()
+    if anchor is None:
+        raise ValueError(
+            f"reference_offsets = {_checks.shown(offsets)} is invalid without a reference: give "
+            "reference= or leave it empty"
+        )
+    out = checked_paths("reference_offsets", offsets, [system])
+    outside = [p for p in out if p not in paths]
+    if outside:
+        raise ValueError(
+            f"reference_offsets: {', '.join(outside)} is not free: expected paths among free "
+            f"({', '.join(paths)})"
+        )
+    return out
 
 
 def _outside(key, paths) -> bool:
@@ -209,11 +252,17 @@ def _sigma(sigma, shape) -> np.ndarray:
         ) from None
 
 
-def drift_problem(settings, system, paths, moving, c, bounds, start=None) -> MultiCurveProblem:
+def drift_problem(
+    settings, system, paths, moving, c, bounds, start=None, anchor=None
+) -> MultiCurveProblem:
     """The multi-curve problem of free ``paths``, ``moving`` of them linear in ``c`` (module
-    docstring); ``start`` {name: value} overrides the system's values (slopes: 0)."""
+    docstring); ``start`` {name: value} overrides the system's values (slopes: 0, the reference's
+    covariate: the mean); ``anchor`` (reference curve, offset paths) or None."""
     k = len(paths)
+    offsets = () if anchor is None else anchor[1]
     names = list(paths) + [p + SLOPE for p in moving]
+    if anchor is not None:
+        names += [REFERENCE] + [p + OFFSET for p in offsets]
     dc = c - c.mean()
     span = float(np.ptp(c))
     maps = []
@@ -238,11 +287,25 @@ def drift_problem(settings, system, paths, moving, c, bounds, start=None) -> Mul
             (s_high[a] - s_low[a]) / (2 * span),
         )
         scale[b] = scale[a] / span
+    state = None
+    if anchor is not None:  # c_ref within 5 spans of the series; an offset within its bounds' width
+        b = names.index(REFERENCE)
+        x0[b], scale[b] = c.mean(), span
+        low[b], high[b] = c.mean() - 5 * span, c.mean() + 5 * span
+        s_low[b], s_high[b] = c.min(), c.max()
+        for p in offsets:
+            a, b = paths.index(p), names.index(p + OFFSET)
+            low[b], high[b] = low[a] - high[a], high[a] - low[a]
+            s_low[b], s_high[b] = s_low[a] - s_high[a], s_high[a] - s_low[a]
+            scale[b] = scale[a]
+        state = reference_state(system, paths, names, moving, offsets, c, anchor[0])
     if start is not None:
-        x0 = np.array([start.get(name, 0.0) for name in names])
+        x0 = np.array([start.get(name, x0[i] if name == REFERENCE else 0.0)
+                       for i, name in enumerate(names)])  # fmt: skip
     return MultiCurveProblem(
-        settings, tuple(names), tuple(maps), x0, low, high, scale, s_low, s_high, logs.astype(bool)
-    )
+        settings, tuple(names), tuple(maps), x0, low, high, scale, s_low, s_high, logs.astype(bool),
+        state,
+    )  # fmt: skip
 
 
 def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
@@ -250,7 +313,9 @@ def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
     return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
 
 
-def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurveFit, tuple]:
+def _select(
+    fit, settings, system, paths, c, bounds, choices, anchor
+) -> Tuple[MultiCurveFit, tuple]:
     """Forward selection of the drifting paths by BIC (module docstring): the chosen fit and its
     drifting paths."""
     moving: List[str] = []
@@ -260,7 +325,7 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurv
     while len(moving) < len(paths):
         start = dict(zip(best.problem.names, best.values.tolist()))
         pinned = set(best.at_bounds)  # a value held by its bound cannot follow a drift
-        drops = _linear_drops(local, system, paths, moving, c, bounds, start)
+        drops = _linear_drops(local, system, paths, moving, c, bounds, start, anchor)
         ranked = sorted((q for q in drops if q not in pinned), key=lambda q: -drops[q])
         shown = ", ".join(f"{q} {drops[q]:.4g}" for q in ranked)
         choices.append(f"one step's chi-square drop per candidate (not on a bound): {shown}")
@@ -269,7 +334,7 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurv
         for p in ranked[:TRIED]:
             if not drops[p] > penalty:  # not even its linear step pays for the parameter
                 break
-            problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
+            problem = drift_problem(local, system, paths, moving + [p], c, bounds, start, anchor)
             with warnings.catch_warnings(record=True) as record:
                 warnings.simplefilter("always")  # said below for the chosen one only
                 trial = solve_curves(problem)
@@ -298,23 +363,23 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurv
     return best, tuple(moving)
 
 
-def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
+def _linear_drops(settings, system, paths, moving, c, bounds, start, anchor=None) -> dict:
     """{candidate: the chi-square drop of one Gauss-Newton step from the current solution with its
     slope freed as well, beyond the step's without it}: one Jacobian (all candidates' slope
     columns at once) ranks them."""
     candidates = [p for p in paths if p not in moving]
-    problem = drift_problem(settings, system, paths, moving + candidates, c, bounds, start)
+    problem = drift_problem(settings, system, paths, moving + candidates, c, bounds, start, anchor)
     model = CurveSet(problem)
     r = model.residuals(problem.start)
     j = model.jacobian(problem.start)
-    current = list(range(len(paths) + len(moving)))
+    names = problem.names
+    current = [
+        i for i, n in enumerate(names) if not n.endswith(SLOPE) or n[: -len(SLOPE)] in moving
+    ]
     # the step without a new slope: what the current solution, short of its minimum along a
     # degenerate valley, would gain anyway (every candidate's drop counts from it)
     base = _step_drop(j[:, current], r)
-    return {
-        p: _step_drop(j[:, current + [len(current) + d]], r) - base
-        for d, p in enumerate(candidates)
-    }
+    return {p: _step_drop(j[:, current + [names.index(p + SLOPE)]], r) - base for p in candidates}
 
 
 def _step_drop(a, r) -> float:
@@ -324,10 +389,16 @@ def _step_drop(a, r) -> float:
     return float(r @ r - after @ after)
 
 
-def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> DriftFitResult:
+def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices, z) -> DriftFitResult:
     """The :class:`DriftFitResult` of the driver's fit of free ``paths``, ``moving`` of them
-    drifting (the problem's names: those paths, then their slopes)."""
+    drifting (the problem's names: those paths, then their slopes, then the reference's), on
+    ranges ``z``."""
+    state = fit.problem.reference
+    offsets = tuple(n[: -len(OFFSET)] for n in fit.problem.names if n.endswith(OFFSET))
     return DriftFitResult(
+        reference=None if state is None else state.curve,
+        reference_ranges=None if state is None else z,
+        reference_offsets=offsets,
         **fit_fields(fit),
         free=tuple(paths),
         drifting=tuple(moving),
@@ -338,21 +409,21 @@ def drift_result(fit: MultiCurveFit, paths, moving, c, unit: str, choices) -> Dr
     )
 
 
-def _ladder_start(system, z, y, w, normalize, extinction_bias, settings, bounds):
-    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve, with
+def _ladder_start(system, z, y, w, what, normalize, extinction_bias, settings, bounds):
+    """(the ladder's fitted system, its family's paths, a line saying so) on the curve ``y`` with
+    1-sigma error ``w`` (``what``: the series' median curve or the reference), with
     the drift fit's method, tolerance, threads and search settings (seed, population, generations,
     minima: its families' global searches)."""
     search = settings.search
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the family's verdicts: the drift fit's own follow
         ladder = single_fit(
-            system, z, np.median(y, axis=0), np.median(w, axis=0) / math.sqrt(y.shape[0]),
-            free="auto", method=settings.method, tolerance=settings.tolerance,
+            system, z, y, w, free="auto", method=settings.method, tolerance=settings.tolerance,
             threads=settings.threads, normalize=normalize, extinction_bias=extinction_bias,
             seed=search.seed, population=search.population, generations=search.generations,
             minima=search.minima, bounds=bounds, allow_unconverged=True,
         )  # fmt: skip
     fit = ladder.chosen
     start = _parameters.replace(system, dict(fit.parameters))
-    line = f"free='auto': family '{ladder.chosen_family.name}' chosen on the median curve"
+    line = f"free='auto': family '{ladder.chosen_family.name}' chosen on the {what}"
     return start, tuple(fit.parameters), line
