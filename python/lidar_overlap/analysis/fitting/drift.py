@@ -26,7 +26,13 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
-from .drift_reference import OFFSET, REFERENCE, checked_reference, reference_state
+from .drift_reference import (
+    OFFSET,
+    REFERENCE,
+    checked_reference,
+    reference_bounds,
+    reference_state,
+)
 from .drift_result import SLOPE, DriftFitResult
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
@@ -288,17 +294,9 @@ def drift_problem(
         )
         scale[b] = scale[a] / span
     state = None
-    if anchor is not None:  # c_ref within 5 spans of the series; an offset within its bounds' width
-        b = names.index(REFERENCE)
-        x0[b], scale[b] = c.mean(), span
-        low[b], high[b] = c.mean() - 5 * span, c.mean() + 5 * span
-        s_low[b], s_high[b] = c.min(), c.max()
-        for p in offsets:
-            a, b = paths.index(p), names.index(p + OFFSET)
-            low[b], high[b] = low[a] - high[a], high[a] - low[a]
-            s_low[b], s_high[b] = s_low[a] - s_high[a], s_high[a] - s_low[a]
-            scale[b] = scale[a]
-        state = reference_state(system, paths, names, moving, offsets, c, anchor[0])
+    if anchor is not None:
+        reference_bounds(names, paths, anchor[1], c, x0, low, high, scale, s_low, s_high)
+        state = reference_state(system, paths, names, moving, anchor[1], c, anchor[0])
     if start is not None:
         x0 = np.array([start.get(name, x0[i] if name == REFERENCE else 0.0)
                        for i, name in enumerate(names)])  # fmt: skip

@@ -103,7 +103,17 @@ def checked_reference(reference, z: np.ndarray, extinction_bias) -> np.ndarray:
     return r
 
 
-def reference_residual(state: ReferenceState, normalised_model: np.ndarray, data) -> np.ndarray:
-    """G_ref - M(θ_ref), both normalised like the days (``normalised_model`` the model at the
-    reference, ``data`` the normalised reference): what every day's prediction adds."""
-    return np.asarray(data) - normalised_model
+def reference_bounds(names, paths, offsets, c, x0, low, high, scale, s_low, s_high) -> None:
+    """Set, in place, the start, bounds, natural scale and search box of c_ref (the covariate's
+    mean; within 5 spans of the series) and of each offset (0; within its path's bounds' width)
+    among a drift problem's ``names``."""
+    span = float(np.ptp(c))
+    b = names.index(REFERENCE)
+    x0[b], scale[b] = c.mean(), span
+    low[b], high[b] = c.mean() - 5 * span, c.mean() + 5 * span
+    s_low[b], s_high[b] = c.min(), c.max()
+    for p in offsets:
+        a, b = paths.index(p), names.index(p + OFFSET)
+        low[b], high[b] = low[a] - high[a], high[a] - low[a]
+        s_low[b], s_high[b] = s_low[a] - s_high[a], s_high[a] - s_low[a]
+        scale[b] = scale[a]
