@@ -48,6 +48,7 @@ from .multi_inputs import (
 )
 from .multi_result import bic_of, fit_fields
 from .multi_search import fit_curves
+from .normalization import normalization
 from .problem import GENERATIONS, MINIMA, measured_values
 
 #: drifting="auto" fits at most this many of the best-ranked candidates per round.
@@ -122,6 +123,14 @@ def fit_drift(
     data = tuple(
         checked_curve(i, z, y[i], w[i], normalize, extinction_bias) for i in range(y.shape[0])
     )
+    if anchor is not None:  # normalised as the days are: its errors name it
+        try:
+            normalization(checked_curve(0, z, anchor, w[0], normalize, False).normalize, z,
+                          anchor, w[0], False)  # fmt: skip
+        except ValueError as exc:
+            raise ValueError(
+                f"reference: {exc}".replace("curves[0]: ", "").replace("curve 0: ", "")
+            ) from None
     settings = multi_settings(
         system, data, method=method, tolerance=tolerance, loss=loss,
         max_evaluations=max_evaluations, allow_unconverged=allow_unconverged, threads=threads,
