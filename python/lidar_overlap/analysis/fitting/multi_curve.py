@@ -232,7 +232,8 @@ class CurveSet:
             local = ((pairs[:, 0] - pairs[:, 1]) / widths[i][:, None]).T
             if keep is not None:
                 keep.append(local)
-            blocks.append(n.whitening @ (n.model_jacobian(g[i], local) @ m.matrix - shift))
+            block = n.whitening @ n.model_jacobian(g[i], local) @ m.matrix
+            blocks.append(block if self.reference is None else block - n.whitening @ shift)
         return np.vstack(blocks)
 
     def independent(self) -> List[int]:
