@@ -4,16 +4,15 @@ temperature model of Hervo et al. (2016, AMT 9, 2947), the training days' mean a
 curve, on held-out days; the splits, baselines and scoring are benchmarks/_payerne.py's (those of
 bench_drift_payerne.py: the same draws).
 
-Physical model, anchored on the factory curve like the empirical model:
-1. the model ladder (lo.fit(free="auto")) on the factory curve (the manufacturer's, known before
-   any day: no day, held out or not, enters it) chooses the family and its fit gives the start and
-   the factory residual r(z) = G_factory - M_factory: the curve's structure the family cannot
-   shape (the days share it: their misfit correlates 0.87 with the factory's);
-2. lo.fit_drift on the training days minus r: the family's parameters shared, those that drift
-   (linear in temperature) chosen by BIC (drifting="auto") on each split's training days;
-3. a held-out day's G = the drift model's prediction at its temperature + r.
-Coefficients: the drift fit's (shared values and slopes), and the factory fit's as well (they are
-fitted to the factory curve, not to the days; counted so the figure is an upper bound).
+Physical model: lo.fit_drift(..., reference=factory curve), the differential anchor (the days are
+the factory curve plus what the model changes, G(T) = G_factory + M(θ(T)) - M(θ_ref), with θ_ref
+= θ(T_ref) + an offset of REFERENCE_OFFSETS: the factory's bench state on the drift line, moved
+along those paths). The family and the start: the model ladder (lo.fit(free="auto")) on the factory
+curve (known before any day; its values only start the fit, which refits them all). The drifting
+parameters are chosen by BIC (drifting="auto") on each split's training days. A held-out day: the
+fit's prediction at its temperature, the factory curve given at every scored gate.
+Coefficients: result.coefficients, every fitted number the prediction needs (the family's values,
+the slopes, T_ref and the offsets).
 
 Held out: (a) the warmest 40 % (an extrapolation in temperature), (b) a random 40 % (20 draws).
 Score: RMS of predicted - measured G over 100-1000 m, all held-out days and gates pooled. The fits
@@ -39,14 +38,16 @@ from lidar_overlap.model.instruments import chm15k, chm15k_bounds
 
 FIT_RANGES, NORMALIZE = (30.0, 1520.0), (1000.0, 1500.0)
 #: The days' scatter about the drift model (G): one fit per day reaches 0.004, but a temperature
-#: model leaves ~0.01 (the drift fits' reduced chi-square is 5.2 at 0.004); weighed by that, BIC
-#: takes the drifts that pay for themselves against the day-to-day scatter, not against a day's.
+#: model leaves ~0.01; weighed by that, BIC takes the drifts that pay for themselves against the
+#: day-to-day scatter, not against a day's.
 SIGMA, TOLERANCE = 0.01, 4e-4
-#: The ladder's member used: the simplest that reaches the factory curve's structure (the wings'
-#: two more parameters lower its RMS 0.0055 -> 0.0048 but take the count past the budget of 12).
+#: The ladder's member used: the simplest that reaches the factory curve's structure.
 FAMILY = "alignment + beam + focus"
+#: The paths whose value at the reference has its own offset from the drift line.
+REFERENCE_OFFSETS = ["beam.offset[0]"]
 #: Splits fitted at once (each fit single-threaded, CPU s per split as measured in its process).
 WORKERS = 2
+NAME = "physical drift (factory-referenced)"
 OPTIONS = dict(method="rt", tolerance=TOLERANCE, normalize=NORMALIZE, bounds=chm15k_bounds(),
                allow_unconverged=True)  # fmt: skip
 
@@ -57,92 +58,84 @@ def fitted_gates(z):
     return inside & ((np.arange(z.size) % 2 == 0) | (z > 1000.0))
 
 
-class Anchored:
-    """The factory-anchored physical drift model (module docstring); one ladder on the factory
-    curve, then one drift fit per split. ``fits`` keeps each split's drift fit."""
+def ladder_start(z, factory):
+    """(the FAMILY member's fitted system and free paths, the ladder, its CPU s) on the factory
+    curve at the fitted gates."""
+    keep = fitted_gates(z)
+    c0 = time.process_time()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the ladder's report says how each family fits
+        ladder = lo.fit(chm15k(), z[keep], factory[keep], SIGMA, free="auto", seed=1, **OPTIONS)
+    cpu = time.process_time() - c0
+    best = next(s.fit for s in ladder.scores if s.family.name == FAMILY)
+    start = lo.parameters.replace(best.system, dict(best.parameters))
+    return start, list(best.parameters), ladder, cpu
 
-    def __init__(self, z, factory):
-        self.keep = fitted_gates(z)
-        self.z = z[self.keep]
-        self.scale = factory[(z >= NORMALIZE[0]) & (z <= NORMALIZE[1])].mean()
-        c0 = time.process_time()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # the ladder's report says how each family fits
-            self.ladder = lo.fit(chm15k(), self.z, factory[self.keep], SIGMA, free="auto",
-                                 seed=1, **OPTIONS)  # fmt: skip
-        self.ladder_cpu = time.process_time() - c0
-        best = next(s.fit for s in self.ladder.scores if s.family.name == FAMILY)
-        system = best.result.system if hasattr(best, "result") else best.system
-        self.start = lo.parameters.replace(system, dict(best.parameters))
-        self.free = list(best.parameters)
-        self.values = [float(v) for v in best.parameters.values()]
-        # the residual at every gate: the smooth model interpolated between the fitted ones
-        self.full = (z >= FIT_RANGES[0]) & (z <= FIT_RANGES[1])
-        self.residual = (
-            factory[self.full] - np.interp(z[self.full], self.z, best.fitted) * self.scale
-        )
-        self.fits: list = []
+
+class Physical:
+    """The physical model of one split (module docstring): ``fits`` keeps its drift fit."""
+
+    def __init__(self, start, free):
+        self.start, self.free, self.fits = start, free, []
 
     def __call__(self, train, temperature, factory):
+        keep = fitted_gates(train.ranges)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", lo.DegeneracyWarning)
             warnings.simplefilter("ignore", lo.FitQualityWarning)
-            days = train.curves[:, self.keep] - self.residual[self.keep[self.full]]
-            fit = lo.fit_drift(self.start, self.z, days,
+            fit = lo.fit_drift(self.start, train.ranges[keep], train.curves[:, keep],
                                train.covariates[TEMPERATURE], sigma=SIGMA, free=self.free,
-                               drifting="auto", **OPTIONS)  # fmt: skip
+                               drifting="auto", reference=factory[keep],
+                               reference_offsets=REFERENCE_OFFSETS, **OPTIONS)  # fmt: skip
         self.fits.append(fit)
-        smooth = fit.predict(self.z, temperature) * self.scale
-        z = train.ranges[self.full]
-        g = np.array([np.interp(z, self.z, row) for row in smooth]) + self.residual
-        return g[:, gates(train)[self.full]], len(fit.parameters) + len(self.free)
+        near = gates(train)
+        scale = factory[(train.ranges >= NORMALIZE[0]) & (train.ranges <= NORMALIZE[1])].mean()
+        g = fit.predict(train.ranges[near], temperature, reference=factory[near]) * scale
+        return g, fit.coefficients
+
+
+def described(fit) -> dict:
+    """What a drift fit found: the drifting paths and slopes, T_ref, the offsets, every value."""
+    return {
+        "drifting": list(fit.drifting),
+        "drift": {p: list(v) for p, v in fit.drift.items()},
+        "reference_covariate": list(fit.reference_covariate),
+        "coefficients": fit.coefficients,
+        "parameters": dict(fit.parameters),
+        "uncertainties": dict(fit.uncertainties),
+        "at_bounds": list(fit.at_bounds),
+        "evaluations": fit.evaluations,
+        "jacobians": fit.jacobian_evaluations,
+    }
 
 
 def one_split(job):
-    """(the held-out rows of one split, its drift fit's drifting paths, slopes and parameters)."""
+    """(the held-out rows of one split, what its drift fit found)."""
     physical, series, factory, mask = job
-    row = held_out(series, factory, mask, {"physical drift (factory-anchored)": physical,
-                                           **BASELINES})  # fmt: skip
-    fit = physical.fits[-1]
-    return row, {
-        "drifting": list(fit.drifting),
-        "drift": {p: list(v) for p, v in fit.drift.items()},
-        "parameters": dict(fit.parameters),
-        "uncertainties": dict(fit.uncertainties),
-        "evaluations": fit.evaluations,
-    }
+    row = held_out(series, factory, mask, {NAME: physical, **BASELINES})
+    return row, described(physical.fits[-1])
 
 
-def all_days(physical, everything) -> dict:
-    """The anchored drift fit of all 153 days (drifting="auto"): wall and CPU time (the issue's
-    target: <= 120 s), what drifts (slopes per kelvin, with their uncertainties)."""
+def all_days(physical, everything, factory) -> dict:
+    """The drift fit of all 153 days (drifting="auto"): wall and CPU time (the issue's target:
+    <= 120 s), what drifts (slopes per kelvin, with their uncertainties)."""
     t0, c0 = time.perf_counter(), time.process_time()
-    physical(everything, everything.covariates[TEMPERATURE][:1], None)
+    physical(everything, everything.covariates[TEMPERATURE][:1], factory)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     fit = physical.fits[-1]
     print(f"all {len(everything)} days: {wall:.0f} s wall, {cpu:.0f} CPU s\n{fit}")
-    return {
-        "days": len(everything),
-        "time_s": wall,
-        "cpu_s": cpu,
-        "evaluations": fit.evaluations,
-        "jacobians": fit.jacobian_evaluations,
-        "drifting": list(fit.drifting),
-        "drift": {p: list(v) for p, v in fit.drift.items()},
-        "parameters": dict(fit.parameters),
-        "uncertainties": dict(fit.uncertainties),
-        "choices": list(fit.choices),
-    }
+    return {"days": len(everything), "time_s": wall, "cpu_s": cpu, **described(fit),
+            "choices": list(fit.choices)}  # fmt: skip
 
 
 def main(draws=None):
     load = load_average()
     print(f"lidar_overlap {lo.__version__} | load average {load:.2f}")
     everything, series, factory = read()
-    physical = Anchored(series.ranges, factory)
-    print(f"ladder on the factory curve: '{FAMILY}' used, "
-          f"'{physical.ladder.chosen_family.name}' chosen by BIC "
-          f"({physical.ladder_cpu:.0f} CPU s)")  # fmt: skip
+    start, free, ladder, ladder_cpu = ladder_start(series.ranges, factory)
+    print(f"ladder on the factory curve: '{FAMILY}' used, '{ladder.chosen_family.name}' chosen "
+          f"by BIC ({ladder_cpu:.0f} CPU s)")  # fmt: skip
+    physical = Physical(start, free)
     chosen = splits(series)[: None if draws is None else draws + 1]
     # the splits are independent; spawned workers (a fork after OpenMP's threads can hang)
     with ProcessPoolExecutor(WORKERS, mp_context=multiprocessing.get_context("spawn")) as pool:
@@ -153,13 +146,12 @@ def main(draws=None):
               + ", ".join(f"{m} {r['rms']:.4f}" for m, r in row.items()))  # fmt: skip
     result = summary(rows)
     print(table(result))
-    whole = all_days(physical, everything)
+    whole = all_days(physical, everything, factory)
     write_result("bench_drift", {
         "meta": run_meta(load, fit_ranges_m=FIT_RANGES, normalize_m=NORMALIZE, sigma=SIGMA,
-                         tolerance=TOLERANCE),
-        "ladder": {"family": FAMILY, "bic_choice": physical.ladder.chosen_family.name,
-                   "free": physical.free, "start": dict(zip(physical.free, physical.values)),
-                   "cpu_s": physical.ladder_cpu},
+                         tolerance=TOLERANCE, reference_offsets=REFERENCE_OFFSETS),
+        "ladder": {"family": FAMILY, "bic_choice": ladder.chosen_family.name, "free": free,
+                   "start": {p: lo.parameters.get(start, p) for p in free}, "cpu_s": ladder_cpu},
         "held_out": result, "splits": rows,
         "drift_fits": [fit for _, fit in done],
         "all_days": whole,

@@ -28,7 +28,16 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
+from ...model.path_syntax import by_scalar
 from .drift_basis import DEFAULT_KNOTS, DriftBasis, checked_drifting, knots_at_quantiles
+from .drift_inputs import checked_covariate, checked_offsets, checked_series, checked_sigma
+from .drift_reference import (
+    OFFSET,
+    REFERENCE,
+    checked_reference,
+    reference_bounds,
+    reference_state,
+)
 from .drift_result import SLOPE, DriftFitResult
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
@@ -44,7 +53,8 @@ from .multi_inputs import (
 )
 from .multi_result import bic_of, fit_fields
 from .multi_search import fit_curves
-from .problem import GENERATIONS, MINIMA, measured_values
+from .normalization import normalization
+from .problem import GENERATIONS, MINIMA
 
 #: drifting="auto" fits at most this many of the best-ranked candidates per round.
 TRIED = 2
@@ -59,6 +69,8 @@ def fit_drift(
     sigma,
     free,
     drifting,
+    reference=None,
+    reference_offsets=(),
     normalize=None,
     extinction_bias=False,
     method="auto",
@@ -89,6 +101,11 @@ def fit_drift(
     linear drifts chosen by BIC). spline_knots : the number of a spline drift's knots, at the
     covariate's quantiles (>= 3, at most the covariate's distinct values): K - 2 coefficients
     beyond the linear drift's.
+    reference : None, or a curve on ``ranges`` (G, relative like the curves: the factory curve)
+    the curves differ from by what the model changes: the differential anchor of
+    :mod:`lidar_overlap.analysis.fitting.drift_reference`, one more coefficient (the covariate
+    value c_ref of the reference, ``covariate@reference``); reference_offsets : free paths whose
+    value at the reference also takes its own offset (``path@reference_offset``).
     normalize : None, "far" or (z_low, z_high) in m, for every curve; extinction_bias : each
     curve's retrieval extinction bias profiled (with an interval). bounds : {path: (low, high)}
     for the paths' values (the slopes' bounds: ± that width per covariate span). method,
@@ -98,9 +115,15 @@ def fit_drift(
     if not isinstance(covariate_unit, str):
         raise ValueError(f"covariate_unit = {_checks.shown(covariate_unit)}: expected a text")
     z = _checks.ranges("ranges", ranges)
-    y = _series(curves, z)
-    c = _covariate(covariate, y.shape[0])
-    w = _sigma(sigma, y.shape)
+    y = checked_series(curves, z)
+    c = checked_covariate(covariate, y.shape[0])
+    anchor = None if reference is None else checked_reference(reference, z, extinction_bias)
+    if anchor is not None and search not in (None, "local"):
+        raise ValueError(
+            f"search = {_checks.shown(search)} with a reference is not supported: expected None "
+            "or 'local' (start from a fit of the reference, e.g. free='auto')"
+        )
+    w = checked_sigma(sigma, y.shape)
     if not is_interval(normalize):
         raise ValueError(
             f"normalize = {_checks.shown(normalize)} is invalid: expected None, 'far' or (z_low, "
@@ -109,6 +132,14 @@ def fit_drift(
     data = tuple(
         checked_curve(i, z, y[i], w[i], normalize, extinction_bias) for i in range(y.shape[0])
     )
+    if anchor is not None:  # normalised as the days are: its errors name it
+        try:
+            normalization(checked_curve(0, z, anchor, w[0], normalize, False).normalize, z,
+                          anchor, w[0], False)  # fmt: skip
+        except ValueError as exc:
+            raise ValueError(
+                f"reference: {exc}".replace("curves[0]: ", "").replace("curve 0: ", "")
+            ) from None
     settings = multi_settings(
         system, data, method=method, tolerance=tolerance, loss=loss,
         max_evaluations=max_evaluations, allow_unconverged=allow_unconverged, threads=threads,
@@ -117,8 +148,16 @@ def fit_drift(
     choices: List[str] = []
     chosen = isinstance(free, str) and free == "auto"
     if chosen:
+        if anchor is None:  # the median curve, its error the median's
+            shape, error, what = (
+                np.median(y, axis=0),
+                np.median(w, axis=0) / math.sqrt(len(y)),
+                "median curve",
+            )
+        else:
+            shape, error, what = anchor, np.median(w, axis=0), "reference"
         system, free, line = _ladder_start(
-            system, z, y, w, normalize, extinction_bias, settings, bounds
+            system, z, shape, error, what, normalize, extinction_bias, settings, bounds
         )
         choices.append(line)
     paths = checked_paths("free", free, [system])
@@ -130,103 +169,42 @@ def fit_drift(
             f"drifting: {', '.join(outside)} is not free: expected drifting paths among free "
             f"({', '.join(paths)})"
         )
+    offsets = checked_offsets(reference_offsets, anchor, system, paths)
+    pair = None if anchor is None else (anchor, offsets)
     if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)
-        bounds = {k: v for k, v in bounds.items() if not _outside(k, paths)}
+        bounds = {k: v for k, v in by_scalar("bounds", bounds, paths).items() if k in paths}
     given = checked_bounds(bounds, paths)
     knots = knots_at_quantiles(spline_knots, c, splines)
     settings = settings.derived(start=system, free=paths)
+    if pair is not None and splines:
+        raise ValueError(
+            f"drifting: {', '.join(splines)} as a spline with a reference is not supported: the "
+            "reference's state is taken on a linear drift line; give linear drifts or no reference"
+        )
     basis = DriftBasis(moving, float(c.mean()), splines, knots)
-    problem = drift_problem(settings, system, paths, moving, c, given, basis=basis)
+    problem = drift_problem(settings, system, paths, moving, c, given, basis=basis, anchor=pair)
     if auto:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # the model without drift: its BIC is its verdict
             fit = fit_curves(_quiet(problem))
-        fit, moving = _select(fit, settings, system, paths, c, given, choices)
+        fit, moving = _select(fit, settings, system, paths, c, given, choices, pair)
     else:
         fit = fit_curves(problem)
-    return drift_result(fit, paths, moving, c, covariate_unit, choices, splines, knots)
-
-
-def _outside(key, paths) -> bool:
-    """Whether the bounds' ``key`` names a valid path outside ``paths`` (a bad key is left for
-    checked_bounds to name)."""
-    try:
-        return not set(_parameters.expand([key])) <= set(paths)
-    except ValueError:
-        return False
-
-
-def _series(curves, z) -> np.ndarray:
-    try:
-        y = _checks.real_array("curves", curves, ndim=2)
-    except ValueError as exc:
-        raise ValueError(
-            f"{exc}: expected (n_curves, n_ranges), curves of equal length (one G per range)"
-        ) from None
-    if y.shape[1] != z.size:
-        raise ValueError(
-            f"curves has shape {y.shape}: expected (n_curves, {z.size}), one G per range"
-        )
-    if y.shape[0] < 2:
-        raise ValueError(
-            f"curves holds {y.shape[0]} curve: a drift fit needs at least two; fit one curve with "
-            "lo.fit"
-        )
-    for i in range(y.shape[0]):
-        try:
-            measured_values(y[i], z)
-        except ValueError as exc:
-            raise ValueError(f"curves[{i}]: {exc}") from None
-    return y
-
-
-def _covariate(covariate, n: int) -> np.ndarray:
-    c = _checks.real_array("covariate", covariate, ndim=1)
-    if c.size != n:
-        raise ValueError(f"covariate has {c.size} values: expected one per curve ({n})")
-    bad = ~np.isfinite(c)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
-    with np.errstate(over="ignore", invalid="ignore"):
-        spread = np.ptp(c)
-    if not np.isfinite(spread):
-        raise ValueError(
-            f"covariate spans {spread!r}: expected a spread that is a finite number (center "
-            "or rescale the covariate)"
-        )
-    if not np.ptp(c) > 0:
-        raise ValueError(
-            f"covariate is constant ({c[0]:g}): expected at least two different values, a drift "
-            "needs a spread"
-        )
-    return c
-
-
-def _sigma(sigma, shape) -> np.ndarray:
-    if sigma is None:
-        raise ValueError(
-            "sigma = None is invalid: a drift fit weighs the curves by their noise; give the "
-            "1-sigma error (a scalar, one per range or one per curve and range)"
-        )
-    try:
-        return np.broadcast_to(_checks.real_array("sigma", sigma), shape).copy()
-    except ValueError as exc:
-        raise ValueError(
-            f"sigma = {_checks.shown(sigma)} is invalid: expected a scalar, one per range or "
-            f"{shape} ({exc})"
-        ) from None
+    return drift_result(fit, paths, moving, c, covariate_unit, choices, z, splines, knots)
 
 
 def drift_problem(
-    settings, system, paths, moving, c, bounds, start=None, basis=None
+    settings, system, paths, moving, c, bounds, start=None, basis=None, anchor=None
 ) -> MultiCurveProblem:
     """The multi-curve problem of free ``paths``, ``moving`` of them drifting with ``c`` as
     ``basis`` says (None: each linear; module docstring); ``start`` {name: value} overrides the
-    system's values (slopes: 0)."""
+    system's values (slopes: 0, the reference's covariate: the mean); ``anchor`` (reference curve,
+    offset paths) or None (with a reference, drifts are linear)."""
     k = len(paths)
     basis = basis or DriftBasis(tuple(moving), float(c.mean()))
     names = list(paths) + basis.names
+    if anchor is not None:
+        names += [REFERENCE] + [p + OFFSET for p in anchor[1]]
     owners = [paths.index(p) for p in basis.owners]
     span = float(np.ptp(c))
     maps = []
@@ -251,11 +229,17 @@ def drift_problem(
             (s_high[a] - s_low[a]) / (2 * per),
         )
         scale[b] = scale[a] / per
+    state = None
+    if anchor is not None:
+        reference_bounds(names, paths, anchor[1], c, x0, low, high, scale, s_low, s_high)
+        state = reference_state(system, paths, names, moving, anchor[1], c, anchor[0])
     if start is not None:
-        x0 = np.array([start.get(name, 0.0) for name in names])
+        x0 = np.array([start.get(name, x0[i] if name == REFERENCE else 0.0)
+                       for i, name in enumerate(names)])  # fmt: skip
     return MultiCurveProblem(
-        settings, tuple(names), tuple(maps), x0, low, high, scale, s_low, s_high, logs.astype(bool)
-    )
+        settings, tuple(names), tuple(maps), x0, low, high, scale, s_low, s_high, logs.astype(bool),
+        state,
+    )  # fmt: skip
 
 
 def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
@@ -263,7 +247,9 @@ def _quiet(problem: MultiCurveProblem) -> MultiCurveProblem:
     return MultiCurveProblem(**{**problem.__dict__, "settings": settings})
 
 
-def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurveFit, tuple]:
+def _select(
+    fit, settings, system, paths, c, bounds, choices, anchor
+) -> Tuple[MultiCurveFit, tuple]:
     """Forward selection of the drifting paths by BIC (module docstring): the chosen fit and its
     drifting paths."""
     moving: List[str] = []
@@ -273,7 +259,7 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurv
     while len(moving) < len(paths):
         start = dict(zip(best.problem.names, best.values.tolist()))
         pinned = set(best.at_bounds)  # a value held by its bound cannot follow a drift
-        drops = _linear_drops(local, system, paths, moving, c, bounds, start)
+        drops = _linear_drops(local, system, paths, moving, c, bounds, start, anchor)
         ranked = sorted((q for q in drops if q not in pinned), key=lambda q: -drops[q])
         shown = ", ".join(f"{q} {drops[q]:.4g}" for q in ranked)
         choices.append(f"one step's chi-square drop per candidate (not on a bound): {shown}")
@@ -282,7 +268,9 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurv
         for p in ranked[:TRIED]:
             if not drops[p] > penalty:  # not even its linear step pays for the parameter
                 break
-            problem = drift_problem(local, system, paths, moving + [p], c, bounds, start)
+            problem = drift_problem(
+                local, system, paths, moving + [p], c, bounds, start, anchor=anchor
+            )
             with warnings.catch_warnings(record=True) as record:
                 warnings.simplefilter("always")  # said below for the chosen one only
                 trial = solve_curves(problem)
@@ -311,23 +299,25 @@ def _select(fit, settings, system, paths, c, bounds, choices) -> Tuple[MultiCurv
     return best, tuple(moving)
 
 
-def _linear_drops(settings, system, paths, moving, c, bounds, start) -> dict:
+def _linear_drops(settings, system, paths, moving, c, bounds, start, anchor=None) -> dict:
     """{candidate: the chi-square drop of one Gauss-Newton step from the current solution with its
     slope freed as well, beyond the step's without it}: one Jacobian (all candidates' slope
     columns at once) ranks them."""
     candidates = [p for p in paths if p not in moving]
-    problem = drift_problem(settings, system, paths, moving + candidates, c, bounds, start)
+    problem = drift_problem(
+        settings, system, paths, moving + candidates, c, bounds, start, anchor=anchor
+    )
     model = CurveSet(problem)
     r = model.residuals(problem.start)
     j = model.jacobian(problem.start)
-    current = list(range(len(paths) + len(moving)))
+    names = problem.names
+    current = [
+        i for i, n in enumerate(names) if not n.endswith(SLOPE) or n[: -len(SLOPE)] in moving
+    ]
     # the step without a new slope: what the current solution, short of its minimum along a
     # degenerate valley, would gain anyway (every candidate's drop counts from it)
     base = _step_drop(j[:, current], r)
-    return {
-        p: _step_drop(j[:, current + [len(current) + d]], r) - base
-        for d, p in enumerate(candidates)
-    }
+    return {p: _step_drop(j[:, current + [names.index(p + SLOPE)]], r) - base for p in candidates}
 
 
 def _step_drop(a, r) -> float:
@@ -338,12 +328,18 @@ def _step_drop(a, r) -> float:
 
 
 def drift_result(
-    fit: MultiCurveFit, paths, moving, c, unit: str, choices, splines=(), knots=None
+    fit: MultiCurveFit, paths, moving, c, unit: str, choices, z, splines=(), knots=None
 ) -> DriftFitResult:
     """The :class:`DriftFitResult` of the driver's fit of free ``paths``, ``moving`` of them
     drifting, ``splines`` of those on ``knots`` (the problem's names: those paths, then each
-    drifting one's slope and a spline's departures at its knots)."""
+    drifting one's slope and a spline's departures at its knots, then the reference's), on
+    ranges ``z``."""
+    state = fit.problem.reference
+    offsets = tuple(n[: -len(OFFSET)] for n in fit.problem.names if n.endswith(OFFSET))
     return DriftFitResult(
+        reference=None if state is None else state.curve,
+        reference_ranges=None if state is None else z,
+        reference_offsets=offsets,
         **fit_fields(fit),
         free=tuple(paths),
         drifting=tuple(moving),
@@ -356,21 +352,21 @@ def drift_result(
     )
 
 
-def _ladder_start(system, z, y, w, normalize, extinction_bias, settings, bounds):
-    """(the ladder's fitted system, its family's paths, a line saying so) on the median curve, with
+def _ladder_start(system, z, y, w, what, normalize, extinction_bias, settings, bounds):
+    """(the ladder's fitted system, its family's paths, a line saying so) on the curve ``y`` with
+    1-sigma error ``w`` (``what``: the series' median curve or the reference), with
     the drift fit's method, tolerance, threads and search settings (seed, population, generations,
     minima: its families' global searches)."""
     search = settings.search
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the family's verdicts: the drift fit's own follow
         ladder = single_fit(
-            system, z, np.median(y, axis=0), np.median(w, axis=0) / math.sqrt(y.shape[0]),
-            free="auto", method=settings.method, tolerance=settings.tolerance,
+            system, z, y, w, free="auto", method=settings.method, tolerance=settings.tolerance,
             threads=settings.threads, normalize=normalize, extinction_bias=extinction_bias,
             seed=search.seed, population=search.population, generations=search.generations,
             minima=search.minima, bounds=bounds, allow_unconverged=True,
         )  # fmt: skip
     fit = ladder.chosen
     start = _parameters.replace(system, dict(fit.parameters))
-    line = f"free='auto': family '{ladder.chosen_family.name}' chosen on the median curve"
+    line = f"free='auto': family '{ladder.chosen_family.name}' chosen on the {what}"
     return start, tuple(fit.parameters), line

@@ -15,6 +15,8 @@ from ..batch_curves import curves as batch
 from ..sensitivity import jacobian
 from . import multi_result
 from .drift_basis import SLOPE, DriftBasis, knot_name, warn_outside
+from .drift_prediction import anchored_prediction
+from .drift_reference import OFFSET, REFERENCE, checked_reference
 from .global_result import SearchReport
 from .multi_result import MultiFitResult, verdict_lines
 from .relative_result import RelativeFitResult
@@ -39,7 +41,11 @@ class DriftFitResult(MultiFitResult):
     free, drifting : the free paths and those of them that drift.
     covariate : one value per curve; covariate_reference : c_ref, the covariate's mean, where the
         free paths take their ``parameters`` values; covariate_unit : its unit's name.
-    curves : one :class:`FitResult` per curve (its paths at its covariate, their covariance).
+    curves : one :class:`FitResult` per curve (its paths at its covariate, their covariance; with
+        a reference, its residuals the differential ones and its fitted curve the model's alone).
+    reference, reference_ranges : the reference curve as given and the fitted ranges (m) it is
+        on, or None; reference_offsets : the paths with their own offset at the reference
+        (:mod:`lidar_overlap.analysis.fitting.drift_reference`).
     degenerate_pairs, at_bounds, evaluations, jacobian_evaluations, converged, message : as in
         :class:`JointFitResult` (at_diffraction_limit too); search : the global search's report or
         None; choices : with ``drifting="auto"`` (or ``free="auto"``), what the choice tried, one
@@ -57,6 +63,9 @@ class DriftFitResult(MultiFitResult):
     choices: Tuple[str, ...] = ()
     splines: Tuple[str, ...] = ()
     knots: np.ndarray = field(default_factory=lambda: np.empty(0))
+    reference: Optional[np.ndarray] = None
+    reference_ranges: Optional[np.ndarray] = None
+    reference_offsets: Tuple[str, ...] = ()
 
     FIELDS: ClassVar[Dict[str, Any]] = {
         **multi_result.FIELDS,
@@ -70,6 +79,7 @@ class DriftFitResult(MultiFitResult):
         "drifting",
         "choices",
         "splines",
+        "reference_offsets",
     )
 
     def __post_init__(self) -> None:
@@ -85,10 +95,13 @@ class DriftFitResult(MultiFitResult):
                 "covariate values with a spline drift, none without"
             )
         names = list(self.free) + self.basis.names
+        if self.reference is not None:
+            names += [REFERENCE] + [p + OFFSET for p in self.reference_offsets]
         if list(self.parameters) != names:
             raise ValueError(
                 "parameters and uncertainties are invalid: expected the free paths, then each "
-                "drifting path's slope (and a spline's departures at its knots)"
+                "drifting path's slope (a spline's departures at its knots; with a reference, its "
+                "covariate and offsets)"
             )
         if len(self.curves) != self.covariate.size:
             raise ValueError(
@@ -109,6 +122,20 @@ class DriftFitResult(MultiFitResult):
         return {
             p: (self.parameters[p + SLOPE], self.uncertainties[p + SLOPE]) for p in self.drifting
         }
+
+    @property
+    def coefficients(self) -> int:
+        """The numbers a prediction needs beside the start system and the reference curve: every
+        fitted parameter (values, slopes, the reference's covariate and offsets)."""
+        return len(self.parameters)
+
+    @property
+    def reference_covariate(self) -> Tuple[float, float]:
+        """(c_ref, its 1-sigma uncertainty): the covariate value at which the reference lies on
+        the drift line (covariate unit); NaN without a reference."""
+        if self.reference is None:
+            return (float("nan"), float("nan"))
+        return (self.parameters[REFERENCE], self.uncertainties[REFERENCE])
 
     def matrix(self, covariate: float) -> np.ndarray:
         """M (free paths, K): the free paths' values at ``covariate`` are M @ parameters."""
@@ -157,24 +184,40 @@ class DriftFitResult(MultiFitResult):
         values = self.matrix(covariate) @ np.array(list(self.parameters.values()))
         return _parameters.replace(self.curves[0].system, dict(zip(self.free, values.tolist())))
 
-    def predict(self, ranges, covariate, band: bool = False):
+    def predict(self, ranges, covariate, band: bool = False, reference=None):
         """The fitted overlap at ``ranges`` (m) for each value of ``covariate``: shape
         (len(covariate), len(ranges)); relative like the data when they were normalised (each
         curve divided by its mean over the measured ranges of the normalisation interval, or by
         its far-range limit; the retrieval's extinction bias, not the instrument's, is left out).
         ``band=True``: (overlap, its 1-sigma band from the covariance, sqrt(diag(J M C Mᵀ Jᵀ)) of
-        the normalised model)."""
+        the normalised model).
+
+        With a reference (``lo.fit_drift(..., reference=)``): the model plus the reference's
+        residual G_ref - M(θ_ref), normalised like the data; ``reference``: the reference curve at
+        ``ranges`` (e.g. at gates between the fitted ones), None: the fit's own, interpolated
+        linearly between the fitted ranges, the residual taken as 0 (the model alone) outside
+        them."""
         z = _checks.ranges("ranges", ranges)
         c = self._checked_covariate(covariate)
         warn_outside(c, self.span, self.covariate_unit)
+        given = None
+        if reference is not None:
+            if self.reference is None:
+                raise ValueError(
+                    f"reference = {_checks.shown(reference)} is invalid: this drift fit has no "
+                    "reference; leave it out"
+                )
+            given = checked_reference(reference, z, False)
         first = self.curves[0]
         normalizing = first.normalizing_ranges if isinstance(first, RelativeFitResult) else None
-        return self.prediction(z, c, normalizing, band)
+        return self.prediction(z, c, normalizing, band, given)
 
-    def prediction(self, z, c, normalizing, band: bool):
+    def prediction(self, z, c, normalizing, band: bool, reference=None):
         """:meth:`predict` at checked ranges ``z`` and covariates ``c``, divided by the mean over
-        ``normalizing`` ranges (m; None: absolute)."""
+        ``normalizing`` ranges (m; None: absolute); ``reference`` at ``z`` or None."""
         self.curves[0].system._native.validate_ranges(z)
+        if self.reference is not None:
+            return anchored_prediction(self, z, c, normalizing, band, reference)
         both = z if normalizing is None else np.union1d(z, normalizing)
         systems = [self.system_at(ci) for ci in c]
         p = self.curves[0].plan.with_system(systems[0]).at(both)
@@ -227,6 +270,17 @@ class DriftFitResult(MultiFitResult):
                 )
         if not self.drifting:
             lines.append("  no parameter drifts")
+        if self.reference is not None:
+            c_ref, sd = self.reference_covariate
+            lines.append(
+                f"  reference on the drift line at {c_ref:.4g} ± {sd:.2g} {unit_c}"
+                + "".join(
+                    f", {p} offset {self.parameters[p + OFFSET]:+.4g} ± "
+                    f"{self.uncertainties[p + OFFSET]:.2g} {_parameters.unit(p)}"
+                    for p in self.reference_offsets
+                )
+                + f"; {self.coefficients} coefficients"
+            )
         lines.extend(verdict_lines(self))
         return "\n".join(lines)
 

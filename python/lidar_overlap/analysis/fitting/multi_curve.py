@@ -34,6 +34,7 @@ from ...model import parameters as _parameters
 from ..batch_curves import curves as batch
 from ..sensitivity import difference_systems
 from . import verdict
+from .drift_reference import ReferenceState
 from .global_result import SearchReport
 from .global_search import thinned
 from .normalization import extended_plan, normalization
@@ -71,7 +72,9 @@ class MultiCurveProblem:
     """A fit of several curves: ``settings`` (a :class:`FitProblem` holding the curves and the
     method, tolerance, loss, evaluations and search), the global ``names``, one :class:`CurveMap`
     per curve, θ's ``start``, bounds ``low`` and ``high``, natural ``scale`` and, for a search,
-    its box (``search_low``, ``search_high``) and which parameters it takes in their logarithm."""
+    its box (``search_low``, ``search_high``) and which parameters it takes in their logarithm;
+    ``reference``: a drift fit's reference state (:mod:`.drift_reference`), whose normalised model
+    less the reference curve every curve's residual subtracts (None: no reference)."""
 
     settings: FitProblem
     names: Tuple[str, ...]
@@ -83,6 +86,7 @@ class MultiCurveProblem:
     search_low: np.ndarray
     search_high: np.ndarray
     logs: np.ndarray
+    reference: Optional[ReferenceState] = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -139,6 +143,12 @@ class CurveSet:
         self.groups = list(groups.values())
         self.last: list = [None, None]
         self.rows = sum(n.whitening.shape[0] for n in self.norms)
+        self.reference = problem.reference
+        if self.reference is not None:  # normalised as the days (they share ranges and interval)
+            first = settings.curves[0]
+            self.reference_norm = normalization(
+                first.normalize, self.base[0].ranges, self.reference.curve, first.sigma, False
+            )
 
     def curves(self, systems, shifted=None):
         """G of each curve's system (and, with ``shifted``, of each curve's shifted systems): one
@@ -164,8 +174,28 @@ class CurveSet:
         key = np.asarray(theta, dtype=float).tobytes()
         if self.last[0] != key:
             systems = [m.at(theta) for m in self.maps]
-            self.last = [key, (systems, self.curves(systems)[0])]
+            g = self.curves(systems)[0]
+            if self.reference is not None:
+                systems.append(self.reference.at(theta))
+                g.append(batch(self.plans[0], systems[-1:])[0])
+            self.last = [key, (systems, g)]
         return self.last[1]
+
+    def reference_term(self, theta) -> np.ndarray:
+        """M(θ_ref) normalised less the normalised reference (0 without a reference): what each
+        curve's model minus its data subtracts (:mod:`.drift_reference`)."""
+        if self.reference is None:
+            return np.zeros(0)
+        g = self.at(theta)[1][-1]
+        return self.reference_norm.model(g) - self.reference_norm.data
+
+    def _reference_jacobian(self, theta, system, g) -> np.ndarray:
+        """d reference_term / dθ (measured ranges, K)."""
+        assert self.reference is not None
+        runs, w = difference_systems(system, list(self.reference.paths), self.steps[0])
+        pairs = batch(self.plans[0], runs).reshape(len(runs) // 2, 2, -1)
+        local = ((pairs[:, 0] - pairs[:, 1]) / w[:, None]).T
+        return self.reference_norm.model_jacobian(g, local) @ self.reference.matrix(theta)
 
     def residuals(self, theta) -> np.ndarray:
         """The whitened residuals of all curves, stacked; NaN where θ makes some curve's system
@@ -178,14 +208,18 @@ class CurveSet:
                 raise
             return np.full(self.rows, np.nan)
         with np.errstate(invalid="ignore"):  # a model that vanishes where it is normalised
+            shift = self.reference_term(theta) if self.reference is not None else 0.0
             return np.concatenate(
-                [n.whitening @ (n.model(gi) - n.data) for n, gi in zip(self.norms, g)]
+                [n.whitening @ (n.model(gi) - n.data - shift) for n, gi in zip(self.norms, g)]
             )
 
     def jacobian(self, theta, keep: Optional[list] = None) -> np.ndarray:
         """d(whitened residuals)/dθ (rows, K); ``keep`` receives each curve's own Jacobian
         (model ranges, its paths)."""
         systems, g = self.at(theta)
+        shift: Any = 0.0
+        if self.reference is not None:
+            shift = self._reference_jacobian(theta, systems[-1], g[-1])
         shifted, widths = [], []
         for m, s, h in zip(self.maps, systems, self.steps):
             runs, w = difference_systems(s, list(m.paths), h)
@@ -198,7 +232,8 @@ class CurveSet:
             local = ((pairs[:, 0] - pairs[:, 1]) / widths[i][:, None]).T
             if keep is not None:
                 keep.append(local)
-            blocks.append(n.whitening @ n.model_jacobian(g[i], local) @ m.matrix)
+            block = n.whitening @ n.model_jacobian(g[i], local) @ m.matrix
+            blocks.append(block if self.reference is None else block - n.whitening @ shift)
         return np.vstack(blocks)
 
     def independent(self) -> List[int]:
@@ -302,7 +337,8 @@ def _curve_fits(problem, model: CurveSet, theta, cov, local, counts, solution) -
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = c_local / np.outer(sd, sd)
         np.fill_diagonal(corr, 1.0)
-        r = norm.whitening @ (norm.model(kept.overlap) - norm.data)
+        shift = model.reference_term(theta) if model.reference is not None else 0.0
+        r = norm.whitening @ (norm.model(kept.overlap) - norm.data - shift)
         chi = float(r @ r)
         dof = max(model.independent()[i] - own[i], 0)
         paths = list(m.paths)

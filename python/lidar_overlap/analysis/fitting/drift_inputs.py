@@ -1,0 +1,94 @@
+"""The inputs of ``lo.fit_drift`` checked, each error naming its argument: the series of curves,
+the covariate, the curves' 1-sigma errors and the paths offset at the reference."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ... import _checks
+from .multi_inputs import checked_paths
+from .problem import measured_values
+
+
+def checked_series(curves, z) -> np.ndarray:
+    """``curves`` as (n_curves, n_ranges) G on ranges ``z`` (m), at least two, each measured."""
+    try:
+        y = _checks.real_array("curves", curves, ndim=2)
+    except ValueError as exc:
+        raise ValueError(
+            f"{exc}: expected (n_curves, n_ranges), curves of equal length (one G per range)"
+        ) from None
+    if y.shape[1] != z.size:
+        raise ValueError(
+            f"curves has shape {y.shape}: expected (n_curves, {z.size}), one G per range"
+        )
+    if y.shape[0] < 2:
+        raise ValueError(
+            f"curves holds {y.shape[0]} curve: a drift fit needs at least two; fit one curve with "
+            "lo.fit"
+        )
+    for i in range(y.shape[0]):
+        try:
+            measured_values(y[i], z)
+        except ValueError as exc:
+            raise ValueError(f"curves[{i}]: {exc}") from None
+    return y
+
+
+def checked_covariate(covariate, n: int) -> np.ndarray:
+    """One finite covariate value per curve (``n``), with a finite, nonzero spread."""
+    c = _checks.real_array("covariate", covariate, ndim=1)
+    if c.size != n:
+        raise ValueError(f"covariate has {c.size} values: expected one per curve ({n})")
+    bad = ~np.isfinite(c)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
+    with np.errstate(over="ignore", invalid="ignore"):
+        spread = np.ptp(c)
+    if not np.isfinite(spread):
+        raise ValueError(
+            f"covariate spans {spread!r}: expected a spread that is a finite number (center "
+            "or rescale the covariate)"
+        )
+    if not np.ptp(c) > 0:
+        raise ValueError(
+            f"covariate is constant ({c[0]:g}): expected at least two different values, a drift "
+            "needs a spread"
+        )
+    return c
+
+
+def checked_sigma(sigma, shape) -> np.ndarray:
+    """``sigma`` (required) broadcast to the curves' ``shape``."""
+    if sigma is None:
+        raise ValueError(
+            "sigma = None is invalid: a drift fit weighs the curves by their noise; give the "
+            "1-sigma error (a scalar, one per range or one per curve and range)"
+        )
+    try:
+        return np.broadcast_to(_checks.real_array("sigma", sigma), shape).copy()
+    except ValueError as exc:
+        raise ValueError(
+            f"sigma = {_checks.shown(sigma)} is invalid: expected a scalar, one per range or "
+            f"{shape} ({exc})"
+        ) from None
+
+
+def checked_offsets(offsets, anchor, system, paths) -> tuple:
+    """The checked ``reference_offsets``: free paths, and only with a reference."""
+    if isinstance(offsets, (list, tuple)) and not offsets:
+        return ()
+    if anchor is None:
+        raise ValueError(
+            f"reference_offsets = {_checks.shown(offsets)} is invalid without a reference: give "
+            "reference= or leave it empty"
+        )
+    out = checked_paths("reference_offsets", offsets, [system])
+    outside = [p for p in out if p not in paths]
+    if outside:
+        raise ValueError(
+            f"reference_offsets: {', '.join(outside)} is not free: expected paths among free "
+            f"({', '.join(paths)})"
+        )
+    return out
