@@ -232,8 +232,11 @@ class CurveSet:
             local = ((pairs[:, 0] - pairs[:, 1]) / widths[i][:, None]).T
             if keep is not None:
                 keep.append(local)
-            block = n.whitening @ n.model_jacobian(g[i], local) @ m.matrix
-            blocks.append(block if self.reference is None else block - n.whitening @ shift)
+            jacobian_i = n.model_jacobian(g[i], local)
+            if self.reference is None:  # (W J) M, the order of every fit without a reference
+                blocks.append(n.whitening @ jacobian_i @ m.matrix)
+            else:  # W (J M - s): equal to (W J) M - W s, not to the last bit (benchmarks/README)
+                blocks.append(n.whitening @ (jacobian_i @ m.matrix - shift))
         return np.vstack(blocks)
 
     def independent(self) -> List[int]:
