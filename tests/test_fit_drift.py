@@ -144,6 +144,8 @@ def _call(**changes):
         (dict(covariate=TEMPERATURE[:-1]), "covariate has 7 values"),
         (dict(covariate=np.full(8, 300.0)), "covariate is constant"),
         (dict(covariate=np.repeat([-1e308, 1e308], 4)), "covariate spans"),
+        (dict(covariate=TEMPERATURE * 1e-110), "covariate spans 2e-109: expected a spread from"),
+        (dict(covariate=TEMPERATURE * 1e300), "covariate spans .*: expected a spread from"),
         (dict(drifting=["detector.radius"]), "drifting"),
         (dict(free=["beam.nothing"]), "free"),
         # a path the system does not have: its beam has no second component, its detector no NA
@@ -162,6 +164,19 @@ def _call(**changes):
 def test_bad_input_is_a_clear_error_naming_it(changes, name):
     with pytest.raises(ValueError, match=name):
         _call(**changes)()
+
+
+def test_the_slopes_uncertainty_follows_the_covariates_unit_over_its_whole_range():
+    # The same series with the covariate in units 1e-12 to 1e10 times kelvin (seconds over years
+    # put the slope column 1e9 above the others in SI units): the slope and its uncertainty scale
+    # as 1 / unit, neither infinite (the covariance is taken in the solver's natural units).
+    curves = _series(11)
+    reference = _drift(curves).drift["beam.tilt[0]"]
+    for unit in (1e-12, 1e8, 1e10):
+        fit = _call(curves=curves, covariate=(TEMPERATURE - 300.0) * unit)()
+        slope, sd = fit.drift["beam.tilt[0]"]
+        assert slope * unit == pytest.approx(reference[0], rel=1e-6)
+        assert sd * unit == pytest.approx(reference[1], rel=1e-6), unit
 
 
 def test_prediction_refuses_bad_covariates():

@@ -9,6 +9,9 @@ from ... import _checks
 from .multi_inputs import checked_paths
 from .problem import measured_values
 
+#: The covariate's spread (max - min, its unit) a slope's variance (squared per unit) survives.
+SPREAD = (1e-100, 1e100)
+
 
 def checked_series(curves, z) -> np.ndarray:
     """``curves`` as (n_curves, n_ranges) G on ranges ``z`` (m), at least two, each measured."""
@@ -50,6 +53,12 @@ def checked_covariate(covariate, n: int) -> np.ndarray:
         raise ValueError(
             f"covariate spans {spread!r}: expected a spread that is a finite number (center "
             "or rescale the covariate)"
+        )
+    if 0 < spread < SPREAD[0] or spread > SPREAD[1]:
+        raise ValueError(
+            f"covariate spans {spread:g}: expected a spread from {SPREAD[0]:g} to {SPREAD[1]:g} "
+            "in its unit (beyond it a slope's variance per unit squared leaves the floating-point "
+            "range; give the covariate in another unit)"
         )
     if not np.ptp(c) > 0:
         raise ValueError(

@@ -300,7 +300,11 @@ def solve_curves(problem: MultiCurveProblem) -> MultiCurveFit:
     j = model.jacobian(theta, local)
     with np.errstate(over="ignore", invalid="ignore"):
         chi_square, dof = float(r @ r), n - k
-    cov, corr = parameter_covariance(j, chi_square, dof, True)
+    # in the solver's units (θ / scale): in SI units a drift's slope column is the covariate's
+    # spread times its value's (1e9 for seconds over years), past the SVD's rank tolerance
+    scaled, corr = parameter_covariance(j * scale, chi_square, dof, True)
+    with np.errstate(over="ignore", invalid="ignore"):
+        cov = scaled * np.outer(scale, scale)
     sd = np.sqrt(np.diag(cov))
     pairs = degeneracies(list(names), corr, sd)
     if settings.loss == "linear":
