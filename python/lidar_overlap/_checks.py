@@ -281,6 +281,19 @@ def real_array(name: str, value: Any, ndim: int | None = None) -> np.ndarray:
     return values
 
 
+def finite_array(name: str, value: Any, ndim: int | None = None) -> np.ndarray:
+    """:func:`real_array` whose values are all finite: the first that is not is refused naming
+    ``name[i]`` (i the flat index: a 1-D array's own)."""
+    values = real_array(name, value, ndim)
+    bad = ~np.isfinite(values)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"{name}[{i}] = {float(values.flat[i])!r} is invalid: expected finite values"
+        )
+    return values
+
+
 def set_max_memory(bytes: int) -> None:
     """Set the memory budget of one call, in bytes (0 restores the default, a quarter of the
     physical memory); ValueError naming ``bytes`` for anything but an integer from 0 to

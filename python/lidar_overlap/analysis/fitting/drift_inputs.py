@@ -43,10 +43,7 @@ def checked_covariate(covariate, n: int) -> np.ndarray:
     c = _checks.real_array("covariate", covariate, ndim=1)
     if c.size != n:
         raise ValueError(f"covariate has {c.size} values: expected one per curve ({n})")
-    bad = ~np.isfinite(c)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"covariate[{i}] = {c[i]!r} is invalid: expected finite values")
+    c = _checks.finite_array("covariate", c, ndim=1)
     with np.errstate(over="ignore", invalid="ignore"):
         spread = np.ptp(c)
     if not np.isfinite(spread):

@@ -75,7 +75,7 @@ def reference_state(system, paths, names, moving, offsets, c, curve) -> Referenc
     linear, slopes = np.zeros((len(paths), k)), np.zeros((len(paths), k))
     linear[:, : len(paths)] = np.eye(len(paths))
     for p in moving:
-        slopes[paths.index(p), names.index(p + "@slope")] = 1.0
+        slopes[paths.index(p), names.index(p + "@slope")] = 1.0  # drift_basis.SLOPE
     for p in offsets:
         linear[paths.index(p), names.index(p + OFFSET)] = 1.0
     return ReferenceState(
@@ -91,10 +91,7 @@ def checked_reference(reference, z: np.ndarray, extinction_bias) -> np.ndarray:
             f"reference has {r.size} values: expected one G per range ({z.size}), the curve the "
             "days differ from on the same ranges"
         )
-    bad = ~np.isfinite(r)
-    if bad.any():
-        i = int(np.argmax(bad))
-        raise ValueError(f"reference[{i}] = {r[i]!r} is invalid: expected finite values")
+    r = _checks.finite_array("reference", r, ndim=1)
     if extinction_bias:
         raise ValueError(
             "reference with extinction_bias=True is not supported: each day's profiled "

@@ -156,7 +156,7 @@ class DriftFitResult(MultiFitResult):
                 f"path = {_checks.shown(path)} is invalid: expected a free path "
                 f"({', '.join(self.free)})"
             )
-        c = self._checked_covariate(covariate)
+        c = _checks.finite_array("covariate", np.atleast_1d(covariate), ndim=1)
         warn_outside(c, self.span, self.covariate_unit)
         rows = np.array([self.matrix(ci)[self.free.index(path)] for ci in c])
         value = rows @ np.array(list(self.parameters.values()))
@@ -168,15 +168,6 @@ class DriftFitResult(MultiFitResult):
     def span(self) -> Tuple[float, float]:
         """The fitted covariate span (smallest, largest value)."""
         return float(self.covariate.min()), float(self.covariate.max())
-
-    @staticmethod
-    def _checked_covariate(covariate) -> np.ndarray:
-        c = _checks.real_array("covariate", np.atleast_1d(covariate), ndim=1)
-        bad = ~np.isfinite(c)
-        if bad.any():
-            i = int(np.argmax(bad))
-            raise ValueError(f"covariate[{i}] = {float(c[i])!r} is invalid: expected finite values")
-        return c
 
     def system_at(self, covariate: float):
         """The fitted system at ``covariate`` (beyond the fitted span every drift continues
@@ -198,7 +189,7 @@ class DriftFitResult(MultiFitResult):
         linearly between the fitted ranges, the residual taken as 0 (the model alone) outside
         them."""
         z = _checks.ranges("ranges", ranges)
-        c = self._checked_covariate(covariate)
+        c = _checks.finite_array("covariate", np.atleast_1d(covariate), ndim=1)
         warn_outside(c, self.span, self.covariate_unit)
         given = None
         if reference is not None:
