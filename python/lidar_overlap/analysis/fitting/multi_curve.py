@@ -181,11 +181,11 @@ class CurveSet:
             self.last = [key, (systems, g)]
         return self.last[1]
 
-    def reference_term(self, theta) -> np.ndarray:
-        """M(θ_ref) normalised less the normalised reference (0 without a reference): what each
+    def reference_term(self, theta) -> Any:
+        """M(θ_ref) normalised less the normalised reference (0.0 without a reference): what each
         curve's model minus its data subtracts (:mod:`.drift_reference`)."""
         if self.reference is None:
-            return np.zeros(0)
+            return 0.0
         g = self.at(theta)[1][-1]
         return self.reference_norm.model(g) - self.reference_norm.data
 
@@ -208,7 +208,7 @@ class CurveSet:
                 raise
             return np.full(self.rows, np.nan)
         with np.errstate(invalid="ignore"):  # a model that vanishes where it is normalised
-            shift = self.reference_term(theta) if self.reference is not None else 0.0
+            shift = self.reference_term(theta)
             return np.concatenate(
                 [n.whitening @ (n.model(gi) - n.data - shift) for n, gi in zip(self.norms, g)]
             )
@@ -344,7 +344,7 @@ def _curve_fits(problem, model: CurveSet, theta, cov, local, counts, solution) -
         with np.errstate(invalid="ignore", divide="ignore"):
             corr = c_local / np.outer(sd, sd)
         np.fill_diagonal(corr, 1.0)
-        shift = model.reference_term(theta) if model.reference is not None else 0.0
+        shift = model.reference_term(theta)
         r = norm.whitening @ (norm.model(kept.overlap) - norm.data - shift)
         chi = float(r @ r)
         dof = max(model.independent()[i] - own[i], 0)
