@@ -145,6 +145,15 @@ def fit_drift(
         max_evaluations=max_evaluations, allow_unconverged=allow_unconverged, threads=threads,
         search=search, seed=seed, population=population, generations=generations, minima=minima,
     )  # fmt: skip
+    # the drifts' kinds and knots before any ladder runs (the ladder's system has the same paths)
+    auto = isinstance(drifting, str) and drifting == "auto"
+    moving, splines = ((), ()) if auto else checked_drifting(drifting, [system])
+    knots = knots_at_quantiles(spline_knots, c, splines)
+    if anchor is not None and splines:
+        raise ValueError(
+            f"drifting: {', '.join(splines)} as a spline with a reference is not supported: the "
+            "reference's state is taken on a linear drift line; give linear drifts or no reference"
+        )
     choices: List[str] = []
     chosen = isinstance(free, str) and free == "auto"
     if chosen:
@@ -161,8 +170,6 @@ def fit_drift(
         )
         choices.append(line)
     paths = checked_paths("free", free, [system])
-    auto = isinstance(drifting, str) and drifting == "auto"
-    moving, splines = ((), ()) if auto else checked_drifting(drifting, [system])
     outside = [p for p in moving if p not in paths]
     if outside:
         raise ValueError(
@@ -174,13 +181,7 @@ def fit_drift(
     if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)
         bounds = {k: v for k, v in by_scalar("bounds", bounds, paths).items() if k in paths}
     given = checked_bounds(bounds, paths)
-    knots = knots_at_quantiles(spline_knots, c, splines)
     settings = settings.derived(start=system, free=paths)
-    if pair is not None and splines:
-        raise ValueError(
-            f"drifting: {', '.join(splines)} as a spline with a reference is not supported: the "
-            "reference's state is taken on a linear drift line; give linear drifts or no reference"
-        )
     basis = DriftBasis(moving, float(c.mean()), splines, knots)
     problem = drift_problem(settings, system, paths, moving, c, given, basis=basis, anchor=pair)
     if auto:
