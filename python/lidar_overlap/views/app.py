@@ -21,6 +21,7 @@ import os
 import pathlib
 import time
 
+from . import twin_page
 from .twin import Twin
 from .twin_figures import curve_figure, image_figure, telecover_figure
 from .twin_scene import MISSING, TwinScene
@@ -31,12 +32,9 @@ _names = itertools.count()
 def _trame():
     try:
         from trame.app import get_server
-        from trame.ui.vuetify3 import SinglePageWithDrawerLayout
-        from trame.widgets import html, plotly, vtk
-        from trame.widgets import vuetify3 as v3
     except ImportError as exc:
         raise ImportError(MISSING) from exc
-    return get_server, SinglePageWithDrawerLayout, html, plotly, vtk, v3
+    return get_server
 
 
 class App:
@@ -45,7 +43,7 @@ class App:
     writes)."""
 
     def __init__(self, twin: Twin, *, exaggeration: float = 100.0, out="."):
-        get_server, Layout, html, plotly, vtk, v3 = _trame()
+        get_server = _trame()
         self.twin, self.out = twin, pathlib.Path(out)
         self.scene = TwinScene(twin, exaggeration)
         self.server = get_server(f"lidar_overlap_view_{next(_names)}", client_type="vue3")
@@ -78,99 +76,9 @@ class App:
         if twin.result is None:  # the first curve is computed once the server runs
             self.ctrl.on_server_ready.add(lambda **_: self._compute_in_background())
 
-        with Layout(self.server) as layout:
-            self.layout = layout
-            layout.title.set_text(f"lidar_overlap: {twin.name}")
-            with layout.toolbar:
-                v3.VSpacer()
-                html.Div(
-                    "computing G(z) ({{ progress }} %)",
-                    v_show="computing",
-                    id="status",
-                    classes="text-caption mr-2",
-                )
-                v3.VProgressLinear(
-                    v_show="computing",
-                    model_value=("progress",),
-                    id="progress",
-                    color="primary",
-                    height=6,
-                    style="max-width: 160px",
-                    classes="mr-4",
-                )
-                html.Div("{{ timing }}", id="timing", classes="text-caption mr-4")
-                html.Div("{{ curve_version }}", id="curve-version", style="display: none")
-                html.Div("{{ scene_version }}", id="scene-version", style="display: none")
-                v3.VBtn(
-                    "Save scenario and curve",
-                    id="save",
-                    click=self.save,
-                    variant="tonal",
-                    classes="mr-2",
-                )
-            with layout.drawer as drawer:
-                drawer.width = 330
-                for key, s in twin.sliders.items():
-                    html.Div(
-                        f"{s.label}: {{{{ text_{key} }}}}",
-                        id=f"label-{key}",
-                        classes="text-caption px-4 pt-1",
-                    )
-                    with html.Div(id=f"slider-{key}"):
-                        v3.VSlider(
-                            v_model=(key, self._positions[key]),
-                            min=0,
-                            max=s.n,
-                            step=1,
-                            hide_details=True,
-                            density="compact",
-                            classes="px-4",
-                        )
-                html.Div("detector image at z = {{ text_probe }}", classes="text-caption px-4 pt-3")
-                with html.Div(id="slider-probe"):
-                    v3.VSlider(
-                        v_model=("probe", twin.probe),
-                        min=0,
-                        max=twin.ranges.size - 1,
-                        step=1,
-                        hide_details=True,
-                        density="compact",
-                        classes="px-4",
-                    )
-                html.Div("{{ saved }}", id="saved", classes="text-caption px-4 pt-3")
-            with layout.content:
-                with v3.VContainer(fluid=True, classes="pa-0 fill-height"):
-                    with v3.VRow(no_gutters=True, classes="fill-height"):
-                        with v3.VCol(cols=7, style="min-height: 600px"):
-                            view = vtk.VtkLocalView(self.scene.plotter.render_window, id="scene")
-                            self.ctrl.view_update = view.update
-                        with v3.VCol(cols=5):
-                            v3.VAlert(
-                                v_if="error",
-                                text=("error",),
-                                type="warning",
-                                density="compact",
-                                id="error",
-                            )
-                            with html.Div(id="curve"):
-                                plotly.Figure(
-                                    state_variable_name="curve_figure",
-                                    display_mode_bar=False,
-                                    style="height: 280px",
-                                )
-                            with html.Div(id="image"):
-                                plotly.Figure(
-                                    state_variable_name="image_figure",
-                                    display_mode_bar=False,
-                                    style="height: 300px",
-                                )
-                            if twin.telecover is not None:
-                                with html.Div(id="telecover"):
-                                    plotly.Figure(
-                                        state_variable_name="telecover_figure",
-                                        display_mode_bar=False,
-                                        style="height: 260px",
-                                    )
+        self.layout = twin_page.build(
+            self.server, twin, self._positions, self.scene.plotter.render_window, self.save
+        )
 
     # ------------------------------------------------------------------------------------------
     # updates
