@@ -24,12 +24,11 @@ from ..optics.detector_image import beam_image, blurred, fov_cone, window_about
 from ..optics.propagation import propagate
 from .headless import use_headless_gl
 from .html_export import require, write_scene_html
+from .scene_meshes import N_PHI, PLANE_SCALARS, ring, textured_plane, tube
 
 COLOR_BY = ("irradiance", "overlap")
 FORMATS = ("png", "html")
-N_PHI = 72  # samples around every circle
 N_IMAGE = 192  # samples per side of the plane textures
-PLANE_SCALARS = "panels:\nrelative\nirradiance"
 VIEW, ZOOM = (0.5, 1.0, -1.2), 1.4  # default camera: direction from the focal point, zoom
 BAR = dict(
     vertical=True,
@@ -54,40 +53,6 @@ def _pyvista():
         raise ImportError(_MISSING) from exc
     use_headless_gl()  # without a display: EGL or OSMesa, not an X window that fails with a message
     return pyvista
-
-
-def _tube(pv, z, center, radius, scale):
-    """Surface made of circles of ``radius`` (m) about ``center`` ((nz, 2), m) at each z; x, y
-    scaled."""
-    phi = np.linspace(0.0, 2.0 * np.pi, N_PHI, endpoint=False)
-    x = scale * (center[:, :1] + radius[:, None] * np.cos(phi))
-    y = scale * (center[:, 1:] + radius[:, None] * np.sin(phi))
-    points = np.stack([x, y, np.broadcast_to(z[:, None], x.shape)], axis=-1).reshape(-1, 3)
-    i = (np.arange(z.size - 1) * N_PHI)[:, None]
-    j = np.arange(N_PHI)[None, :]
-    j1 = (j + 1) % N_PHI
-    quads = np.stack(np.broadcast_arrays(4, i + j, i + j1, i + N_PHI + j1, i + N_PHI + j), axis=-1)
-    return pv.PolyData(points, faces=quads.reshape(-1))
-
-
-def _ring(pv, center, radius):
-    phi = np.linspace(0.0, 2.0 * np.pi, N_PHI, endpoint=False)
-    points = np.asarray(center, float) + radius * np.stack(
-        [np.cos(phi), np.sin(phi), 0 * phi], axis=-1
-    )
-    return pv.PolyData(points, lines=np.r_[N_PHI + 1, np.arange(N_PHI), 0])
-
-
-def _image(pv, values, origin, spacing):
-    """A textured plane (normal z) from a (ny, nx) array; ``origin`` is the (x, y, z) of values[0,
-    0]."""
-    mesh = pv.ImageData(
-        dimensions=(values.shape[1], values.shape[0], 1),
-        spacing=(spacing, spacing, 1.0),
-        origin=origin,
-    )
-    mesh.point_data[PLANE_SCALARS] = values.ravel()
-    return mesh
 
 
 def beam_profile(system, zmax):
@@ -122,10 +87,10 @@ def _planes(pv, plotter, meshes, system, planes, result, scale, width):
         g = propagate(system.beam.field, z) if isinstance(system.beam, FieldBeam) else None
         e = beam_image(system, z, x, y, g)
         lift = np.array([max(c[0] + 2.5 * w, s[0] + fov_r) + 1.15 * half - mid[0], 0.0])
-        meshes[f"plane_{key}"] = _image(
+        meshes[f"plane_{key}"] = textured_plane(
             pv, e / e.max(), (scale * (x[0] + lift[0]), scale * y[0], z), scale * 2 * half / n
         )
-        meshes[f"fov_outline_{key}"] = _ring(pv, (*(scale * (s + lift)), z), scale * fov_r)
+        meshes[f"fov_outline_{key}"] = ring(pv, (*(scale * (s + lift)), z), scale * fov_r)
         # Detector plane, computed back-projected into the scattering plane (u = −x d/z): the beam
         # convolved with the circle of confusion (radius R|m|, less the on-axis obstruction shadow).
         blur, shadow = system.confusion_radius(z) * z / d, system.shadow_radius(z) * z / d
@@ -140,13 +105,13 @@ def _planes(pv, plotter, meshes, system, planes, result, scale, width):
         # labelled).
         k, centre = half / dhalf, mid + lift + np.array([2.6 * half, 0.0])
         origin = (*(scale * (centre - half + h * k / 2)), z)
-        meshes[f"detector_image_{key}"] = _image(
+        meshes[f"detector_image_{key}"] = textured_plane(
             pv, img / max(img.max(), 1e-300), origin, scale * h * k
         )
         # Detector-plane point u sits at centre + k (u − u_mid) z/d, u_mid = −dmid d/z at the panel
         # centre.
         outline_c = scale * (centre + k * (np.asarray(det.offset) * z / d + dmid))
-        meshes[f"detector_outline_{key}"] = _ring(pv, (*outline_c, z), scale * k * r_back)
+        meshes[f"detector_outline_{key}"] = ring(pv, (*outline_c, z), scale * k * r_back)
         g = np.interp(z, result.ranges, result.overlap, left=np.nan, right=np.nan)
         for name in (f"plane_{key}", f"detector_image_{key}"):
             plotter.add_mesh(
@@ -284,7 +249,7 @@ def scene(
     )
     width, peak = beam_profile(system, zmax)
     centers = np.array(system.beam.offset) + np.outer(zt, system.beam.tilt)
-    meshes = {"beam": _tube(pv, zt, centers, width(zt), scale)}
+    meshes = {"beam": tube(pv, zt, centers, width(zt), scale)}
     if color_by == "overlap":
         label, values, log = (
             "beam:\noverlap G(z)",
@@ -295,7 +260,7 @@ def scene(
         label, values, log = "beam: on-axis\nirradiance\n(W/m^2, 1 W)", peak(zt), True
     meshes["beam"].point_data[label] = np.repeat(values, N_PHI)
     fov_c, fov_r = fov_cone(system, zt)
-    meshes["fov"] = _tube(pv, zt, fov_c, fov_r, scale)
+    meshes["fov"] = tube(pv, zt, fov_c, fov_r, scale)
     meshes["aperture"] = pv.Disc(center=(0, 0, 0), inner=0.0, outer=scale * radius, c_res=N_PHI)
     if tel.obstruction_radius > 0:
         meshes["obstruction"] = pv.Disc(
@@ -331,7 +296,7 @@ def scene(
     if extra:
         i = int(np.searchsorted(zt, z_full))
         ring_r = scale * fov_r[i] * 1.05
-        meshes["full_overlap"] = _ring(
+        meshes["full_overlap"] = ring(
             pv, (scale * fov_c[i, 0], scale * fov_c[i, 1], z_full), ring_r
         )
         plotter.add_mesh(meshes["full_overlap"], name="full_overlap", color="red", line_width=4)
