@@ -16,12 +16,10 @@ from ..model.system import LidarSystem
 from ..model.system_attributes import system_attributes
 from ..model.turbulence import TWO_WAY_BOUND
 from . import result_files
+from .far_range import FAR_SLOPE, still_rising  # noqa: F401  (FAR_SLOPE re-exported)
 from .result_checks import ROUND_OFF, checked_curve, frozen
 from .result_files import CSV_COLUMNS  # noqa: F401  (re-exported)
 
-#: full_overlap_range warns when G still rises at the end of the ranges by more than this fraction
-#: of its maximum per decade of range.
-FAR_SLOPE = 0.01
 #: What ``error_estimate`` means: a bound from the quadrature (RT, plus auto's model error), the
 #: measured accuracy of a path (FO), or the standard error of a mean over random draws (turbulence).
 ERROR_KINDS = ("bound", "nominal", "standard_error")
@@ -138,7 +136,7 @@ class OverlapResult:
         peak = float(np.max(self.overlap))
         if peak <= 0.0:
             return float("nan")
-        reason = _still_rising(self.ranges, self.overlap, self.error_estimate, peak)
+        reason = still_rising(self.ranges, self.overlap, self.error_estimate, peak)
         if reason:
             warnings.warn(f"full_overlap_range: {reason}", RuntimeWarning, stacklevel=2)
         return float(self.ranges[np.argmax(self.overlap >= threshold * peak)])
@@ -148,7 +146,7 @@ class OverlapResult:
         ranges (or there is only one range), True otherwise: a caller can test it instead of
         catching the warning."""
         return (
-            _still_rising(
+            still_rising(
                 self.ranges, self.overlap, self.error_estimate, float(np.max(self.overlap))
             )
             is None
@@ -272,33 +270,6 @@ def _same(a: Any, b: Any) -> bool:
 def _short(value, limit: int = 80) -> str:
     text = repr(value)
     return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def _still_rising(z: np.ndarray, g: np.ndarray, error: np.ndarray, peak: float) -> Optional[str]:
-    """Why the curve has not shown its far-range limit, by the rule of
-    :meth:`OverlapResult.full_overlap_range`; None when it has (or G is zero everywhere)."""
-    if peak <= 0.0:
-        return None
-    if z.size == 1:
-        return (
-            f"one range ({z[0]:.4g} m) cannot show whether G has reached its far-range limit; "
-            "compute more ranges, out to where G stops rising"
-        )
-    start = max(z[-1] / 2.0, float(z[0]))
-    log_z = np.log(z)
-    g_start, e_start = (
-        float(np.interp(np.log(start), log_z, values)) for values in (g, np.nan_to_num(error))
-    )
-    decades = math.log10(z[-1] / start)
-    rise = float(g[-1]) - g_start - (float(np.nan_to_num(error[-1])) + e_start)
-    if rise <= FAR_SLOPE * peak * decades:
-        return None
-    return (
-        f"G is still rising at the end of the ranges: it gains {rise / peak:.2g} of its maximum "
-        f"{peak:.4g} from {start:.4g} m to {z[-1]:.4g} m, more than {FAR_SLOPE:.0%} per decade of "
-        "range, so max G may be short of its far-range limit and the range found too early; "
-        "extend the ranges farther"
-    )
 
 
 #: Percentiles of the spread band a turbulent result reports per range.
