@@ -43,21 +43,16 @@ from ..forward.compute import run
 from ..forward.methods import Method, Turbulent, from_shortcuts
 from ..forward.planning import Plan, plan
 from ..forward.result import OverlapResult
-from ..model.aberrations import Aberrations
 from ..model.field_beam import FieldBeam
-from ..model.flat_top import FlatTopBeam
 from ..model.presets import paper_table1
-from ..model.system import Detector, GaussianBeam, LidarSystem, Telescope
+from ..model.system import LidarSystem
 from ..model.turbulence import Turbulence
-from ..optics.beam_fields import super_gaussian_field
 from .scenario_schema import (
-    BEAM_TYPES,
     MAX_FILE_BYTES,
     MAX_NAME_LENGTH,
-    MAX_RANGES,
+    MAX_RANGES,  # noqa: F401  (re-exported: the docstring's bound)
     METHODS,
     OUTPUTS,
-    REQUIRED,
     SCHEMA,
     TOP_KEYS,
     TURBULENCE_PROFILE_KEYS,
@@ -66,10 +61,15 @@ from .scenario_schema import (
     checked_keys,
     choice,
     fit_bounds_table,
-    is_number,
     prefixed,
     require,
     short,
+)
+from .scenario_sections import (
+    beam_from_table,
+    detector_from_table,
+    ranges_from_table,
+    telescope_from_table,
 )
 
 if sys.version_info >= (3, 11):
@@ -233,14 +233,14 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
             f"{source}: name = {short(name)} is invalid: expected 1 to {MAX_NAME_LENGTH} letters, "
             "digits and _ . + - (it names the output files)"
         )
-    telescope = _telescope(source, data["telescope"])
+    telescope = telescope_from_table(source, data["telescope"])
     system = build(
         source,
         None,
         LidarSystem,
-        beam=_beam(source, data["beam"]),
+        beam=beam_from_table(source, data["beam"]),
         telescope=telescope,
-        detector=_detector(source, data["detector"], telescope),
+        detector=detector_from_table(source, data["detector"], telescope),
         fit_bounds=fit_bounds_table(source, data.get("fit_bounds", {})),
     )
     run = dict(checked_keys(source, "run", data.get("run", {}), SCHEMA["run"]))
@@ -251,7 +251,7 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
         name=name,
         description=data.get("description", ""),
         system=system,
-        ranges=_ranges(source, data["ranges"]),
+        ranges=ranges_from_table(source, data["ranges"]),
         method=method,
         options=run,
         turbulence=dict(
@@ -266,112 +266,6 @@ def scenario_from_dict(data: Dict[str, Any], source: str = "<scenario>") -> Scen
             "tracing models Gaussian beams only; expected 'fo' or 'auto'"
         )
     return scenario
-
-
-# -----------------------------------------------------------------------------------------------
-# sections
-def _beam(source: str, table: Dict[str, Any]) -> GaussianBeam | FieldBeam:
-    kind = table.get("type", "gaussian") if isinstance(table, dict) else "gaussian"
-    choice(f"{source}: [beam]", "type", kind, BEAM_TYPES)
-    values = dict(checked_keys(source, "beam", table, SCHEMA[kind], REQUIRED[kind]))
-    values.pop("type", None)
-    for key in ("offset", "tilt"):
-        if key in values:
-            values[key] = tuple(values[key])
-    if kind == "gaussian":
-        return build(source, "beam", GaussianBeam, **values)
-    if kind == "super_gaussian":  # a sampled field: the grid it is given on is n x spacing
-        pointing = {key: values.pop(key) for key in ("offset", "tilt") if key in values}
-        values["n"] = values.pop("grid")
-        field = build(source, "beam", super_gaussian_field, **values)
-        return build(source, "beam", FieldBeam, field, **pointing)
-    args = [values.pop(key) for key in REQUIRED["flat_top"]]
-    return build(source, "beam", FlatTopBeam, *args, **values)
-
-
-def _telescope(source: str, table: Dict[str, Any]) -> Telescope:
-    values = dict(
-        checked_keys(source, "telescope", table, SCHEMA["telescope"], REQUIRED["telescope"])
-    )
-    if "aberrations" in values:
-        values["aberrations"] = _aberrations(source, values["aberrations"])
-    return build(source, "telescope", Telescope, **values)
-
-
-def _aberrations(source: str, table: Dict[str, Any]) -> Aberrations:
-    """[telescope.aberrations]: Seidel coefficients (m), field_radius (rad) and a [..zernike] table
-    of "Noll index" = m RMS."""
-    values = dict(
-        checked_keys(source, "telescope.aberrations", table, SCHEMA["telescope.aberrations"])
-    )
-    terms = {}
-    for key, value in values.pop("zernike", {}).items():
-        if not (key.isdigit() and len(key) <= 4 and 1 <= int(key) <= 1000) or not is_number(value):
-            raise ScenarioError(
-                f"{source}: [telescope.aberrations.zernike] {short(key, 40)[1:-1]} = "
-                f'{short(value)} is invalid: expected "Noll index" (1-1000) = RMS wavefront in m, '
-                'e.g. "11" = 5e-8'
-            )
-        terms[int(key)] = value
-    return build(source, "telescope.aberrations", Aberrations, zernike=terms, **values)
-
-
-def _detector(source: str, table: Dict[str, Any], telescope: Telescope) -> Detector:
-    values = dict(checked_keys(source, "detector", table, SCHEMA["detector"]))
-    if ("fov" in values) == ("radius" in values):
-        which = "both" if "fov" in values else "neither"
-        raise ScenarioError(
-            f"{source}: [detector] fov and radius: {which} given: expected exactly one (fov: full "
-            "field of view in rad, radius: detector radius in m)"
-        )
-    if "offset" in values:
-        values["offset"] = tuple(values["offset"])
-    if "fov" in values:
-        return build(
-            source,
-            "detector",
-            Detector.from_fov,
-            values.pop("fov"),
-            telescope.focal_length,
-            **values,
-        )
-    return build(source, "detector", Detector, **values)
-
-
-def _ranges(source: str, table: Dict[str, Any]) -> np.ndarray:
-    t, where = checked_keys(source, "ranges", table, SCHEMA["ranges"]), f"{source}: [ranges]"
-    if "values" in t:
-        z = np.asarray(t["values"], dtype=float)
-        if (
-            len(t) > 1
-            or not 0 < z.size <= MAX_RANGES
-            or not np.all(z > 0)
-            or np.any(np.diff(z) <= 0)
-        ):
-            raise ScenarioError(
-                f"{where} values = {short(t['values'])} ({z.size} values) is invalid: expected a "
-                f"strictly increasing list of 1 to {MAX_RANGES:,} ranges > 0 (m), and no start, "
-                "stop, count"
-            )
-        return z
-    require(where, t, ("start", "stop", "count"), " (or values = [...])")
-    start, stop, count = t["start"], t["stop"], t["count"]
-    for key, ok, rule in (
-        ("start", 0 < start < math.inf, "a finite value > 0"),
-        ("stop", start < stop < math.inf, f"a finite value > start = {start!r}"),
-        ("count", count >= 2, "an integer >= 2"),
-    ):
-        if not ok:
-            raise ScenarioError(f"{where} {key} = {t[key]!r} is invalid: expected {rule}")
-    spacing = choice(where, "spacing", t.get("spacing", "linear"), ("linear", "log"))
-    z = (np.geomspace if spacing == "log" else np.linspace)(float(start), float(stop), count)
-    if not np.all(np.diff(z) > 0):
-        raise ScenarioError(
-            f"{where} start = {start!r}, stop = {stop!r}, count = {count} are invalid: {count} "
-            "ranges between them are not distinct in double precision; expected fewer ranges or a "
-            "wider span"
-        )
-    return z
 
 
 # -------------------------------------------------------------------------------------------------
