@@ -267,11 +267,6 @@ def _same(a: Any, b: Any) -> bool:
     return bool(a == b)
 
 
-def _short(value, limit: int = 80) -> str:
-    text = repr(value)
-    return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
 #: Percentiles of the spread band a turbulent result reports per range.
 BAND = (5.0, 95.0)
 #: Realisations one turbulent overlap may draw (the core's bound on the FO path).

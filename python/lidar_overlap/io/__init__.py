@@ -2,7 +2,7 @@
 and a measured curve's range-resolved noise.
 
 Files: noise_profile.py, overlap_curves.py, overlap_series.py, scenario.py, scenario_schema.py,
-scenario_sections.py.
+scenario_sections.py, scenario_writer.py.
 """
 
 __all__ = [
@@ -12,4 +12,5 @@ __all__ = [
     "scenario",
     "scenario_schema",
     "scenario_sections",
+    "scenario_writer",
 ]
