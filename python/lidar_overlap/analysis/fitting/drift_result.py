@@ -14,9 +14,10 @@ from ...model import parameters as _parameters
 from ..batch_curves import curves as batch
 from ..sensitivity import jacobian
 from . import multi_result
-from .drift_basis import SLOPE, DriftBasis, knot_name, warn_outside
+from .drift_basis import DriftBasis, warn_outside
+from .drift_names import OFFSET, REFERENCE, SLOPE, knot_name
 from .drift_prediction import anchored_prediction
-from .drift_reference import OFFSET, REFERENCE, checked_reference
+from .drift_reference import checked_reference
 from .global_result import SearchReport
 from .multi_result import MultiFitResult, verdict_lines
 from .relative_result import RelativeFitResult
