@@ -16,7 +16,7 @@ conditions than the days (the factory's bench).
 
 The reference's values are nonlinear in the fit's vector (slope x c_ref): :class:`ReferenceState`
 gives them and their Jacobian in the vector, which the multi-curve driver applies where a curve's
-map is linear (:mod:`lidar_overlap.analysis.fitting.multi_curve`).
+map is linear (:mod:`lidar_overlap.analysis.fitting.curve_set`).
 """
 
 from __future__ import annotations
