@@ -71,16 +71,12 @@ def prediction(fit: DriftFitResult, z, c, normalizing, band: bool, reference=Non
     shift = 0.0 if inside is None else np.where(inside[:, None], d[-1] @ state.matrix(theta), 0.0)
     sigma = np.empty((len(c), z.size))
     for i in range(len(c)):
-        m = fit.matrix(c[i])
+        jd = d[i] @ fit.matrix(c[i]) - shift  # d(prediction)/dθ: (J M - J_ref M_ref)
+        if again:
+            jd = jd / n[i] - np.outer(out[i], jd[theirs].mean(axis=0)) / n[i] ** 2
+        jd = jd[at]
         with np.errstate(invalid="ignore"):
-            if inside is None:  # one system's: J (M C Mᵀ) Jᵀ, in its paths' covariance
-                jd, cov = d[i][at], m @ fit.covariance @ m.T
-            else:  # the reference's state moves with θ too: (J M - J_ref M_ref) C (...)ᵀ
-                jd, cov = d[i] @ m - shift, fit.covariance
-                if again:
-                    jd = jd / n[i] - np.outer(out[i], jd[theirs].mean(axis=0)) / n[i] ** 2
-                jd = jd[at]
-            var = np.einsum("ij,jk,ik->i", jd, cov, jd)
+            var = np.einsum("ij,jk,ik->i", jd, fit.covariance, jd)
         sigma[i] = np.sqrt(np.maximum(var, 0.0))
     return out[:, at] / n[:, None], sigma
 
