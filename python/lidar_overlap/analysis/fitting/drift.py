@@ -29,19 +29,15 @@ import numpy as np
 from ... import _checks
 from ...model import parameters as _parameters
 from ...model.path_syntax import by_scalar
+from .curve_set import CurveSet
 from .drift_basis import DEFAULT_KNOTS, DriftBasis, checked_drifting, knots_at_quantiles
 from .drift_inputs import checked_covariate, checked_offsets, checked_series, checked_sigma
-from .drift_reference import (
-    OFFSET,
-    REFERENCE,
-    checked_reference,
-    reference_bounds,
-    reference_state,
-)
-from .drift_result import SLOPE, DriftFitResult
+from .drift_names import OFFSET, REFERENCE, SLOPE
+from .drift_reference import checked_reference, reference_bounds, reference_state
+from .drift_result import DriftFitResult
 from .fit import fit as single_fit
 from .ladder import BIC_TIE
-from .multi_curve import CurveMap, CurveSet, MultiCurveFit, MultiCurveProblem, solve_curves
+from .multi_curve import CurveMap, MultiCurveFit, MultiCurveProblem, solve_curves
 from .multi_inputs import (
     checked_bounds,
     checked_curve,

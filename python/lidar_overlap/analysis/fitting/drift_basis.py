@@ -27,20 +27,14 @@ from typing import List, Sequence, Tuple
 import numpy as np
 
 from ... import _checks
+from .drift_names import SLOPE, knot_name  # also importable from here, as before
 from .multi_inputs import checked_paths
 
-#: The suffix of a drifting parameter's slope (per covariate unit): for a spline, its mean slope.
-SLOPE = "@slope"
 #: The kinds of drift.
 LINEAR, SPLINE = "linear", "spline"
 #: ``spline_knots``: K knots, K - 2 coefficients beyond the linear drift's two.
 DEFAULT_KNOTS = 4
 FEWEST_KNOTS = 3
-
-
-def knot_name(path: str, j: int) -> str:
-    """The name of a spline's departure from its chord at interior knot ``j`` (1 .. K-2)."""
-    return f"{path}@knot[{j}]"
 
 
 def checked_drifting(drifting, systems) -> Tuple[Tuple[str, ...], Tuple[str, ...]]:

@@ -16,7 +16,7 @@ conditions than the days (the factory's bench).
 
 The reference's values are nonlinear in the fit's vector (slope x c_ref): :class:`ReferenceState`
 gives them and their Jacobian in the vector, which the multi-curve driver applies where a curve's
-map is linear (:mod:`lidar_overlap.analysis.fitting.multi_curve`).
+map is linear (:mod:`lidar_overlap.analysis.fitting.curve_set`).
 """
 
 from __future__ import annotations
@@ -28,11 +28,7 @@ import numpy as np
 
 from ... import _checks
 from ...model import parameters as _parameters
-
-#: The name of the reference's covariate value c_ref among a drift fit's parameters.
-REFERENCE = "covariate@reference"
-#: The suffix of a path's own offset at the reference (``reference_offsets``).
-OFFSET = "@reference_offset"
+from .drift_names import OFFSET, REFERENCE, SLOPE  # OFFSET, REFERENCE: importable here too
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,7 +71,7 @@ def reference_state(system, paths, names, moving, offsets, c, curve) -> Referenc
     linear, slopes = np.zeros((len(paths), k)), np.zeros((len(paths), k))
     linear[:, : len(paths)] = np.eye(len(paths))
     for p in moving:
-        slopes[paths.index(p), names.index(p + "@slope")] = 1.0  # drift_basis.SLOPE
+        slopes[paths.index(p), names.index(p + SLOPE)] = 1.0
     for p in offsets:
         linear[paths.index(p), names.index(p + OFFSET)] = 1.0
     return ReferenceState(

@@ -11,12 +11,10 @@ import numpy as np
 
 from ... import _checks, _values
 from ...model import parameters as _parameters
-from ..batch_curves import curves as batch
-from ..sensitivity import jacobian
-from . import multi_result
-from .drift_basis import SLOPE, DriftBasis, knot_name, warn_outside
-from .drift_prediction import anchored_prediction
-from .drift_reference import OFFSET, REFERENCE, checked_reference
+from . import drift_prediction, multi_result
+from .drift_basis import DriftBasis, warn_outside
+from .drift_names import OFFSET, REFERENCE, SLOPE, knot_name
+from .drift_reference import checked_reference
 from .global_result import SearchReport
 from .multi_result import MultiFitResult, verdict_lines
 from .relative_result import RelativeFitResult
@@ -205,31 +203,10 @@ class DriftFitResult(MultiFitResult):
 
     def prediction(self, z, c, normalizing, band: bool, reference=None):
         """:meth:`predict` at checked ranges ``z`` and covariates ``c``, divided by the mean over
-        ``normalizing`` ranges (m; None: absolute); ``reference`` at ``z`` or None."""
+        ``normalizing`` ranges (m; None: absolute, or with a reference on the data's scale);
+        ``reference`` at ``z`` or None (:func:`.drift_prediction.prediction`)."""
         self.curves[0].system._native.validate_ranges(z)
-        if self.reference is not None:
-            return anchored_prediction(self, z, c, normalizing, band, reference)
-        both = z if normalizing is None else np.union1d(z, normalizing)
-        systems = [self.system_at(ci) for ci in c]
-        p = self.curves[0].plan.with_system(systems[0]).at(both)
-        g = batch(p, systems)
-        at = np.searchsorted(both, z)
-        inside = None if normalizing is None else np.searchsorted(both, normalizing)
-        s = np.ones(len(c)) if inside is None else g[:, inside].mean(axis=1)
-        out = g[:, at] / s[:, None]
-        if not band:
-            return out
-        sigma = np.empty_like(out)
-        for i, (ci, system) in enumerate(zip(c, systems)):
-            j = jacobian(p, system, list(self.free), self.curves[0].step_tolerance)
-            jn = j[at] / s[i]
-            if inside is not None:
-                jn = jn - np.outer(g[i, at], j[inside].mean(axis=0)) / s[i] ** 2
-            m = self.matrix(ci)
-            with np.errstate(invalid="ignore"):
-                cov = m @ self.covariance @ m.T
-                sigma[i] = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", jn, cov, jn), 0.0))
-        return out, sigma
+        return drift_prediction.prediction(self, z, c, normalizing, band, reference)
 
     def summary(self) -> str:
         """The parameters, the drifts in physical units per covariate unit, one line each."""

@@ -29,10 +29,11 @@ import numpy as np
 
 from ...model import parameters as _parameters
 from ...model.path_syntax import by_scalar
+from .curve_set import CurveSet
 from .families import LADDER
 from .joint_result import JointFitResult, joint_result
 from .ladder import BIC_TIE
-from .multi_curve import CurveSet, MultiCurveFit, solve_curves
+from .multi_curve import MultiCurveFit, solve_curves
 from .multi_inputs import checked_bounds, has_path, joint_names, joint_problem, path_of
 from .multi_result import bic_of
 from .multi_search import fit_curves, ray_traced_settings

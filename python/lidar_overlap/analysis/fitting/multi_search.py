@@ -20,9 +20,10 @@ import numpy as np
 
 from ...forward.methods import RT
 from ..batch_curves import curves as batch
+from .curve_set import CurveSet
 from .global_result import SearchMinimum, SearchReport
 from .global_search import UnitCube, distinct_minima, population_search
-from .multi_curve import CurveSet, MultiCurveFit, MultiCurveProblem, solve_curves
+from .multi_curve import MultiCurveFit, MultiCurveProblem, solve_curves
 from .solve import fit_plan
 
 
