@@ -1,5 +1,6 @@
 // The deterministic transforms (cpp/src/fourier/fft.cpp): each is the DFT (against a direct sum and a plane
-// wave's closed form), and its bits do not depend on the thread count, inside a caller's team or not.
+// wave's closed form), and its bits do not depend on the thread count, inside a caller's team or not; the
+// team each size gets on a busy machine.
 #include <omp.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "check.hpp"
 #include "core/constants.hpp"
+#include "core/parallel.hpp"
 #include "fourier/fft.hpp"
 
 using namespace lidar_overlap;
@@ -39,6 +41,39 @@ ComplexBuffer transformed(const ComplexBuffer& in, std::size_t n, int threads, F
   omp_set_num_threads(threads);
   fft2d(out, n, d);
   return out;
+}
+
+// The team a transform gets while a late team holds `threads = 0` to one thread (core/parallel.hpp): from
+// 1024^2 points the calling thread's full team size (omp_set_num_threads honoured), below it one thread, and
+// one inside a caller's team at any size. The hold-off (a second) is armed again before each query, so the
+// checks do not depend on how soon they run.
+void teams_on_a_busy_machine() {
+  // A team of 2 one of whose threads waited 10 ms of a 10 ms region.
+  const auto hold_off = [] { detail::note_team_wait(2, 10'000'000, 10'000'000); };
+  const std::size_t large = std::size_t{1} << 20;
+  for (int team : {3, 2}) {
+    const std::string with = " (team of " + std::to_string(team) + ")";
+    omp_set_num_threads(team);
+    hold_off();
+    test::that("held off: threads = 0 means one thread" + with, detail::all_cores() == 1);
+    for (const std::size_t points : {large, large * 2, large * 4}) {  // 1024^2, 2048 x 512, 2048^2
+      hold_off();
+      test::that("held off: " + std::to_string(points) + " points keep the full team" + with,
+                 fft_threads(points) == team);
+    }
+    for (const std::size_t points : {large - 1, large / 4, large / 16}) {  // and 512^2, 256^2
+      hold_off();
+      test::that("held off: " + std::to_string(points) + " points run on one thread" + with,
+                 fft_threads(points) == 1);
+    }
+  }
+  int nested = -1;
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp single
+    nested = fft_threads(large);
+  }
+  test::that("inside a caller's team a 1024^2 transform runs on one thread", nested == 1);
 }
 
 }  // namespace
@@ -103,5 +138,6 @@ int main() {
       worst = std::max(worst, std::abs(sum - out[r * length + k]));
     }
   test::near("fft_rows = direct sum, exp(+2 pi i jk/n)", worst, 0.0, kRoundOff);
+  teams_on_a_busy_machine();  // last: it leaves threads = 0 held to one thread for a second
   return test::report("test_fft");
 }

@@ -59,8 +59,10 @@ void note_team_wait(int threads, long long waited_ns, long long region_ns) {
 
 int all_cores() {
   if (steady_ns() < g_busy_until_ns.load(std::memory_order_relaxed)) return 1;
-  return std::min(omp_get_max_threads(), max_threads());
+  return all_cores_for_long_work();
 }
+
+int all_cores_for_long_work() { return std::min(omp_get_max_threads(), max_threads()); }
 
 int thread_count(int requested) {
   if (requested < 0 || requested > max_threads())

@@ -38,6 +38,12 @@ int thread_count(int requested);
 // answer 1 for the next second, after which a full team is tried again. Explicit counts are always honoured.
 // Results do not depend on it.
 int all_cores();
+// All cores whether or not a late team holds all_cores() to one thread: for work whose one-thread time is
+// tens of milliseconds (FFTs from 1024^2 points, fft_threads), where a late thread costs a few scheduler
+// slices, a small fraction, while one thread on a busy machine gets one share of the cores against every
+// other process's full team (the scheduler shares per thread): with 4 busy processes on 2 cores a 2048^2
+// propagate took 0.67x the time of one thread, 1024^2 0.86-0.94x (docs/reliability.md).
+int all_cores_for_long_work();
 void note_team_wait(int threads, long long waited_ns, long long region_ns);
 
 // Measures how long the threads of one team waited for a core (TeamClock clock; in the region:

@@ -19,6 +19,11 @@ namespace {
 // From this many points a transform is shared over threads: 256^2 takes ~0.3 ms on one core, which a
 // dynamically scheduled team still shortens; below it a team's start-up is not repaid.
 constexpr std::size_t kThreadedPoints = std::size_t{1} << 16;
+// From this many points (1024^2) a transform takes all cores even while a late team holds `threads = 0` to
+// one thread (core/parallel.hpp): one thread takes ~20 ms per pass pair at 1024^2 (~100 ms at 2048^2), so a
+// thread that starts a few scheduler slices late costs a small fraction, whereas one thread among busy
+// processes gets a single share of the cores. At 512^2 (~5 ms) a late thread costs about the call itself.
+constexpr std::size_t kFullTeamPoints = std::size_t{1} << 20;
 
 // (length, rows per plan, sign, distance between rows, out of place) -> plan, made once and kept for the
 // whole process (the map is never destroyed, so no plan outlives FFTW's cleanup and leak checkers see
@@ -110,7 +115,7 @@ void BlockTransform::operator()(const Complex* in, Complex* out, std::size_t cou
 
 int fft_threads(std::size_t points) {
   if (points < kThreadedPoints || omp_get_level() > 0) return 1;
-  return detail::all_cores();
+  return points >= kFullTeamPoints ? detail::all_cores_for_long_work() : detail::all_cores();
 }
 
 void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning) {

@@ -74,7 +74,8 @@ bool fftw_aligned(const Complex* p);
 std::mutex& fftw_planner_mutex();
 
 // Threads for one transform of `points` points: one inside the library's loops over ranges or
-// realisations (any OpenMP region), and for transforms too small to share; else omp_get_max_threads().
+// realisations (any OpenMP region), and for transforms too small to share; else omp_get_max_threads(),
+// held to one on a busy machine (detail::all_cores) below 1024^2 points, never from it.
 int fft_threads(std::size_t points);
 
 // Smallest power of two >= v: the sizes FFTW transforms fastest (2^63 for any v beyond it).

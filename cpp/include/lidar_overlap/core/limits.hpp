@@ -40,7 +40,7 @@ void set_max_memory(std::size_t bytes);
 // or their share of the cores. Results do not depend on `threads` (tests/cpp/test_threading_contract.cpp).
 // propagate, design_flat_top and point_image have no `threads` option: on grids from 256 x 256 they use
 // the calling thread's OpenMP team size (omp_set_num_threads in that thread, or OMP_NUM_THREADS), with the
-// same policy as threads = 0.
+// same policy as threads = 0, except that transforms from 1024 x 1024 keep that team on a busy machine.
 int max_threads();
 
 }  // namespace lidar_overlap
