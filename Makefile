@@ -118,7 +118,8 @@ sanitize: setup
 	VENV=$(VENV) JOBS=$(JOBS) scripts/sanitize.sh
 
 # Every file in benchmarks/results/ (speed_accuracy.py also draws failure_map.png and scaling.png) but the
-# physics snapshot, a reference that changes are compared with and is written on purpose (--write).
+# physics and fit snapshots, references that changes are compared with and are written on purpose (--write),
+# and the fits of many measured curves (bench_joint, bench_drift*: 2-25 min each, run alone; benchmarks/README.md).
 bench: setup
 	$(PY) benchmarks/bench_threads.py
 	$(PY) benchmarks/bench_rt.py
