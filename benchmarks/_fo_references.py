@@ -244,28 +244,3 @@ def load_peers():
         status[name] = {"installed": True, "version": version, "reason": None}
         variants += v
     return status, variants
-
-
-def print_peers(rows):
-    print(
-        "\npeers (ms; x lo = peer time / lo warm time, x new z = peer time / lo new-z time; D1 err "
-        "of the peer and of lo on the same case)"
-    )
-    header = (
-        f"{'N':>5} {'case':9} {'peer':10} {'routine':34} {'time':>9} {'x lo':>7} {'x new z':>7} "
-        f"{'D1 err':>8} {'lo err':>8}"
-    )
-    print(header)
-    print("-" * len(header))
-    for r in rows:
-        for m, c in r["cases"].items():
-            for p in c["peers"]:
-                routine = p["routine"] + (" os=1" if "num_oversampling=1" in p["settings"] else "")
-                if p["s"] is None:
-                    print(f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} failed: {p['error']}")
-                    continue
-                print(
-                    f"{r['n']:5d} {m[:9]:9} {p['peer']:10} {routine:34} {p['s'] * 1e3:9.2f} "
-                    f"{p['ratio_to_lo']:6.1f}x {p['ratio_to_lo_new_distance']:6.1f}x "
-                    f"{p['d1_rel_error']:8.1e} {c['lo_d1_rel_error']:8.1e}"
-                )

@@ -74,8 +74,8 @@ from _fo_references import (
     d1_radius,
     floor_rounds,
     load_peers,
-    print_peers,
 )
+from _fo_tables import print_peers, print_tables
 
 import lidar_overlap as lo
 from lidar_overlap import _core
@@ -233,49 +233,6 @@ def run_size(n, peer_variants, loaded):
         out["cases"][m] = case
     out["sampling_warnings"] = caught_all
     return out
-
-
-def fmt_ms(t):
-    return f"{t * 1e3:8.2f}" if t is not None else f"{'-':>8}"
-
-
-def print_tables(rows, added):
-    print(
-        f"\nlo against its own transforms and the fastest floor, {added} busy processes added "
-        f"(ms, {THREADS} threads; own = the library's FFT pair (AS) or forward FFT (Fresnel), no "
-        "copies; floor = least of own, system FFTW measured, pyFFTW measured; D1 err = "
-        "|1 - w_D1 / w|)"
-    )
-    header = (
-        f"{'N':>5} {'case':9} {'own':>8} {'floor':>8} {'from':>6} {'lo':>8} {'x own':>6} "
-        f"{'x floor':>7} {'med own':>7} {'med fl':>6} {'native':>8} {'cold':>8} {'new z':>8} "
-        f"{'D1 err':>8} {'load':>5} {'rounds':>6}  target"
-    )
-    print(header)
-    print("-" * len(header))
-    for r in rows:
-        for m, c in r["cases"].items():
-            print(
-                f"{r['n']:5d} {m[:9]:9} {fmt_ms(c['own_s'])} {fmt_ms(c['floor_s'])} "
-                f"{c['floor_source']:>6} {fmt_ms(c['lo_s'])} {c['ratio_to_own']:5.2f}x "
-                f"{c['ratio_to_floor']:6.2f}x {c['ratio_to_own_median']:6.2f}x "
-                f"{c['ratio_to_floor_median']:5.2f}x {fmt_ms(c['lo_native_s'])} "
-                f"{c['lo_cold_s'] * 1e3:8.1f} {fmt_ms(c['lo_new_distance_s'])} "
-                f"{c['lo_d1_rel_error']:8.1e} {r['load_average_1min']:5.1f} {r['rounds']:6d}  "
-                f"{'met' if c['target_met'] else 'NOT met'} (<= {c['target_own']:g}x own, "
-                f"{c['target_floor']:g}x floor, on {c['target_judged_on']})"
-            )
-    print(
-        "transforms alone (ms): "
-        + "; ".join(
-            f"{r['n']}: "
-            + ", ".join(
-                f"{name} " + " ".join(f"{src} {t * 1e3:.2f}" for src, t in srcs.items())
-                for name, srcs in r["transforms_s"].items()
-            )
-            for r in rows
-        )
-    )
 
 
 def measure(added, sizes, peer_variants):

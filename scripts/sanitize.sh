@@ -31,7 +31,8 @@ cp "$(find "$BUILD/bindings" -name '_core*.so' | head -1)" "$PKG/lidar_overlap/"
 RUNTIMES="$(g++ -print-file-name=libasan.so):$(g++ -print-file-name=libubsan.so)"
 export LIDAR_OVERLAP_PROBE_MEMORY=-1          # ASan reserves terabytes of address space: no rlimit
 export LIDAR_OVERLAP_PROBE_TIME_LIMIT=60      # the sanitized core runs ~3-5x slower
-for file in test_bad_input test_limits test_overlap_fo test_aberrations test_turbulence \
+for file in test_bad_input test_bad_input_field_beams test_limits test_overlap_fo test_aberrations \
+            test_turbulence \
             test_hostile_sizes test_hostile_slow_inputs test_hostile_extreme_values \
             test_hostile_error_names test_hostile_results test_hostile_inputs; do
   echo "sanitize: pytest tests/$file.py"

@@ -32,7 +32,7 @@ if ! { grep -q "libEGL_mesa.so.0" <<<"$libs" && grep -q "libEGL.so.1" <<<"$libs"
   missing+=(libosmesa6)
 fi
 
-# The browser tests of the interactive view (tests/test_view.py) drive Debian's chromium through its
+# The browser tests of the interactive view (tests/test_view_browser.py) drive Debian's chromium through its
 # chromedriver; nothing downloads a browser. Missing without root, those tests are skipped and say this.
 if ! command -v chromium >/dev/null 2>&1 || ! command -v chromedriver >/dev/null 2>&1; then
   if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null 2>&1; then

@@ -18,11 +18,33 @@ import pytest
 CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 SETUP = (
     "sudo apt-get install -y chromium chromium-driver && .venv/bin/pip install selenium '.[app]' "
-    "&& .venv/bin/python -m pytest tests/test_view.py (make test installs both when run as root)"
+    "&& .venv/bin/python -m pytest tests/test_view_browser.py "
+    "(make test installs both when run as root)"
 )
 #: Where the tests keep their screenshots and timings.
 ARTIFACTS = pathlib.Path(__file__).resolve().parent.parent / "build" / "test-artifacts"
 WAIT = 60.0  # s, the longest any page, server or browser step may take on a loaded machine
+#: Table 1's scenario, served by the view and saved back by its twin (50 ranges, RT).
+TABLE1_TOML = """name = "twin"
+[beam]
+wavelength = 355e-9
+waist_radius = 1e-3
+[telescope]
+diameter = 0.15
+focal_length = 1.0
+obstruction_radius = 0.0
+obstruction_distance = 0.7
+[detector]
+fov = 0.9e-3
+[ranges]
+start = 5.0
+stop = 1000.0
+count = 50
+spacing = "log"
+[run]
+method = "rt"
+tolerance = 1e-4
+"""
 
 
 def require_browser():

@@ -2,7 +2,8 @@
 numbers of lo.overlap to the last digit, --method overrides the file, bad scenarios exit with code 1
 and a one-line message naming the key (command-line syntax errors with 2, Ctrl-C with 130), `demo`
 writes the three Table 1 variants, and the module runs as a script. Failed computations and files:
-test_cli_failures.py; hostile scenario files: test_cli_hostile.py."""
+test_cli_failures.py; hostile scenario files: test_cli_hostile.py; hostile options:
+test_cli_hostile_options.py."""
 
 import re
 import subprocess
