@@ -114,16 +114,43 @@ def shared_structure(everything, factory) -> dict:
             for h in np.split(order, [len(order) // 2])
         )
         correlations.append(float(np.corrcoef(a, b)[0, 1]))
+    by_date = np.split(np.argsort(everything.dates), [len(days) // 2])
+    a, b = (high_pass(days[h].mean(axis=0) - factory)[band] for h in by_date)
     mean_structure = high_pass(days.mean(axis=0) - factory)[band]
     per_day = np.array([high_pass(d - factory)[band] for d in days])
     spread = per_day - mean_structure
     return {
         "smooth_gates": SMOOTH, "band_m": BAND, "halves": HALVES,
         "correlation_between_halves": [min(correlations), max(correlations)],
+        "correlation_between_halves_by_date": float(np.corrcoef(a, b)[0, 1]),
         "rms": float(np.sqrt(np.mean(mean_structure**2))),
         "rms_if_independent": float(np.sqrt(np.mean(spread**2) / len(days))),
         "factory_own_rms": float(np.sqrt(np.mean(high_pass(factory)[band] ** 2))),
     }  # fmt: skip
+
+
+def slope_noise(series, factory) -> dict:
+    """The empirical model's per-gate slope dG/dT (b of ln(G/G_factory) = a + b T, times the mean G)
+    over 100-1000 m: its RMS from all days, and its noise from half the days (the RMS difference of
+    two disjoint halves over sqrt 2, mean of HALVES draws), per kelvin."""
+    near = gates(series)
+    g, t = series.curves[:, near], series.covariates[TEMPERATURE]
+
+    def slope(rows):
+        design = np.column_stack([np.ones(rows.size), t[rows] - t[rows].mean()])
+        coefficients, *_ = np.linalg.lstsq(design, np.log(g[rows] / factory[near]), rcond=None)
+        return coefficients[1] * g[rows].mean(axis=0)
+
+    rng = np.random.default_rng(1)
+    noise = []
+    for _ in range(HALVES):
+        a, b = np.split(rng.permutation(len(g)), [len(g) // 2])
+        noise.append(np.sqrt(np.mean((slope(a) - slope(b)) ** 2) / 2))
+    whole = slope(np.arange(len(g)))
+    return {
+        "rms_per_k": float(np.sqrt(np.mean(whole**2))),
+        "half_noise_per_k": float(np.mean(noise)),
+    }
 
 
 def main():
@@ -147,7 +174,7 @@ def main():
     write_result("bench_drift_gap", {
         "meta": run_meta(load, draws=DRAWS_HERE),
         "splits": rows, "drifting": {name: d for (name, _), (_, d) in zip(chosen, done)},
-        "shared_structure": structure,
+        "shared_structure": structure, "empirical_slope": slope_noise(series, factory),
     })  # fmt: skip
 
 
