@@ -71,7 +71,8 @@ def test_nan_or_inf_is_refused_by_name_unless_documented(cls, data):
     if isinstance(old, np.ndarray):
         if old.size == 0:
             return
-        new: Any = np.array(old, dtype=float, copy=True)
+        kind = complex if np.iscomplexobj(old) else float  # a complex field keeps its phase
+        new: Any = np.array(old, dtype=kind, copy=True)
         new.flat[data.draw(st.integers(0, old.size - 1), label="index")] = bad
     else:
         new = bad
