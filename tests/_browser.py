@@ -177,3 +177,17 @@ def drawn(rgb) -> float:
     values, counts = np.unique(flat.astype(np.uint8), axis=0, return_counts=True)
     background = values[np.argmax(counts)]
     return float(np.mean(np.any(np.abs(flat - background) > 30, axis=1)))
+
+
+def drawn_canvas(page, selector: str, what: str, share: float):
+    """(the first canvas matching the CSS ``selector``, its RGB screenshot once more than ``share``
+    of its pixels are drawn), each wait bounded and named by ``what``."""
+    from selenium.webdriver.common.by import By
+
+    canvas = wait_for(lambda: page.find_elements(By.CSS_SELECTOR, selector), what)[0]
+
+    def picture():
+        rgb = pixels(canvas.screenshot_as_png)
+        return rgb if drawn(rgb) > share else None
+
+    return canvas, wait_for(picture, "the scene to be drawn")

@@ -13,6 +13,7 @@ from _browser import (
     TABLE1_TOML,
     chromium,
     drawn,
+    drawn_canvas,
     pixels,
     require_browser,
     served,
@@ -126,8 +127,6 @@ def test_page_slider_moves_curve_to_lo_overlap(tmp_path):
 
 def test_html_scene_draws_in_the_browser(tmp_path):
     require_browser()
-    from selenium.webdriver.common.by import By
-
     path = lo.save_scene(
         lo.paper_table1(obstruction_radius=0.02),
         tmp_path / "scene.html",
@@ -139,13 +138,7 @@ def test_html_scene_draws_in_the_browser(tmp_path):
     ARTIFACTS.mkdir(parents=True, exist_ok=True)
     with chromium(1000, 700) as page:
         page.get(path.as_uri())
-        canvas = wait_for(
-            lambda: page.find_elements(By.CSS_SELECTOR, "canvas"), "the vtk.js canvas"
-        )[0]
-        rgb = wait_for(
-            lambda: (lambda p: p if drawn(p) > 0.01 else None)(pixels(canvas.screenshot_as_png)),
-            "the scene to be drawn",
-        )
+        canvas, rgb = drawn_canvas(page, "canvas", "the vtk.js canvas", 0.01)
         page.save_screenshot(str(ARTIFACTS / "scene_html.png"))
         errors = [e for e in page.get_log("browser") if e["level"] == "SEVERE"]
     assert rgb.shape[0] > 100 and len(np.unique(rgb.reshape(-1, 3), axis=0)) > 50

@@ -12,7 +12,7 @@ import pathlib
 
 import numpy as np
 import pytest
-from _browser import ARTIFACTS, chromium, drawn, pixels, require_browser, served, wait_for
+from _browser import ARTIFACTS, chromium, drawn_canvas, require_browser, served, wait_for
 
 import lidar_overlap as lo
 
@@ -252,18 +252,11 @@ def test_first_frame_shows_the_lidar_and_the_cone(tmp_path):
     bottom edges (the cone runs on past the image range to the right), spans most of its width,
     shows the aperture (neutral grey) at its left end and the beam (coloured by G) along it."""
     require_browser()
-    from selenium.webdriver.common.by import By
 
     with served([SCENARIOS / "table1.toml"], tmp_path) as url, chromium() as page:
         page.get(url)
         wait_for(lambda: page.title.startswith("table1"), "the tab titled with the name")
-        canvas = wait_for(
-            lambda: page.find_elements(By.CSS_SELECTOR, "#scene canvas"), "the scene's canvas"
-        )[0]
-        rgb = wait_for(
-            lambda: (lambda p: p if drawn(p) > 0.02 else None)(pixels(canvas.screenshot_as_png)),
-            "the scene to be drawn",
-        )
+        canvas, rgb = drawn_canvas(page, "#scene canvas", "the scene's canvas", 0.02)
         page.save_screenshot(str(_artifact("view_first_frame.png")))
         _artifact("view_first_frame_scene.png").write_bytes(canvas.screenshot_as_png)
     rgb = rgb[10:-10, 3:-3]  # the toolbar's shadow above, the page's footer line below
