@@ -31,7 +31,13 @@ from ...model import parameters as _parameters
 from ...model.path_syntax import by_scalar
 from .curve_set import CurveSet
 from .drift_basis import DEFAULT_KNOTS, DriftBasis, checked_drifting, knots_at_quantiles
-from .drift_inputs import checked_covariate, checked_offsets, checked_series, checked_sigma
+from .drift_inputs import (
+    among_free,
+    checked_covariate,
+    checked_offsets,
+    checked_series,
+    checked_sigma,
+)
 from .drift_names import OFFSET, REFERENCE, SLOPE
 from .drift_reference import checked_reference, reference_bounds, reference_state
 from .drift_result import DriftFitResult
@@ -166,12 +172,7 @@ def fit_drift(
         )
         choices.append(line)
     paths = checked_paths("free", free, [system])
-    outside = [p for p in moving if p not in paths]
-    if outside:
-        raise ValueError(
-            f"drifting: {', '.join(outside)} is not free: expected drifting paths among free "
-            f"({', '.join(paths)})"
-        )
+    among_free("drifting", moving, paths, "drifting paths")
     offsets = checked_offsets(reference_offsets, anchor, system, paths)
     pair = None if anchor is None else (anchor, offsets)
     if chosen and isinstance(bounds, dict):  # those of the family's paths (the ladder took all)

@@ -91,10 +91,16 @@ def checked_offsets(offsets, anchor, system, paths) -> tuple:
             "reference= or leave it empty"
         )
     out = checked_paths("reference_offsets", offsets, [system])
-    outside = [p for p in out if p not in paths]
+    among_free("reference_offsets", out, paths, "paths")
+    return out
+
+
+def among_free(name: str, asked, paths, what: str) -> None:
+    """ValueError naming ``name`` unless every path ``asked`` is among the free ``paths`` (``what``
+    the message calls them)."""
+    outside = [p for p in asked if p not in paths]
     if outside:
         raise ValueError(
-            f"reference_offsets: {', '.join(outside)} is not free: expected paths among free "
+            f"{name}: {', '.join(outside)} is not free: expected {what} among free "
             f"({', '.join(paths)})"
         )
-    return out
