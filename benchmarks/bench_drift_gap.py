@@ -29,6 +29,8 @@ from _common import load_average, run_meta, write_result
 from _payerne import BASELINES, TEMPERATURE, gates, held_out, read, splits
 from bench_drift import NAME, Physical, ladder_start
 
+import lidar_overlap as lo
+
 DRAWS_HERE = 4
 SMOOTH, HALVES, BAND = 13, 10, (150.0, 800.0)
 EMPIRICAL = "empirical (Hervo et al. 2016)"
@@ -137,9 +139,8 @@ def slope_noise(series, factory) -> dict:
     g, t = series.curves[:, near], series.covariates[TEMPERATURE]
 
     def slope(rows):
-        design = np.column_stack([np.ones(rows.size), t[rows] - t[rows].mean()])
-        coefficients, *_ = np.linalg.lstsq(design, np.log(g[rows] / factory[near]), rcond=None)
-        return coefficients[1] * g[rows].mean(axis=0)
+        model = lo.empirical_drift(series.ranges[near], g[rows], t[rows], factory[near])
+        return model.slope * g[rows].mean(axis=0)
 
     rng = np.random.default_rng(1)
     noise = []
