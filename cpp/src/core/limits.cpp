@@ -57,10 +57,9 @@ void note_team_wait(int threads, long long waited_ns, long long region_ns) {
   g_busy_until_ns.store(steady_ns() + kHoldOffNs, std::memory_order_relaxed);
 }
 
-int all_cores() {
-  if (steady_ns() < g_busy_until_ns.load(std::memory_order_relaxed)) return 1;
-  return all_cores_for_long_work();
-}
+bool machine_busy() { return steady_ns() < g_busy_until_ns.load(std::memory_order_relaxed); }
+
+int all_cores() { return machine_busy() ? 1 : all_cores_for_long_work(); }
 
 int all_cores_for_long_work() { return std::min(omp_get_max_threads(), max_threads()); }
 

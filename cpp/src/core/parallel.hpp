@@ -38,6 +38,8 @@ int thread_count(int requested);
 // answer 1 for the next second, after which a full team is tried again. Explicit counts are always honoured.
 // Results do not depend on it.
 int all_cores();
+// True while a late team holds all_cores() to one thread: the machine is busy.
+bool machine_busy();
 // All cores whether or not a late team holds all_cores() to one thread: for work whose one-thread time is
 // tens of milliseconds (FFTs from 1024^2 points, fft_threads), where a late thread costs a few scheduler
 // slices, a small fraction, while one thread on a busy machine gets one share of the cores against every

@@ -1,6 +1,6 @@
 #include "fourier/extent_sums.hpp"
 
-#include <omp.h>
+#include "core/team.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -83,7 +83,7 @@ void ExtentSums::set_totals(std::size_t i, LinePower p) {
 
 // Every other line and sample (weighted 4) resolve the profile to two samples at a quarter of the cost.
 void ExtentSums::add_radial(std::size_t i, const double* squares) {
-  std::vector<double>& bins = radial_[omp_get_thread_num()];
+  std::vector<double>& bins = radial_[static_cast<std::size_t>(team_member())];
   const double u = static_cast<double>(i) - 0.5 * static_cast<double>(n_), u2 = u * u,
                per_bin = 8.0 / static_cast<double>(n_), last = static_cast<double>(bins.size() - 1);
   // Sample k (at w = 2k - n/2) and sample half - k (at -w) fall in the same bin: the bins of k <= half/2

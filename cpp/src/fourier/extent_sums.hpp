@@ -29,8 +29,8 @@ struct Extent {
 // (it only places the extent on its bin edges).
 class ExtentSums {
  public:
-  // For an n x n field whose lines are added on up to `threads` OpenMP threads; the radial profile only
-  // when `radial`.
+  // For an n x n field whose lines are added by the members of a team of up to `threads`
+  // (core/team.hpp); the radial profile only when `radial`.
   ExtentSums(std::size_t n, int threads, bool radial);
 
   // Line i holding its final values v[0..n).

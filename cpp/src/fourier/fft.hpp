@@ -2,8 +2,9 @@
 // columns, gathered into a contiguous scratch block), planned with FFTW_ESTIMATE on forgotten wisdom. The
 // arithmetic of each row and column then depends on the shape alone, never on the thread count, the
 // schedule or timings, so results are the same bits for any number of threads and in every process, while
-// the blocks are shared over OpenMP threads. Plans are made once per shape behind one mutex and executed on
-// the caller's buffers (FFTW's thread-safe new-array interface). Internal header, not installed.
+// the blocks are shared over the threads of a team (core/team.hpp). Plans are made once per shape behind
+// one mutex and executed on the caller's buffers (FFTW's thread-safe new-array interface). Internal header,
+// not installed.
 #pragma once
 
 #include <algorithm>

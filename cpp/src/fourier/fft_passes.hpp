@@ -1,12 +1,10 @@
 // The two passes a 2-D transform is made of, with hooks that run on each row or column block while it is
 // in cache, so that the multiplications and sums of a propagation cost no pass of their own (fused).
-// Blocks are fixed by the shape and handed out dynamically: a thread that the machine's load delays holds
-// up one block, not a share of the pass. Hooks must not throw. A pass asks the caller's CancelScope before
-// each block (a pass over a 16384^2 grid takes seconds) and throws Cancelled after the region, never from
-// inside it. Internal header, not installed.
+// Blocks are fixed by the shape and handed out dynamically to a team (core/team.hpp): a thread that the
+// machine's load delays holds up one block, not a share of the pass. Hooks must not throw. A pass asks the
+// caller's CancelScope before each block (a pass over a 16384^2 grid takes seconds) and throws Cancelled
+// after the team has ended, never from inside it. Internal header, not installed.
 #pragma once
-
-#include <omp.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -15,6 +13,7 @@
 
 #include "core/cancel_every.hpp"
 #include "core/parallel.hpp"
+#include "core/team.hpp"
 #include "fourier/fft.hpp"
 
 namespace lidar_overlap::detail {
@@ -25,30 +24,26 @@ inline Complex product(Complex a, Complex b) {
   return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
 }
 
+// Blocks of kFftBlock lines in `lines` lines (the last one shorter).
+inline long block_count(std::size_t lines) {
+  return static_cast<long>((lines + kFftBlock - 1) / kFftBlock);
+}
+
 // For each row r of a rows x length row-major array: before(r, row), its 1-D transform, after(r, row).
 template <class Before, class After>
 void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
               int threads, Before&& before, After&& after) {
   const RowTransform transform(length, direction);
-  const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
-  TeamClock clock;
   RegionStop stop;
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const TeamClock::Mark mark = clock.started();
-#pragma omp for schedule(dynamic, 1) nowait
-    for (long b = 0; b < blocks; ++b) {
-      if (stop.stopped()) continue;
-      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
-                        count = std::min(kFftBlock, rows - r0);
-      Complex* block = data + r0 * length;
-      for (std::size_t r = 0; r < count; ++r) before(r0 + r, block + r * length);
-      transform(block, count);
-      for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
-    }
-    clock.finished(mark);
-  }
-  clock.report(threads);
+  for_each_block(block_count(rows), threads, [&](long b) {
+    if (stop.stopped()) return;
+    const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
+                      count = std::min(kFftBlock, rows - r0);
+    Complex* block = data + r0 * length;
+    for (std::size_t r = 0; r < count; ++r) before(r0 + r, block + r * length);
+    transform(block, count);
+    for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
+  });
   stop.rethrow();
 }
 
@@ -89,40 +84,31 @@ inline std::size_t column_stride(std::size_t rows) { return rows + 4; }
 template <class Work>
 void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads,
                  Work&& work) {
-  const long blocks = static_cast<long>((cols + kFftBlock - 1) / kFftBlock);
-  TeamClock clock;
+  const std::size_t stride = column_stride(rows);
   RegionStop stop;
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const TeamClock::Mark mark = clock.started();
-    const std::size_t stride = column_stride(rows);
+  for_each_block(block_count(cols), threads, [&](long b) {
+    if (stop.stopped()) return;
     thread_local ComplexBuffer
         scratch;  // kept from pass to pass: an allocation per pass is measurable
     if (scratch.size() < kFftBlock * stride) scratch.resize(kFftBlock * stride);
-#pragma omp for schedule(dynamic, 1) nowait
-    for (long b = 0; b < blocks; ++b) {
-      if (stop.stopped()) continue;
-      const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock,
-                        count = std::min(kFftBlock, cols - c0);
-      Complex* s = scratch.data();
-      if (count == kFftBlock) {  // the common case, unrolled by the compiler
-        gather<kFftBlock>(from + c0, rows, cols, stride, s);
-        work(c0, count, s);
-        if (to) scatter<kFftBlock>(s, rows, cols, stride, to + c0);
-      } else {
+    const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock,
+                      count = std::min(kFftBlock, cols - c0);
+    Complex* s = scratch.data();
+    if (count == kFftBlock) {  // the common case, unrolled by the compiler
+      gather<kFftBlock>(from + c0, rows, cols, stride, s);
+      work(c0, count, s);
+      if (to) scatter<kFftBlock>(s, rows, cols, stride, to + c0);
+    } else {
+      for (std::size_t r = 0; r < rows; ++r)
+        for (std::size_t c = 0; c < count; ++c)
+          copy_one(from + r * cols + c0 + c, s + c * stride + r);
+      work(c0, count, s);
+      if (to)
         for (std::size_t r = 0; r < rows; ++r)
           for (std::size_t c = 0; c < count; ++c)
-            copy_one(from + r * cols + c0 + c, s + c * stride + r);
-        work(c0, count, s);
-        if (to)
-          for (std::size_t r = 0; r < rows; ++r)
-            for (std::size_t c = 0; c < count; ++c)
-              copy_one(s + c * stride + r, to + r * cols + c0 + c);
-      }
+            copy_one(s + c * stride + r, to + r * cols + c0 + c);
     }
-    clock.finished(mark);
-  }
-  clock.report(threads);
+  });
   stop.rethrow();
 }
 
@@ -148,27 +134,18 @@ template <class Fill, class After>
 void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
                    int threads, Fill&& fill, After&& after) {
   const BlockTransform transform(length, direction, length);
-  const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
-  TeamClock clock;
   RegionStop stop;
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const TeamClock::Mark mark = clock.started();
+  for_each_block(block_count(rows), threads, [&](long b) {
+    if (stop.stopped()) return;
     thread_local ComplexBuffer scratch;
     if (scratch.size() < kFftBlock * length) scratch.resize(kFftBlock * length);
-#pragma omp for schedule(dynamic, 1) nowait
-    for (long b = 0; b < blocks; ++b) {
-      if (stop.stopped()) continue;
-      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
-                        count = std::min(kFftBlock, rows - r0);
-      for (std::size_t r = 0; r < count; ++r) fill(r0 + r, scratch.data() + r * length);
-      Complex* block = data + r0 * length;
-      transform(scratch.data(), block, count);
-      for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
-    }
-    clock.finished(mark);
-  }
-  clock.report(threads);
+    const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
+                      count = std::min(kFftBlock, rows - r0);
+    for (std::size_t r = 0; r < count; ++r) fill(r0 + r, scratch.data() + r * length);
+    Complex* block = data + r0 * length;
+    transform(scratch.data(), block, count);
+    for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
+  });
   stop.rethrow();
 }
 
@@ -180,23 +157,14 @@ template <class Read>
 void row_pass_from(const Complex* in, Complex* out, std::size_t rows, std::size_t length,
                    FftDirection direction, int threads, Read&& read) {
   const BlockTransform transform(length, direction, length);
-  const long blocks = static_cast<long>((rows + kFftBlock - 1) / kFftBlock);
-  TeamClock clock;
   RegionStop stop;
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const TeamClock::Mark mark = clock.started();
-#pragma omp for schedule(dynamic, 1) nowait
-    for (long b = 0; b < blocks; ++b) {
-      if (stop.stopped()) continue;
-      const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
-                        count = std::min(kFftBlock, rows - r0);
-      for (std::size_t r = 0; r < count; ++r) read(r0 + r, in + (r0 + r) * length);
-      transform(in + r0 * length, out + r0 * length, count);
-    }
-    clock.finished(mark);
-  }
-  clock.report(threads);
+  for_each_block(block_count(rows), threads, [&](long b) {
+    if (stop.stopped()) return;
+    const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
+                      count = std::min(kFftBlock, rows - r0);
+    for (std::size_t r = 0; r < count; ++r) read(r0 + r, in + (r0 + r) * length);
+    transform(in + r0 * length, out + r0 * length, count);
+  });
   stop.rethrow();
 }
 

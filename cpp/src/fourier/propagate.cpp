@@ -11,6 +11,7 @@
 #include "core/cancel_every.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
+#include "core/team.hpp"
 #include "fourier/fft.hpp"
 #include "fourier/extent_sums.hpp"
 #include "fourier/fft_passes.hpp"
@@ -65,12 +66,15 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<double
   const int threads = fft_threads(n * n);
   ExtentSums sums(n, threads, true);
   detail::RegionStop stop;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 16) if (threads > 1)
-  for (long iy = 0; iy < static_cast<long>(n); ++iy) {
-    if (stop.stopped()) continue;
-    Complex* line = u.data() + iy * n;
-    sums.add_product(static_cast<std::size_t>(iy), line, scale * chirp_at(a, iy), a, line);
-  }
+  constexpr std::size_t kLines = 16;  // lines per block
+  detail::for_each_block(static_cast<long>((n + kLines - 1) / kLines), threads, [&](long b) {
+    const std::size_t first = static_cast<std::size_t>(b) * kLines;
+    for (std::size_t iy = first; iy < std::min(n, first + kLines); ++iy) {
+      if (stop.stopped()) return;
+      Complex* line = u.data() + iy * n;
+      sums.add_product(iy, line, scale * chirp_at(a, iy), a, line);
+    }
+  });
   stop.rethrow();
   return sums.result();
 }
