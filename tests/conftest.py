@@ -1,6 +1,7 @@
 """Fixtures shared by test files."""
 
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -31,6 +32,13 @@ def client():
             os.environ.pop("PYTHONPATH")
         else:
             os.environ["PYTHONPATH"] = old
+
+
+@pytest.fixture
+def no_scene(monkeypatch):
+    """The command line's 3-D scene (pyvista) is slow to render and has tests of its own: the CLI
+    test modules run as if pyvista were not installed (``pytestmark = usefixtures("no_scene")``)."""
+    monkeypatch.setitem(sys.modules, "pyvista", None)
 
 
 @pytest.fixture(scope="module")

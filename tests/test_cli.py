@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _cli_scenarios import csv_only
 
 import lidar_overlap as lo
 from lidar_overlap.cli import main
@@ -21,17 +22,7 @@ SCENARIOS = Path(__file__).resolve().parents[1] / "examples" / "scenarios"
 TABLE1 = SCENARIOS / "table1.toml"
 
 
-@pytest.fixture(autouse=True)
-def no_scene(monkeypatch):
-    """The 3-D scene (pyvista) is slow to render; its own tests cover it. Here: as if not
-    installed."""
-    monkeypatch.setitem(sys.modules, "pyvista", None)
-
-
-def _csv_only(text):
-    for key in ("netcdf", "plot", "scene"):
-        text = text.replace(f"{key} = true", f"{key} = false")
-    return text
+pytestmark = pytest.mark.usefixtures("no_scene")  # conftest.py
 
 
 def _read_columns(path):
@@ -107,7 +98,7 @@ def test_method_override(tmp_path, capsys):
         .replace("count = 200", "count = 8")
         .replace("start = 5.0", "start = 20.0")
     )
-    (tmp_path / "small.toml").write_text(_csv_only(text))
+    (tmp_path / "small.toml").write_text(csv_only(text))
     assert (
         main(["run", str(tmp_path / "small.toml"), "--out", str(tmp_path), "--method", "fo"]) == 0
     )
@@ -184,7 +175,7 @@ def test_scenario_errors_exit_1_naming_the_key(tmp_path, capsys, change, words):
     assert change[0] in text
     path = tmp_path / "table1.toml"
     path.write_text(
-        _csv_only(text.replace(change[0], change[1], 1).replace("count = 200", "count = 20"))
+        csv_only(text.replace(change[0], change[1], 1).replace("count = 200", "count = 20"))
     )
     code = main(["run", str(path), "--out", str(tmp_path / "out"), "--quiet"])
     out, err = capsys.readouterr()
@@ -243,7 +234,7 @@ def test_version_and_help(capsys):
 
 
 def test_progress_on_long_runs(tmp_path, capsys, monkeypatch):
-    (tmp_path / "s.toml").write_text(_csv_only(TABLE1.read_text()))
+    (tmp_path / "s.toml").write_text(csv_only(TABLE1.read_text()))
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path)]) == 0
     assert "table1" in capsys.readouterr().err  # tqdm bar or counter on stderr
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 0
@@ -308,7 +299,7 @@ def test_demo_writes_the_three_table1_variants(tmp_path, capsys):
 
 def test_subprocess(tmp_path):
     (tmp_path / "s.toml").write_text(
-        _csv_only(TABLE1.read_text()).replace("count = 200", "count = 10")
+        csv_only(TABLE1.read_text()).replace("count = 200", "count = 10")
     )
     done = subprocess.run(
         [

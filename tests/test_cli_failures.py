@@ -5,11 +5,11 @@ text from a scenario cannot drive the terminal."""
 
 import errno
 import os
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from _cli_scenarios import csv_only
 
 import lidar_overlap as lo
 from lidar_overlap.cli import main
@@ -18,16 +18,7 @@ SCENARIOS = Path(__file__).resolve().parents[1] / "examples" / "scenarios"
 TABLE1 = SCENARIOS / "table1.toml"
 
 
-@pytest.fixture(autouse=True)
-def no_scene(monkeypatch):
-    """As in test_cli.py: the 3-D scene is covered by its own tests."""
-    monkeypatch.setitem(sys.modules, "pyvista", None)
-
-
-def _csv_only(text):
-    for key in ("netcdf", "plot", "scene"):
-        text = text.replace(f"{key} = true", f"{key} = false")
-    return text
+pytestmark = pytest.mark.usefixtures("no_scene")  # conftest.py
 
 
 def _small_scenario(tmp_path, outputs=("csv",), start=5.0, stop=1000.0):
@@ -81,7 +72,7 @@ def test_the_summary_prints_no_range_that_does_not_exist(tmp_path, capsys):
     # that reach the detector from these short ranges, from the whole Table 1 beam up to 20 m
     text = TABLE1.read_text().replace("obstruction_radius = 0.0", "obstruction_radius = 0.02")
     text = text.replace("count = 200", "count = 20").replace("start = 5.0", "start = 1.0")
-    (tmp_path / "s.toml").write_text(_csv_only(text.replace("stop = 1000.0", "stop = 20.0")))
+    (tmp_path / "s.toml").write_text(csv_only(text.replace("stop = 1000.0", "stop = 20.0")))
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(tmp_path), "--quiet"]) == 0
     out = capsys.readouterr().out
     assert "max G = 0" in out

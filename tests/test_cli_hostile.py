@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _cli_scenarios import csv_only
 
 import lidar_overlap
 from lidar_overlap.cli import main
@@ -30,16 +31,12 @@ PROBE_TIMEOUT_S = 120
 PROBE_MEMORY_BYTES = 4 << 30
 
 
-@pytest.fixture(autouse=True)
-def no_scene(monkeypatch):
-    monkeypatch.setitem(sys.modules, "pyvista", None)
+pytestmark = pytest.mark.usefixtures("no_scene")  # conftest.py
 
 
 def _small(text: str) -> str:
     """20 ranges, CSV only: the base of every case (valid as it stands)."""
-    for key in ("netcdf", "plot", "scene"):
-        text = text.replace(f"{key} = true", f"{key} = false")
-    return text.replace("count = 200", "count = 20").replace("count = 60", "count = 2")
+    return csv_only(text).replace("count = 200", "count = 20").replace("count = 60", "count = 2")
 
 
 BASE, FLAT = _small(TABLE1), _small(FLAT_TOP).replace("# grid = 512", "grid = 64\n#")

@@ -3,7 +3,6 @@ fractions where whole seconds are meant, ports out of range, an output folder th
 is a usage error (exit code 2) naming the option, before anything is served or fitted. Hostile
 scenario files: test_cli_hostile.py."""
 
-import sys
 from pathlib import Path
 
 import pytest
@@ -15,9 +14,7 @@ TABLE1 = (
 ).read_text()
 
 
-@pytest.fixture(autouse=True)
-def no_scene(monkeypatch):
-    monkeypatch.setitem(sys.modules, "pyvista", None)
+pytestmark = pytest.mark.usefixtures("no_scene")  # conftest.py
 
 
 @pytest.mark.parametrize(

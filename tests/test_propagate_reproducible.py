@@ -7,6 +7,8 @@ import hashlib
 import os
 import subprocess
 import sys
+import warnings
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
@@ -125,3 +127,30 @@ def test_transform_timer_refuses_what_it_cannot_time():
         _core._fft_pair_seconds(64, 1, True, 3)
     with pytest.raises(ValueError, match="threads = 0 is invalid"):
         _core._fft_pair_seconds(64, 1, False, 1, 0)
+
+
+def test_same_bits_from_threads_propagating_at_once():
+    """Two threads propagating at once (an acquisition and a display thread): the transform passes'
+    team (cpp/src/core/team.hpp) serves one caller at a time and the other runs its passes alone,
+    so each result, and each report's extents (summed per team member), are those computed alone."""
+    n = 512
+    cases = [("fresnel", 100.0), ("angular_spectrum", 2.0), ("fresnel", 50.0), ("fraunhofer", 5e3)]
+    field = lo.Field.gaussian(355e-9, 5e-3, n, 10 * 5e-3 / n)
+
+    def run(method, z):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", lo.SamplingWarning)  # Fraunhofer's near-field warning
+            out, _, report = _core.propagate(field.values, field.spacing, 355e-9, z, method, 0.0, 0)
+        return (
+            out.tobytes(),
+            report.output_edge_power,
+            report.fresnel_phase_error,
+            report.fraunhofer_phase,
+        )
+
+    alone = [run(m, z) for m, z in cases]
+    rounds = 6
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        together = list(pool.map(lambda k: run(*cases[k % len(cases)]), range(rounds * len(cases))))
+    for k, result in enumerate(together):
+        assert result == alone[k % len(cases)], cases[k % len(cases)]
