@@ -1,5 +1,6 @@
 #include "core/team.hpp"
 
+#include <omp.h>
 #include <pthread.h>
 
 #include <algorithm>
@@ -32,11 +33,14 @@ inline void spin_pause() {
 #endif
 }
 
-// Spins until done() or the spin for this machine's load has passed; true if done.
+// Spins until done() or the spin for this machine's load has passed; true if done. A team of more threads
+// than cores (OMP_NUM_THREADS above them) waits as on a busy machine: its own threads are the load.
 template <class Done>
-bool spun_until(Done&& done) {
+bool spun_until(int team, Done&& done) {
+  static const int cores = omp_get_num_procs();
+  const bool busy = team > cores || machine_busy();
   const auto until =
-      std::chrono::steady_clock::now() + (machine_busy() ? kBusyMachineSpin : kIdleMachineSpin);
+      std::chrono::steady_clock::now() + (busy ? kBusyMachineSpin : kIdleMachineSpin);
   for (;;) {
     for (int i = 0; i < 16; ++i) {
       if (done()) return true;
@@ -68,7 +72,7 @@ class Pool {
     }
     wake_.notify_all();
     member(0);
-    if (!spun_until([&] { return running_.load() == 0; })) {
+    if (!spun_until(helpers + 1, [&] { return running_.load() == 0; })) {
       std::unique_lock<std::mutex> lock(mutex_);
       done_.wait(lock, [&] { return running_.load() == 0; });
     }
@@ -108,7 +112,8 @@ class Pool {
   // A worker's life: wait for a generation (spin, then sleep), take part if its index is among the helpers.
   void serve(int index, std::uint64_t seen) {
     for (;;) {
-      if (!spun_until([&] { return ticket_.load() != seen; })) {
+      if (!spun_until(static_cast<int>(seen & kHelperMask) + 1,
+                      [&] { return ticket_.load() != seen; })) {
         std::unique_lock<std::mutex> lock(mutex_);
         wake_.wait(lock, [&] { return ticket_.load() != seen; });
       }

@@ -18,8 +18,9 @@ namespace lidar_overlap::detail {
 // On an idle machine, long against the gaps between the passes of one call and between the calls of a loop
 // (microseconds to a millisecond): waking a sleeping thread costs 0.1-0.4 ms on a virtual machine whose
 // idle core has halted, and a spinning thread takes a core nobody else wants. On a busy machine
-// (machine_busy(), core/parallel.hpp) only the gap between the passes of one call: a spinning thread
-// there takes scheduler time from the working ones, and a thread that slept is run first when woken.
+// (machine_busy(), core/parallel.hpp), or in a team of more threads than cores, only the gap between the
+// passes of one call: a spinning thread there takes scheduler time from the working ones, and a thread
+// that slept is run first when woken.
 inline constexpr std::chrono::microseconds kIdleMachineSpin{4000};
 inline constexpr std::chrono::microseconds kBusyMachineSpin{50};
 
