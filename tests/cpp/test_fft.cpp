@@ -45,11 +45,13 @@ ComplexBuffer transformed(const ComplexBuffer& in, std::size_t n, int threads, F
 
 // The team a transform gets while a late team holds `threads = 0` to one thread (core/parallel.hpp): from
 // 1024^2 points the calling thread's full team size (omp_set_num_threads honoured), below it one thread, and
-// one inside a caller's team at any size. The hold-off (a second) is armed again before each query, so the
-// checks do not depend on how soon they run.
+// one inside a caller's team at any size. The hold-off (grown to a second) is armed again before each query,
+// so the checks do not depend on how soon they run.
 void teams_on_a_busy_machine() {
   // A team of 2 one of whose threads waited 10 ms of a 10 ms region.
-  const auto hold_off = [] { detail::note_team_wait(2, 10'000'000, 10'000'000); };
+  const auto hold_off = [] {  // five late teams in a row: the hold grows from 0.1 s to its 1 s
+    for (int team = 0; team < 5; ++team) detail::note_team_wait(2, 10'000'000, 10'000'000);
+  };
   const std::size_t large = std::size_t{1} << 20;
   for (int team : {3, 2}) {
     const std::string with = " (team of " + std::to_string(team) + ")";

@@ -35,8 +35,8 @@ int thread_count(int requested);
 // descheduled in the middle of its work: a call of a few milliseconds then takes many times its one-thread
 // time. Every team reports how long its threads waited for a core (a late start, or wall time in the region
 // beyond the thread's CPU time); a team that waited long (> 1 ms and > 1/4 of the region) makes all_cores()
-// answer 1 for the next second, after which a full team is tried again. Explicit counts are always honoured.
-// Results do not depend on it.
+// answer 1 for the next 0.1 s (doubled by each further late team within twice the last hold, up to 1 s),
+// after which a full team is tried again. Explicit counts are always honoured. Results do not depend on it.
 int all_cores();
 // True while a late team holds all_cores() to one thread: the machine is busy.
 bool machine_busy();
