@@ -17,8 +17,8 @@ namespace lidar_overlap::detail {
 namespace {
 
 thread_local int t_member = 0;
-thread_local bool t_calling =
-    false;  // this thread runs a team: a team of its own would be run alone
+// This thread runs a team: a team of its own would be run alone.
+thread_local bool t_calling = false;
 
 // A generation of work and its number of helpers in one word, so that a worker reads both at once.
 constexpr int kHelperBits = 20;

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstddef>
 
+#include "core/cancel_every.hpp"
 #include "core/parallel.hpp"
 
 namespace lidar_overlap::detail {
@@ -48,16 +49,20 @@ void run_team(int threads, const TeamWork& work);
 int team_member();
 
 // body(b) for every block b in [0, blocks), handed out one at a time to the `threads` threads of a team
-// (run_team), so that a thread the machine delays holds up one block, not a share of the pass.
+// (run_team), so that a thread the machine delays holds up one block, not a share of the pass. The caller's
+// CancelScope is asked before each block (RegionStop): once it stops, the blocks left are skipped and
+// Cancelled (or the scope's own exception) is thrown after the team has ended.
 template <class Body>
 void for_each_block(long blocks, int threads, Body&& body) {
   std::atomic<long> next{0};
+  RegionStop stop;
   auto work = [&](int) {
-    for (long b = next.fetch_add(1, std::memory_order_relaxed); b < blocks;
+    for (long b = next.fetch_add(1, std::memory_order_relaxed); b < blocks && !stop.stopped();
          b = next.fetch_add(1, std::memory_order_relaxed))
       body(b);
   };
   run_team(threads, TeamWork(work));
+  stop.rethrow();
 }
 
 }  // namespace lidar_overlap::detail

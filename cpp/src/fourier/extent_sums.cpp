@@ -1,9 +1,9 @@
 #include "fourier/extent_sums.hpp"
 
-#include "core/team.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/team.hpp"
 
 namespace lidar_overlap::detail {
 

@@ -2,8 +2,8 @@
 // in cache, so that the multiplications and sums of a propagation cost no pass of their own (fused).
 // Blocks are fixed by the shape and handed out dynamically to a team (core/team.hpp): a thread that the
 // machine's load delays holds up one block, not a share of the pass. Hooks must not throw. A pass asks the
-// caller's CancelScope before each block (a pass over a 16384^2 grid takes seconds) and throws Cancelled
-// after the team has ended, never from inside it. Internal header, not installed.
+// caller's CancelScope before each block (a pass over a 16384^2 grid takes seconds; for_each_block) and
+// throws Cancelled after the team has ended, never from inside it. Internal header, not installed.
 #pragma once
 
 #include <algorithm>
@@ -11,7 +11,6 @@
 #include <cstring>
 #include <utility>
 
-#include "core/cancel_every.hpp"
 #include "core/parallel.hpp"
 #include "core/team.hpp"
 #include "fourier/fft.hpp"
@@ -34,9 +33,7 @@ template <class Before, class After>
 void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
               int threads, Before&& before, After&& after) {
   const RowTransform transform(length, direction);
-  RegionStop stop;
   for_each_block(block_count(rows), threads, [&](long b) {
-    if (stop.stopped()) return;
     const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
                       count = std::min(kFftBlock, rows - r0);
     Complex* block = data + r0 * length;
@@ -44,7 +41,6 @@ void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection 
     transform(block, count);
     for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
   });
-  stop.rethrow();
 }
 
 inline void row_pass(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
@@ -85,9 +81,7 @@ template <class Work>
 void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads,
                  Work&& work) {
   const std::size_t stride = column_stride(rows);
-  RegionStop stop;
   for_each_block(block_count(cols), threads, [&](long b) {
-    if (stop.stopped()) return;
     thread_local ComplexBuffer
         scratch;  // kept from pass to pass: an allocation per pass is measurable
     if (scratch.size() < kFftBlock * stride) scratch.resize(kFftBlock * stride);
@@ -109,7 +103,6 @@ void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t
             copy_one(s + c * stride + r, to + r * cols + c0 + c);
     }
   });
-  stop.rethrow();
 }
 
 // A buffer of at least n values for the calling thread, kept from call to call: one column transformed out
@@ -134,9 +127,7 @@ template <class Fill, class After>
 void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirection direction,
                    int threads, Fill&& fill, After&& after) {
   const BlockTransform transform(length, direction, length);
-  RegionStop stop;
   for_each_block(block_count(rows), threads, [&](long b) {
-    if (stop.stopped()) return;
     thread_local ComplexBuffer scratch;
     if (scratch.size() < kFftBlock * length) scratch.resize(kFftBlock * length);
     const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
@@ -146,7 +137,6 @@ void row_pass_into(Complex* data, std::size_t rows, std::size_t length, FftDirec
     transform(scratch.data(), block, count);
     for (std::size_t r = 0; r < count; ++r) after(r0 + r, block + r * length);
   });
-  stop.rethrow();
 }
 
 // Out of place straight from another array: for each block of rows of a rows x length row-major array `in`,
@@ -157,15 +147,12 @@ template <class Read>
 void row_pass_from(const Complex* in, Complex* out, std::size_t rows, std::size_t length,
                    FftDirection direction, int threads, Read&& read) {
   const BlockTransform transform(length, direction, length);
-  RegionStop stop;
   for_each_block(block_count(rows), threads, [&](long b) {
-    if (stop.stopped()) return;
     const std::size_t r0 = static_cast<std::size_t>(b) * kFftBlock,
                       count = std::min(kFftBlock, rows - r0);
     for (std::size_t r = 0; r < count; ++r) read(r0 + r, in + (r0 + r) * length);
     transform(in + r0 * length, out + r0 * length, count);
   });
-  stop.rethrow();
 }
 
 }  // namespace lidar_overlap::detail

@@ -65,17 +65,11 @@ Extent apply_separable(ComplexBuffer& u, std::size_t n, const std::vector<double
                        Complex scale) {
   const int threads = fft_threads(n * n);
   ExtentSums sums(n, threads, true);
-  detail::RegionStop stop;
-  constexpr std::size_t kLines = 16;  // lines per block
-  detail::for_each_block(static_cast<long>((n + kLines - 1) / kLines), threads, [&](long b) {
-    const std::size_t first = static_cast<std::size_t>(b) * kLines;
-    for (std::size_t iy = first; iy < std::min(n, first + kLines); ++iy) {
-      if (stop.stopped()) return;
-      Complex* line = u.data() + iy * n;
-      sums.add_product(iy, line, scale * chirp_at(a, iy), a, line);
-    }
+  detail::for_each_block(static_cast<long>(n), threads, [&](long b) {  // a block is a line
+    const std::size_t iy = static_cast<std::size_t>(b);
+    Complex* line = u.data() + iy * n;
+    sums.add_product(iy, line, scale * chirp_at(a, iy), a, line);
   });
-  stop.rethrow();
   return sums.result();
 }
 
