@@ -1,5 +1,6 @@
 """Helpers shared by the benchmark scripts: warm best-of timings, run metadata and result files."""
 
+import contextlib
 import json
 import os
 import platform
@@ -78,6 +79,30 @@ def source_commit():
     except (OSError, subprocess.SubprocessError):
         return None
     return out.stdout.strip() or None
+
+
+# A busy process's loop: pure Python, ending within ~0.1 s of its parent's death (a benchmark
+# killed by a signal runs no cleanup, and its busy processes would load every later run).
+_BUSY_LOOP = """
+import os
+parent = os.getppid()
+while os.getppid() == parent:
+    for _ in range(1000000):
+        pass
+"""
+
+
+@contextlib.contextmanager
+def busy_processes(count):
+    """``count`` busy processes (pure-Python loops) for the duration of the block, killed at its end
+    and ending by themselves if this process dies first."""
+    busy = [subprocess.Popen([sys.executable, "-c", _BUSY_LOOP]) for _ in range(count)]
+    try:
+        yield busy
+    finally:
+        for p in busy:
+            p.kill()
+            p.wait()
 
 
 def load_average():

@@ -56,14 +56,13 @@ import argparse
 import json
 import os
 import platform
-import subprocess
 import sys
 import time
 import warnings
 from pathlib import Path
 
 import numpy as np
-from _common import best_time, load_average, source_commit
+from _common import best_time, busy_processes, load_average, source_commit
 from _fo_references import (
     FLOOR_NAMES,
     HALF_WINDOW,
@@ -236,10 +235,9 @@ def run_size(n, peer_variants, loaded):
 
 
 def measure(added, sizes, peer_variants):
-    """Every size with ``added`` busy processes running (pure-Python loops, started here and ended
-    by their process ids)."""
-    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(added)]
-    try:
+    """Every size with ``added`` busy processes running (pure-Python loops, started here, ended
+    at the end or with this process)."""
+    with busy_processes(added) as busy:
         time.sleep(2.0 if busy else 0.0)
         load_start = load_average()
         print(f"-- {added} busy processes added | load {load_start:.2f}", flush=True)
@@ -247,10 +245,6 @@ def measure(added, sizes, peer_variants):
         for n in sizes:
             rows.append(run_size(n, peer_variants if not added else [], loaded=added > 0))
             print(f"N = {n} done (load average {load_average():.2f})", flush=True)
-    finally:
-        for p in busy:
-            p.kill()
-            p.wait()
     print_tables(rows, added)
     if not added:
         print_peers(rows)

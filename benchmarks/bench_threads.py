@@ -21,12 +21,10 @@ import argparse
 import dataclasses
 import os
 import statistics
-import subprocess
-import sys
 import time
 
 import numpy as np
-from _common import load_average, run_meta, source_commit, write_result
+from _common import busy_processes, load_average, run_meta, source_commit, write_result
 
 import lidar_overlap as lo
 
@@ -66,9 +64,8 @@ def alternate(fn, rounds):
 
 def measure(added: int) -> dict:
     """Every case in alternating rounds with ``added`` busy processes running (pure-Python loops,
-    started here and ended by their process ids)."""
-    busy = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(added)]
-    try:
+    started here, ended at the end or with this process)."""
+    with busy_processes(added) as busy:
         time.sleep(2.0 if busy else 0.0)
         load_start = load_average()
         print(f"-- {added} busy processes added | load {load_start:.2f}")
@@ -96,10 +93,6 @@ def measure(added: int) -> dict:
                 f"{best[0] / best[1]:.2f} best, {median[0] / median[1]:.2f} median (target <= "
                 f"{TARGET_RATIO}) | load {load_average():.2f}"
             )
-    finally:
-        for p in busy:
-            p.kill()
-            p.wait()
     return {
         "added_busy_processes": added,
         "load_average_1min": load_start,
