@@ -10,11 +10,13 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bind_field.hpp"
 #include "interruptible.hpp"
 #include "result_array.hpp"
 #include "fourier/fft.hpp"
+#include "fourier/fft_wisdom.hpp"
 #include "lidar_overlap/fourier/grid_choice.hpp"
 #include "lidar_overlap/fourier/propagate.hpp"
 
@@ -145,8 +147,7 @@ void bind_propagate(py::module_& m) {
           std::lock_guard<std::mutex> lock(fftw_planner_mutex());
           auto& p = plans[{f.n, threads, sign}];
           if (!p) {
-            static const bool threads_ready = fftw_init_threads() != 0;
-            if (!threads_ready) throw std::runtime_error("FFTW threads could not be initialised");
+            detail::init_fftw_threads();
             fftw_plan_with_nthreads(threads);
             ComplexBuffer scratch(f.n * f.n);
             auto* s = reinterpret_cast<fftw_complex*>(scratch.data());
@@ -196,8 +197,7 @@ void bind_propagate(py::module_& m) {
           auto plan = [&](int sign) {
             auto& q = plans[{n, threads, sign}];
             if (!q) {
-              static const bool threads_ready = fftw_init_threads() != 0;
-              if (!threads_ready) throw std::runtime_error("FFTW threads could not be initialised");
+              detail::init_fftw_threads();
               fftw_plan_with_nthreads(threads);
               ComplexBuffer scratch(n * n);
               auto* s = reinterpret_cast<fftw_complex*>(scratch.data());
@@ -231,4 +231,31 @@ void bind_propagate(py::module_& m) {
       },
       py::arg("n"), py::arg("repeats"), py::arg("library"), py::arg("transforms") = 2,
       py::arg("threads") = 1);
+
+  // The wisdom the library's 1-D block plans are made from (fourier/fft_wisdom.hpp): (FFTW's version string,
+  // wisdom measured now for the given transform lengths), which scripts/make_fft_wisdom.py writes into the
+  // source, and the same pair as shipped.
+  m.def(
+      "_measure_fft_wisdom",
+      [](const std::vector<std::size_t>& lengths) {
+        std::string wisdom;
+        {
+          Interruptible release;
+          wisdom = detail::measure_fft_wisdom(lengths);
+        }
+        return std::make_pair(std::string(fftw_version), wisdom);
+      },
+      py::arg("lengths"));
+  m.def("_merge_fft_wisdom", &detail::merge_fft_wisdom, py::arg("texts"));
+  m.def(
+      "_block_transform_seconds",
+      [](std::size_t n, const std::string& wisdom, int repeats) {
+        Interruptible release;
+        return detail::block_transform_seconds(n, wisdom.c_str(), repeats);
+      },
+      py::arg("n"), py::arg("wisdom"), py::arg("repeats"));
+  m.def("_shipped_fft_wisdom", [] {
+    return std::make_pair(std::string(detail::shipped_fft_wisdom_fftw()),
+                          std::string(detail::shipped_fft_wisdom()));
+  });
 }

@@ -11,6 +11,7 @@
 
 #include "core/parallel.hpp"
 #include "fourier/fft_passes.hpp"
+#include "fourier/fft_wisdom.hpp"
 
 namespace lidar_overlap {
 
@@ -36,22 +37,11 @@ fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   const auto key = std::make_tuple(length, count, sign, distance, out_of_place);
   if (auto it = plans.find(key); it != plans.end()) return it->second;
-  // Estimated plans depend on the shape alone, unless wisdom gathered by timing (in this process, by any
-  // FFTW user) steers them: forget it first. Plans are single-threaded: threads share blocks instead.
-  static bool threads_ready = false;  // other FFTW users in the process may plan with threads
-  if (!threads_ready) {
-    if (fftw_init_threads() == 0) throw std::runtime_error("FFTW threads could not be initialised");
-    threads_ready = true;
-  }
-  fftw_forget_wisdom();
-  fftw_plan_with_nthreads(1);
-  ComplexBuffer scratch(distance * count * (out_of_place ? 2 : 1));
-  auto* in = reinterpret_cast<fftw_complex*>(scratch.data());
-  auto* out = out_of_place ? in + distance * count : in;
-  const int n = static_cast<int>(length), dist = static_cast<int>(distance);
-  const fftw_plan plan = fftw_plan_many_dft(1, &n, static_cast<int>(count), in, nullptr, 1, dist,
-                                            out, nullptr, 1, dist, sign, FFTW_ESTIMATE);
-  if (!plan) throw std::runtime_error("FFTW could not make a plan");
+  // Plans come from the shipped wisdom (fourier/fft_wisdom.hpp), else FFTW_ESTIMATE on forgotten wisdom:
+  // either depends on the shape alone, never on timings gathered in this process by any FFTW user. Plans
+  // are single-threaded: threads share blocks instead.
+  const fftw_plan plan = detail::plan_from_wisdom_or_estimate(
+      {length, count, sign, distance, out_of_place}, detail::shipped_fft_wisdom());
   plans[key] = plan;
   return plan;
 }

@@ -1,5 +1,6 @@
 // Deterministic FFTs: every transform is made of 1-D FFTW plans over fixed blocks of kFftBlock rows (or
-// columns, gathered into a contiguous scratch block), planned with FFTW_ESTIMATE on forgotten wisdom. The
+// columns, gathered into a contiguous scratch block), planned from the wisdom shipped with the source
+// (fourier/fft_wisdom.hpp: plans FFTW_MEASURE chose once), else with FFTW_ESTIMATE on forgotten wisdom. The
 // arithmetic of each row and column then depends on the shape alone, never on the thread count, the
 // schedule or timings, so results are the same bits for any number of threads and in every process, while
 // the blocks are shared over the threads of a team (core/team.hpp). Plans are made once per shape behind
@@ -20,8 +21,9 @@ enum class FftDirection {
   backward
 };  // exp(-2 pi i ...) and exp(+2 pi i ...), unnormalised
 
-// Kept for callers that state how hard to plan: both now give the same deterministic plans (estimated
-// 1-D plans over blocks), which measure within the time of a measured FFTW 2-D plan (docs/fo_propagation.md).
+// Kept for callers that state how hard to plan: both now give the same deterministic plans (1-D plans over
+// blocks, from the shipped wisdom), which measure within the time of a measured FFTW 2-D plan
+// (docs/fo_propagation.md).
 enum class FftPlanning { measure, estimate };
 
 // Rows (or columns) per block: one 1-D plan transforms kFftBlock of them; 8 x 16 bytes fill two cache
