@@ -84,7 +84,7 @@ def main(argv: list[str] | None = None) -> int:
         f"// FFTW wisdom for the block transforms of lengths {lengths[0]} to {lengths[-1]}"
         " (fft_wisdom.hpp),\n"
         f"// measured with FFTW_MEASURE on {cpu_model()}, {stamp}, by scripts/make_fft_wisdom.py\n"
-        f"// (each length: the fastest of {args.candidates} measured candidates and estimated plans).\n"
+        f"// (per length the fastest of {args.candidates} measured plans and the estimated ones).\n"
         "// Generated: do not edit.\n"
         f'constexpr const char* kShippedWisdomFftw = "{fftw}";\n'
         f"constexpr const char* kShippedWisdom =\n{lines};\n"
