@@ -1,5 +1,5 @@
-// Deterministic FFTs: every transform is made of 1-D FFTW plans over fixed blocks of kFftBlock rows (or
-// columns, gathered into a contiguous scratch block), planned from the wisdom shipped with the source
+// Deterministic FFTs: every transform is made of 1-D FFTW plans over fixed blocks of kFftBlock rows and
+// over single columns (gathered by blocks into a contiguous scratch block, fft_passes.hpp), planned from the wisdom shipped with the source
 // (fourier/fft_wisdom.hpp: plans FFTW_MEASURE chose once), else with FFTW_ESTIMATE on forgotten wisdom. The
 // arithmetic of each row and column then depends on the shape alone, never on the thread count, the
 // schedule or timings, so results are the same bits for any number of threads and in every process, while

@@ -68,11 +68,21 @@ void scatter(const Complex* block, std::size_t rows, std::size_t cols, std::size
     for (std::size_t c = 0; c < K; ++c) copy_one(block + c * stride + r, first + r * cols + c);
 }
 
+// Columns per gathered block: each column is transformed alone (by the single-row plans), so the width
+// changes no bits; 16 values of 16 bytes are four cache lines of each row, read and written at once
+// (2 threads: a column pass of 512^2 took 0.93-0.97 ms against 1.05 ms with 8 columns, 1024^2 5.1-5.2
+// against 5.5-5.7 ms; 2048^2 the same). The scratch block (263 KB at 1024^2) stays in a core's L2 up to 1024^2.
+inline constexpr std::size_t kColumnBlock = 16;
+
+inline long column_block_count(std::size_t cols) {
+  return static_cast<long>((cols + kColumnBlock - 1) / kColumnBlock);
+}
+
 // Distance between the gathered columns of a block: one cache line more than the column, so that the
 // block's columns (and the rows they come from, a power of two apart) do not share cache sets.
 inline std::size_t column_stride(std::size_t rows) { return rows + 4; }
 
-// For each block of up to kFftBlock columns of a rows x cols row-major array `from`: the columns gathered
+// For each block of up to kColumnBlock columns of a rows x cols row-major array `from`: the columns gathered
 // into a scratch block (column c of the block at scratch + c * column_stride(rows), contiguous), work(first
 // column, count, scratch), the block written to the same columns of `to` (`from` itself, an array that
 // does not overlap it, or null: the work reads the block and nothing is written back). RowTransform::columns
@@ -81,17 +91,17 @@ template <class Work>
 void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads,
                  Work&& work) {
   const std::size_t stride = column_stride(rows);
-  for_each_block(block_count(cols), threads, [&](long b) {
+  for_each_block(column_block_count(cols), threads, [&](long b) {
     thread_local ComplexBuffer
         scratch;  // kept from pass to pass: an allocation per pass is measurable
-    if (scratch.size() < kFftBlock * stride) scratch.resize(kFftBlock * stride);
-    const std::size_t c0 = static_cast<std::size_t>(b) * kFftBlock,
-                      count = std::min(kFftBlock, cols - c0);
+    if (scratch.size() < kColumnBlock * stride) scratch.resize(kColumnBlock * stride);
+    const std::size_t c0 = static_cast<std::size_t>(b) * kColumnBlock,
+                      count = std::min(kColumnBlock, cols - c0);
     Complex* s = scratch.data();
-    if (count == kFftBlock) {  // the common case, unrolled by the compiler
-      gather<kFftBlock>(from + c0, rows, cols, stride, s);
+    if (count == kColumnBlock) {  // the common case, unrolled by the compiler
+      gather<kColumnBlock>(from + c0, rows, cols, stride, s);
       work(c0, count, s);
-      if (to) scatter<kFftBlock>(s, rows, cols, stride, to + c0);
+      if (to) scatter<kColumnBlock>(s, rows, cols, stride, to + c0);
     } else {
       for (std::size_t r = 0; r < rows; ++r)
         for (std::size_t c = 0; c < count; ++c)

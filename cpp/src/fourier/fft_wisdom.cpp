@@ -70,9 +70,9 @@ const char* shipped_fft_wisdom() { return kShippedWisdom; }
 const char* shipped_fft_wisdom_fftw() { return kShippedWisdomFftw; }
 
 double block_transform_seconds(std::size_t n, const char* wisdom, int repeats) {
-  if (n < kFftBlock || n % kFftBlock != 0 || n > 4096)
+  if (n < kColumnBlock || n % kColumnBlock != 0 || n > 4096)
     throw std::invalid_argument("n = " + std::to_string(n) +
-                                " is invalid: expected a multiple of 8 from 8 to 4096");
+                                " is invalid: expected a multiple of 16 from 16 to 4096");
   if (repeats < 1 || repeats > 10000)
     throw std::invalid_argument("repeats = " + std::to_string(repeats) +
                                 " is invalid: expected 1 to 10000");
@@ -91,29 +91,30 @@ double block_transform_seconds(std::size_t n, const char* wisdom, int repeats) {
                      reinterpret_cast<fftw_complex*>(out));
   };
   const std::size_t stride = column_stride(n);
-  ComplexBuffer data(n * n, Complex(1.0, 0.5)), out(n * n), scratch(kFftBlock * stride), column(n);
+  ComplexBuffer data(n * n, Complex(1.0, 0.5)), out(n * n), scratch(kColumnBlock * stride),
+      column(n);
   double best = 1e300;
   for (int r = 0; r < repeats; ++r) {
     const auto start = std::chrono::steady_clock::now();
-    // In place: rows, then columns gathered by 8.
+    // In place: rows, then gathered columns.
     for (std::size_t row = 0; row < n; row += kFftBlock)
       run(block[0], &data[row * n], &data[row * n]);
-    for (std::size_t c = 0; c < n; c += kFftBlock) {
-      gather<kFftBlock>(&data[c], n, n, stride, scratch.data());
-      for (std::size_t k = 0; k < kFftBlock; ++k)
+    for (std::size_t c = 0; c < n; c += kColumnBlock) {
+      gather<kColumnBlock>(&data[c], n, n, stride, scratch.data());
+      for (std::size_t k = 0; k < kColumnBlock; ++k)
         run(single[0], &scratch[k * stride], &scratch[k * stride]);
-      scatter<kFftBlock>(scratch.data(), n, n, stride, &data[c]);
+      scatter<kColumnBlock>(scratch.data(), n, n, stride, &data[c]);
     }
     // Out of place, each column through a buffer.
     for (std::size_t row = 0; row < n; row += kFftBlock)
       run(block[1], &data[row * n], &out[row * n]);
-    for (std::size_t c = 0; c < n; c += kFftBlock) {
-      gather<kFftBlock>(&out[c], n, n, stride, scratch.data());
-      for (std::size_t k = 0; k < kFftBlock; ++k) {
+    for (std::size_t c = 0; c < n; c += kColumnBlock) {
+      gather<kColumnBlock>(&out[c], n, n, stride, scratch.data());
+      for (std::size_t k = 0; k < kColumnBlock; ++k) {
         run(single[1], &scratch[k * stride], column.data());
         std::copy(column.begin(), column.end(), scratch.begin() + std::ptrdiff_t(k * stride));
       }
-      scatter<kFftBlock>(scratch.data(), n, n, stride, &out[c]);
+      scatter<kColumnBlock>(scratch.data(), n, n, stride, &out[c]);
     }
     best = std::min(
         best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
