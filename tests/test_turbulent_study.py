@@ -137,7 +137,11 @@ def test_statistics_are_numpy_on_the_samples(path):
         np.stack([ds.low.values, ds.high.values]), np.percentile(g, [5, 95], axis=0)
     )
     assert (ds.low.attrs["percentile"], ds.high.attrs["percentile"]) == (5.0, 95.0)
-    assert np.all(ds["std"].values[2:] > 0) and np.all(ds.low.values <= ds["mean"].values)
+    # The 5th percentile of 7 samples lies below their mean; where the samples agree to round-off
+    # (the first ranges, before turbulence spreads them) their summed mean may fall ulps below them.
+    mean = ds["mean"].values
+    assert np.all(ds["std"].values[2:] > 0)
+    assert np.all(ds.low.values <= mean + 8 * np.finfo(float).eps * np.abs(mean))
     assert ds.range.attrs["units"] == "m" and all(ds[v].attrs["units"] == "1" for v in STATISTICS)
 
 
