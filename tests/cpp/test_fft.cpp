@@ -9,6 +9,7 @@
 #include <string>
 
 #include "check.hpp"
+#include "fft_values.hpp"
 #include "core/constants.hpp"
 #include "core/parallel.hpp"
 #include "fourier/fft.hpp"
@@ -17,20 +18,8 @@ using namespace lidar_overlap;
 
 namespace {
 
-// Round-off of an n-point FFT relative to the largest value: ~1e-16 log2(n); 1e-12 leaves room.
-constexpr double kRoundOff = 1e-12;
-
-ComplexBuffer pseudo_random(std::size_t size) {
-  ComplexBuffer v(size);
-  unsigned long long s = 12345;
-  for (Complex& x : v) {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double a = static_cast<double>(s >> 11) / 9007199254740992.0;
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    x = {a - 0.5, static_cast<double>(s >> 11) / 9007199254740992.0 - 0.5};
-  }
-  return v;
-}
+using test::kRoundOff;
+using test::pseudo_random;
 
 bool same_bits(const ComplexBuffer& a, const ComplexBuffer& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Complex)) == 0;
@@ -132,13 +121,9 @@ int main() {
   fft_rows(out, rows, length, FftDirection::backward);
   double worst = 0.0;
   for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t k = 0; k < length; ++k) {
-      Complex sum{};
-      for (std::size_t j = 0; j < length; ++j)
-        sum += in[r * length + j] *
-               std::polar(1.0, 2.0 * kPi * double(j * k % length) / double(length));
-      worst = std::max(worst, std::abs(sum - out[r * length + k]));
-    }
+    for (std::size_t k = 0; k < length; ++k)
+      worst = std::max(
+          worst, std::abs(test::direct_dft(&in[r * length], length, k, +1) - out[r * length + k]));
   test::near("fft_rows = direct sum, exp(+2 pi i jk/n)", worst, 0.0, kRoundOff);
   teams_on_a_busy_machine();  // last: it leaves threads = 0 held to one thread for a second
   return test::report("test_fft");

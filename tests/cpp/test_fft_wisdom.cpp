@@ -11,7 +11,7 @@
 #include <string>
 
 #include "check.hpp"
-#include "core/constants.hpp"
+#include "fft_values.hpp"
 #include "fourier/fft.hpp"
 #include "fourier/fft_wisdom.hpp"
 
@@ -20,8 +20,7 @@ using detail::BlockProblem;
 
 namespace {
 
-// Round-off of an n-point FFT relative to the largest value: ~1e-16 log2(n); 1e-12 leaves room.
-constexpr double kRoundOff = 1e-12;
+using test::kRoundOff;
 
 std::string exported_wisdom() {
   const std::unique_ptr<char, void (*)(void*)> text(fftw_export_wisdom_to_string(), fftw_free);
@@ -38,26 +37,18 @@ fftw_plan plan_from(const BlockProblem& p, const std::string& wisdom) {
 // pseudo-random u.
 double error_against_direct_sum(const BlockProblem& p, fftw_plan plan) {
   const std::size_t size = p.distance * p.count;
-  ComplexBuffer in(size), out(size);
-  unsigned long long s = 777;
-  for (Complex& v : in) {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    v = {double(s >> 11) / 9007199254740992.0 - 0.5, double((s >> 7) % 1000) / 1000.0 - 0.5};
-  }
+  ComplexBuffer in = test::pseudo_random(size), out(size);
   const ComplexBuffer original = in;
   Complex* target = p.out_of_place ? out.data() : in.data();
   fftw_execute_dft(plan, reinterpret_cast<fftw_complex*>(in.data()),
                    reinterpret_cast<fftw_complex*>(target));
-  const double n = double(p.length), sign = double(p.sign);
   double worst = 0.0;
   for (std::size_t r = 0; r < p.count; ++r)
-    for (std::size_t k = 0; k < p.length; ++k) {
-      Complex sum{};
-      for (std::size_t j = 0; j < p.length; ++j)
-        sum += original[r * p.distance + j] *
-               std::polar(1.0, sign * 2.0 * kPi * double(j * k % p.length) / n);
-      worst = std::max(worst, std::abs(sum - target[r * p.distance + k]) / n);
-    }
+    for (std::size_t k = 0; k < p.length; ++k)
+      worst = std::max(worst,
+                       std::abs(test::direct_dft(&original[r * p.distance], p.length, k, p.sign) -
+                                target[r * p.distance + k]) /
+                           double(p.length));
   return worst;
 }
 

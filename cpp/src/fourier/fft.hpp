@@ -1,6 +1,7 @@
 // Deterministic FFTs: every transform is made of 1-D FFTW plans over fixed blocks of kFftBlock rows and
-// over single columns (gathered by blocks into a contiguous scratch block, fft_passes.hpp), planned from the wisdom shipped with the source
-// (fourier/fft_wisdom.hpp: plans FFTW_MEASURE chose once), else with FFTW_ESTIMATE on forgotten wisdom. The
+// over single columns (gathered by blocks into a contiguous scratch block, fft_passes.hpp), planned
+// from the wisdom shipped with the source (fourier/fft_wisdom.hpp: plans FFTW_MEASURE chose once), else
+// with FFTW_ESTIMATE on forgotten wisdom. The
 // arithmetic of each row and column then depends on the shape alone, never on the thread count, the
 // schedule or timings, so results are the same bits for any number of threads and in every process, while
 // the blocks are shared over the threads of a team (core/team.hpp). Plans are made once per shape behind

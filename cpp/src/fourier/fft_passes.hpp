@@ -23,9 +23,9 @@ inline Complex product(Complex a, Complex b) {
   return {a.real() * b.real() - a.imag() * b.imag(), a.real() * b.imag() + a.imag() * b.real()};
 }
 
-// Blocks of kFftBlock lines in `lines` lines (the last one shorter).
-inline long block_count(std::size_t lines) {
-  return static_cast<long>((lines + kFftBlock - 1) / kFftBlock);
+// Blocks of `width` lines in `lines` lines (the last one shorter).
+inline long block_count(std::size_t lines, std::size_t width = kFftBlock) {
+  return static_cast<long>((lines + width - 1) / width);
 }
 
 // For each row r of a rows x length row-major array: before(r, row), its 1-D transform, after(r, row).
@@ -71,12 +71,9 @@ void scatter(const Complex* block, std::size_t rows, std::size_t cols, std::size
 // Columns per gathered block: each column is transformed alone (by the single-row plans), so the width
 // changes no bits; 16 values of 16 bytes are four cache lines of each row, read and written at once
 // (2 threads: a column pass of 512^2 took 0.93-0.97 ms against 1.05 ms with 8 columns, 1024^2 5.1-5.2
-// against 5.5-5.7 ms; 2048^2 the same). The scratch block (263 KB at 1024^2) stays in a core's L2 up to 1024^2.
+// against 5.5-5.7 ms; 2048^2 the same). The scratch block (263 KB at 1024^2) stays in a core's L2 up
+// to 1024^2.
 inline constexpr std::size_t kColumnBlock = 16;
-
-inline long column_block_count(std::size_t cols) {
-  return static_cast<long>((cols + kColumnBlock - 1) / kColumnBlock);
-}
 
 // Distance between the gathered columns of a block: one cache line more than the column, so that the
 // block's columns (and the rows they come from, a power of two apart) do not share cache sets.
@@ -91,7 +88,7 @@ template <class Work>
 void column_pass(const Complex* from, Complex* to, std::size_t rows, std::size_t cols, int threads,
                  Work&& work) {
   const std::size_t stride = column_stride(rows);
-  for_each_block(column_block_count(cols), threads, [&](long b) {
+  for_each_block(block_count(cols, kColumnBlock), threads, [&](long b) {
     thread_local ComplexBuffer
         scratch;  // kept from pass to pass: an allocation per pass is measurable
     if (scratch.size() < kColumnBlock * stride) scratch.resize(kColumnBlock * stride);

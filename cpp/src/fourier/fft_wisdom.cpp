@@ -17,6 +17,14 @@ namespace {
 // kShippedWisdomFftw and kShippedWisdom, written by scripts/make_fft_wisdom.py.
 #include "fourier/fft_wisdom.inc"
 
+// The wisdom FFTW holds now, as text; all of it is forgotten after. The caller holds fftw_planner_mutex().
+std::string export_and_forget_wisdom() {
+  const std::unique_ptr<char, void (*)(void*)> text(fftw_export_wisdom_to_string(), fftw_free);
+  fftw_forget_wisdom();
+  if (!text) throw std::runtime_error("FFTW could not export its wisdom");
+  return text.get();
+}
+
 }  // namespace
 
 std::vector<BlockProblem> block_problems(std::size_t length) {
@@ -91,31 +99,27 @@ double block_transform_seconds(std::size_t n, const char* wisdom, int repeats) {
                      reinterpret_cast<fftw_complex*>(out));
   };
   const std::size_t stride = column_stride(n);
-  ComplexBuffer data(n * n, Complex(1.0, 0.5)), out(n * n), scratch(kColumnBlock * stride),
-      column(n);
+  ComplexBuffer data(n * n, Complex(1.0, 0.5)), out(n * n);
   double best = 1e300;
   for (int r = 0; r < repeats; ++r) {
     const auto start = std::chrono::steady_clock::now();
-    // In place: rows, then gathered columns.
+    // In place (fft2d): rows, then the gathered columns.
     for (std::size_t row = 0; row < n; row += kFftBlock)
       run(block[0], &data[row * n], &data[row * n]);
-    for (std::size_t c = 0; c < n; c += kColumnBlock) {
-      gather<kColumnBlock>(&data[c], n, n, stride, scratch.data());
-      for (std::size_t k = 0; k < kColumnBlock; ++k)
-        run(single[0], &scratch[k * stride], &scratch[k * stride]);
-      scatter<kColumnBlock>(scratch.data(), n, n, stride, &data[c]);
-    }
-    // Out of place, each column through a buffer.
+    column_pass(data.data(), n, n, 1, [&](std::size_t, std::size_t count, Complex* columns) {
+      for (std::size_t k = 0; k < count; ++k)
+        run(single[0], columns + k * stride, columns + k * stride);
+    });
+    // Out of place (propagate, the split steps): each gathered column through a buffer.
     for (std::size_t row = 0; row < n; row += kFftBlock)
       run(block[1], &data[row * n], &out[row * n]);
-    for (std::size_t c = 0; c < n; c += kColumnBlock) {
-      gather<kColumnBlock>(&out[c], n, n, stride, scratch.data());
-      for (std::size_t k = 0; k < kColumnBlock; ++k) {
-        run(single[1], &scratch[k * stride], column.data());
-        std::copy(column.begin(), column.end(), scratch.begin() + std::ptrdiff_t(k * stride));
+    column_pass(out.data(), n, n, 1, [&](std::size_t, std::size_t count, Complex* columns) {
+      Complex* buffer = column_buffer(n);
+      for (std::size_t k = 0; k < count; ++k) {
+        run(single[1], columns + k * stride, buffer);
+        std::copy(buffer, buffer + n, columns + k * stride);
       }
-      scatter<kColumnBlock>(scratch.data(), n, n, stride, &out[c]);
-    }
+    });
     best = std::min(
         best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     for (Complex& v : data) v = Complex(1.0, 0.5);  // bounded values for the next round
@@ -140,10 +144,7 @@ std::string measure_fft_wisdom(const std::vector<std::size_t>& lengths) {
       fftw_destroy_plan(plan);  // its wisdom stays
     }
   }
-  const std::unique_ptr<char, void (*)(void*)> text(fftw_export_wisdom_to_string(), fftw_free);
-  fftw_forget_wisdom();
-  if (!text) throw std::runtime_error("FFTW could not export its wisdom");
-  return text.get();
+  return export_and_forget_wisdom();
 }
 
 std::string merge_fft_wisdom(const std::vector<std::string>& texts) {
@@ -156,10 +157,7 @@ std::string merge_fft_wisdom(const std::vector<std::string>& texts) {
       throw std::invalid_argument("wisdom = '" + text.substr(0, 40) +
                                   "...' is invalid: expected wisdom this FFTW exported");
     }
-  const std::unique_ptr<char, void (*)(void*)> merged(fftw_export_wisdom_to_string(), fftw_free);
-  fftw_forget_wisdom();
-  if (!merged) throw std::runtime_error("FFTW could not export its wisdom");
-  return merged.get();
+  return export_and_forget_wisdom();
 }
 
 }  // namespace lidar_overlap::detail
