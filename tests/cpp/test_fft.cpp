@@ -1,6 +1,6 @@
-// The deterministic transforms (cpp/src/fourier/fft.cpp): each is the DFT (against a direct sum and a plane
-// wave's closed form), and its bits do not depend on the thread count, inside a caller's team or not; the
-// team each size gets on a busy machine.
+// The deterministic transforms (cpp/src/fourier/fft.cpp): each is the DFT (against a direct sum and
+// a plane wave's closed form), and its bits do not depend on the thread count, inside a caller's
+// team or not; the team each size gets on a busy machine.
 #include <omp.h>
 
 #include <cmath>
@@ -32,10 +32,11 @@ ComplexBuffer transformed(const ComplexBuffer& in, std::size_t n, int threads, F
   return out;
 }
 
-// The team a transform gets while a late team holds `threads = 0` to one thread (core/parallel.hpp): from
-// 1024^2 points the calling thread's full team size (omp_set_num_threads honoured), below it one thread, and
-// one inside a caller's team at any size. The hold-off (grown to a second) is armed again before each query,
-// so the checks do not depend on how soon they run.
+// The team a transform gets while a late team holds `threads = 0` to one thread
+// (core/parallel.hpp): from 256^2 points the calling thread's full team size (omp_set_num_threads
+// honoured; the passes' team never waits for a late thread), below it one thread, and one inside a
+// caller's team at any size. The hold-off (grown to a second) is armed again before each query, so
+// the checks do not depend on how soon they run.
 void teams_on_a_busy_machine() {
   // A team of 2 one of whose threads waited 10 ms of a 10 ms region.
   const auto hold_off = [] {  // five late teams in a row: the hold grows from 0.1 s to its 1 s
@@ -47,16 +48,15 @@ void teams_on_a_busy_machine() {
     omp_set_num_threads(team);
     hold_off();
     test::that("held off: threads = 0 means one thread" + with, detail::all_cores() == 1);
-    for (const std::size_t points : {large, large * 2, large * 4}) {  // 1024^2, 2048 x 512, 2048^2
+    // 2048^2, 2048 x 512, 1024^2, 512^2, 256^2
+    for (const std::size_t points : {large * 4, large * 2, large, large / 4, large / 16}) {
       hold_off();
       test::that("held off: " + std::to_string(points) + " points keep the full team" + with,
                  fft_threads(points) == team);
     }
-    for (const std::size_t points : {large - 1, large / 4, large / 16}) {  // and 512^2, 256^2
-      hold_off();
-      test::that("held off: " + std::to_string(points) + " points run on one thread" + with,
-                 fft_threads(points) == 1);
-    }
+    hold_off();
+    test::that("held off: fewer than 256^2 points run on one thread" + with,
+               fft_threads(large / 16 - 1) == 1);
   }
   int nested = -1;
 #pragma omp parallel num_threads(2)

@@ -68,9 +68,9 @@ void note_team_wait(int threads, long long waited_ns, long long region_ns) {
 
 bool machine_busy() { return steady_ns() < g_busy_until_ns.load(std::memory_order_relaxed); }
 
-int all_cores() { return machine_busy() ? 1 : all_cores_for_long_work(); }
+int all_cores() { return machine_busy() ? 1 : all_cores_even_if_busy(); }
 
-int all_cores_for_long_work() { return std::min(omp_get_max_threads(), max_threads()); }
+int all_cores_even_if_busy() { return std::min(omp_get_max_threads(), max_threads()); }
 
 int thread_count(int requested) {
   if (requested < 0 || requested > max_threads())

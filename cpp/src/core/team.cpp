@@ -23,8 +23,18 @@ thread_local bool t_calling = false;
 // A generation of work and its number of helpers in one word, so that a worker reads both at once.
 constexpr int kHelperBits = 20;
 constexpr std::uint64_t kHelperMask = (std::uint64_t{1} << kHelperBits) - 1;
+// The gate of a generation: the helpers inside it (low bits), whether the caller has closed it, and
+// the generation (high bits), in one word, so that a helper enters only the open gate of its own
+// generation.
+constexpr std::uint64_t kInsideMask = (std::uint64_t{1} << (kHelperBits + 1)) - 1;
+constexpr std::uint64_t kClosed = std::uint64_t{1} << (kHelperBits + 1);
+constexpr int kGateGenerationShift = kHelperBits + 2;
+inline std::uint64_t gate_of(std::uint64_t generation) {
+  return generation << kGateGenerationShift;
+}
 
-// One spin step: a pause on x86 (lets the sibling hyper-thread run and saves power), a yield hint on Arm.
+// One spin step: a pause on x86 (lets the sibling hyper-thread run and saves power), a yield hint
+// on Arm.
 inline void spin_pause() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
@@ -33,8 +43,9 @@ inline void spin_pause() {
 #endif
 }
 
-// Spins until done() or the spin for this machine's load has passed; true if done. A team of more threads
-// than cores (OMP_NUM_THREADS above them) waits as on a busy machine: its own threads are the load.
+// Spins until done() or the spin for this machine's load has passed; true if done. A team of more
+// threads than cores (OMP_NUM_THREADS above them) waits as on a busy machine: its own threads are
+// the load.
 template <class Done>
 bool spun_until(int team, Done&& done) {
   static const int cores = omp_get_num_procs();
@@ -53,8 +64,8 @@ bool spun_until(int team, Done&& done) {
 // Workers wait for a new generation of work; the calling thread for the helpers of its generation.
 class Pool {
  public:
-  // Runs work on the caller and up to threads - 1 workers; false (nothing run) if another team holds the
-  // pool.
+  // Runs work on the caller and up to threads - 1 workers; false (nothing run) if another team
+  // holds the pool.
   bool run(int threads, const TeamWork& work, TeamClock& clock) {
     if (t_calling) return false;
     std::unique_lock<std::mutex> holding(busy_, std::try_to_lock);
@@ -66,15 +77,26 @@ class Pool {
       work_ = &work;
       clock_ = &clock;
       failure_ = nullptr;
-      running_.store(helpers);
       const std::uint64_t generation = (ticket_.load() >> kHelperBits) + 1;
+      gate_.store(gate_of(generation));
       ticket_.store(generation << kHelperBits | static_cast<std::uint64_t>(helpers));
     }
     wake_.notify_all();
     member(0);
-    if (!spun_until(helpers + 1, [&] { return running_.load() == 0; })) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      done_.wait(lock, [&] { return running_.load() == 0; });
+    // The caller's share is done, so every block is taken: close the gate, so that a helper the
+    // machine has not run yet skips this generation, and wait only for the helpers inside
+    // (finishing a block).
+    gate_.fetch_or(kClosed);
+    const auto all_left = [&] { return (gate_.load() & kInsideMask) == 0; };
+    if (!all_left()) {
+      const auto waiting = std::chrono::steady_clock::now();
+      if (!spun_until(helpers + 1, all_left)) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        done_.wait(lock, all_left);
+      }
+      clock.waited(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                       std::chrono::steady_clock::now() - waiting)
+                       .count());
     }
     t_calling = false;
     if (failure_) std::rethrow_exception(failure_);
@@ -86,7 +108,8 @@ class Pool {
   int grow(int wanted) {
     while (static_cast<int>(count_) < wanted) {
       try {
-        // It starts from the current generation: one published before it runs is still its to serve.
+        // It starts from the current generation: one published before it runs is still its to
+        // serve.
         std::thread(&Pool::serve, this, static_cast<int>(count_) + 1, ticket_.load()).detach();
       } catch (const std::system_error&) {
         break;
@@ -98,7 +121,7 @@ class Pool {
 
   void member(int index) {
     t_member = index;
-    const TeamClock::Mark mark = clock_->started();
+    const TeamClock::Mark mark = clock_->begun();
     try {
       (*work_)(index);
     } catch (...) {
@@ -109,7 +132,8 @@ class Pool {
     t_member = 0;
   }
 
-  // A worker's life: wait for a generation (spin, then sleep), take part if its index is among the helpers.
+  // A worker's life: wait for a generation (spin, then sleep), take part if its index is among the
+  // helpers.
   void serve(int index, std::uint64_t seen) {
     for (;;) {
       if (!spun_until(static_cast<int>(seen & kHelperMask) + 1,
@@ -119,29 +143,40 @@ class Pool {
       }
       seen = ticket_.load();
       if (static_cast<std::uint64_t>(index) > (seen & kHelperMask)) continue;
+      if (!enter(gate_of(seen >> kHelperBits))) continue;  // late: the caller has finished
       member(index);
-      if (running_.fetch_sub(1) == 1) {
+      const std::uint64_t left = gate_.fetch_sub(1) - 1;
+      if ((left & kClosed) && (left & kInsideMask) == 0) {
         {
           std::lock_guard<std::mutex> lock(mutex_);
-        }  // the caller is waiting or will see 0
+        }  // the caller is waiting or will see none inside
         done_.notify_one();
       }
     }
   }
 
+  // Into the gate `open` (gate_of a generation), if the gate is still that one and open.
+  bool enter(std::uint64_t open) {
+    std::uint64_t g = gate_.load();
+    while ((g & ~kInsideMask) == open)
+      if (gate_.compare_exchange_weak(g, g + 1)) return true;
+    return false;
+  }
+
   std::mutex busy_;  // one team at a time
   std::mutex mutex_, failure_mutex_;
-  std::condition_variable wake_, done_;   // workers: a new generation; the caller: all workers done
+  std::condition_variable wake_, done_;   // workers: a new generation; the caller: the gate emptied
   std::atomic<std::uint64_t> ticket_{0};  // generation << kHelperBits | its helpers
-  std::atomic<int> running_{0};           // helpers of this generation still working
+  std::atomic<std::uint64_t> gate_{0};    // gate_of(generation) | kClosed | helpers inside
   const TeamWork* work_ = nullptr;  // written before ticket_ changes, read by its helpers after
   TeamClock* clock_ = nullptr;
   std::size_t count_ = 0;  // workers made (they never end)
   std::exception_ptr failure_;
 };
 
-// The pool is never destroyed: its workers sleep through exit. A forked child has none of its parent's
-// threads, so it starts a pool of its own (the parent's stays reachable, and unused, in the child).
+// The pool is never destroyed: its workers sleep through exit. A forked child has none of its
+// parent's threads, so it starts a pool of its own (the parent's stays reachable, and unused, in
+// the child).
 std::atomic<Pool*> g_pool{nullptr};
 std::vector<Pool*>* g_forsaken = nullptr;
 

@@ -17,18 +17,18 @@ namespace lidar_overlap {
 
 namespace {
 
-// From this many points a transform is shared over threads: 256^2 takes ~0.3 ms on one core, which a
-// dynamically scheduled team still shortens; below it a team's start-up is not repaid.
+// From this many points a transform is shared over threads: 256^2 takes ~0.3 ms on one core, which
+// a dynamically scheduled team still shortens; below it a team's start-up is not repaid.
 constexpr std::size_t kThreadedPoints = std::size_t{1} << 16;
-// From this many points (1024^2) a transform takes all cores even while a late team holds `threads = 0` to
-// one thread (core/parallel.hpp): one thread takes ~20 ms per pass pair at 1024^2 (~100 ms at 2048^2), so a
-// thread that starts a few scheduler slices late costs a small fraction, whereas one thread among busy
-// processes gets a single share of the cores. At 512^2 (~5 ms) a late thread costs about the call itself.
-constexpr std::size_t kFullTeamPoints = std::size_t{1} << 20;
+// Every threaded transform takes all cores, also while a late team holds `threads = 0` to one
+// thread (core/parallel.hpp): its team does not wait for a thread that starts late (core/team.hpp),
+// so on a busy machine a second thread helps when the scheduler runs it and costs nothing when it
+// does not, whereas one thread among busy processes gets a single share of the cores against every
+// other program's full team.
 
-// (length, rows per plan, sign, distance between rows, out of place) -> plan, made once and kept for the
-// whole process (the map is never destroyed, so no plan outlives FFTW's cleanup and leak checkers see
-// reachable memory).
+// (length, rows per plan, sign, distance between rows, out of place) -> plan, made once and kept
+// for the whole process (the map is never destroyed, so no plan outlives FFTW's cleanup and leak
+// checkers see reachable memory).
 fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_t distance = 0,
                      bool out_of_place = false) {
   if (distance == 0) distance = length;
@@ -37,9 +37,9 @@ fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_
   std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   const auto key = std::make_tuple(length, count, sign, distance, out_of_place);
   if (auto it = plans.find(key); it != plans.end()) return it->second;
-  // Plans come from the shipped wisdom (fourier/fft_wisdom.hpp), else FFTW_ESTIMATE on forgotten wisdom:
-  // either depends on the shape alone, never on timings gathered in this process by any FFTW user. Plans
-  // are single-threaded: threads share blocks instead.
+  // Plans come from the shipped wisdom (fourier/fft_wisdom.hpp), else FFTW_ESTIMATE on forgotten
+  // wisdom: either depends on the shape alone, never on timings gathered in this process by any
+  // FFTW user. Plans are single-threaded: threads share blocks instead.
   const fftw_plan plan = detail::plan_from_wisdom_or_estimate(
       {length, count, sign, distance, out_of_place}, detail::shipped_fft_wisdom());
   plans[key] = plan;
@@ -48,9 +48,10 @@ fftw_plan block_plan(std::size_t length, std::size_t count, int sign, std::size_
 
 int sign_of(FftDirection d) { return d == FftDirection::forward ? FFTW_FORWARD : FFTW_BACKWARD; }
 
-// `count` rows `distance` apart from `in` to `out` (the same array for in-place plans): the block plan for a
-// whole block, else the single-row plan row by row. Plans were made on FFTW-aligned memory; std::complex<double>
-// arrays keep that alignment (16 bytes). Complex out-of-place plans preserve their input.
+// `count` rows `distance` apart from `in` to `out` (the same array for in-place plans): the block
+// plan for a whole block, else the single-row plan row by row. Plans were made on FFTW-aligned
+// memory; std::complex<double> arrays keep that alignment (16 bytes). Complex out-of-place plans
+// preserve their input.
 void execute_blocks(void* block, void* single, const Complex* in, Complex* out, std::size_t count,
                     std::size_t distance, const char* who) {
   auto* i = reinterpret_cast<fftw_complex*>(const_cast<Complex*>(in));
@@ -105,7 +106,7 @@ void BlockTransform::operator()(const Complex* in, Complex* out, std::size_t cou
 
 int fft_threads(std::size_t points) {
   if (points < kThreadedPoints || omp_get_level() > 0) return 1;
-  return points >= kFullTeamPoints ? detail::all_cores_for_long_work() : detail::all_cores();
+  return detail::all_cores_even_if_busy();
 }
 
 void fft2d(ComplexBuffer& data, std::size_t n, FftDirection direction, FftPlanning) {
