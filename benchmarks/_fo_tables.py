@@ -15,12 +15,14 @@ def print_tables(rows, added):
     print(
         f"\nlo against its own transforms and the fastest floor, {added} busy processes added "
         f"(ms, {THREADS} threads; own = the library's FFT pair (AS) or forward FFT (Fresnel), no "
-        "copies; floor = least of own, system FFTW measured, pyFFTW measured; D1 err = "
-        "|1 - w_D1 / w|)"
+        "copies; floor = least of own, system FFTW measured, pyFFTW measured; med = median "
+        "per-round ratio, against each floor and the largest; null = own timed again, against own "
+        "(med) and against the least floor of its round (rl); D1 err = |1 - w_D1 / w|)"
     )
     header = (
         f"{'N':>5} {'case':9} {'own':>8} {'floor':>8} {'from':>6} {'lo':>8} {'x own':>6} "
-        f"{'x floor':>7} {'med own':>7} {'med fl':>6} {'native':>8} {'cold':>8} {'new z':>8} "
+        f"{'x floor':>7} {'med own':>7} {'med fl':>6} {'null':>5} {'null rl':>7} {'native':>8} "
+        f"{'cold':>8} {'new z':>8} "
         f"{'D1 err':>8} {'load':>5} {'rounds':>6}  target"
     )
     print(header)
@@ -31,7 +33,8 @@ def print_tables(rows, added):
                 f"{r['n']:5d} {m[:9]:9} {fmt_ms(c['own_s'])} {fmt_ms(c['floor_s'])} "
                 f"{c['floor_source']:>6} {fmt_ms(c['lo_s'])} {c['ratio_to_own']:5.2f}x "
                 f"{c['ratio_to_floor']:6.2f}x {c['ratio_to_own_median']:6.2f}x "
-                f"{c['ratio_to_floor_median']:5.2f}x {fmt_ms(c['lo_native_s'])} "
+                f"{c['ratio_to_floor_median']:5.2f}x {c['null_ratio_to_own_median']:4.2f}x "
+                f"{c['null_ratio_to_round_least_floor_median']:6.2f}x {fmt_ms(c['lo_native_s'])} "
                 f"{c['lo_cold_s'] * 1e3:8.1f} {fmt_ms(c['lo_new_distance_s'])} "
                 f"{c['lo_d1_rel_error']:8.1e} {r['load_average_1min']:5.1f} {r['rounds']:6d}  "
                 f"{'met' if c['target_met'] else 'NOT met'} (<= {c['target_own']:g}x own, "
