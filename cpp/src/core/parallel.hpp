@@ -33,12 +33,12 @@ int thread_count(int requested);
 // Thread policy for `threads = 0` on a busy machine. An OpenMP team cannot end before its last
 // thread has started and finished, and on a loaded machine a thread may wait several scheduler time
 // slices to start, or be descheduled in the middle of its work: a call of a few milliseconds then
-// takes many times its one-thread time. Every team reports how long it waited for a core (an OpenMP
-// thread's late start; a pass team's wait for a member descheduled in its work; wall time in the
-// region beyond a thread's CPU time); a team that waited long (> 1 ms and > 1/4 of the region)
-// makes all_cores() answer 1 for the next 0.1 s (doubled by each further late team within twice the
-// last hold, up to 1 s), after which a full team is tried again. Explicit counts are always
-// honoured. Results do not depend on it.
+// takes many times its one-thread time. Every team reports how long it waited for a core (a
+// thread's late start, also where the passes' team did not wait for it; the passes' caller's wait
+// for a member descheduled in its work; wall time in the region beyond a thread's CPU time); a team
+// that waited long (> 1 ms and > 1/4 of the region) makes all_cores() answer 1 for the next 0.1 s
+// (doubled by each further late team within twice the last hold, up to 1 s), after which a full
+// team is tried again. Explicit counts are always honoured. Results do not depend on it.
 int all_cores();
 // True while a late team holds all_cores() to one thread: the machine is busy.
 bool machine_busy();
@@ -52,8 +52,8 @@ void note_team_wait(int threads, long long waited_ns, long long region_ns);
 // Measures how long the threads of one team waited for a core (TeamClock clock; in the region:
 // `const auto mark = clock.started();` first and `clock.finished(mark);` once the thread's share of
 // the work is done, before any wait for the others; after the region: clock.report(threads)). A
-// team that does not wait for a thread that starts late (core/team.hpp) marks its threads with
-// begun() instead, and notes the caller's wait for those still in their work with waited().
+// team that does not wait for a thread that starts late (core/team.hpp) also notes the caller's
+// wait for those still in their work with waited().
 class TeamClock {
  public:
   struct Mark {
@@ -65,8 +65,6 @@ class TeamClock {
     note(mark.wall_ns - start_);
     return mark;
   }
-  // The same without noting the start: for a team that does not wait for a thread that starts late.
-  Mark begun() const { return Mark{wall_ns(), cpu_ns()}; }
   void waited(long long ns) { note(ns); }
   // Wall time the thread spent in its work beyond its CPU time: time descheduled (page faults and
   // system calls count as CPU time; the work blocks on nothing else).

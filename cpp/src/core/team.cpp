@@ -33,6 +33,12 @@ inline std::uint64_t gate_of(std::uint64_t generation) {
   return generation << kGateGenerationShift;
 }
 
+long long steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 // One spin step: a pause on x86 (lets the sibling hyper-thread run and saves power), a yield hint
 // on Arm.
 inline void spin_pause() {
@@ -79,6 +85,7 @@ class Pool {
       failure_ = nullptr;
       const std::uint64_t generation = (ticket_.load() >> kHelperBits) + 1;
       gate_.store(gate_of(generation));
+      published_ns_.store(steady_ns());
       ticket_.store(generation << kHelperBits | static_cast<std::uint64_t>(helpers));
     }
     wake_.notify_all();
@@ -121,7 +128,7 @@ class Pool {
 
   void member(int index) {
     t_member = index;
-    const TeamClock::Mark mark = clock_->begun();
+    const TeamClock::Mark mark = clock_->started();  // a late start marks the machine busy
     try {
       (*work_)(index);
     } catch (...) {
@@ -143,7 +150,11 @@ class Pool {
       }
       seen = ticket_.load();
       if (static_cast<std::uint64_t>(index) > (seen & kHelperMask)) continue;
-      if (!enter(gate_of(seen >> kHelperBits))) continue;  // late: the caller has finished
+      if (!enter(gate_of(seen >> kHelperBits))) {  // late: the caller has finished the work
+        const long long late = steady_ns() - published_ns_.load();
+        note_team_wait(static_cast<int>(seen & kHelperMask) + 1, late, late);
+        continue;
+      }
       member(index);
       const std::uint64_t left = gate_.fetch_sub(1) - 1;
       if ((left & kClosed) && (left & kInsideMask) == 0) {
@@ -168,6 +179,7 @@ class Pool {
   std::condition_variable wake_, done_;   // workers: a new generation; the caller: the gate emptied
   std::atomic<std::uint64_t> ticket_{0};  // generation << kHelperBits | its helpers
   std::atomic<std::uint64_t> gate_{0};    // gate_of(generation) | kClosed | helpers inside
+  std::atomic<long long> published_ns_{0};  // when the current generation was published
   const TeamWork* work_ = nullptr;  // written before ticket_ changes, read by its helpers after
   TeamClock* clock_ = nullptr;
   std::size_t count_ = 0;  // workers made (they never end)

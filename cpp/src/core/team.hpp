@@ -46,8 +46,9 @@ class TeamWork {
 // member that started has returned, and rethrows the first exception one of them threw. With
 // threads <= 1, or while another thread's team holds the pool (two callers at once), the calling
 // thread alone runs work(0). So the work must be shared dynamically and done in full by whichever
-// members run (for_each_block), never assigned to a member. Time spent descheduled in the work, and
-// the caller's wait for the others, is measured and reported (TeamClock).
+// members run (for_each_block), never assigned to a member. A worker's late start (also one that
+// skips the call), time descheduled in the work and the caller's wait for the others are measured
+// and reported (TeamClock, note_team_wait): they mark the machine busy, which shortens the spins.
 void run_team(int threads, const TeamWork& work);
 
 // The member index of the calling thread in the team it works in (0 outside a team): per-thread
