@@ -2,6 +2,7 @@
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#include <xmmintrin.h>
 #endif
 
 // Built for baseline x86-64 (SSE2). An AVX2 build of the product loop, chosen at run time, gave the same
@@ -67,6 +68,12 @@ inline void pair_product(const Complex* from, __m128d sr, __m128d si, const doub
   const __m128d cr = _mm_loadu_pd(re + i), ci = _mm_loadu_pd(im + i);
   const __m128d tr = _mm_sub_pd(_mm_mul_pd(sr, cr), _mm_mul_pd(si, ci));
   const __m128d ti = _mm_add_pd(_mm_mul_pd(sr, ci), _mm_mul_pd(si, cr));
+  // The input product streams the caller's field from memory one row at a time, between the rows'
+  // transforms, where the hardware prefetcher starts late: asked 1 KiB ahead, non-temporally (each
+  // value is read once, so it need not evict the result from the caches). A 512^2 Fresnel call took
+  // 3-7 % less on 2 threads (four alternating runs) and 6-9 % less on one. Harmless for a line
+  // already in cache (the output product's).
+  _mm_prefetch(reinterpret_cast<const char*>(from + i) + 1024, _MM_HINT_NTA);
   const double* f = reinterpret_cast<const double*>(from + i);
   const __m128d f0 = _mm_loadu_pd(f), f1 = _mm_loadu_pd(f + 2);
   const __m128d fr = _mm_unpacklo_pd(f0, f1), fi = _mm_unpackhi_pd(f0, f1);
