@@ -115,13 +115,9 @@ def interleaved_rounds(fns, repeats, seconds=0.0):
     return times
 
 
-def median_ratios(times, per_round, own_key, sources):
-    """Median over the rounds of times / the own transform's time in the same round, and the
-    largest over `sources` of the median of times / that floor's time (NaN without sources)."""
-    t = np.array(times)
-    own = float(np.median(t / np.array(per_round[own_key])))
-    floors = [float(np.median(t / np.array(per_round[key]))) for key in sources]
-    return own, max(floors, default=float("nan"))
+def median_ratio(times, reference):
+    """Median over the rounds of times / the reference's time in the same round."""
+    return float(np.median(np.asarray(times) / np.asarray(reference)))
 
 
 def timed_once(fn):
@@ -191,14 +187,12 @@ def run_size(n, peer_variants, loaded):
         # round, the estimator this replaced.
         name = FLOOR_NAMES[FLOOR_TRANSFORMS[m]]
         sources = [key for key in per_round if isinstance(key, tuple) and key[1] == name]
-        own_median, floor_median = median_ratios(per_round[m], per_round, ("own", name), sources)
-        null_own = median_ratios(per_round[m + "_null"], per_round, ("own", name), [])[0]
-        null_round_least = float(
-            np.median(
-                np.array(per_round[m + "_null"])
-                / np.min([per_round[key] for key in sources], axis=0)
-            )
-        )
+        own_times, null_times = per_round[("own", name)], per_round[m + "_null"]
+        own_median = median_ratio(per_round[m], own_times)
+        floor_median = max(median_ratio(per_round[m], per_round[key]) for key in sources)
+        null_own = median_ratio(null_times, own_times)
+        round_least = np.min([per_round[key] for key in sources], axis=0)
+        null_round_least = median_ratio(null_times, round_least)
         judged = (own_median, floor_median) if loaded else (warm[m] / own, warm[m] / floor)
         case = {
             "distance_m": z,

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <string>
 
 #include "core/checks.hpp"
@@ -36,12 +35,6 @@ namespace detail {
 namespace {
 // Until when (steady clock, ns) `threads = 0` means one thread: set when a team's threads waited for a core.
 std::atomic<long long> g_busy_until_ns{0};
-
-long long steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 // A team one of whose threads waited this long for a core (and this share of the region) waited for the
 // machine: on an idle one threads start within tens of microseconds and run undisturbed.

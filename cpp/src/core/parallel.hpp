@@ -49,6 +49,13 @@ bool machine_busy();
 int all_cores_even_if_busy();
 void note_team_wait(int threads, long long waited_ns, long long region_ns);
 
+// The steady clock in nanoseconds: the times of the thread policy below.
+inline long long steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 // Measures how long the threads of one team waited for a core (TeamClock clock; in the region:
 // `const auto mark = clock.started();` first and `clock.finished(mark);` once the thread's share of
 // the work is done, before any wait for the others; after the region: clock.report(threads)). A
@@ -59,24 +66,19 @@ class TeamClock {
   struct Mark {
     long long wall_ns, cpu_ns;
   };
-  TeamClock() : start_(wall_ns()) {}
+  TeamClock() : start_(steady_ns()) {}
   Mark started() {
-    const Mark mark{wall_ns(), cpu_ns()};
+    const Mark mark{steady_ns(), cpu_ns()};
     note(mark.wall_ns - start_);
     return mark;
   }
   void waited(long long ns) { note(ns); }
   // Wall time the thread spent in its work beyond its CPU time: time descheduled (page faults and
   // system calls count as CPU time; the work blocks on nothing else).
-  void finished(const Mark& mark) { note((wall_ns() - mark.wall_ns) - (cpu_ns() - mark.cpu_ns)); }
-  void report(int threads) const { note_team_wait(threads, waited_.load(), wall_ns() - start_); }
+  void finished(const Mark& mark) { note((steady_ns() - mark.wall_ns) - (cpu_ns() - mark.cpu_ns)); }
+  void report(int threads) const { note_team_wait(threads, waited_.load(), steady_ns() - start_); }
 
  private:
-  static long long wall_ns() {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-  }
   static long long cpu_ns() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);

@@ -33,12 +33,6 @@ inline std::uint64_t gate_of(std::uint64_t generation) {
   return generation << kGateGenerationShift;
 }
 
-long long steady_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
 // One spin step: a pause on x86 (lets the sibling hyper-thread run and saves power), a yield hint
 // on Arm.
 inline void spin_pause() {
@@ -96,14 +90,12 @@ class Pool {
     gate_.fetch_or(kClosed);
     const auto all_left = [&] { return (gate_.load() & kInsideMask) == 0; };
     if (!all_left()) {
-      const auto waiting = std::chrono::steady_clock::now();
+      const long long waiting = steady_ns();
       if (!spun_until(helpers + 1, all_left)) {
         std::unique_lock<std::mutex> lock(mutex_);
         done_.wait(lock, all_left);
       }
-      clock.waited(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                       std::chrono::steady_clock::now() - waiting)
-                       .count());
+      clock.waited(steady_ns() - waiting);
     }
     t_calling = false;
     if (failure_) std::rethrow_exception(failure_);
