@@ -2,6 +2,7 @@
 
 import contextlib
 import json
+import math
 import os
 import platform
 import subprocess
@@ -130,10 +131,31 @@ def run_meta(load_start, **fields):
     }
 
 
+def json_text(record, indent=2, named_non_finite=False):
+    """``record`` as strict JSON (RFC 8259), indented. A value that is not finite is written as
+    null (a failed or undefined case, which the record explains beside it), or with
+    ``named_non_finite`` as the string "NaN", "Infinity" or "-Infinity" (snapshots, whose
+    comparisons must tell them apart); never as the bare NaN or Infinity that Python writes by
+    default and strict parsers reject."""
+    return json.dumps(_finite(record, named_non_finite), indent=indent, allow_nan=False) + "\n"
+
+
+def _finite(value, named):
+    if isinstance(value, float):  # numpy's float64 too
+        if math.isfinite(value):
+            return value
+        return (str(value).replace("inf", "Infinity").replace("nan", "NaN")) if named else None
+    if isinstance(value, dict):
+        return {key: _finite(v, named) for key, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v, named) for v in value]
+    return value
+
+
 def write_result(name, record):
-    """``record`` as indented JSON in results/<name>.json; returns the path."""
+    """``record`` as indented strict JSON (json_text) in results/<name>.json; returns the path."""
     RESULTS.mkdir(parents=True, exist_ok=True)
     out = RESULTS / f"{name}.json"
-    out.write_text(json.dumps(record, indent=2) + "\n")
+    out.write_text(json_text(record))
     print(f"wrote {out}")
     return out

@@ -57,7 +57,6 @@ Run:  python benchmarks/bench_fo.py [--load N ...] [--sizes N ...] [--no-peers]
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import platform
 import sys
@@ -66,7 +65,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
-from _common import best_time, busy_processes, load_average, source_commit
+from _common import best_time, busy_processes, json_text, load_average, source_commit
 from _fo_references import (
     FLOOR_NAMES,
     HALF_WINDOW,
@@ -361,7 +360,7 @@ def main():
         "own grid",
         "peers": peer_status,
     }
-    out.write_text(json.dumps({"meta": meta, "runs": runs}, indent=2) + "\n")
+    out.write_text(json_text({"meta": meta, "runs": runs}))
     print(f"\nwrote {out}")
 
 

@@ -24,6 +24,7 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+from _common import json_text
 
 import lidar_overlap as lo
 from lidar_overlap import parameters
@@ -218,7 +219,7 @@ def _differences(before, now, where="") -> list:
             for i, (a, b) in enumerate(zip(before, now))
             for d in _differences(a, b, f"{where}[{i}]")
         ]
-    if before != now and not (before != before and now != now):  # NaN equals NaN here
+    if before != now:
         return [f"{where}: {before!r} -> {now!r}"]
     return []
 
@@ -229,10 +230,11 @@ def main(argv=None) -> int:
     group.add_argument("--write", nargs="?", const=str(RESULT), help="write the snapshot")
     group.add_argument("--compare", nargs="?", const=str(RESULT), help="compare with a snapshot")
     args = parser.parse_args(argv)
-    now = json.loads(json.dumps(snapshot()))  # the stored form: repr floats, lists for tuples
+    # The stored form: repr floats, lists for tuples, "NaN" and "(-)Infinity" as strings.
+    now = json.loads(json_text(snapshot(), indent=None, named_non_finite=True))
     if args.write:
         with open(args.write, "w") as f:
-            json.dump(now, f, indent=1)
+            f.write(json_text(now, indent=1))
         return 0
     with open(args.compare) as f:
         before = json.load(f)

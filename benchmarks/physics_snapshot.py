@@ -19,6 +19,7 @@ import sys
 import warnings
 
 import numpy as np
+from _common import json_text
 
 import lidar_overlap as lo
 
@@ -153,7 +154,7 @@ def main(argv=None) -> int:
     now = snapshot()
     if args.write:
         with open(args.write, "w") as f:
-            json.dump(now, f, indent=1)
+            f.write(json_text(now, indent=1, named_non_finite=True))
         return 0
     with open(args.compare) as f:
         before = json.load(f)
@@ -163,7 +164,8 @@ def main(argv=None) -> int:
             print(f"{name:26s} missing or resized")
             worst = math.inf
             continue
-        delta = float(np.max(np.abs(np.subtract(before[name], now[name]))))
+        stored = np.asarray(before[name], float)  # "NaN" and "(-)Infinity" back to floats
+        delta = float(np.max(np.abs(np.subtract(stored, now[name]))))
         worst = max(worst, delta)
         print(f"{name:26s} max |dG| = {delta:.3g}")
     print(f"largest |dG| {worst:.3g} (tolerance {args.tolerance:g})")

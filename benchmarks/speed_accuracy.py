@@ -37,7 +37,6 @@ Run:  python benchmarks/speed_accuracy.py     (about 3.5 minutes on 2 idle cores
 
 from __future__ import annotations
 
-import json
 import os
 import platform
 import sys
@@ -54,7 +53,7 @@ import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from _common import load_average, source_commit  # noqa: E402
+from _common import json_text, load_average, source_commit  # noqa: E402
 from _speed_common import (
     FO_2D_WINDOW,
     RADIAL_DEFAULT,
@@ -364,7 +363,7 @@ def main():
             p.pop("call", None)
     out = RESULTS / "speed_accuracy.json"
     out.write_text(
-        json.dumps(
+        json_text(
             {
                 "meta": meta,
                 "scenes": scenes,
@@ -374,7 +373,6 @@ def main():
             },
             indent=1,
         )
-        + "\n"
     )
     print(
         f"\nwrote {out} and "
