@@ -144,7 +144,9 @@ def _finite(value, named):
     if isinstance(value, float):  # numpy's float64 too
         if math.isfinite(value):
             return value
-        return (str(value).replace("inf", "Infinity").replace("nan", "NaN")) if named else None
+        if not named:
+            return None
+        return "NaN" if math.isnan(value) else ("Infinity" if value > 0 else "-Infinity")
     if isinstance(value, dict):
         return {key: _finite(v, named) for key, v in value.items()}
     if isinstance(value, (list, tuple)):
